@@ -1,0 +1,34 @@
+#pragma once
+// Lagrange's equations with Pfaffian constraints, M(q) qdd = F(q, qd, t, u) + Xi^T lambda,
+// derived in Kane's form (partial velocities), which equals Lagrange's for holonomic
+// coordinates and avoids differentiating the Lagrangian:
+//   M_jk = sum_B m V_j . V_k + W_j . J W_k                     ( = d2T / dqd_j dqd_k )
+//   F_k  = Q_k - sum_B m V_k . a0 + W_k . (J alpha0 + omega x J omega)
+// with V_k, W_k the partial (angular) velocities and a0, alpha0 the accelerations at qdd = 0.
+#include <ginac/ginac.h>
+
+#include "eomgen/mechanical_system.hpp"
+#include "eomgen/subexpressions.hpp"
+
+namespace eomgen {
+
+/// The derived equations. Every matrix may refer to the intermediates of `subexpressions`.
+struct EquationsOfMotion {
+  Subexpressions subexpressions;
+  GiNaC::matrix mass_matrix;                   ///< M, n x n, symmetric
+  GiNaC::matrix forcing;                       ///< F, n x 1
+  GiNaC::matrix constraint_jacobian;           ///< Xi, m x n
+  GiNaC::matrix constraint_rate_term;          ///< Xi_t, m x 1
+  GiNaC::matrix constraint_acceleration_term;  ///< dXi/dt qd + dXi_t/dt, m x 1
+  GiNaC::matrix holonomic_residuals;           ///< phi(q, t) of the holonomic rows, m_h x 1
+  GiNaC::ex kinetic_energy;                    ///< T
+  GiNaC::ex potential_energy;                  ///< V
+  std::size_t coordinate_count = 0;            ///< n
+  std::size_t constraint_count = 0;            ///< m
+};
+
+/// Derives the equations of motion. Pure: the system is only read.
+/// \throws DerivationError if an expression cannot be differentiated (e.g. an input in a rotation).
+EquationsOfMotion derive_equations(const MechanicalSystem& system);
+
+}  // namespace eomgen

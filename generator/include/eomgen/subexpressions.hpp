@@ -1,0 +1,54 @@
+#pragma once
+// Named intermediate quantities z_i = value_i shared by the derivation. Compounded DCMs,
+// partial velocities and accelerations of long chains would grow exponentially as trees if
+// written out; binding each to a symbol keeps every expression small and the whole
+// derivation linear in the size of its shared graph. Code emission later prints the
+// definitions in order, like the temporaries of an optimizing compiler.
+#include <ginac/ginac.h>
+
+#include <map>
+#include <string>
+#include <vector>
+
+namespace eomgen {
+
+class Subexpressions {
+ public:
+  struct Definition {
+    GiNaC::realsymbol symbol;
+    GiNaC::ex value;  // refers only to model symbols and to earlier definitions
+  };
+
+  explicit Subexpressions(std::string prefix = "z") : prefix_(std::move(prefix)) {}
+
+  /// A symbol standing for `value`, or `value` itself when it is already atomic (a number,
+  /// a symbol, a number times a symbol, a function of a symbol). Equal values share a symbol.
+  GiNaC::ex bind(const GiNaC::ex& value);
+  /// bind() applied to every entry.
+  GiNaC::matrix bind(const GiNaC::matrix& value);
+
+  /// Definitions in creation order (each refers only to earlier ones).
+  const std::vector<Definition>& definitions() const { return definitions_; }
+  std::size_t size() const { return definitions_.size(); }
+
+  /// e with every intermediate written out in model symbols. Exponential for long chains;
+  /// meant for small systems, printing and tests.
+  GiNaC::ex expand(const GiNaC::ex& e) const;
+  GiNaC::matrix expand(const GiNaC::matrix& m) const;
+
+  /// Numeric value of e where `values` gives a number for every model symbol e and the
+  /// definitions depend on.
+  GiNaC::ex evaluate(const GiNaC::ex& e, const GiNaC::exmap& values) const;
+
+  /// `values` extended with the numeric value of every intermediate, computed in order.
+  GiNaC::exmap evaluate_all(const GiNaC::exmap& values) const;
+
+ private:
+  std::string prefix_;
+  std::vector<Definition> definitions_;
+  std::map<GiNaC::ex, GiNaC::ex, GiNaC::ex_is_less> by_value_;
+  mutable GiNaC::exmap expanded_;  // symbol -> value written out, filled in order
+  mutable std::size_t expanded_count_ = 0;
+};
+
+}  // namespace eomgen

@@ -1,0 +1,93 @@
+#pragma once
+// The scalar symbols of a model: time, generalized coordinates with their rates, parameters
+// and inputs. Symbols are created in declaration order, which keeps GiNaC's term order (it
+// follows symbol serial numbers) the same from run to run for the same model.
+#include <ginac/ginac.h>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace eomgen {
+
+/// A generalized coordinate q with its rate qd = dq/dt and acceleration qdd.
+struct Coordinate {
+  std::string name;
+  GiNaC::realsymbol q;
+  GiNaC::realsymbol qd;
+  GiNaC::realsymbol qdd;
+};
+
+/// A constant of the model (length, mass, stiffness...) with its default value.
+struct Parameter {
+  std::string name;
+  GiNaC::realsymbol symbol;
+  double default_value = 0.0;
+  std::string unit;
+};
+
+/// An external input u (a force, a torque, a motor command) known as a function of time.
+struct Input {
+  std::string name;
+  GiNaC::realsymbol symbol;
+};
+
+/// What kind of quantity a symbol of the model stands for.
+enum class SymbolKind { time, coordinate, rate, acceleration, parameter, input };
+
+class Variables {
+ public:
+  Variables();
+
+  /// Declares a symbol; returns it by value (symbols are cheap handles).
+  /// \throws ModelError if the name is empty, not an identifier, or already used.
+  Coordinate add_coordinate(const std::string& name);
+  Parameter add_parameter(const std::string& name, double default_value,
+                                 const std::string& unit = "");
+  Input add_input(const std::string& name);
+
+  const GiNaC::realsymbol& time() const { return time_; }
+  const std::vector<Coordinate>& coordinates() const { return coordinates_; }
+  const std::vector<Parameter>& parameters() const { return parameters_; }
+  const std::vector<Input>& inputs() const { return inputs_; }
+  std::size_t coordinate_count() const { return coordinates_.size(); }
+
+  /// The symbol of that name (coordinate, rate "name_dot", acceleration "name_ddot",
+  /// parameter, input or "t"), if any.
+  std::optional<GiNaC::realsymbol> find(const std::string& name) const;
+  /// Kind of a symbol of this model, or nothing if the symbol is foreign to the model.
+  std::optional<SymbolKind> kind_of(const GiNaC::ex& symbol) const;
+  /// Index of the coordinate whose q, qd or qdd is this symbol.
+  std::optional<std::size_t> coordinate_index(const GiNaC::ex& symbol) const;
+
+  /// \throws ModelError naming `what` if `e` contains a symbol that is not part of this model.
+  void require_known_symbols(const GiNaC::ex& e, const std::string& what) const;
+
+  /// Total time derivative d/dt e = de/dt + sum_k (de/dq_k qd_k + de/dqd_k qdd_k).
+  /// \throws DerivationError if e contains an input or an acceleration (their rates are unknown).
+  GiNaC::ex time_derivative(const GiNaC::ex& e) const;
+
+  /// e with every rate qd_k set to zero.
+  GiNaC::ex at_rest(const GiNaC::ex& e) const;
+  /// e with every acceleration qdd_k set to zero.
+  GiNaC::ex without_accelerations(const GiNaC::ex& e) const;
+
+  /// All coordinate symbols q, in order.
+  GiNaC::lst coordinate_list() const;
+  GiNaC::lst rate_list() const;
+
+ private:
+  void check_name(const std::string& name) const;
+  void claim_name(const std::string& name);
+
+  GiNaC::realsymbol time_;
+  std::vector<Coordinate> coordinates_;
+  std::vector<Parameter> parameters_;
+  std::vector<Input> inputs_;
+  std::vector<std::string> names_;
+  GiNaC::exmap kinds_;  // symbol -> numeric code of SymbolKind
+  GiNaC::exmap rate_to_zero_;
+  GiNaC::exmap acceleration_to_zero_;
+};
+
+}  // namespace eomgen

@@ -1,0 +1,24 @@
+#!/usr/bin/env bash
+# Installs everything eomgen needs on Debian 12 with apt-get; does nothing when all is present.
+set -euo pipefail
+
+packages=(
+  g++ cmake make pkg-config
+  libginac-dev libcln-dev ginac-tools
+  libeigen3-dev libfmt-dev libgtest-dev
+  libcli11-dev nlohmann-json3-dev
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  exit 0
+fi
+
+echo "installing: ${missing[*]}"
+sudo_cmd=()
+if [ "$(id -u)" -ne 0 ]; then sudo_cmd=(sudo); fi
+"${sudo_cmd[@]}" apt-get update -qq
+DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"

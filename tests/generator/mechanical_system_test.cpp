@@ -1,0 +1,136 @@
+// Validation when building a MechanicalSystem: every bad input is a ModelError that names it.
+#include "eomgen/mechanical_system.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "eomgen/error.hpp"
+#include "eomgen/simplify.hpp"
+
+namespace eomgen {
+namespace {
+
+using GiNaC::ex;
+using GiNaC::matrix;
+using ::testing::HasSubstr;
+
+matrix diag(const ex& a, const ex& b, const ex& c) { return matrix(3, 3, GiNaC::lst{a, 0, 0, 0, b, 0, 0, 0, c}); }
+
+template <class F>
+std::string error_of(F&& f) {
+  try {
+    f();
+  } catch (const ModelError& e) {
+    return e.what();
+  }
+  return "no ModelError thrown";
+}
+
+struct Fixture {
+  MechanicalSystem s{"a", "w"};
+  Coordinate q = s.add_coordinate("q");
+  ex m = s.add_parameter("m", 1.0);
+  FrameId b = s.add_frame("b", s.inertial_frame(), Rotation::principal(3, q.q));
+  PointId p = s.add_point("p", s.origin(), Vector(b, 1, 0, 0));
+};
+
+TEST(MechanicalSystem, InertialFrameAndOriginExist) {
+  Fixture f;
+  EXPECT_EQ(f.s.frame(f.s.inertial_frame()).name, "a");
+  EXPECT_EQ(f.s.point(f.s.origin()).name, "w");
+  EXPECT_EQ(f.s.find_frame("b")->index, f.b.index);
+  EXPECT_EQ(f.s.find_point("p")->index, f.p.index);
+  EXPECT_FALSE(f.s.find_frame("nope").has_value());
+  EXPECT_EQ(f.s.frame(f.b).depth, 1u);
+}
+
+TEST(MechanicalSystem, DuplicateNamesAreRejected) {
+  Fixture f;
+  EXPECT_THAT(error_of([&] { f.s.add_frame("b", f.s.inertial_frame(), Rotation::identity()); }),
+              HasSubstr("frame 'b': the name is already used"));
+  EXPECT_THAT(error_of([&] { f.s.add_point("b", f.s.origin(), Vector()); }), HasSubstr("'b'"));
+}
+
+TEST(MechanicalSystem, ForeignSymbolInRotationIsRejected) {
+  Fixture f;
+  GiNaC::realsymbol stranger("stranger");
+  EXPECT_THAT(error_of([&] { f.s.add_frame("c", f.b, Rotation::principal(1, stranger)); }),
+              HasSubstr("'stranger' is not a time, coordinate, rate, parameter or input"));
+}
+
+TEST(MechanicalSystem, RotationDependingOnRateIsRejected) {
+  Fixture f;
+  EXPECT_THAT(error_of([&] { f.s.add_frame("c", f.b, Rotation::principal(1, f.q.qd)); }),
+              HasSubstr("not on rates"));
+}
+
+TEST(MechanicalSystem, NonPositiveMassIsRejected) {
+  Fixture f;
+  EXPECT_THAT(error_of([&] { f.s.add_particle("bad", -f.m, f.p); }), HasSubstr("mass must be positive, got -1"));
+  EXPECT_THAT(error_of([&] { f.s.add_particle("bad", f.q.q, f.p); }), HasSubstr("mass must be a constant"));
+}
+
+TEST(MechanicalSystem, InertiaMustBeSymmetricPositiveDefinite) {
+  Fixture f;
+  matrix J = diag(1, 1, 1);
+  J(0, 1) = 0.1;
+  EXPECT_THAT(error_of([&] { f.s.add_rigid_body("body", f.m, f.p, f.b, J); }), HasSubstr("must be symmetric"));
+  EXPECT_THAT(error_of([&] { f.s.add_rigid_body("body", f.m, f.p, f.b, diag(1, -1, 1)); }),
+              HasSubstr("positive definite"));
+  // positive diagonal but indefinite
+  matrix K = diag(1, 1, 1);
+  K(0, 1) = K(1, 0) = 2;
+  EXPECT_THAT(error_of([&] { f.s.add_rigid_body("body", f.m, f.p, f.b, K); }), HasSubstr("positive definite"));
+  EXPECT_THAT(error_of([&] { f.s.add_rigid_body("body", f.m, f.p, f.b, matrix(2, 2)); }),
+              HasSubstr("expected a 3x3 inertia matrix, got 2x2"));
+}
+
+TEST(MechanicalSystem, NonholonomicConstraintMustBeLinearInRates) {
+  Fixture f;
+  EXPECT_THAT(error_of([&] { f.s.add_nonholonomic_constraint("c", f.q.qd * f.q.qd); }),
+              HasSubstr("must be linear in the rates, but it is not linear in 'q_dot'"));
+  EXPECT_THAT(error_of([&] { f.s.add_nonholonomic_constraint("c", f.q.q); }), HasSubstr("contains no rate"));
+}
+
+TEST(MechanicalSystem, HolonomicConstraintMustDependOnCoordinatesOnly) {
+  Fixture f;
+  EXPECT_THAT(error_of([&] { f.s.add_holonomic_constraint("c", f.q.qd); }), HasSubstr("may not contain rates"));
+  EXPECT_THAT(error_of([&] { f.s.add_holonomic_constraint("c", f.s.variables().time()); }),
+              HasSubstr("does not depend on any coordinate"));
+  // identically zero once simplified
+  EXPECT_THAT(error_of([&] {
+                f.s.add_holonomic_constraint("c", GiNaC::pow(GiNaC::sin(f.q.q), 2) + GiNaC::pow(GiNaC::cos(f.q.q), 2) - 1);
+              }),
+              HasSubstr("holonomic constraint 'c'"));
+}
+
+TEST(MechanicalSystem, SpringNeedsTwoDistinctPoints) {
+  Fixture f;
+  EXPECT_THAT(error_of([&] { f.s.add_spring("k", f.p, f.p, 1, 0); }), HasSubstr("the two points must differ"));
+}
+
+TEST(MechanicalSystem, GeneralizedForceOnMissingCoordinateIsRejected) {
+  Fixture f;
+  EXPECT_THAT(error_of([&] { f.s.add_generalized_force(3, 1); }), HasSubstr("coordinate #3 does not exist"));
+}
+
+TEST(ParallelAxis, UniformRodAboutItsEndIsOneThirdMlSquared) {
+  const GiNaC::realsymbol m("m"), l("l");
+  const matrix Jc = diag(0, m * l * l / 12, m * l * l / 12);
+  const matrix Jo = parallel_axis(Jc, m, matrix(3, 1, GiNaC::lst{l / 2, 0, 0}));
+  EXPECT_TRUE((Jo(1, 1) - m * l * l / 3).expand().is_zero());
+  EXPECT_TRUE((Jo(2, 2) - m * l * l / 3).expand().is_zero());
+  EXPECT_TRUE(Jo(0, 0).expand().is_zero());
+  EXPECT_TRUE(Jo(0, 1).expand().is_zero());
+}
+
+TEST(ParallelAxis, OffDiagonalProductsOfInertia) {
+  // J_o = J_c + m (r^T r 1 - r r^T): off-diagonal -m x y
+  const GiNaC::realsymbol m("m"), x("x"), y("y"), z("z");
+  const matrix Jo = parallel_axis(matrix(3, 3), m, matrix(3, 1, GiNaC::lst{x, y, z}));
+  EXPECT_TRUE((Jo(0, 1) + m * x * y).expand().is_zero());
+  EXPECT_TRUE((Jo(0, 0) - m * (y * y + z * z)).expand().is_zero());
+}
+
+}  // namespace
+}  // namespace eomgen

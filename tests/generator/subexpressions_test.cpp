@@ -1,0 +1,51 @@
+#include "eomgen/subexpressions.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace eomgen {
+namespace {
+
+using GiNaC::ex;
+
+TEST(Subexpressions, AtomicValuesAreNotBound) {
+  Subexpressions z;
+  const GiNaC::realsymbol q("q");
+  EXPECT_TRUE(z.bind(q).is_equal(q));
+  EXPECT_TRUE(z.bind(ex(3)).is_equal(3));
+  EXPECT_TRUE(z.bind(-2 * q).is_equal(-2 * q));
+  EXPECT_TRUE(z.bind(GiNaC::sin(q)).is_equal(GiNaC::sin(q)));
+  EXPECT_EQ(z.size(), 0u);
+}
+
+TEST(Subexpressions, EqualValuesShareOneSymbol) {
+  Subexpressions z;
+  const GiNaC::realsymbol a("a"), b("b");
+  const ex first = z.bind(a * b + 1);
+  const ex second = z.bind(1 + b * a);
+  EXPECT_TRUE(first.is_equal(second));
+  EXPECT_EQ(z.size(), 1u);
+  EXPECT_EQ(GiNaC::ex_to<GiNaC::symbol>(first).get_name(), "z1");
+}
+
+TEST(Subexpressions, ExpandWritesOutNestedDefinitions) {
+  Subexpressions z;
+  const GiNaC::realsymbol a("a"), b("b");
+  const ex z1 = z.bind(a + b);
+  const ex z2 = z.bind(z1 * z1 + a);
+  EXPECT_TRUE((z.expand(z2 * 2) - 2 * (GiNaC::pow(a + b, 2) + a)).expand().is_zero());
+}
+
+TEST(Subexpressions, EvaluateComputesDefinitionsInOrder) {
+  Subexpressions z;
+  const GiNaC::realsymbol a("a");
+  const ex z1 = z.bind(a * a + 1);
+  const ex z2 = z.bind(GiNaC::sqrt(z1) * a);
+  const ex value = z.evaluate(z2 + z1, {{a, 2.0}});
+  ASSERT_TRUE(GiNaC::is_a<GiNaC::numeric>(value));
+  EXPECT_NEAR(GiNaC::ex_to<GiNaC::numeric>(value).to_double(), std::sqrt(5.0) * 2 + 5, 1e-14);
+}
+
+}  // namespace
+}  // namespace eomgen
