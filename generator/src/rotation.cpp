@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+
 #include "eomgen/error.hpp"
 #include "eomgen/variables.hpp"
 
@@ -52,6 +54,8 @@ matrix cross_matrix(const matrix& u) {
 }
 
 matrix uncross(const matrix& W) {
+  if (W.rows() != 3 || W.cols() != 3)
+    throw ModelError(fmt::format("uncross: expected a 3x3 matrix, got {}x{}", W.rows(), W.cols()));
   // skew-symmetric part, so that a W that is skew only on the manifold still gives omega
   return column((W(2, 1) - W(1, 2)) / 2, (W(0, 2) - W(2, 0)) / 2, (W(1, 0) - W(0, 1)) / 2);
 }
@@ -64,21 +68,21 @@ matrix unit_column(int axis) {
 }
 
 EulerSequence EulerSequence::parse(const std::string& text) {
-  std::array<int, 3> axes{};
-  std::size_t count = 0;
-  for (char ch : text) {
-    if (ch == '-' || ch == '_') continue;
-    if (ch < '1' || ch > '3' || count == 3) {
-      count = 4;
-      break;
-    }
-    axes[count++] = ch - '0';
+  // accepted spellings: "3-1-3", "313", "3_1_3"
+  std::string digits;
+  if (text.size() == 3) {
+    digits = text;
+  } else if (text.size() == 5 && text[1] == text[3] && (text[1] == '-' || text[1] == '_')) {
+    digits = {text[0], text[2], text[4]};
   }
-  if (count != 3 || axes[0] == axes[1] || axes[1] == axes[2])
+  const bool valid_digits = digits.size() == 3 && std::all_of(digits.begin(), digits.end(), [](char ch) {
+                              return ch >= '1' && ch <= '3';
+                            });
+  if (!valid_digits || digits[0] == digits[1] || digits[1] == digits[2])
     throw ModelError(fmt::format(
         "Euler sequence '{}': expected three axes from 1, 2, 3 with no two consecutive axes "
         "equal, such as \"3-2-1\" or \"3-1-3\"", text));
-  return EulerSequence{axes};
+  return EulerSequence{{digits[0] - '0', digits[1] - '0', digits[2] - '0'}};
 }
 
 std::string EulerSequence::name() const { return fmt::format("{}-{}-{}", axes[0], axes[1], axes[2]); }

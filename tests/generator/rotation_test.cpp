@@ -737,7 +737,7 @@ TEST(EulerSequenceParse, AcceptsExactlyTwelveOfTheTwentySevenAxisTriples) {
 
 TEST(EulerSequenceParse, RejectsInvalidSequencesWithModelErrorNamingThem) {
   for (const std::string text : {"3-3-1", "1-2-2", "4-1-2", "12", "", "0-1-2", "1-2-3-1", "x-y-z",
-                                 "3 2 1", "331", "1-1-1"}) {
+                                 "3 2 1", "331", "1-1-1", "-3-1-3-", "3--1--3", "3-1_3"}) {
     try {
       EulerSequence::parse(text);
       ADD_FAILURE() << "'" << text << "' was accepted";

@@ -133,10 +133,9 @@ TEST(VariablesDeclare, CoordinateWhoseRateNameIsTakenThrows) {
   EXPECT_FALSE(v.find("y").has_value());
 }
 
-// Disabled: documents a defect of Variables::add_coordinate (see the report). A failed
-// add_coordinate("y") (because "y_dot" is taken) leaves "y" claimed, so "y" can no longer be
-// declared although no symbol of that name exists. Enable once declarations are all-or-nothing.
-TEST(VariablesDeclare, DISABLED_FailedCoordinateDeclarationLeavesItsNameFree) {
+// A failed add_coordinate("y") (because "y_dot" is taken) must not leave "y" claimed:
+// declarations are all-or-nothing.
+TEST(VariablesDeclare, FailedCoordinateDeclarationLeavesItsNameFree) {
   Variables v;
   v.add_parameter("y_dot", 1.0);
   EXPECT_THROW(v.add_coordinate("y"), ModelError);
