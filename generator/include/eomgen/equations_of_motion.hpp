@@ -5,6 +5,13 @@
 //   M_jk = sum_B m V_j . V_k + W_j . J W_k                     ( = d2T / dqd_j dqd_k )
 //   F_k  = Q_k - sum_B m V_k . a0 + W_k . (J alpha0 + omega x J omega)
 // with V_k, W_k the partial (angular) velocities and a0, alpha0 the accelerations at qdd = 0.
+//
+// The two forms are identical when every rotation's rate relation is Poisson's equation for all
+// values of its parameters (principal rotations, Euler angles, Rodrigues and modified Rodrigues
+// parameters). Quaternions and axis/angle satisfy it only on their norm constraint; there M is
+// the same and F differs from literal Lagrange by a multiple of the constraint gradient, so the
+// accelerations of the KKT system agree and only lambda differs (it is then zero for a norm
+// constraint that transmits no force, as it should be).
 #include <ginac/ginac.h>
 
 #include "eomgen/mechanical_system.hpp"
