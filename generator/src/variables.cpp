@@ -18,6 +18,19 @@ bool is_identifier(const std::string& name) {
   });
 }
 
+const char* const greek[] = {"alpha", "beta", "gamma", "delta", "epsilon", "zeta", "eta", "theta",
+                             "iota", "kappa", "lambda", "mu", "nu", "xi", "pi", "rho", "sigma", "tau",
+                             "upsilon", "phi", "chi", "psi", "omega", "Gamma", "Delta", "Theta",
+                             "Lambda", "Xi", "Pi", "Sigma", "Upsilon", "Phi", "Psi", "Omega"};
+
+// a letter group as LaTeX: Greek names become commands, one letter stays, longer words upright
+std::string tex_word(const std::string& word) {
+  for (const char* g : greek)
+    if (word == g) return std::string("\\") + g;
+  if (word.size() <= 1) return word;
+  return "\\mathrm{" + word + "}";
+}
+
 GiNaC::ex code(SymbolKind kind) { return static_cast<int>(kind); }
 
 // collects every symbol of e into out
@@ -30,6 +43,23 @@ void collect_symbols(const GiNaC::ex& e, GiNaC::exset& out) {
 }
 
 }  // namespace
+
+std::string tex_name(const std::string& name) {
+  // rates and accelerations get dots over the coordinate's own TeX name
+  auto ends_with = [&](const std::string& suffix) {
+    return name.size() > suffix.size() && name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0;
+  };
+  if (ends_with("_ddot")) return "\\ddot{" + tex_name(name.substr(0, name.size() - 5)) + "}";
+  if (ends_with("_dot")) return "\\dot{" + tex_name(name.substr(0, name.size() - 4)) + "}";
+  // base_rest -> base_{rest}; trailing digits -> subscript
+  const auto underscore = name.find('_');
+  if (underscore != std::string::npos && underscore > 0 && underscore + 1 < name.size())
+    return tex_name(name.substr(0, underscore)) + "_{" + tex_name(name.substr(underscore + 1)) + "}";
+  std::size_t digits = name.size();
+  while (digits > 0 && std::isdigit(static_cast<unsigned char>(name[digits - 1]))) --digits;
+  if (digits > 0 && digits < name.size()) return tex_word(name.substr(0, digits)) + "_{" + name.substr(digits) + "}";
+  return tex_word(name);
+}
 
 Variables::Variables() : time_("t") {
   names_.push_back("t");
@@ -58,8 +88,9 @@ Coordinate Variables::add_coordinate(const std::string& name) {
   claim_name(name);
   claim_name(name + "_dot");
   claim_name(name + "_ddot");
-  Coordinate c{name, GiNaC::realsymbol(name), GiNaC::realsymbol(name + "_dot"),
-               GiNaC::realsymbol(name + "_ddot")};
+  Coordinate c{name, GiNaC::realsymbol(name, tex_name(name)),
+               GiNaC::realsymbol(name + "_dot", tex_name(name + "_dot")),
+               GiNaC::realsymbol(name + "_ddot", tex_name(name + "_ddot"))};
   kinds_[c.q] = code(SymbolKind::coordinate);
   kinds_[c.qd] = code(SymbolKind::rate);
   kinds_[c.qdd] = code(SymbolKind::acceleration);
@@ -72,7 +103,7 @@ Coordinate Variables::add_coordinate(const std::string& name) {
 Parameter Variables::add_parameter(const std::string& name, double default_value,
                                           const std::string& unit) {
   claim_name(name);
-  Parameter p{name, GiNaC::realsymbol(name), default_value, unit};
+  Parameter p{name, GiNaC::realsymbol(name, tex_name(name)), default_value, unit};
   kinds_[p.symbol] = code(SymbolKind::parameter);
   parameters_.push_back(p);
   return parameters_.back();
@@ -80,7 +111,7 @@ Parameter Variables::add_parameter(const std::string& name, double default_value
 
 Input Variables::add_input(const std::string& name) {
   claim_name(name);
-  Input u{name, GiNaC::realsymbol(name)};
+  Input u{name, GiNaC::realsymbol(name, tex_name(name))};
   kinds_[u.symbol] = code(SymbolKind::input);
   inputs_.push_back(u);
   return inputs_.back();

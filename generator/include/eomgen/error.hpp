@@ -4,6 +4,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "eomgen/source_location.hpp"
+
 namespace eomgen {
 
 /// Base of every error the generator throws on bad input.
@@ -23,6 +25,23 @@ class ModelError : public Error {
 class DerivationError : public Error {
  public:
   using Error::Error;
+};
+
+/// An error at a position in a model file; what() reads "file:line:col: error: message".
+class SourceError : public Error {
+ public:
+  SourceError(SourceLocation location, const std::string& message)
+      : Error(location.file + ":" + std::to_string(location.line) + ":" + std::to_string(location.column) +
+              ": error: " + message),
+        location_(std::move(location)),
+        message_(message) {}
+  const SourceLocation& location() const { return location_; }
+  /// The message without the position.
+  const std::string& message() const { return message_; }
+
+ private:
+  SourceLocation location_;
+  std::string message_;
 };
 
 }  // namespace eomgen
