@@ -36,7 +36,7 @@ struct Input {
 enum class SymbolKind { time, coordinate, rate, acceleration, parameter, input };
 
 /// LaTeX for a symbol name: Greek letters as commands, trailing digits and "_x" as subscripts,
-/// "_dot"/"_ddot" as accents: "theta_dot" -> "\\dot{\\theta}", "l_fh" -> "l_{\\mathrm{fh}}".
+/// "_dot"/"_ddot" as accents: "theta_dot" -> "\dot{\theta}", "l_fh" -> "l_{\mathrm{fh}}".
 std::string tex_name(const std::string& name);
 
 class Variables {
