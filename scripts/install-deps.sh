@@ -7,6 +7,7 @@ packages=(
   libginac-dev libcln-dev ginac-tools
   libeigen3-dev libfmt-dev libgtest-dev
   libcli11-dev nlohmann-json3-dev
+  texlive-latex-base
 )
 
 missing=()

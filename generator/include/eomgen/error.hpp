@@ -27,6 +27,12 @@ class DerivationError : public Error {
   using Error::Error;
 };
 
+/// Code emission met something it cannot print (an unknown symbol or function).
+class EmitError : public Error {
+ public:
+  using Error::Error;
+};
+
 /// An error at a position in a model file; what() reads "file:line:col: error: message".
 class SourceError : public Error {
  public:

@@ -1,0 +1,23 @@
+#pragma once
+// Prints a straight-line program as C++ statements. The printer owns precedence and number
+// formatting; it knows nothing of GiNaC.
+#include <string>
+
+#include "eomgen/ir.hpp"
+
+namespace eomgen {
+
+struct CppPrintOptions {
+  std::string scalar = "Scalar";     // type of temporaries and literals
+  std::string indent = "    ";
+  std::string temporary_prefix = "w";
+};
+
+/// Statements computing every output of the program: shared values become
+/// `const Scalar w0 = ...;`, values used once are written inline at their use.
+std::string print_cpp(const ir::Program& program, const CppPrintOptions& options = {});
+
+/// A double as a C++ literal wrapped in the scalar type: "Scalar(0.5)", "Scalar(2)".
+std::string cpp_number(double value, const std::string& scalar);
+
+}  // namespace eomgen

@@ -1,0 +1,39 @@
+#pragma once
+// Assembles one self-contained C++ header (Eigen only) from a model and its derived equations.
+#include <string>
+#include <vector>
+
+#include "eomgen/equations_of_motion.hpp"
+#include "eomgen/ir.hpp"
+#include "eomgen/model.hpp"
+
+namespace eomgen {
+
+struct EmitOptions {
+  std::string outer_namespace = "eomgen_models";
+  std::string source_name;  // file name shown in the banner (sanitized)
+};
+
+/// Operation counts of one generated function.
+struct FunctionStatistics {
+  std::string function;
+  ir::OperationCounts unoptimized;  // every output as its own tree, no sharing
+  ir::OperationCounts optimized;    // the emitted straight-line code
+};
+
+struct EmittedModel {
+  std::string header;
+  std::vector<FunctionStatistics> statistics;
+};
+
+/// \throws EmitError if an expression cannot be printed.
+EmittedModel emit_model(const Model& model, const EquationsOfMotion& equations, const EmitOptions& options = {});
+
+/// `name` as a C++ identifier that cannot clash with keywords, reserved names or the
+/// generated code's own locals: a trailing '_' is added where needed.
+std::string cpp_identifier(const std::string& name);
+
+/// `text` as the contents of a C++ string literal (quotes not included).
+std::string cpp_string_contents(const std::string& text);
+
+}  // namespace eomgen
