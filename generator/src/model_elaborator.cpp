@@ -91,9 +91,16 @@ void Elaborator::declare(const std::string& name, const std::string& kind, const
   if (it != declared_.end()) {
     if (it->second.location.line == 0)
       throw SourceError(at, fmt::format("'{}' is reserved (the inertial frame is 'a', its origin 'w', time 't')", name));
-    throw SourceError(at, fmt::format("duplicate name '{}': already declared as a {} at {}:{}:{}", name,
-                                      it->second.kind, it->second.location.file, it->second.location.line,
-                                      it->second.location.column));
+    // names are declared kind by kind (consts, parameters, frames, elements...), not in file
+    // order: report at the later position and name the earlier one as the first declaration
+    const Declared here{kind, at};
+    const bool earlier = std::make_pair(at.line, at.column) < std::make_pair(it->second.location.line,
+                                                                          it->second.location.column);
+    const Declared& first = earlier ? here : it->second;
+    const Declared& second = earlier ? it->second : here;
+    throw SourceError(second.location, fmt::format("duplicate name '{}': already declared as a {} at {}:{}:{}", name,
+                                                   first.kind, first.location.file, first.location.line,
+                                                   first.location.column));
   }
   declared_[name] = {kind, at};
 }
@@ -112,10 +119,17 @@ void Elaborator::constants(const std::vector<Statement>& statements) {
       constants_[name] = v == std::floor(v) && std::fabs(v) < 1e15 ? ex(GiNaC::numeric(static_cast<long>(v)))
                                                                    : ex(GiNaC::numeric(v));
     }
+    // Model::constants reports them (after overrides) to the caller, e.g. the n of a chain
+    model_.constants[name] = GiNaC::ex_to<GiNaC::numeric>(constants_[name].evalf()).to_double();
   }
   for (const auto& [name, value] : overrides_)
-    if (!constants_.count(name))
-      throw SourceError({file_, 1, 1}, fmt::format("--define {}: the model has no const named '{}'", name, name));
+    if (!constants_.count(name)) {
+      std::string known;
+      for (const auto& [k, v] : constants_) known += (known.empty() ? "" : ", ") + k;
+      throw SourceError({file_, 1, 1}, fmt::format("--define {}: the model has no const named '{}'; expected {}", name,
+                                                   name, known.empty() ? "no --define (it declares no const)"
+                                                                       : "one of its consts: " + known));
+    }
 }
 
 void Elaborator::flatten(const std::vector<Statement>& statements, const Environment& env) {
@@ -137,7 +151,8 @@ void Elaborator::flatten(const std::vector<Statement>& statements, const Environ
         throw SourceError(s.name.location, fmt::format("loop variable '{}' hides another name", var));
       const int first = integer(s.value, env, "the first value of the loop");
       const int last = integer(s.value2, env, "the last value of the loop");
-      if (last - first > 100000) throw SourceError(s.location, "loop has more than 100000 iterations");
+      if (static_cast<long>(last) - first > 100000)  // long: the bounds may be 10^9 apart
+        throw SourceError(s.location, "loop has more than 100000 iterations");
       for (int i = first; i <= last; ++i) {
         Environment inner = env;
         inner[var] = i;
@@ -213,9 +228,10 @@ FrameId Elaborator::build_frame(const std::string& name, std::vector<std::string
   if (def.kind != Expr::Kind::name && !is_call)
     throw SourceError(def.location, "expected a frame definition: a parent frame, or rotate(...), euler(...), "
                                     "axis_angle(...), quaternion(...), rodrigues(...), mrp(...), dcm(...)");
-  const Expr& parent_expr = is_call ? *def.args.at(0) : def;
+  // checked before args[0] is read: `rotate()` has none
   if (is_call && (def.args.empty() || def.args[0]->kind != Expr::Kind::name))
     throw SourceError(def.location, fmt::format("{}(): expected the parent frame as the first argument", def.name.plain()));
+  const Expr& parent_expr = is_call ? *def.args[0] : def;
   const std::string parent_name = resolve(parent_expr.name, env);
   FrameId parent;
   if (frame_instances_.count(parent_name)) {
@@ -228,7 +244,9 @@ FrameId Elaborator::build_frame(const std::string& name, std::vector<std::string
 
   const std::string f = def.name.plain();
   auto expect_args = [&](std::size_t n, const char* usage) {
-    if (def.args.size() != n) throw SourceError(def.location, fmt::format("{}: expected {}", f, usage));
+    if (def.args.size() != n)
+      throw SourceError(def.location, fmt::format("{}: expected {}, got {} argument{}", f, usage, def.args.size(),
+                                                  def.args.size() == 1 ? "" : "s"));
   };
   auto col3 = [&](std::size_t i) {
     const Value v = evaluate(def.args[i], env);
@@ -247,7 +265,14 @@ FrameId Elaborator::build_frame(const std::string& name, std::vector<std::string
     } else if (f == "euler") {
       expect_args(5, "euler(PARENT, SEQUENCE, ANGLE1, ANGLE2, ANGLE3) with SEQUENCE such as 313 or 321");
       const int seq = integer(def.args[1], env, "euler(): the sequence");
-      rotation = Rotation::euler(EulerSequence::parse(std::to_string(seq)), angle(2), angle(3), angle(4));
+      const EulerSequence sequence = [&] {
+        try {  // reported at the sequence, not at euler(
+          return EulerSequence::parse(std::to_string(seq));
+        } catch (const ModelError& e) {
+          throw SourceError(start_of(*def.args[1]), e.what());
+        }
+      }();
+      rotation = Rotation::euler(sequence, angle(2), angle(3), angle(4));
     } else if (f == "axis_angle") {
       expect_args(3, "axis_angle(PARENT, [A1, A2, A3], ANGLE)");
       rotation = Rotation::axis_angle(col3(1), angle(2));
@@ -282,7 +307,7 @@ PointId Elaborator::build_point(const std::string& name, std::vector<std::string
   }
   const Expr* parent_expr = leftmost(s.value.get());
   if (parent_expr->kind != Expr::Kind::name)
-    throw SourceError(s.value->location, "expected a point definition: PARENT_POINT + VECTOR");
+    throw SourceError(start_of(*s.value), "expected a point definition: PARENT_POINT + VECTOR");
   stack.push_back(name);
   const std::string parent_name = resolve(parent_expr->name, env);
   const PointId parent = point_instances_.count(parent_name) ? build_point(parent_name, stack)
@@ -297,7 +322,7 @@ PointId Elaborator::build_point(const std::string& name, std::vector<std::string
   try {
     return points_[name] = parent_expr == s.value.get() ? parent : model_.system.add_point(name, parent, offset);
   } catch (const ModelError& e) {
-    throw SourceError(s.value->location, e.what());
+    throw SourceError(start_of(*s.value), e.what());
   }
 }
 
@@ -419,6 +444,10 @@ void Elaborator::element(const Instance& in) {
     throw SourceError(s.name.location.line ? s.name.location : s.location, e.what());
   } catch (const DerivationError& e) {
     throw SourceError(s.name.location.line ? s.name.location : s.location, e.what());
+  } catch (const GiNaC::pole_error&) {  // e.g. a mass 1/l with l = 0, evaluated at the defaults
+    throw SourceError(s.name.location.line ? s.name.location : s.location,
+                      fmt::format("{}: division by zero at the parameters' default values: expected finite values",
+                                  what));
   }
 }
 
@@ -507,9 +536,13 @@ Model Elaborator::run(const std::vector<Statement>& statements) {
   for (const Instance& in : instances_)
     if (in.statement->kind == Kind::point) build_point(resolve(in.statement->name, in.environment), stack);
   kinematics_ready_ = true;
+  // bodies first: a roll statement names its body, which may come later in the file
+  for (const Instance& in : instances_)
+    if (in.statement->kind == Kind::body) element(in);
   for (const Instance& in : instances_) {
     const Kind k = in.statement->kind;
-    if (k != Kind::parameter && k != Kind::coordinate && k != Kind::input && k != Kind::frame && k != Kind::point)
+    if (k != Kind::parameter && k != Kind::coordinate && k != Kind::input && k != Kind::frame && k != Kind::point &&
+        k != Kind::body)
       element(in);
   }
   checks();

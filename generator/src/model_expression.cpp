@@ -45,7 +45,12 @@ GiNaC::numeric exact_number(const std::string& text) {
   }
   const auto dot = text.find('.');
   if (dot != std::string::npos) exponent -= static_cast<long>(std::min(i, text.size()) - dot - 1);
-  if (i < text.size()) exponent += std::stol(text.substr(i + 1));
+  if (i < text.size()) {
+    // GiNaC would happily build 10^999999999; anything beyond a double's range is a typo
+    const long written = std::stol(text.substr(i + 1));  // std::out_of_range for absurd lengths
+    if (written < -400 || written > 400) throw std::out_of_range("exponent");
+    exponent += written;
+  }
   return GiNaC::numeric(digits.c_str()) * GiNaC::pow(GiNaC::numeric(10), GiNaC::numeric(exponent));
 }
 
@@ -78,36 +83,49 @@ void Elaborator::unknown_name(const std::string& name, const SourceLocation& at,
 
 std::string Elaborator::resolve(const Name& name, const Environment& env) {
   std::string out;
-  for (const auto& piece : name.pieces)
-    out += piece.index ? std::to_string(integer(piece.index, env, "an index in a name")) : piece.literal;
+  for (const auto& piece : name.pieces) {
+    if (!piece.index) {
+      out += piece.literal;
+      continue;
+    }
+    // q{i-1} at i = 0 would give "q-1", which is no identifier (and no valid C++ name later)
+    const int index = integer(piece.index, env, "an index in a name");
+    if (index < 0)
+      throw SourceError(start_of(*piece.index), fmt::format("an index in a name: expected 0 or more, got {}", index));
+    out += std::to_string(index);
+  }
   return out;
 }
 
 GiNaC::numeric Elaborator::constant(const ExprPtr& e, const Environment& env, const std::string& what) {
   const ex value = scalar(e, env, what).evalf();
   if (!GiNaC::is_a<GiNaC::numeric>(scalar(e, env, what)) && !GiNaC::is_a<GiNaC::numeric>(value))
-    throw SourceError(e->location, fmt::format("{}: expected a constant (numbers and consts only)", what));
+    throw SourceError(start_of(*e), fmt::format("{}: expected a constant (numbers and consts only)", what));
   const ex exact = scalar(e, env, what);
   return GiNaC::ex_to<GiNaC::numeric>(GiNaC::is_a<GiNaC::numeric>(exact) ? exact : value);
 }
 
 int Elaborator::integer(const ExprPtr& e, const Environment& env, const std::string& what) {
   const GiNaC::numeric n = constant(e, env, what);
-  if (!n.is_integer()) throw SourceError(e->location, fmt::format("{}: expected an integer, got {}", what, n.to_double()));
+  if (!n.is_integer())
+    throw SourceError(start_of(*e), fmt::format("{}: expected an integer, got {}", what, n.to_double()));
+  // to_int() silently wraps beyond 32 bits
+  if (GiNaC::abs(n) > 1000000000)
+    throw SourceError(start_of(*e), fmt::format("{}: expected an integer between -10^9 and 10^9", what));
   return n.to_int();
 }
 
 ex Elaborator::scalar(const ExprPtr& e, const Environment& env, const std::string& what) {
   Value v = evaluate(e, env);
   if (v.kind != Value::Kind::scalar)
-    throw SourceError(e->location, fmt::format("{}: expected a scalar, got {}", what, kind_name(v.kind)));
+    throw SourceError(start_of(*e), fmt::format("{}: expected a scalar, got {}", what, kind_name(v.kind)));
   return v.scalar;
 }
 
 eomgen::Vector Elaborator::vector(const ExprPtr& e, const Environment& env, const std::string& what) {
   Value v = evaluate(e, env);
   if (v.kind != Value::Kind::vector)
-    throw SourceError(e->location, fmt::format("{}: expected a vector (such as g*a.3 or [x, y, z] in b), got {}",
+    throw SourceError(start_of(*e), fmt::format("{}: expected a vector (such as g*a.3 or [x, y, z] in b), got {}",
                                                what, kind_name(v.kind)));
   return v.vector;
 }
@@ -128,6 +146,7 @@ PointId Elaborator::point_named(const Name& name, const Environment& env) {
   if (it != points_.end()) return it->second;
   std::vector<std::string> known;
   for (const auto& [k, v] : points_) known.push_back(k);
+  for (const auto& [k, v] : point_instances_) known.push_back(k);  // defined later in the file
   unknown_name(n, name.location, known, "point");
 }
 
@@ -140,7 +159,9 @@ Value Elaborator::name_value(const Expr& e, const Environment& env) {
   if (auto symbol = vars.find(n)) {
     const auto kind = vars.kind_of(*symbol);
     if (kind == SymbolKind::acceleration)
-      throw SourceError(e.location, fmt::format("'{}' is an acceleration; accelerations may not appear in a model", n));
+      throw SourceError(e.location, fmt::format("'{}' is an acceleration; accelerations may not appear in a model "
+                                                "(the equations of motion give them): expected coordinates and "
+                                                "rates only", n));
     if (kind == SymbolKind::coordinate || kind == SymbolKind::rate)
       used_coordinates_.insert(vars.coordinates()[*vars.coordinate_index(*symbol)].name);
     return Value::of(ex(*symbol));
@@ -178,7 +199,7 @@ Value Elaborator::call(const Expr& e, const Environment& env) {
                                                 "vector from basis vectors instead", f));
   };
   const MechanicalSystem& s = model_.system;
-  if (std::find(scalar_functions.begin(), scalar_functions.end(), f) != scalar_functions.end()) {
+  if (std::find(scalar_functions.begin(), scalar_functions.end(), f) != scalar_functions.end()) try {
     if (f == "atan2") {
       arity(2, 2);
       return Value::of(GiNaC::atan2(arg_scalar(0), arg_scalar(1)));
@@ -198,6 +219,10 @@ Value Elaborator::call(const Expr& e, const Environment& env) {
     if (f == "exp") return Value::of(GiNaC::exp(x));
     if (f == "log") return Value::of(GiNaC::log(x));
     return Value::of(GiNaC::abs(x));
+  } catch (const GiNaC::pole_error&) {
+    // GiNaC evaluates log(0), tan(pi/2)... eagerly and throws; that is an error in the file
+    throw SourceError(e.location, fmt::format("{}() is infinite at this argument: expected an argument where it is "
+                                              "finite", f));
   }
   if (f == "diag") {
     arity(3, 3);
@@ -254,7 +279,12 @@ Value Elaborator::evaluate(const ExprPtr& ptr, const Environment& env) {
   using K = Value::Kind;
   switch (e.kind) {
     case Expr::Kind::number:
-      return Value::of(ex(exact_number(e.number_text)));
+      try {
+        return Value::of(ex(exact_number(e.number_text)));
+      } catch (const std::out_of_range&) {
+        throw SourceError(e.location, fmt::format("number '{}' is out of range: expected an exponent between -400 "
+                                                  "and 400", e.number_text));
+      }
     case Expr::Kind::name:
       return name_value(e, env);
     case Expr::Kind::call:
@@ -293,7 +323,11 @@ Value Elaborator::evaluate(const ExprPtr& ptr, const Environment& env) {
     case Expr::Kind::power: {
       auto [a, b] = binary();
       if (a.kind != K::scalar || b.kind != K::scalar) throw mismatch("raise to a power", a, b);
-      return Value::of(GiNaC::pow(a.scalar, b.scalar));
+      try {
+        return Value::of(GiNaC::pow(a.scalar, b.scalar));
+      } catch (const GiNaC::pole_error&) {  // 0^-1 is evaluated (and thrown) eagerly
+        throw SourceError(e.location, "zero raised to a negative power: expected a non-zero base");
+      }
     }
     case Expr::Kind::list: {
       std::vector<Value> items;

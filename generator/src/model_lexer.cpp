@@ -27,7 +27,9 @@ std::string describe(const Token& token) {
 std::vector<Token> tokenize(const std::string& text, const std::string& file, int first_line, int first_column) {
   std::vector<Token> tokens;
   int line = first_line, column = first_column;
-  int depth = 0;  // open ( and [
+  // open ( and [ with their positions: an unclosed one swallows the rest of the file, so it is
+  // reported where it was opened rather than wherever the parser first stumbles
+  std::vector<Token> open;
   std::size_t i = 0;
   auto here = [&] { return SourceLocation{file, line, column}; };
   auto advance = [&](std::size_t n) {
@@ -51,7 +53,7 @@ std::vector<Token> tokenize(const std::string& text, const std::string& file, in
       while (i < text.size() && text[i] != '\n') advance(1);
     } else if (c == '\n') {
       advance(1);
-      if (depth == 0 && !tokens.empty() && tokens.back().kind != Token::Kind::newline)
+      if (open.empty() && !tokens.empty() && tokens.back().kind != Token::Kind::newline)
         push(Token::Kind::newline, "\n", loc, start);
     } else if (c == ' ' || c == '\t' || c == '\r') {
       advance(1);
@@ -102,14 +104,17 @@ std::vector<Token> tokenize(const std::string& text, const std::string& file, in
       advance(2);
       push(Token::Kind::symbol, "..", loc, start);
     } else if (std::string("+-*/^()[],=:.").find(c) != std::string::npos) {
-      if (c == '(' || c == '[') ++depth;
-      if ((c == ')' || c == ']') && depth > 0) --depth;
       advance(1);
       push(Token::Kind::symbol, std::string(1, c), loc, start);
+      if (c == '(' || c == '[') open.push_back(tokens.back());
+      if ((c == ')' || c == ']') && !open.empty()) open.pop_back();
     } else {
       throw SourceError(loc, fmt::format("unexpected character '{}'", std::string(1, c)));
     }
   }
+  if (!open.empty())
+    throw SourceError(open.back().location, fmt::format("'{}' is never closed: expected '{}'", open.back().text,
+                                                        open.back().text == "(" ? ")" : "]"));
   if (!tokens.empty() && tokens.back().kind != Token::Kind::newline)
     tokens.push_back(Token{Token::Kind::newline, "\n", here(), i, i});
   tokens.push_back(Token{Token::Kind::end, "", here(), i, i});

@@ -329,6 +329,17 @@ class Parser {
 
 }  // namespace
 
+const SourceLocation& start_of(const Expr& e) {
+  switch (e.kind) {
+    case Expr::Kind::add:
+    case Expr::Kind::subtract:
+    case Expr::Kind::multiply:
+    case Expr::Kind::divide:
+    case Expr::Kind::power: return start_of(*e.args[0]);
+    default: return e.location;
+  }
+}
+
 std::vector<Statement> parse_statements(const std::string& text, const std::string& file) {
   Parser p(tokenize(text, file), text);
   return p.statements(false);

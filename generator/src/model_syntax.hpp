@@ -33,6 +33,10 @@ struct Expr {
   std::vector<ExprPtr> args;  // operands, call arguments, list elements; in_frame: the list
 };
 
+/// Where an expression starts. An operator node sits at its operator, which is right for
+/// "cannot add ..." but not for a message about the whole expression ("expected a vector").
+const SourceLocation& start_of(const Expr& e);
+
 struct Argument {
   std::string key;
   ExprPtr value;

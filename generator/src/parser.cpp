@@ -49,7 +49,12 @@ void Elaborator::checks() {
       const auto& coord = vars.coordinates()[k];
       const GiNaC::ex d = c.expression.diff(GiNaC::ex_to<GiNaC::symbol>(
           GiNaC::ex(c.kind == Constraint::Kind::holonomic ? coord.q : coord.qd)));
-      const GiNaC::ex v = d.subs(state, GiNaC::subs_options::no_pattern).evalf();
+      GiNaC::ex v;
+      try {
+        v = d.subs(state, GiNaC::subs_options::no_pattern).evalf();
+      } catch (const GiNaC::pole_error&) {  // e.g. 1/l with a parameter l that defaults to 0
+        v = GiNaC::I;                       // reported below as not a real number
+      }
       if (!GiNaC::is_a<GiNaC::numeric>(v) || !GiNaC::ex_to<GiNaC::numeric>(v).is_real())
         throw SourceError(model_.constraint_locations[i],
                           fmt::format("constraint '{}': its Jacobian is not a real number at a generic state", c.name));

@@ -1,0 +1,292 @@
+// Errors in model files: every error is a SourceError at an exact line and column whose
+// message says what went wrong and what was expected. One test per error case.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <map>
+#include <string>
+
+#include "eomgen/error.hpp"
+#include "eomgen/model.hpp"
+
+namespace eomgen {
+namespace {
+
+using ::testing::AllOf;
+using ::testing::ContainsRegex;
+using ::testing::HasSubstr;
+using ::testing::Matcher;
+
+// A valid planar pendulum on lines 1-5; the cases below append their statements from line 6.
+const std::string pendulum =
+    "parameter l = 1 [m]\n"
+    "coordinate theta\n"
+    "frame b = rotate(a, 3, theta)\n"
+    "point p = w + l*b.1\n"
+    "particle bob(mass = 1, at = p)\n";
+
+// Two free coordinates x, y of a point mass in the plane, on lines 1-4; cases append from line 5.
+const std::string planar_mass =
+    "coordinate x, y\n"
+    "parameter m0 = 1 [kg]\n"
+    "point p = w + x*a.1 + y*a.2\n"
+    "particle m(mass = m0, at = p)\n";
+
+void expect_error(const std::string& text, int line, int column, const Matcher<const std::string&>& message,
+                  const std::map<std::string, double>& overrides = {}) {
+  SCOPED_TRACE("model text:\n" + text);
+  try {
+    parse_model(text, "test.eom", overrides);
+    ADD_FAILURE() << "expected a SourceError";
+  } catch (const SourceError& e) {
+    EXPECT_EQ(e.location().file, "test.eom");
+    EXPECT_EQ(e.location().line, line) << e.what();
+    EXPECT_EQ(e.location().column, column) << e.what();
+    EXPECT_THAT(e.message(), message);
+  } catch (const std::exception& e) {
+    ADD_FAILURE() << "expected a SourceError, got: " << e.what();
+  }
+}
+
+TEST(ModelErrors, WhatReadsFileLineColumnErrorMessage) {
+  try {
+    parse_model(pendulum + "output o = thta\n", "test.eom");
+    FAIL() << "expected a SourceError";
+  } catch (const SourceError& e) {
+    EXPECT_STREQ(e.what(), ("test.eom:6:12: error: " + e.message()).c_str());
+  }
+}
+
+// --- names ---
+
+TEST(ModelErrors, UnknownIdentifierSuggestsNearestName) {
+  expect_error(pendulum + "output o = 2*thta\n", 6, 14, HasSubstr("unknown name 'thta'; did you mean 'theta'?"));
+}
+
+TEST(ModelErrors, UnknownFunctionSuggestsNearestFunction) {
+  expect_error(pendulum + "output o = sinn(theta)\n", 6, 12, HasSubstr("unknown function 'sinn'; did you mean 'sin'?"));
+}
+
+TEST(ModelErrors, DuplicateNameNamesTheFirstDeclaration) {
+  expect_error(pendulum + "parameter l = 2\n", 6, 11,
+               HasSubstr("duplicate name 'l': already declared as a parameter at test.eom:1:11"));
+}
+
+TEST(ModelErrors, DuplicateNameIsReportedAtTheLaterDeclarationWhateverTheirKinds) {
+  // parameters are declared before frames internally; the report still follows the file
+  expect_error("frame c = a\n" + pendulum + "parameter c = 2\n", 7, 11,
+               HasSubstr("duplicate name 'c': already declared as a frame at test.eom:1:7"));
+}
+
+TEST(ModelErrors, ReservedNameA) {
+  expect_error(pendulum + "parameter a = 1\n", 6, 11, HasSubstr("'a' is reserved (the inertial frame is 'a'"));
+}
+
+TEST(ModelErrors, ReservedNameT) {
+  expect_error(pendulum + "parameter t = 1\n", 6, 11, HasSubstr("'t' is reserved"));
+}
+
+TEST(ModelErrors, AccelerationInTheModel) {
+  expect_error(pendulum + "output o = theta_ddot\n", 6, 12,
+               AllOf(HasSubstr("'theta_ddot' is an acceleration"), HasSubstr("expected coordinates and rates")));
+}
+
+TEST(ModelErrors, NegativeIndexInAName) {
+  expect_error(pendulum + "for i in 0..1\n  parameter k{i-1} = 1\nend\n", 7, 15,
+               HasSubstr("an index in a name: expected 0 or more, got -1"));
+}
+
+// --- syntax ---
+
+TEST(ModelErrors, SyntaxErrorDoubleOperator) {
+  expect_error(pendulum + "output o = 2 * * theta\n", 6, 16,
+               HasSubstr("expected an expression (a number, a name, '(' or '['), got '*'"));
+}
+
+TEST(ModelErrors, MissingClosingParenthesisIsReportedAtTheOpening) {
+  // the open '(' continues the statement to the end of the file
+  expect_error("parameter k = (1 + 2\n" + pendulum, 1, 15, HasSubstr("'(' is never closed: expected ')'"));
+}
+
+TEST(ModelErrors, UnterminatedBracket) {
+  expect_error(pendulum + "output o = [1, 2\n", 6, 12, HasSubstr("'[' is never closed: expected ']'"));
+}
+
+TEST(ModelErrors, UnknownStatementKeyword) {
+  expect_error(pendulum + "frme c = a\n", 6, 1,
+               AllOf(HasSubstr("unknown statement 'frme'"), HasSubstr("expected one of"), HasSubstr("frame")));
+}
+
+TEST(ModelErrors, UnknownArgumentKey) {
+  expect_error(pendulum + "particle q(mas = 1, at = p)\n", 6, 12,
+               HasSubstr("particle 'q': unknown argument 'mas'; expected mass, at"));
+}
+
+TEST(ModelErrors, HugeExponent) {
+  expect_error(pendulum + "parameter k = 1e99999999999999999999\n", 6, 15,
+               HasSubstr("out of range: expected an exponent between"));
+}
+
+// --- frames and points ---
+
+TEST(ModelErrors, UnknownParentFrame) {
+  expect_error(pendulum + "frame c = rotate(bb, 1, theta)\n", 6, 18,
+               HasSubstr("unknown frame 'bb'; did you mean 'b'?"));
+}
+
+TEST(ModelErrors, UnknownParentPoint) {
+  // the suggestion may be a point defined later in the file
+  expect_error(pendulum + "point q = tipp + l*b.2\npoint tip = w\n", 6, 11,
+               HasSubstr("unknown point 'tipp'; did you mean 'tip'?"));
+}
+
+TEST(ModelErrors, CycleAmongFrames) {
+  expect_error(pendulum + "frame c = rotate(d, 1, theta)\nframe d = rotate(e, 2, theta)\nframe e = c\n", 6, 7,
+               HasSubstr("frame 'c' is defined through a cycle: c -> d -> e -> c"));
+}
+
+TEST(ModelErrors, CycleAmongPoints) {
+  expect_error(pendulum + "point q = r + l*b.1\npoint r = q - l*a.2\n", 6, 7,
+               HasSubstr("point 'q' is defined through a cycle: q -> r -> q"));
+}
+
+TEST(ModelErrors, InputInsideARotation) {
+  expect_error(pendulum + "input u\nframe c = rotate(b, 1, theta + u)\n", 7, 11,
+               HasSubstr("a rotation may depend on coordinates, parameters and t only, not on rates, accelerations "
+                         "or inputs"));
+}
+
+TEST(ModelErrors, RotateWithTheWrongNumberOfArguments) {
+  expect_error(pendulum + "frame c = rotate(b, 3)\n", 6, 11,
+               AllOf(HasSubstr("expected rotate(PARENT, AXIS, ANGLE)"), HasSubstr("got 2 arguments")));
+}
+
+TEST(ModelErrors, RotateWithoutArguments) {
+  expect_error(pendulum + "frame c = rotate()\n", 6, 11, HasSubstr("rotate(): expected the parent frame"));
+}
+
+TEST(ModelErrors, RotateAboutAxis4) {
+  expect_error(pendulum + "frame c = rotate(b, 4, theta)\n", 6, 21,
+               HasSubstr("rotate(): expected axis 1, 2 or 3, got 4"));
+}
+
+TEST(ModelErrors, InvalidEulerSequence) {
+  expect_error(pendulum + "frame c = euler(b, 311, theta, 0, 0)\n", 6, 20,
+               AllOf(HasSubstr("Euler sequence '311'"), HasSubstr("no two consecutive axes equal")));
+}
+
+// --- bodies ---
+
+TEST(ModelErrors, RigidBodyWithoutMass) {
+  expect_error(pendulum + "body disk(centre = p, frame = b, inertia = diag(1, 1, 1))\n", 6, 1,
+               HasSubstr("body 'disk': missing argument 'mass'"));
+}
+
+TEST(ModelErrors, RigidBodyWithoutInertia) {
+  expect_error(pendulum + "body disk(mass = 1, centre = p, frame = b)\n", 6, 1,
+               AllOf(HasSubstr("body 'disk': missing argument 'inertia'"), HasSubstr("diag(J1, J2, J3)")));
+}
+
+TEST(ModelErrors, InertiaNotPositiveDefinite) {
+  expect_error(pendulum + "body disk(mass = 1, centre = p, frame = b, inertia = [[1, 2, 0], [2, 1, 0], [0, 0, 1]])\n",
+               6, 6,
+               AllOf(HasSubstr("rigid body 'disk'"), ContainsRegex("must be positive definite; .* are 1, -3, -3")));
+}
+
+TEST(ModelErrors, NonPositiveMass) {
+  expect_error(pendulum + "parameter m0 = 0\nparticle q(mass = m0 - 1, at = p)\n", 7, 10,
+               HasSubstr("particle 'q': the mass must be positive, got -1"));
+}
+
+TEST(ModelErrors, PoleAtTheParameterDefaults) {
+  expect_error(pendulum + "parameter z = 0\nparticle q(mass = 1/z, at = p)\n", 7, 10,
+               HasSubstr("division by zero at the parameters' default values"));
+}
+
+TEST(ModelErrors, PoleOfAFunction) {
+  expect_error(pendulum + "parameter k = log(0)\n", 6, 15, HasSubstr("log() is infinite at this argument"));
+}
+
+TEST(ModelErrors, ZeroToANegativePower) {
+  expect_error(pendulum + "const z = 0\nparameter k = 2*z^-1\n", 7, 18,
+               HasSubstr("zero raised to a negative power: expected a non-zero base"));
+}
+
+// --- constraints ---
+
+TEST(ModelErrors, NonholonomicConstraintNotLinearInRates) {
+  expect_error(planar_mass + "constraint c: x_dot*y_dot = 0\n", 5, 12,
+               HasSubstr("the constraint must be linear in the rates, but it is not linear in 'x_dot'"));
+}
+
+TEST(ModelErrors, ConstraintIdenticallyZero) {
+  expect_error(planar_mass + "constraint c: sin(x)^2 + cos(x)^2 = 1\n", 5, 12,
+               HasSubstr("Jacobian is identically zero"));
+}
+
+TEST(ModelErrors, LinearlyDependentConstraintsReportTheSecond) {
+  expect_error(planar_mass + "constraint c1: x + y = 1\nconstraint c2: 2*x + 2*y = 3\n", 6, 12,
+               HasSubstr("constraint 'c2' is linearly dependent on the constraints before it"));
+}
+
+// --- the whole model ---
+
+TEST(ModelErrors, CoordinateNeverUsed) {
+  expect_error(pendulum + "coordinate phi\n", 6, 12, HasSubstr("coordinate 'phi' is declared but never used"));
+}
+
+TEST(ModelErrors, EmptyText) {
+  expect_error("", 1, 1, HasSubstr("empty model: expected statements"));
+}
+
+TEST(ModelErrors, OnlyComments) {
+  expect_error("# a model\n\n   # to be written\n", 1, 1, HasSubstr("empty model: expected statements"));
+}
+
+TEST(ModelErrors, NoCoordinates) {
+  expect_error("particle p(mass = 1, at = w)\n", 1, 1, HasSubstr("declares no coordinates: expected 'coordinate"));
+}
+
+TEST(ModelErrors, NoMass) {
+  expect_error("coordinate q\nframe b = rotate(a, 3, q)\n", 1, 1,
+               HasSubstr("no particle or body, so it has no mass: expected 'particle' or 'body'"));
+}
+
+// --- kinds ---
+
+TEST(ModelErrors, VectorWhereAScalarIsExpected) {
+  expect_error(pendulum + "particle q(mass = 2*b.1, at = p)\n", 6, 19,
+               HasSubstr("particle 'q': 'mass': expected a scalar, got a vector"));
+}
+
+TEST(ModelErrors, ScalarWhereAVectorIsExpected) {
+  expect_error(pendulum + "parameter g = 9.81\ngravity = 2*g\n", 7, 11,
+               HasSubstr("gravity: expected a vector (such as g*a.3 or [x, y, z] in b), got a scalar"));
+}
+
+// --- loops and constants ---
+
+TEST(ModelErrors, ConstInsideALoop) {
+  expect_error(pendulum + "for i in 1..2\n  const k = 3\nend\n", 7, 3, HasSubstr("'const' must be at the top level"));
+}
+
+TEST(ModelErrors, LoopBoundNotAnInteger) {
+  expect_error(pendulum + "const n = 2.5\nfor i in 1..n\nend\n", 7, 13,
+               HasSubstr("the last value of the loop: expected an integer, got 2.5"));
+}
+
+TEST(ModelErrors, LoopBoundBeyondTheIntegerRange) {
+  // 2^32 + 2 would wrap to 2 in a 32-bit int
+  expect_error(pendulum + "for i in 1..4294967298\nend\n", 6, 13,
+               HasSubstr("the last value of the loop: expected an integer between -10^9 and 10^9"));
+}
+
+TEST(ModelErrors, DefineOfAnUnknownConst) {
+  expect_error(pendulum + "const n = 2\n", 1, 1,
+               AllOf(HasSubstr("--define m: the model has no const named 'm'"),
+                     HasSubstr("expected one of its consts: n")),
+               {{"m", 3}});
+}
+
+}  // namespace
+}  // namespace eomgen
