@@ -230,12 +230,13 @@ EmittedModel emit_model(const Model& model, const EquationsOfMotion& eom, const 
     return s;
   };
   std::vector<std::string> coordinate_names, input_names, parameter_names, constraint_names, output_names;
-  std::string parameter_defaults, parameter_fields;
+  std::string parameter_defaults, parameter_fields, field_pointers;
   for (const Coordinate& c : vars.coordinates()) coordinate_names.push_back(c.name);
   for (const Input& u : vars.inputs()) input_names.push_back(u.name);
   for (const Parameter& p : vars.parameters()) {
     parameter_names.push_back(p.name);
     parameter_defaults += fmt::format("{}{}", parameter_defaults.empty() ? "" : ", ", cpp_number(p.default_value, "double"));
+    field_pointers += fmt::format("{}&{}", field_pointers.empty() ? "" : ", ", cpp_identifier(p.name));
     parameter_fields += fmt::format("    Scalar {} = {};{}\n", cpp_identifier(p.name), cpp_number(p.default_value, "Scalar"),
                                     p.unit.empty() ? "" : " // [" + sanitize_comment(p.unit) + "]");
   }
@@ -279,7 +280,10 @@ EmittedModel emit_model(const Model& model, const EquationsOfMotion& eom, const 
        "  template <class Scalar> using HolonomicVector = Eigen::Matrix<Scalar, nh, 1>;\n"
        "  template <class Scalar> using OutputVector = Eigen::Matrix<Scalar, ny, 1>;\n\n";
   h += "  /// Parameters, defaulted to the model's values.\n  template <class Scalar>\n  struct Parameters {\n";
-  h += parameter_fields + "  };\n";
+  h += parameter_fields;
+  h += "    /// The fields in the order of parameter_names, to set parameters by index or name.\n";
+  h += fmt::format("    std::array<Scalar*, np> fields() noexcept {{ return {{{{{}}}}}; }}\n", field_pointers);
+  h += "  };\n";
   h += body;
   h += "};\n\n";
   h += fmt::format("}}  // namespace {}\n}}  // namespace {}\n", model_name, cpp_identifier(options.outer_namespace));

@@ -1,0 +1,374 @@
+// The eomgen command line: parses arguments (CLI11), loads the model, calls the library and
+// prints. No algebra lives here.
+//
+// Exit status: 0 success; 1 an error in the model or at the requested state (eomgen::Error;
+// a model file error reads "file:line:col: error: ..."); 2 a malformed command line.
+#include <CLI/CLI.hpp>
+#include <fcntl.h>
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <iostream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "eomgen/equation_printer.hpp"
+#include "eomgen/equations_of_motion.hpp"
+#include "eomgen/error.hpp"
+#include "eomgen/model.hpp"
+#include "eomgen/numeric_evaluation.hpp"
+#include "eomgen/version.hpp"
+
+namespace {
+
+/// A command line CLI11 accepted but whose content is malformed (NAME=VALUE lists, --only).
+class UsageError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct Options {
+  std::string model_path;
+  std::vector<std::string> defines;  // --define NAME=VALUE
+  // derive
+  std::string format = "text";
+  std::string only;
+  bool shared = false;
+  bool expand = false;
+  std::string output_path;
+  // eval
+  std::vector<std::string> at, set;
+};
+
+std::string join(const std::vector<std::string>& items) {
+  std::string out;
+  for (std::size_t i = 0; i < items.size(); ++i) out += (i ? ", " : "") + items[i];
+  return items.empty() ? "none" : out;
+}
+
+// "a=1", "b=-2.5e3" -> {a: 1, b: -2500}; `option` names the flag in messages
+std::map<std::string, double> parse_assignments(const std::vector<std::string>& items, const std::string& option) {
+  std::map<std::string, double> out;
+  for (const std::string& item : items) {
+    const auto eq = item.find('=');
+    if (eq == std::string::npos || eq == 0 || eq + 1 == item.size())
+      throw UsageError(fmt::format("{}: expected NAME=VALUE, got '{}'", option, item));
+    const std::string name = item.substr(0, eq);
+    std::string text = item.substr(eq + 1);
+    if (text[0] == '+') text.erase(0, 1);
+    double value = 0.0;
+    // from_chars: locale-independent, and must consume the whole text
+    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+    if (ec != std::errc() || end != text.data() + text.size() || !std::isfinite(value))
+      throw UsageError(fmt::format("{}: '{}' in '{}' is not a finite number", option, item.substr(eq + 1), item));
+    if (!out.emplace(name, value).second) throw UsageError(fmt::format("{}: '{}' is given twice", option, name));
+  }
+  return out;
+}
+
+// Writes through a temporary file in the same directory renamed over the target, so a
+// failure never leaves a partial or corrupted file behind.
+void write_atomically(const std::string& path, const std::string& content) {
+  namespace fs = std::filesystem;
+  const fs::path target(path);
+  const fs::path directory = target.has_parent_path() ? target.parent_path() : fs::path(".");
+  std::string temporary;
+  int fd = -1;
+  for (int attempt = 0; fd < 0; ++attempt) {
+    temporary = (directory / fmt::format(".{}.{}-{}.tmp", target.filename().string(), ::getpid(), attempt)).string();
+    fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);  // 0666 & ~umask
+    if (fd < 0 && (errno != EEXIST || attempt >= 100))
+      throw eomgen::Error(fmt::format("writing '{}': cannot create a file in '{}': {}", path, directory.string(),
+                                      std::strerror(errno)));
+  }
+  const auto fail = [&](const std::string& what) {
+    const std::string reason = std::strerror(errno);
+    if (fd >= 0) ::close(fd);
+    ::unlink(temporary.c_str());
+    throw eomgen::Error(fmt::format("writing '{}': {}: {}", path, what, reason));
+  };
+  for (std::size_t done = 0; done < content.size();) {
+    const ssize_t n = ::write(fd, content.data() + done, content.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) fail("write failed");
+    done += static_cast<std::size_t>(n);
+  }
+  if (::fsync(fd) != 0) fail("fsync failed");
+  const int closed = ::close(fd);
+  fd = -1;
+  if (closed != 0) fail("close failed");
+  if (std::rename(temporary.c_str(), path.c_str()) != 0) fail("cannot replace the file");
+}
+
+eomgen::Model load(const Options& o) { return eomgen::load_model(o.model_path, parse_assignments(o.defines, "--define")); }
+
+void run_check(const Options& o) {
+  const eomgen::Model model = load(o);
+  const eomgen::MechanicalSystem& s = model.system;
+  const eomgen::Variables& v = s.variables();
+  // deriving is cheap (linear in the model) and catches what only the derivation can see
+  const eomgen::EquationsOfMotion eom = eomgen::derive_equations(s);
+  std::vector<std::string> coordinates, holonomic, nonholonomic, bodies, particles, inputs, outputs;
+  for (const auto& c : v.coordinates()) coordinates.push_back(c.name);
+  for (const auto& c : s.constraints())
+    (c.kind == eomgen::Constraint::Kind::holonomic ? holonomic : nonholonomic).push_back(c.name);
+  for (const auto& b : s.rigid_bodies()) bodies.push_back(b.name);
+  for (const auto& p : s.particles()) particles.push_back(p.name);
+  for (const auto& u : v.inputs()) inputs.push_back(u.name);
+  for (const auto& out : model.outputs)
+    outputs.push_back(out.components.size() == 1 ? out.name : fmt::format("{} ({} components)", out.name, out.components.size()));
+  const std::size_t n = coordinates.size(), m = s.constraints().size();
+  std::cout << "Model: " << model.name << "\n";
+  if (!model.description.empty()) std::cout << "Description: " << model.description << "\n";
+  std::cout << fmt::format("Coordinates (n = {}): {}\n", n, join(coordinates));
+  std::cout << fmt::format("Constraints (m = {}):\n  holonomic ({}): {}\n  nonholonomic ({}): {}\n", m,
+                           holonomic.size(), join(holonomic), nonholonomic.size(), join(nonholonomic));
+  std::cout << fmt::format("Degrees of freedom (n - m): {}\n", static_cast<long long>(n) - static_cast<long long>(m));
+  std::cout << fmt::format("Bodies ({}): {}\nParticles ({}): {}\n", bodies.size(), join(bodies), particles.size(),
+                           join(particles));
+  std::cout << fmt::format("Parameters ({}):", v.parameters().size()) << (v.parameters().empty() ? " none" : "") << "\n";
+  for (const auto& p : v.parameters())
+    std::cout << fmt::format("  {} = {}", p.name, p.default_value) << (p.unit.empty() ? "" : " [" + p.unit + "]") << "\n";
+  if (!model.constants.empty()) {
+    std::vector<std::string> constants;
+    for (const auto& [name, value] : model.constants) constants.push_back(fmt::format("{} = {}", name, value));
+    std::cout << fmt::format("Constants ({}): {}\n", constants.size(), join(constants));
+  }
+  std::cout << fmt::format("Inputs ({}): {}\nOutputs ({}): {}\n", inputs.size(), join(inputs), outputs.size(),
+                           join(outputs));
+  std::cout << fmt::format("Derivation: ok ({} shared intermediates)\n", eom.subexpressions.size());
+}
+
+void run_derive(const Options& o) {
+  eomgen::PrintOptions print;
+  static const std::map<std::string, eomgen::EquationFormat> formats = {
+      {"text", eomgen::EquationFormat::text},
+      {"latex", eomgen::EquationFormat::latex},
+      {"markdown", eomgen::EquationFormat::markdown}};
+  print.format = formats.at(o.format);  // CLI11 checked membership
+  if (!o.only.empty()) {
+    try {
+      print.parts = eomgen::parse_equation_parts(o.only);
+    } catch (const eomgen::Error& e) {
+      throw UsageError(fmt::format("--only: {}", e.what()));
+    }
+  }
+  if (o.shared) print.intermediates = eomgen::IntermediateForm::shared;
+  if (o.expand) print.intermediates = eomgen::IntermediateForm::written_out;
+  const eomgen::Model model = load(o);
+  const eomgen::EquationsOfMotion eom = eomgen::derive_equations(model.system);
+  // render completely before writing anything, so an error leaves no output behind
+  const std::string text = eomgen::format_equations(model, eom, print);
+  if (o.output_path.empty())
+    std::cout << text << std::flush;
+  else
+    write_atomically(o.output_path, text);
+}
+
+// ---- eval ----
+
+std::string number(double x) { return fmt::format("{}", x); }  // shortest text that reads back exactly
+
+void print_matrix(const std::string& title, const Eigen::MatrixXd& a) {
+  std::cout << fmt::format("{} ({} x {}):", title, a.rows(), a.cols()) << (a.size() == 0 ? " empty" : "") << "\n";
+  std::vector<std::size_t> width(a.cols(), 0);
+  for (Eigen::Index j = 0; j < a.cols(); ++j)
+    for (Eigen::Index i = 0; i < a.rows(); ++i) width[j] = std::max(width[j], number(a(i, j)).size());
+  for (Eigen::Index i = 0; i < a.rows(); ++i) {
+    std::cout << "  [";
+    for (Eigen::Index j = 0; j < a.cols(); ++j) std::cout << (j ? "  " : " ") << fmt::format("{:>{}}", number(a(i, j)), width[j]);
+    std::cout << " ]\n";
+  }
+}
+
+void print_named(const std::string& title, const std::vector<std::pair<std::string, double>>& values) {
+  std::cout << title << ":" << (values.empty() ? " none" : "") << "\n";
+  for (const auto& [name, value] : values) std::cout << "  " << name << " = " << number(value) << "\n";
+}
+
+void run_eval(const Options& o) {
+  if (o.format != "text" && o.format != "json") throw UsageError("--format: eval prints 'text' or 'json'");
+  const std::map<std::string, double> at = parse_assignments(o.at, "--at");
+  const std::map<std::string, double> set = parse_assignments(o.set, "--set");
+  eomgen::NamedValues values = at;
+  for (const auto& [name, value] : set)
+    if (!values.emplace(name, value).second) throw UsageError(fmt::format("--set: '{}' is also given in --at", name));
+  const eomgen::Model model = load(o);
+  const eomgen::Variables& v = model.system.variables();
+  for (const auto& [name, value] : set) {
+    bool is_parameter = false;
+    for (const auto& p : v.parameters()) is_parameter = is_parameter || p.name == name;
+    if (!is_parameter) throw eomgen::Error(fmt::format("--set: '{}' is not a parameter of the model", name));
+  }
+  const eomgen::EquationsOfMotion eom = eomgen::derive_equations(model.system);
+  const eomgen::NumericEquations eq = eomgen::evaluate_equations(model, eom, values);
+  eomgen::AccelerationSolution sol;
+  try {
+    sol = eomgen::solve_accelerations(eq);
+  } catch (const eomgen::Error& e) {
+    // the usual cause is a state off the constraints (the all-zero default for a quaternion)
+    if (eq.holonomic_residuals.size() == 0 || eq.holonomic_residuals.norm() < 1e-9) throw;
+    throw eomgen::Error(fmt::format("{}; note that the state violates the holonomic constraints: "
+                                    "|phi| = {:.3g}", e.what(), eq.holonomic_residuals.norm()));
+  }
+
+  // the state and parameters actually used, in declaration order
+  auto value_of = [&](const std::string& name, double fallback) {
+    const auto it = values.find(name);
+    return it == values.end() ? fallback : it->second;
+  };
+  std::vector<std::pair<std::string, double>> state{{"t", value_of("t", 0.0)}}, parameters, qdd, lambda;
+  std::vector<std::string> coordinates, constraints;
+  for (const auto& c : v.coordinates()) {
+    coordinates.push_back(c.name);
+    state.emplace_back(c.name, value_of(c.name, 0.0));
+    state.emplace_back(c.qd.get_name(), value_of(c.qd.get_name(), 0.0));
+    qdd.emplace_back(c.qdd.get_name(), sol.qdd(static_cast<Eigen::Index>(qdd.size())));
+  }
+  for (const auto& u : v.inputs()) state.emplace_back(u.name, value_of(u.name, 0.0));
+  for (const auto& p : v.parameters()) parameters.emplace_back(p.name, value_of(p.name, p.default_value));
+  for (const auto& c : model.system.constraints()) {
+    constraints.push_back(c.name);
+    lambda.emplace_back(c.name, sol.lambda(static_cast<Eigen::Index>(lambda.size())));
+  }
+
+  if (o.format == "json") {
+    using json = nlohmann::ordered_json;  // keys in a fixed, readable order
+    auto rows = [](const Eigen::MatrixXd& a) {
+      json out = json::array();
+      for (Eigen::Index i = 0; i < a.rows(); ++i) {
+        json row = json::array();
+        for (Eigen::Index j = 0; j < a.cols(); ++j) row.push_back(a(i, j));
+        out.push_back(row);
+      }
+      return out;
+    };
+    auto column = [](const Eigen::VectorXd& x) { return json(std::vector<double>(x.data(), x.data() + x.size())); };
+    auto object = [](const std::vector<std::pair<std::string, double>>& values) {
+      json out = json::object();
+      for (const auto& [name, value] : values) out[name] = value;
+      return out;
+    };
+    json j;
+    j["model"] = model.name;
+    j["coordinates"] = coordinates;
+    j["constraints"] = constraints;
+    j["state"] = object(state);
+    j["parameters"] = object(parameters);
+    j["M"] = rows(eq.mass_matrix);
+    j["F"] = column(eq.forcing);
+    j["Xi"] = rows(eq.constraint_jacobian);
+    j["Xi_t"] = column(eq.constraint_rate_term);
+    j["constraint_bias"] = column(eq.constraint_acceleration_term);
+    j["phi"] = column(eq.holonomic_residuals);
+    j["T"] = eq.kinetic_energy;
+    j["V"] = eq.potential_energy;
+    j["qdd"] = column(sol.qdd);
+    j["lambda"] = column(sol.lambda);
+    j["outputs"] = object(eq.outputs);
+    // one key per line, each value compact (a matrix on one line as an array of rows);
+    // nlohmann writes the shortest decimal that reads back to the same double
+    std::cout << "{";
+    for (auto it = j.begin(); it != j.end(); ++it)
+      std::cout << (it == j.begin() ? "\n  " : ",\n  ") << json(it.key()).dump() << ": " << it.value().dump();
+    std::cout << "\n}\n";
+    return;
+  }
+  std::cout << "Model " << model.name << "\n";
+  print_named("State", state);
+  print_named("Parameters", parameters);
+  print_matrix("M", eq.mass_matrix);
+  print_matrix("F", eq.forcing);
+  if (!constraints.empty()) {
+    std::cout << "Constraints: " << join(constraints) << "\n";
+    print_matrix("Xi", eq.constraint_jacobian);
+    print_matrix("Xi_t", eq.constraint_rate_term);
+    print_matrix("constraint_bias = dXi/dt qd + dXi_t/dt", eq.constraint_acceleration_term);
+    print_matrix("phi", eq.holonomic_residuals);
+  }
+  std::cout << "T = " << number(eq.kinetic_energy) << "\nV = " << number(eq.potential_energy) << "\n";
+  print_named("Outputs", eq.outputs);
+  print_named("Accelerations qdd", qdd);
+  if (!constraints.empty()) print_named("Multipliers lambda", lambda);
+}
+
+// the options every subcommand has: the model file and --define
+void add_model_options(CLI::App* sub, Options& o) {
+  sub->add_option("MODEL", o.model_path, "Model file (.eom)")->required()->check(CLI::ExistingFile);
+  sub->add_option("-D,--define", o.defines, "Override a 'const' of the model: NAME=VALUE (repeatable)")
+      ->delimiter(',')
+      ->type_name("NAME=VALUE");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"eomgen: equations of motion M(q) qdd = F(q, qd, t, u) + Xi^T lambda from a model file", "eomgen"};
+  app.set_version_flag("--version", std::string("eomgen ") + eomgen::version);
+  app.require_subcommand(1);
+  app.footer("Exit status: 0 success, 1 error in the model or at the state, 2 usage error.");
+  Options o;
+
+  CLI::App* check = app.add_subcommand("check", "Check a model and summarize it");
+  add_model_options(check, o);
+
+  CLI::App* derive = app.add_subcommand("derive", "Derive and print the equations of motion");
+  derive->alias("show");
+  add_model_options(derive, o);
+  derive->add_option("-f,--format", o.format, "Output format")
+      ->check(CLI::IsMember({"text", "latex", "markdown"}))
+      ->capture_default_str();
+  derive->add_option("--only", o.only, "Parts to print, comma-separated: M,F,Xi,Xi_t,constraint_bias,phi,T,V,outputs")
+      ->type_name("PARTS");
+  CLI::Option* shared = derive->add_flag("--intermediates", o.shared,
+                                         "Print in terms of shared intermediates, then their definitions");
+  derive->add_flag("--expand", o.expand, "Write intermediates out even for a large system (may be slow)")
+      ->excludes(shared);
+  derive->add_option("-o,--output", o.output_path, "Write to FILE instead of standard output (atomically)")
+      ->type_name("FILE");
+
+  CLI::App* eval = app.add_subcommand("eval", "Evaluate the equations numerically and solve for qdd, lambda");
+  add_model_options(eval, o);
+  eval->add_option("--at", o.at, "State: q1=0.1,q1_dot=0.3,u=1,t=0 (others are 0)")
+      ->delimiter(',')
+      ->type_name("NAME=VALUE,...");
+  eval->add_option("--set", o.set, "Override a parameter's default: NAME=VALUE (repeatable)")
+      ->delimiter(',')
+      ->type_name("NAME=VALUE");
+  eval->add_option("-f,--format", o.format, "Output format")->check(CLI::IsMember({"text", "json"}))->capture_default_str();
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version: printed to stdout
+    std::cerr << "eomgen: error: " << e.what() << "\nRun with --help for more information.\n";
+    return 2;
+  }
+  try {
+    if (check->parsed()) run_check(o);
+    if (derive->parsed()) run_derive(o);
+    if (eval->parsed()) run_eval(o);
+  } catch (const UsageError& e) {
+    std::cerr << "eomgen: error: " << e.what() << "\n";
+    return 2;
+  } catch (const eomgen::SourceError& e) {
+    std::cerr << e.what() << "\n";  // already "file:line:col: error: ..."
+    return 1;
+  } catch (const eomgen::Error& e) {
+    std::cerr << "eomgen: error: " << e.what() << "\n";
+    return 1;
+  } catch (const std::exception& e) {  // GiNaC or the system: not the user's fault, but still fatal
+    std::cerr << "eomgen: internal error: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}

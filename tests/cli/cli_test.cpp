@@ -1,0 +1,296 @@
+// Runs the built eomgen program (EOMGEN_EXE) on model files written to a temporary directory and
+// checks what a user sees: exit status, standard output and standard error, files written.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+using ::testing::MatchesRegex;
+using ::testing::Not;
+using ::testing::StartsWith;
+
+const char* const double_pendulum = R"(# two point masses on massless rods, relative angles
+model double_pendulum "Planar double pendulum"
+parameter m1 = 1.0 [kg]
+parameter m2 = 1.0 [kg]
+parameter l1 = 1.0 [m]
+parameter l2 = 1.0 [m]
+parameter g = 9.81 [m/s^2]
+coordinate q1, q2
+frame b = rotate(a, 3, q1)
+frame c = rotate(b, 3, q2)
+point p1 = w + l1*b.1
+point p2 = p1 + l2*c.1
+particle bob1(mass = m1, at = p1)
+particle bob2(mass = m2, at = p2)
+gravity = g*a.1
+output tip = position(p2)
+)";
+
+// a.1 down, as in the double pendulum; the rod is a holonomic constraint
+const char* const cartesian_pendulum = R"(model cartesian_pendulum "Point mass on a rod"
+parameter m = 2.0 [kg]
+parameter l = 1.5 [m]
+parameter g = 9.81 [m/s^2]
+coordinate x, y
+point p = w + [x, y, 0] in a
+particle bob(mass = m, at = p)
+gravity = g*a.1
+constraint rod: x^2 + y^2 = l^2
+)";
+
+const char* const chain = R"(model chain "n uniform rods pinned end to end"
+const n = 2
+parameter m = 1.0 [kg]
+parameter l = 0.5 [m]
+parameter g = 9.81 [m/s^2]
+gravity = g*a.1
+frame b0 = a
+point o0 = w
+for i in 1..n
+  coordinate q{i}
+  frame b{i} = rotate(b{i-1}, 3, q{i})
+  point c{i} = o{i-1} + l/2*b{i}.1
+  point o{i} = o{i-1} + l*b{i}.1
+  body rod{i}(mass = m, centre = c{i}, frame = b{i}, inertia = diag(m*l^2/1200, m*l^2/12, m*l^2/12))
+end
+)";
+
+// line 4, column 18 names an undeclared 'mm'
+const char* const misspelt = R"(parameter m = 1.0 [kg]
+coordinate x
+point p = w + x*a.1
+particle bob(mass = mm, at = p)
+)";
+
+struct Outcome {
+  int status = -1;
+  std::string out, err;
+};
+
+std::string quote(const std::string& s) { return "'" + s + "'"; }
+
+std::string slurp(const fs::path& path) {
+  std::ifstream in(path);
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  return buffer.str();
+}
+
+class Cli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir_ = fs::temp_directory_path() / ("eomgen_cli_test_" + std::to_string(::getpid()) + "_" + info->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_ / "work");
+  }
+  void TearDown() override {
+    if (!HasFailure()) fs::remove_all(dir_);
+  }
+
+  // writes a model file into the work directory; returns its path
+  std::string model(const std::string& name, const std::string& text) {
+    const fs::path path = dir_ / "work" / name;
+    std::ofstream(path) << text;
+    return path.string();
+  }
+
+  // runs eomgen with `arguments` (already quoted for the shell)
+  Outcome eomgen(const std::string& arguments) {
+    const fs::path out = dir_ / "stdout", err = dir_ / "stderr";
+    const std::string command =
+        quote(EOMGEN_EXE) + " " + arguments + " > " + quote(out.string()) + " 2> " + quote(err.string());
+    const int raw = std::system(command.c_str());
+    Outcome run;
+    run.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+    run.out = slurp(out);
+    run.err = slurp(err);
+    return run;
+  }
+
+  fs::path dir_;
+};
+
+TEST_F(Cli, VersionAndHelp) {
+  const Outcome version = eomgen("--version");
+  EXPECT_EQ(version.status, 0);
+  EXPECT_EQ(version.out, "eomgen 0.1.0\n");
+  const Outcome help = eomgen("--help");
+  EXPECT_EQ(help.status, 0);
+  for (const char* word : {"check", "derive", "eval", "--version"}) EXPECT_THAT(help.out, HasSubstr(word));
+  const Outcome derive = eomgen("derive --help");
+  EXPECT_EQ(derive.status, 0);
+  for (const char* word : {"MODEL", "--format", "--only", "--intermediates", "--output", "--define"})
+    EXPECT_THAT(derive.out, HasSubstr(word));
+  const Outcome eval = eomgen("eval --help");
+  EXPECT_EQ(eval.status, 0);
+  for (const char* word : {"--at", "--set", "--format", "--define"}) EXPECT_THAT(eval.out, HasSubstr(word));
+  EXPECT_EQ(eomgen("check --help").status, 0);
+  EXPECT_TRUE(eomgen("--help").err.empty());
+}
+
+TEST_F(Cli, CheckSummarizesTheModel) {
+  const Outcome run = eomgen("check " + quote(model("dp.eom", double_pendulum)));
+  EXPECT_EQ(run.status, 0) << run.err;
+  EXPECT_THAT(run.out, HasSubstr("Model: double_pendulum\nDescription: Planar double pendulum\n"));
+  EXPECT_THAT(run.out, HasSubstr("Coordinates (n = 2): q1, q2\n"));
+  EXPECT_THAT(run.out, HasSubstr("Degrees of freedom (n - m): 2\n"));
+  EXPECT_THAT(run.out, HasSubstr("Particles (2): bob1, bob2\n"));
+  EXPECT_THAT(run.out, HasSubstr("  g = 9.81 [m/s^2]\n"));
+  EXPECT_THAT(run.out, HasSubstr("Outputs (1): tip (3 components)\n"));
+  const Outcome constrained = eomgen("check " + quote(model("cp.eom", cartesian_pendulum)));
+  EXPECT_EQ(constrained.status, 0) << constrained.err;
+  EXPECT_THAT(constrained.out, HasSubstr("Constraints (m = 1):\n  holonomic (1): rod\n  nonholonomic (0): none\n"));
+  EXPECT_THAT(constrained.out, HasSubstr("Degrees of freedom (n - m): 1\n"));
+}
+
+TEST_F(Cli, DefineOverridesAConstant) {
+  const std::string path = model("chain.eom", chain);
+  EXPECT_THAT(eomgen("check " + quote(path)).out, HasSubstr("Coordinates (n = 2): q1, q2\n"));
+  const Outcome run = eomgen("check " + quote(path) + " --define n=3");
+  EXPECT_EQ(run.status, 0) << run.err;
+  EXPECT_THAT(run.out, HasSubstr("Coordinates (n = 3): q1, q2, q3\n"));
+  EXPECT_THAT(run.out, HasSubstr("Bodies (3): rod1, rod2, rod3\n"));
+}
+
+TEST_F(Cli, DerivePrintsTheEquationsTheSameWayEveryRun) {
+  const std::string path = model("dp.eom", double_pendulum);
+  const Outcome run = eomgen("derive " + quote(path));
+  EXPECT_EQ(run.status, 0) << run.err;
+  EXPECT_THAT(run.out, HasSubstr("  M[1,1] = m1*l1^2 + m2*l1^2 + 2*m2*l1*l2*cos(q2) + m2*l2^2\n"));
+  EXPECT_THAT(run.out, HasSubstr("  tip_1 = l1*cos(q1) + l2*cos(q1)*cos(q2) - l2*sin(q1)*sin(q2)\n"));
+  // separate processes: GiNaC's own term order would change with address-space randomization
+  EXPECT_EQ(eomgen("derive " + quote(path)).out, run.out);
+  EXPECT_EQ(eomgen("show " + quote(path)).out, run.out);
+
+  const Outcome only = eomgen("derive " + quote(path) + " --only M,T");
+  EXPECT_THAT(only.out, HasSubstr("M[2,2] = m2*l2^2"));
+  EXPECT_THAT(only.out, Not(HasSubstr("F[1]")));
+  EXPECT_THAT(eomgen("derive " + quote(path) + " --intermediates").out, HasSubstr("\nwhere ("));
+  const Outcome latex = eomgen("derive " + quote(path) + " --format latex");
+  EXPECT_THAT(latex.out, StartsWith("\\documentclass"));
+  EXPECT_THAT(latex.out, HasSubstr("\\end{document}\n"));
+  EXPECT_THAT(eomgen("derive " + quote(path) + " -f markdown").out, StartsWith("# Equations of motion: double_pendulum\n"));
+}
+
+TEST_F(Cli, OutputFileIsWrittenWholeOrNotAtAll) {
+  const std::string good = model("dp.eom", double_pendulum), bad = model("bad.eom", misspelt);
+  const fs::path target = dir_ / "work" / "equations.txt";
+  const Outcome written = eomgen("derive " + quote(good) + " -o " + quote(target.string()));
+  EXPECT_EQ(written.status, 0) << written.err;
+  EXPECT_TRUE(written.out.empty());
+  EXPECT_EQ(slurp(target), eomgen("derive " + quote(good)).out);
+
+  // a failing run leaves an existing file untouched and creates none
+  const Outcome failed = eomgen("derive " + quote(bad) + " -o " + quote(target.string()));
+  EXPECT_EQ(failed.status, 1);
+  EXPECT_EQ(slurp(target), eomgen("derive " + quote(good)).out);
+  const fs::path fresh = dir_ / "work" / "never.txt";
+  EXPECT_EQ(eomgen("derive " + quote(bad) + " -o " + quote(fresh.string())).status, 1);
+  EXPECT_FALSE(fs::exists(fresh));
+  // an unwritable target (a directory) is an error that leaves no temporary file behind
+  fs::create_directories(dir_ / "work" / "adir");
+  const Outcome to_directory = eomgen("derive " + quote(good) + " -o " + quote((dir_ / "work" / "adir").string()));
+  EXPECT_EQ(to_directory.status, 1);
+  EXPECT_THAT(to_directory.err, StartsWith("eomgen: error: writing"));
+  for (const auto& entry : fs::directory_iterator(dir_ / "work"))
+    EXPECT_THAT(entry.path().filename().string(), Not(HasSubstr(".tmp"))) << "left behind";
+}
+
+TEST_F(Cli, ModelErrorsExitOneWithFileLineColumn) {
+  const std::string path = model("bad.eom", misspelt);
+  const Outcome run = eomgen("derive " + quote(path));
+  EXPECT_EQ(run.status, 1);
+  EXPECT_TRUE(run.out.empty());
+  EXPECT_THAT(run.err, StartsWith(path + ":4:"));
+  EXPECT_THAT(run.err, MatchesRegex(".*bad\\.eom:4:[0-9]+: error: .*'mm'.*\n"));
+  EXPECT_EQ(eomgen("check " + quote(path)).status, 1);
+  EXPECT_EQ(eomgen("eval " + quote(path)).status, 1);
+}
+
+TEST_F(Cli, UsageErrorsExitTwo) {
+  const std::string path = model("dp.eom", double_pendulum);
+  for (const std::string& arguments :
+       {std::string(""), std::string("frobnicate"), std::string("derive"), "derive " + quote(path) + " --format pdf",
+        "derive " + quote(path) + " --only M,Q", "derive " + quote(path) + " --intermediates --expand",
+        "eval " + quote(path) + " --at q1", "eval " + quote(path) + " --at q1=abc",
+        "eval " + quote(path) + " --at q1=1,q1=2", "eval " + quote(path) + " --set g", "eval " + quote(path) + " -f latex",
+        "check " + quote(path) + " --define n", "check " + quote((dir_ / "missing.eom").string()),
+        "check " + quote(path) + " --unknown-flag"}) {
+    const Outcome run = eomgen(arguments);
+    EXPECT_EQ(run.status, 2) << arguments << "\n" << run.err;
+    EXPECT_THAT(run.err, StartsWith("eomgen: error: ")) << arguments;
+    EXPECT_TRUE(run.out.empty()) << arguments;
+  }
+}
+
+TEST_F(Cli, EvalJsonIsParseableAndSolvesTheKktSystem) {
+  const double m = 2.0, l = 1.5, g = 9.8, theta = 0.6, omega = -0.9;
+  const double x = l * std::cos(theta), y = l * std::sin(theta);
+  const double xd = -l * std::sin(theta) * omega, yd = l * std::cos(theta) * omega;
+  char at[256];
+  std::snprintf(at, sizeof at, "x=%.17g,y=%.17g,x_dot=%.17g,y_dot=%.17g", x, y, xd, yd);
+  const Outcome run = eomgen("eval " + quote(model("cp.eom", cartesian_pendulum)) + " --at " + at + " --set g=9.8 --format json");
+  ASSERT_EQ(run.status, 0) << run.err;
+  const nlohmann::json j = nlohmann::json::parse(run.out);
+  EXPECT_EQ(j["coordinates"], nlohmann::json({"x", "y"}));
+  EXPECT_EQ(j["constraints"], nlohmann::json({"rod"}));
+  for (const char* key : {"M", "F", "Xi", "Xi_t", "constraint_bias", "T", "V", "qdd", "lambda", "outputs"})
+    EXPECT_TRUE(j.contains(key)) << key;
+  EXPECT_EQ(j["M"], nlohmann::json({{m, 0.0}, {0.0, m}}));
+  EXPECT_EQ(j["F"], nlohmann::json({m * g, 0.0}));
+  EXPECT_EQ(j["parameters"]["g"].get<double>(), 9.8);
+  // full precision: the JSON reads back to the doubles given
+  EXPECT_EQ(j["state"]["x"].get<double>(), x);
+  EXPECT_EQ(j["state"]["y_dot"].get<double>(), yd);
+  // lambda = -(rod tension) / (2 l); the tension is m (g cos(theta) + l omega^2)
+  EXPECT_NEAR(j["lambda"][0].get<double>(), -m * (g * std::cos(theta) + l * omega * omega) / (2 * l), 1e-12);
+  EXPECT_NEAR(j["Xi"][0][0].get<double>(), 2 * x, 1e-15);
+  EXPECT_NEAR(j["V"].get<double>(), -m * g * x, 1e-12);
+}
+
+TEST_F(Cli, EvalTextAndEvaluationErrors) {
+  const std::string path = model("dp.eom", double_pendulum);
+  const Outcome run = eomgen("eval " + quote(path) + " --at q1=0.1,q2=0.2,q1_dot=0.3,t=0");
+  EXPECT_EQ(run.status, 0) << run.err;
+  for (const char* word : {"M (2 x 2):", "F (2 x 1):", "T = ", "V = ", "tip_1 = ", "q1_ddot = ", "q2_ddot = "})
+    EXPECT_THAT(run.out, HasSubstr(word));
+  const Outcome unknown = eomgen("eval " + quote(path) + " --at q9=1");
+  EXPECT_EQ(unknown.status, 1);
+  EXPECT_THAT(unknown.err, StartsWith("eomgen: error: "));
+  EXPECT_THAT(unknown.err, HasSubstr("'q9'"));
+  EXPECT_THAT(unknown.err, HasSubstr("q1_dot"));
+  EXPECT_EQ(eomgen("eval " + quote(path) + " --set q1=1").status, 1);  // not a parameter
+}
+
+TEST_F(Cli, EveryShippedModelChecksAndDerivesTheSameBytesEveryRun) {
+  const fs::path models = fs::path(EOMGEN_SOURCE_DIR) / "models";
+  if (!fs::exists(models)) GTEST_SKIP() << "no models/ directory";
+  for (const auto& entry : fs::directory_iterator(models)) {
+    if (entry.path().extension() != ".eom") continue;
+    const std::string path = quote(entry.path().string());
+    const Outcome check = eomgen("check " + path);
+    EXPECT_EQ(check.status, 0) << entry.path() << "\n" << check.err;
+    const Outcome derive = eomgen("derive " + path);
+    EXPECT_EQ(derive.status, 0) << entry.path() << "\n" << derive.err;
+    EXPECT_THAT(derive.out, HasSubstr("M[1,1] = ")) << entry.path();
+    // byte-identical in another process (another address-space layout)
+    EXPECT_EQ(eomgen("derive " + path).out, derive.out) << entry.path();
+    const Outcome shared = eomgen("derive " + path + " --intermediates --format latex");
+    EXPECT_EQ(eomgen("derive " + path + " --intermediates --format latex").out, shared.out) << entry.path();
+  }
+}
+
+}  // namespace
