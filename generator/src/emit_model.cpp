@@ -179,9 +179,7 @@ EmittedModel emit_model(const Model& model, const EquationsOfMotion& eom, const 
   {
     FunctionSpec f{"outputs", "the model's named outputs, in the order of output_names", "void", "OutputVector<Scalar>& y"};
     f.needs_qd = f.needs_u = true;
-    std::size_t k = 0;
-    for (const Output& o : model.outputs)
-      for (const ex& c : o.components) f.targets.push_back({fmt::format("y({})", k++), c});
+    for (std::size_t k = 0; k < ny; ++k) f.targets.push_back({fmt::format("y({})", k), output_component(model, eom, k)});
     functions.push_back(f);
   }
 

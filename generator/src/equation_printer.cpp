@@ -140,10 +140,11 @@ std::vector<Section> raw_sections(const Model& model, const EquationsOfMotion& e
     out.push_back({"Potential energy", "Potential energy", "", {{"V", "V", eom.potential_energy}}});
   if (parts.outputs && !model.outputs.empty()) {
     Section s{"Outputs", "Outputs", "", {}};
+    std::size_t k = 0;
     for (const Output& o : model.outputs) {
       const std::vector<std::string> labels = output_labels(o);
-      for (std::size_t i = 0; i < o.components.size(); ++i)
-        s.entries.push_back({labels[i], "\\text{" + tex_escape(labels[i]) + "}", o.components[i]});
+      for (std::size_t i = 0; i < o.components.size(); ++i, ++k)
+        s.entries.push_back({labels[i], "\\text{" + tex_escape(labels[i]) + "}", output_component(model, eom, k)});
     }
     out.push_back(std::move(s));
   }

@@ -12,12 +12,7 @@ namespace {
 
 using GiNaC::ex;
 
-bool contains_kind(const Variables& v, const ex& e, SymbolKind kind) {
-  if (GiNaC::is_a<GiNaC::symbol>(e)) return v.kind_of(e) == kind;
-  for (std::size_t i = 0; i < e.nops(); ++i)
-    if (contains_kind(v, e.op(i), kind)) return true;
-  return false;
-}
+bool contains_kind(const Variables& v, const ex& e, SymbolKind kind) { return v.contains(e, kind); }
 
 // numeric value of a constant expression at the parameters' defaults, if it has one
 std::optional<double> numeric_value(const ex& e, const GiNaC::exmap& defaults) {

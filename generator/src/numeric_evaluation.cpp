@@ -151,12 +151,13 @@ NumericEquations evaluate_equations(const Model& model, const EquationsOfMotion&
   out.holonomic_residuals = evaluate_column(eom.holonomic_residuals, eval, "phi");
   out.kinetic_energy = eval.finite(eom.kinetic_energy, "T");
   out.potential_energy = eval.finite(eom.potential_energy, "V");
+  std::size_t k = 0;
   for (const Output& o : model.outputs)
-    for (std::size_t i = 0; i < o.components.size(); ++i) {
+    for (std::size_t i = 0; i < o.components.size(); ++i, ++k) {
       const std::string label = o.labels.size() == o.components.size() ? o.labels[i]
                                 : o.components.size() == 1         ? o.name
                                                                    : fmt::format("{}_{}", o.name, i + 1);
-      out.outputs.emplace_back(label, eval.finite(o.components[i], "output '" + label + "'"));
+      out.outputs.emplace_back(label, eval.finite(output_component(model, eom, k), "output '" + label + "'"));
     }
   return out;
 }

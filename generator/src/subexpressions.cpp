@@ -1,5 +1,6 @@
 #include "eomgen/subexpressions.hpp"
 
+
 namespace eomgen {
 namespace {
 
@@ -31,6 +32,39 @@ ex Subexpressions::bind(const ex& value) {
   definitions_.push_back(Definition{z, value});
   by_value_.emplace(value, z);
   return z;
+}
+
+ex Subexpressions::share(const ex& value) {
+  // count the parents of every node, visiting each shared node once (identical shared nodes
+  // compare by pointer, so the maps stay cheap)
+  std::map<ex, std::size_t, GiNaC::ex_is_less> parents;
+  std::vector<ex> stack{value};
+  parents[value] = 1;
+  while (!stack.empty()) {
+    const ex e = stack.back();
+    stack.pop_back();
+    for (std::size_t i = 0; i < e.nops(); ++i) {
+      if (is_leaf(e.op(i))) continue;
+      if (parents[e.op(i)]++ == 0) stack.push_back(e.op(i));
+    }
+  }
+  // rebuild bottom-up, binding the nodes used more than once
+  struct Rebuild : GiNaC::map_function {
+    Subexpressions& z;
+    std::map<ex, std::size_t, GiNaC::ex_is_less>& parents;
+    std::map<ex, ex, GiNaC::ex_is_less> done;
+    Rebuild(Subexpressions& s, std::map<ex, std::size_t, GiNaC::ex_is_less>& p) : z(s), parents(p) {}
+    ex operator()(const ex& e) override {
+      if (is_leaf(e)) return e;
+      auto it = done.find(e);
+      if (it != done.end()) return it->second;
+      ex r = e.map(*this);
+      if (parents[e] > 1) r = z.bind(r);
+      done.emplace(e, r);
+      return r;
+    }
+  } rebuild(*this, parents);
+  return rebuild(value);
 }
 
 GiNaC::matrix Subexpressions::bind(const GiNaC::matrix& value) {

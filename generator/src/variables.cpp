@@ -33,13 +33,21 @@ std::string tex_word(const std::string& word) {
 
 GiNaC::ex code(SymbolKind kind) { return static_cast<int>(kind); }
 
-// collects every symbol of e into out
-void collect_symbols(const GiNaC::ex& e, GiNaC::exset& out) {
+// Collects every symbol of e into out. Expressions from compounded rotations share
+// subtrees, so they are small graphs but exponentially large trees: each shared node is
+// visited once (identical shared nodes compare by pointer, so the visited set is cheap).
+void collect_symbols(const GiNaC::ex& e, GiNaC::exset& out, GiNaC::exset& visited) {
   if (GiNaC::is_a<GiNaC::symbol>(e)) {
     out.insert(e);
     return;
   }
-  for (std::size_t i = 0; i < e.nops(); ++i) collect_symbols(e.op(i), out);
+  if (e.nops() == 0 || !visited.insert(e).second) return;
+  for (std::size_t i = 0; i < e.nops(); ++i) collect_symbols(e.op(i), out, visited);
+}
+
+void collect_symbols(const GiNaC::ex& e, GiNaC::exset& out) {
+  GiNaC::exset visited;
+  collect_symbols(e, out, visited);
 }
 
 }  // namespace
@@ -187,6 +195,18 @@ GiNaC::ex Variables::time_derivative(const GiNaC::ex& e) const {
     }
   }
   return result;
+}
+
+GiNaC::exset symbols_of(const GiNaC::ex& e) {
+  GiNaC::exset symbols;
+  collect_symbols(e, symbols);
+  return symbols;
+}
+
+bool Variables::contains(const GiNaC::ex& e, SymbolKind kind) const {
+  for (const GiNaC::ex& s : symbols_of(e))
+    if (kind_of(s) == kind) return true;
+  return false;
 }
 
 GiNaC::ex Variables::at_rest(const GiNaC::ex& e) const {

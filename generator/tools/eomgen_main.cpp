@@ -21,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "eomgen/emit_model.hpp"
 #include "eomgen/equation_printer.hpp"
 #include "eomgen/equations_of_motion.hpp"
 #include "eomgen/error.hpp"
@@ -47,6 +48,9 @@ struct Options {
   std::string output_path;
   // eval
   std::vector<std::string> at, set;
+  // generate
+  std::string outer_namespace = "eomgen_models";
+  bool stats = false;
 };
 
 std::string join(const std::vector<std::string>& items) {
@@ -165,13 +169,42 @@ void run_derive(const Options& o) {
   if (o.shared) print.intermediates = eomgen::IntermediateForm::shared;
   if (o.expand) print.intermediates = eomgen::IntermediateForm::written_out;
   const eomgen::Model model = load(o);
-  const eomgen::EquationsOfMotion eom = eomgen::derive_equations(model.system);
+  const eomgen::EquationsOfMotion eom = eomgen::derive_equations(model);
   // render completely before writing anything, so an error leaves no output behind
   const std::string text = eomgen::format_equations(model, eom, print);
   if (o.output_path.empty())
     std::cout << text << std::flush;
   else
     write_atomically(o.output_path, text);
+}
+
+// ---- generate ----
+
+std::string statistics_table(const std::vector<eomgen::FunctionStatistics>& statistics) {
+  std::string out = fmt::format("{:<30} {:>12} {:>12} {:>8} {:>8} {:>8} {:>8}\n", "function", "unoptimized",
+                                "optimized", "adds", "muls", "divs", "calls");
+  for (const auto& s : statistics)
+    out += fmt::format("{:<30} {:>12} {:>12} {:>8} {:>8} {:>8} {:>8}\n", s.function, s.unoptimized.total(),
+                       s.optimized.total(), s.optimized.additions, s.optimized.multiplications,
+                       s.optimized.divisions, s.optimized.calls);
+  return out;
+}
+
+void run_generate(const Options& o) {
+  const eomgen::Model model = load(o);
+  const eomgen::EquationsOfMotion eom = eomgen::derive_equations(model);
+  eomgen::EmitOptions emit;
+  emit.outer_namespace = o.outer_namespace;
+  // the file name only: a path would make the header differ between checkouts
+  emit.source_name = std::filesystem::path(o.model_path).filename().string();
+  const eomgen::EmittedModel emitted = eomgen::emit_model(model, eom, emit);
+  if (o.output_path.empty()) {
+    std::cout << emitted.header << std::flush;
+    if (o.stats) std::cerr << statistics_table(emitted.statistics);
+  } else {
+    write_atomically(o.output_path, emitted.header);
+    if (o.stats) std::cout << statistics_table(emitted.statistics);
+  }
 }
 
 // ---- eval ----
@@ -209,7 +242,7 @@ void run_eval(const Options& o) {
     for (const auto& p : v.parameters()) is_parameter = is_parameter || p.name == name;
     if (!is_parameter) throw eomgen::Error(fmt::format("--set: '{}' is not a parameter of the model", name));
   }
-  const eomgen::EquationsOfMotion eom = eomgen::derive_equations(model.system);
+  const eomgen::EquationsOfMotion eom = eomgen::derive_equations(model);
   const eomgen::NumericEquations eq = eomgen::evaluate_equations(model, eom, values);
   eomgen::AccelerationSolution sol;
   try {
@@ -346,6 +379,15 @@ int main(int argc, char** argv) {
       ->type_name("NAME=VALUE");
   eval->add_option("-f,--format", o.format, "Output format")->check(CLI::IsMember({"text", "json"}))->capture_default_str();
 
+  CLI::App* generate = app.add_subcommand("generate", "Emit an optimized C++ header (Eigen only) for the model");
+  add_model_options(generate, o);
+  generate->add_option("-o,--output", o.output_path, "Write to FILE instead of standard output (atomically)")
+      ->type_name("FILE");
+  generate->add_option("--namespace", o.outer_namespace, "Outer namespace of the generated code")
+      ->capture_default_str();
+  generate->add_flag("--stats", o.stats,
+                     "Print operation counts per function, without and with shared subexpressions");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -357,6 +399,7 @@ int main(int argc, char** argv) {
     if (check->parsed()) run_check(o);
     if (derive->parsed()) run_derive(o);
     if (eval->parsed()) run_eval(o);
+    if (generate->parsed()) run_generate(o);
   } catch (const UsageError& e) {
     std::cerr << "eomgen: error: " << e.what() << "\n";
     return 2;

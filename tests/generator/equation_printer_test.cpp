@@ -110,7 +110,7 @@ Model planar_chain(int n) {
 }
 
 std::string print(const Model& model, PrintOptions options = {}) {
-  return format_equations(model, derive_equations(model.system), options);
+  return format_equations(model, derive_equations(model), options);
 }
 
 PrintOptions with_format(EquationFormat format) {
@@ -227,7 +227,7 @@ TEST(SharedForm, ListsEveryUsedIntermediateOnceInOrder) {
 
 TEST(SharedForm, ChosenAutomaticallyForLargeSystemsOnly) {
   const Model pendulum = simple_pendulum(), chain = planar_chain(6);
-  const EquationsOfMotion small = derive_equations(pendulum.system), large = derive_equations(chain.system);
+  const EquationsOfMotion small = derive_equations(pendulum), large = derive_equations(chain);
   PrintOptions options;
   EXPECT_LT(written_out_size(pendulum, small, options.parts), 100);
   EXPECT_FALSE(uses_shared_form(pendulum, small, options));

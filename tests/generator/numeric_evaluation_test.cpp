@@ -83,7 +83,7 @@ Model quaternion_body() {
 }
 
 NumericEquations evaluate(const Model& model, const NamedValues& values) {
-  return evaluate_equations(model, derive_equations(model.system), values);
+  return evaluate_equations(model, derive_equations(model), values);
 }
 
 TEST(NumericEvaluation, DoublePendulumMatchesTheHandClosedForm) {

@@ -30,6 +30,8 @@ struct EquationsOfMotion {
   GiNaC::matrix holonomic_residuals;           ///< phi(q, t) of the holonomic rows, m_h x 1
   GiNaC::ex kinetic_energy;                    ///< T
   GiNaC::ex potential_energy;                  ///< V
+  GiNaC::exvector outputs;                     ///< a Model's output components in label order
+                                               ///< (filled by derive_equations(const Model&))
   std::size_t coordinate_count = 0;            ///< n
   std::size_t constraint_count = 0;            ///< m
 };

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "eomgen/equations_of_motion.hpp"
 #include "eomgen/mechanical_system.hpp"
 #include "eomgen/source_location.hpp"
 
@@ -36,6 +37,14 @@ struct Model {
 /// \throws SourceError (file:line:col: error: ...) for every syntax or model error.
 Model parse_model(const std::string& text, const std::string& file_name,
                   const std::map<std::string, double>& overrides = {});
+
+/// Derives the model's equations, with its outputs bound to shared intermediates too
+/// (EquationsOfMotion::outputs, in the order of the outputs' labels).
+EquationsOfMotion derive_equations(const Model& model);
+
+/// Output component k (counting the components of all outputs in order) as derived.
+/// \throws Error if `equations` were derived from model.system alone (without outputs).
+const GiNaC::ex& output_component(const Model& model, const EquationsOfMotion& equations, std::size_t k);
 
 /// Reads and parses a model file. \throws SourceError, or Error if the file cannot be read.
 Model load_model(const std::string& path, const std::map<std::string, double>& overrides = {});

@@ -27,6 +27,11 @@ class Subexpressions {
   /// bind() applied to every entry.
   GiNaC::matrix bind(const GiNaC::matrix& value);
 
+  /// `value` with every subexpression that occurs more than once in it bound to a symbol.
+  /// Expressions built by compounding rotations are small graphs but exponentially large
+  /// trees; after share() every consumer (printing, evaluation, emission) sees the graph.
+  GiNaC::ex share(const GiNaC::ex& value);
+
   /// Definitions in creation order (each refers only to earlier ones).
   const std::vector<Definition>& definitions() const { return definitions_; }
   std::size_t size() const { return definitions_.size(); }

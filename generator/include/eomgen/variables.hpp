@@ -39,6 +39,9 @@ enum class SymbolKind { time, coordinate, rate, acceleration, parameter, input }
 /// "_dot"/"_ddot" as accents: "theta_dot" -> "\dot{\theta}", "l_fh" -> "l_{\mathrm{fh}}".
 std::string tex_name(const std::string& name);
 
+/// Every symbol in e, visiting shared subexpressions once (linear in the expression's graph).
+GiNaC::exset symbols_of(const GiNaC::ex& e);
+
 class Variables {
  public:
   Variables();
@@ -63,6 +66,9 @@ class Variables {
   std::optional<SymbolKind> kind_of(const GiNaC::ex& symbol) const;
   /// Index of the coordinate whose q, qd or qdd is this symbol.
   std::optional<std::size_t> coordinate_index(const GiNaC::ex& symbol) const;
+
+  /// Whether e contains a symbol of that kind.
+  bool contains(const GiNaC::ex& e, SymbolKind kind) const;
 
   /// \throws ModelError naming `what` if `e` contains a symbol that is not part of this model.
   void require_known_symbols(const GiNaC::ex& e, const std::string& what) const;
