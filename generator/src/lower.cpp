@@ -108,14 +108,47 @@ class Lowering {
 
   std::size_t number(double v) { return intern(Node{Op::number, {}, v, {}}); }
   std::size_t unary(Op op, std::size_t a) { return intern(Node{op, {a}, 0.0, {}}); }
+
+  // Signs are canonical: GiNaC writes the same value as l*(a - b) in one run and -l*(b - a)
+  // in another (its term order follows address-seeded hashes), so every negation is moved
+  // to the outside of products and quotients and every sum starts with a positive term.
+  bool negated(std::size_t n) const { return nodes_[n].op == Op::negate; }
+  std::size_t magnitude(std::size_t n) const { return negated(n) ? nodes_[n].args[0] : n; }
+  std::size_t negate(std::size_t n) { return negated(n) ? nodes_[n].args[0] : unary(Op::negate, n); }
+  std::size_t with_sign(bool negative, std::size_t n) { return negative ? negate(n) : n; }
+
   std::size_t nary(Op op, std::vector<std::size_t> args) {
     if (args.size() == 1) return args[0];
+    if (op == Op::multiply) {
+      bool negative = false;
+      for (std::size_t& a : args) {
+        negative ^= negated(a);
+        a = magnitude(a);
+      }
+      return with_sign(negative, intern(Node{op, std::move(args), 0.0, {}}));
+    }
+    if (op == Op::add) {
+      // the term whose magnitude sorts first decides the orientation of the sum
+      const auto first = std::min_element(args.begin(), args.end(), [&](std::size_t a, std::size_t b) {
+        return std::tie(nodes_[magnitude(a)].signature, a) < std::tie(nodes_[magnitude(b)].signature, b);
+      });
+      const bool flip = negated(*first);
+      if (flip)
+        for (std::size_t& a : args) a = negate(a);
+      return with_sign(flip, intern(Node{op, std::move(args), 0.0, {}}));
+    }
     return intern(Node{op, std::move(args), 0.0, {}});
   }
 
-  // x^n for a positive integer n by repeated squaring, so x^4 = (x*x)*(x*x) shares x*x
+  std::size_t quotient(std::size_t a, std::size_t b) {
+    return with_sign(negated(a) != negated(b), intern(Node{Op::divide, {magnitude(a), magnitude(b)}, 0.0, {}}));
+  }
+
+  // x^n for a positive integer n by repeated squaring, so x^4 = (x*x)*(x*x) shares x*x;
+  // (-x)^n = x^n for even n
   std::size_t integer_power(std::size_t x, long n) {
     if (n == 1) return x;
+    if (negated(x)) return with_sign(n % 2 == 1, integer_power(magnitude(x), n));
     const std::size_t half = integer_power(x, n / 2);
     const std::size_t square = nary(Op::multiply, {half, half});
     return n % 2 ? nary(Op::multiply, {square, x}) : square;
@@ -126,15 +159,14 @@ class Lowering {
     if (GiNaC::is_a<GiNaC::numeric>(exponent)) {
       const GiNaC::numeric e = GiNaC::ex_to<GiNaC::numeric>(exponent);
       if (e.is_integer() && e.is_pos_integer()) return integer_power(b, e.to_long());
-      if (e.is_integer()) return intern(Node{Op::divide, {number(1.0), integer_power(b, -e.to_long())}, 0.0, {}});
+      if (e.is_integer()) return quotient(number(1.0), integer_power(b, -e.to_long()));
       if (e == GiNaC::numeric(1, 2)) return unary(Op::sqrt, b);
-      if (e == GiNaC::numeric(-1, 2)) return intern(Node{Op::divide, {number(1.0), unary(Op::sqrt, b)}, 0.0, {}});
+      if (e == GiNaC::numeric(-1, 2)) return quotient(number(1.0), unary(Op::sqrt, b));
       if (e.is_rational() && e.denom() == 2) {
         // x^(k/2) = sqrt(x)^k
         const std::size_t root = unary(Op::sqrt, b);
         const long k = e.numer().to_long();
-        return k > 0 ? integer_power(root, k)
-                     : intern(Node{Op::divide, {number(1.0), integer_power(root, -k)}, 0.0, {}});
+        return k > 0 ? integer_power(root, k) : quotient(number(1.0), integer_power(root, -k));
       }
     }
     return intern(Node{Op::power, {b, node(exponent)}, 0.0, {}});
@@ -158,8 +190,8 @@ class Lowering {
     const bool negative = coefficient < 0;
     if (std::fabs(coefficient) != 1.0) above.push_back(number(std::fabs(coefficient)));
     std::size_t value = above.empty() ? number(1.0) : nary(Op::multiply, above);
-    if (!below.empty()) value = intern(Node{Op::divide, {value, nary(Op::multiply, below)}, 0.0, {}});
-    return negative ? unary(Op::negate, value) : value;
+    if (!below.empty()) value = quotient(value, nary(Op::multiply, below));
+    return with_sign(negative, value);
   }
 
   std::size_t function(const ex& e) {
@@ -174,6 +206,17 @@ class Lowering {
     for (std::size_t i = 0; i < e.nops(); ++i) n.args.push_back(node(e.op(i)));
     if ((it->second == Op::atan2) != (n.args.size() == 2))
       throw EmitError(fmt::format("code emission: '{}' called with {} arguments", name, n.args.size()));
+    // odd functions take the argument's sign outside, even ones drop it
+    const Op op = it->second;
+    if (n.args.size() == 1 && negated(n.args[0])) {
+      const bool odd = op == Op::sin || op == Op::tan || op == Op::asin || op == Op::atan || op == Op::sinh ||
+                       op == Op::tanh;
+      const bool even = op == Op::cos || op == Op::cosh || op == Op::abs;
+      if (odd || even) {
+        n.args[0] = magnitude(n.args[0]);
+        return with_sign(odd, intern(std::move(n)));
+      }
+    }
     return intern(std::move(n));
   }
 
@@ -182,7 +225,7 @@ class Lowering {
       const GiNaC::numeric v = GiNaC::ex_to<GiNaC::numeric>(e);
       if (!v.is_real()) throw EmitError("code emission: complex number in an expression");
       const double d = v.to_double();
-      return d < 0 ? unary(Op::negate, number(-d)) : number(d);
+      return d < 0 ? negate(number(-d)) : number(d);
     }
     if (GiNaC::is_a<GiNaC::symbol>(e)) {
       auto def = definitions_.find(e);
