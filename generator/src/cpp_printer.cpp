@@ -53,7 +53,7 @@ class Printer {
     std::size_t temporaries = 0;
     for (std::size_t i = 0; i < program_.instructions.size(); ++i) {
       const ir::Instruction& in = program_.instructions[i];
-      if (in.op == Op::number || in.op == Op::variable || uses_[i] <= 1) continue;
+      if (in.op == Op::number || in.op == Op::variable || uses_[i] <= 1 || !options_.share_subexpressions) continue;
       names_[i] = fmt::format("{}{}", options_.temporary_prefix, temporaries++);
       body += fmt::format("{}const {} {} = {};\n", options_.indent, options_.scalar, names_[i], expression(i));
     }

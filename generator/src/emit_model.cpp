@@ -190,7 +190,9 @@ EmittedModel emit_model(const Model& model, const EquationsOfMotion& eom, const 
     result.statistics.push_back({f.name, ir::count_operations_without_sharing(program), ir::count_operations(program)});
     std::string code;
     if (!f.scalar_result.empty()) code += fmt::format("    Scalar {} = Scalar(0);\n", f.scalar_result);
-    code += print_cpp(program);
+    CppPrintOptions print_options;
+    print_options.share_subexpressions = options.share_subexpressions;
+    code += print_cpp(program, print_options);
     // structural zeros are written as zeros, not computed
     std::set<std::string> computed;
     for (const ir::Assignment& a : program.outputs) computed.insert(a.target);

@@ -51,6 +51,7 @@ struct Options {
   // generate
   std::string outer_namespace = "eomgen_models";
   bool stats = false;
+  bool no_cse = false;
 };
 
 std::string join(const std::vector<std::string>& items) {
@@ -195,6 +196,7 @@ void run_generate(const Options& o) {
   const eomgen::EquationsOfMotion eom = eomgen::derive_equations(model);
   eomgen::EmitOptions emit;
   emit.outer_namespace = o.outer_namespace;
+  emit.share_subexpressions = !o.no_cse;
   // the file name only: a path would make the header differ between checkouts
   emit.source_name = std::filesystem::path(o.model_path).filename().string();
   const eomgen::EmittedModel emitted = eomgen::emit_model(model, eom, emit);
@@ -385,6 +387,8 @@ int main(int argc, char** argv) {
       ->type_name("FILE");
   generate->add_option("--namespace", o.outer_namespace, "Outer namespace of the generated code")
       ->capture_default_str();
+  generate->add_flag("--no-cse", o.no_cse,
+                     "Write every output as its own expression tree, without shared temporaries (for comparison)");
   generate->add_flag("--stats", o.stats,
                      "Print operation counts per function, without and with shared subexpressions");
 

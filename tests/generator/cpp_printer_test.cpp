@@ -50,6 +50,14 @@ TEST(CppPrinter, SharedValuesBecomeTemporariesInOrder) {
   EXPECT_EQ(print_cpp(p), "    const Scalar w0 = sin(q(0));\n    M(0, 0) = w0 * cos(q(0));\n    M(1, 1) = w0;\n");
 }
 
+TEST(CppPrinter, WithoutSharingEveryUseIsWrittenOut) {
+  ir::Program p{{var("q(0)"), op(Op::sin, {0}), op(Op::cos, {0}), op(Op::multiply, {1, 2})},
+                {{"M(0, 0)", 3}, {"M(1, 1)", 1}}};
+  CppPrintOptions options;
+  options.share_subexpressions = false;
+  EXPECT_EQ(print_cpp(p, options), "    M(0, 0) = sin(q(0)) * cos(q(0));\n    M(1, 1) = sin(q(0));\n");
+}
+
 TEST(CppPrinter, NumbersAreWrappedInTheScalarTypeAndRoundTrip) {
   EXPECT_EQ(cpp_number(2.0, "Scalar"), "Scalar(2)");
   EXPECT_EQ(cpp_number(0.1, "Scalar"), "Scalar(0.1)");

@@ -11,6 +11,9 @@ struct CppPrintOptions {
   std::string scalar = "Scalar";     // type of temporaries and literals
   std::string indent = "    ";
   std::string temporary_prefix = "w";
+  /// false: no temporaries, every output written as its own expression tree (the
+  /// unoptimized baseline of the benchmarks; exponentially long for deep chains)
+  bool share_subexpressions = true;
 };
 
 /// Statements computing every output of the program: shared values become

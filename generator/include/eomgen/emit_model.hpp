@@ -12,6 +12,8 @@ namespace eomgen {
 struct EmitOptions {
   std::string outer_namespace = "eomgen_models";
   std::string source_name;  // file name shown in the banner (sanitized)
+  /// false: print every output as its own tree, without shared temporaries (for comparison)
+  bool share_subexpressions = true;
 };
 
 /// Operation counts of one generated function.
