@@ -1,0 +1,26 @@
+# cmake -DBUILD_DIR=... -DSOURCE_DIR=... -DWORK_DIR=... -P ConsumerTest.cmake
+# Installs eomgen from BUILD_DIR into a fresh prefix, then configures, builds and runs
+# examples/computed_torque as a separate project that find_package()s it.
+file(REMOVE_RECURSE ${WORK_DIR})
+set(prefix ${WORK_DIR}/prefix)
+function(run)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT status EQUAL 0)
+    message(FATAL_ERROR "failed (${status}): ${ARGN}\n${out}\n${err}")
+  endif()
+  set(last_output "${out}" PARENT_SCOPE)
+endfunction()
+run(${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${prefix})
+run(${CMAKE_COMMAND} -S ${SOURCE_DIR}/examples/computed_torque -B ${WORK_DIR}/build
+    -DCMAKE_PREFIX_PATH=${prefix} -DCMAKE_EXPORT_COMPILE_COMMANDS=ON -DCMAKE_BUILD_TYPE=Release)
+run(${CMAKE_COMMAND} --build ${WORK_DIR}/build)
+file(READ ${WORK_DIR}/build/compile_commands.json commands)
+string(TOLOWER "${commands}" commands)
+if(commands MATCHES "ginac|cln")
+  message(FATAL_ERROR "the consumer's compile commands mention GiNaC or CLN:\n${commands}")
+endif()
+run(${WORK_DIR}/build/computed_torque)
+if(NOT last_output MATCHES "converged\\)")
+  message(FATAL_ERROR "the controller did not converge:\n${last_output}")
+endif()
+message(STATUS "${last_output}")
