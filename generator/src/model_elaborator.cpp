@@ -204,6 +204,16 @@ void Elaborator::collect_frames_and_points() {
   }
 }
 
+// `name` is being defined while its own definition is on the stack: report the whole loop
+static void reject_cycle(const char* kind, const std::string& name, const std::vector<std::string>& stack,
+                         const SourceLocation& at) {
+  auto start = std::find(stack.begin(), stack.end(), name);
+  if (start == stack.end()) return;
+  std::string cycle;
+  for (auto it = start; it != stack.end(); ++it) cycle += *it + " -> ";
+  throw SourceError(at, fmt::format("{} '{}' is defined through a cycle: {}{}", kind, name, cycle, name));
+}
+
 // a definition's parent is the leftmost name: `b`, `rotate(b, ...)`, `p + ...`
 static const Expr* leftmost(const Expr* e) {
   while (e->kind == Expr::Kind::add || e->kind == Expr::Kind::subtract) e = e->args[0].get();
@@ -215,11 +225,7 @@ FrameId Elaborator::build_frame(const std::string& name, std::vector<std::string
   const Instance& in = instances_[frame_instances_.at(name)];
   const Statement& s = *in.statement;
   const Environment& env = in.environment;
-  if (std::find(stack.begin(), stack.end(), name) != stack.end()) {
-    std::string cycle;
-    for (auto it = std::find(stack.begin(), stack.end(), name); it != stack.end(); ++it) cycle += *it + " -> ";
-    throw SourceError(s.name.location, fmt::format("frame '{}' is defined through a cycle: {}{}", name, cycle, name));
-  }
+  reject_cycle("frame", name, stack, s.name.location);
   stack.push_back(name);
   const Expr& def = *s.value;
   const std::vector<std::string> kinds = {"rotate", "euler", "axis_angle", "quaternion", "rodrigues", "mrp", "dcm"};
@@ -300,11 +306,7 @@ PointId Elaborator::build_point(const std::string& name, std::vector<std::string
   const Instance& in = instances_[point_instances_.at(name)];
   const Statement& s = *in.statement;
   const Environment& env = in.environment;
-  if (std::find(stack.begin(), stack.end(), name) != stack.end()) {
-    std::string cycle;
-    for (auto it = std::find(stack.begin(), stack.end(), name); it != stack.end(); ++it) cycle += *it + " -> ";
-    throw SourceError(s.name.location, fmt::format("point '{}' is defined through a cycle: {}{}", name, cycle, name));
-  }
+  reject_cycle("point", name, stack, s.name.location);
   const Expr* parent_expr = leftmost(s.value.get());
   if (parent_expr->kind != Expr::Kind::name)
     throw SourceError(start_of(*s.value), "expected a point definition: PARENT_POINT + VECTOR");

@@ -280,7 +280,7 @@ TEST(LatexOutput, LongEntriesContinueOnFurtherRows) {
 
 // Compiles the documents with pdflatex when it is installed (Debian: texlive-latex-base).
 TEST(LatexOutput, CompilesWithPdflatex) {
-  if (std::system("command -v pdflatex > /dev/null 2>&1") != 0) GTEST_SKIP() << "pdflatex not installed";
+  ASSERT_EQ(std::system("command -v pdflatex > /dev/null 2>&1"), 0) << "pdflatex is missing: run scripts/install-deps.sh";
   const std::filesystem::path dir =
       std::filesystem::temp_directory_path() / ("eomgen_latex_test_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
