@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "eomgen/double_evaluator.hpp"
 #include "eomgen/error.hpp"
 
 namespace eomgen {
@@ -14,12 +15,16 @@ using GiNaC::ex;
 
 bool contains_kind(const Variables& v, const ex& e, SymbolKind kind) { return v.contains(e, kind); }
 
-// numeric value of a constant expression at the parameters' defaults, if it has one
+// Numeric value of a constant expression at the parameters' defaults, if it has one. Evaluated
+// in doubles: a pole (1/z with z = 0) gives inf, not a GiNaC exception (which would leak).
 std::optional<double> numeric_value(const ex& e, const GiNaC::exmap& defaults) {
-  ex value = e.subs(defaults, GiNaC::subs_options::no_pattern).evalf();
-  if (!GiNaC::is_a<GiNaC::numeric>(value) || !GiNaC::ex_to<GiNaC::numeric>(value).is_real())
-    return std::nullopt;
-  return GiNaC::ex_to<GiNaC::numeric>(value).to_double();
+  DoubleEvaluator evaluator;
+  for (const auto& [symbol, value] : defaults) evaluator.set(symbol, GiNaC::ex_to<GiNaC::numeric>(value).to_double());
+  try {
+    return evaluator.value(e, "a constant");
+  } catch (const Error&) {
+    return std::nullopt;  // depends on coordinates, rates or inputs
+  }
 }
 
 }  // namespace
@@ -101,6 +106,9 @@ void MechanicalSystem::add_particle(const std::string& name, const ex& mass, Poi
   variables_.require_known_symbols(mass, what);
   auto m = numeric_value(mass, parameter_defaults());
   if (!m) throw ModelError(fmt::format("{}: the mass must be a constant (parameters and numbers)", what));
+  if (!std::isfinite(*m))
+    throw ModelError(fmt::format("{}: the mass is infinite or undefined at the parameters' default values "
+                                 "(a division by zero): expected a finite positive value", what));
   if (!(*m > 0)) throw ModelError(fmt::format("{}: the mass must be positive, got {}", what, *m));
   require_unique_element_name(name, "particle");
   particles_.push_back(Particle{name, mass, point});
@@ -117,6 +125,9 @@ void MechanicalSystem::add_rigid_body(const std::string& name, const ex& mass, P
   const auto defaults = parameter_defaults();
   auto m = numeric_value(mass, defaults);
   if (!m) throw ModelError(fmt::format("{}: the mass must be a constant (parameters and numbers)", what));
+  if (!std::isfinite(*m))
+    throw ModelError(fmt::format("{}: the mass is infinite or undefined at the parameters' default values "
+                                 "(a division by zero): expected a finite positive value", what));
   if (!(*m > 0)) throw ModelError(fmt::format("{}: the mass must be positive, got {}", what, *m));
   double J[3][3];
   for (unsigned i = 0; i < 3; ++i)

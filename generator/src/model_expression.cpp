@@ -323,6 +323,11 @@ Value Elaborator::evaluate(const ExprPtr& ptr, const Environment& env) {
     case Expr::Kind::power: {
       auto [a, b] = binary();
       if (a.kind != K::scalar || b.kind != K::scalar) throw mismatch("raise to a power", a, b);
+      // GiNaC evaluates 0^-k eagerly and throws from inside pow(), leaking the half-built
+      // power: reject it before GiNaC sees it
+      if (a.scalar.is_zero() && GiNaC::is_a<GiNaC::numeric>(b.scalar) &&
+          GiNaC::ex_to<GiNaC::numeric>(b.scalar).is_negative())
+        throw SourceError(e.location, "zero raised to a negative power: expected a non-zero base");
       try {
         return Value::of(GiNaC::pow(a.scalar, b.scalar));
       } catch (const GiNaC::pole_error&) {  // 0^-1 is evaluated (and thrown) eagerly

@@ -1,5 +1,7 @@
 #include "eomgen/numeric_evaluation.hpp"
 
+#include "eomgen/double_evaluator.hpp"
+
 #include <fmt/format.h>
 
 #include <cmath>
@@ -19,83 +21,15 @@ std::string join(const std::vector<std::string>& items) {
   return out;
 }
 
-// Evaluates expressions in double precision from the numbers of the model's symbols and of the
-// intermediates. Walking the tree in doubles (rather than GiNaC's subs and evalf) is linear in
-// the size of the shared graph, and a pole gives inf instead of a GiNaC exception, whose
-// unwinding from inside subs leaks the half-built expression.
-class Evaluator {
- public:
-  void set(const ex& symbol, double value) { values_[symbol] = value; }
 
-  // e as a real number, possibly inf or NaN (an intermediate may be, harmlessly or not)
-  double value(const ex& e, const std::string& what) const;
-
-  // e as a finite real number; `what` names the entry in messages
-  double finite(const ex& e, const std::string& what) const {
-    const double x = value(e, what);
-    if (!std::isfinite(x))
-      throw Error(fmt::format("evaluating {} at this state: the result is not finite (a division by zero, "
-                              "or a root or logarithm of a negative number)", what));
-    return x;
-  }
-
- private:
-  double function(const ex& e, const std::string& what) const;
-
-  std::map<ex, double, GiNaC::ex_is_less> values_;  // looked up, never iterated
-};
-
-double Evaluator::value(const ex& e, const std::string& what) const {
-  if (is_a<GiNaC::numeric>(e)) {
-    const GiNaC::numeric& n = GiNaC::ex_to<GiNaC::numeric>(e);
-    if (!n.is_real()) throw Error(fmt::format("evaluating {}: the expression has a complex number", what));
-    return n.to_double();
-  }
-  if (is_a<GiNaC::symbol>(e)) {
-    const auto it = values_.find(e);
-    if (it == values_.end())
-      throw Error(fmt::format("evaluating {}: it depends on '{}', which has no value here", what,
-                              GiNaC::ex_to<GiNaC::symbol>(e).get_name()));
-    return it->second;
-  }
-  if (is_a<GiNaC::add>(e) || is_a<GiNaC::mul>(e)) {
-    const bool sum = is_a<GiNaC::add>(e);
-    double x = sum ? 0.0 : 1.0;
-    for (std::size_t i = 0; i < e.nops(); ++i) x = sum ? x + value(e.op(i), what) : x * value(e.op(i), what);
-    return x;
-  }
-  if (is_a<GiNaC::power>(e)) {
-    const double base = value(e.op(0), what);
-    if (e.op(1).is_equal(GiNaC::numeric(1, 2))) return std::sqrt(base);
-    return std::pow(base, value(e.op(1), what));
-  }
-  if (is_a<GiNaC::constant>(e)) return GiNaC::ex_to<GiNaC::numeric>(e.evalf()).to_double();
-  if (is_a<GiNaC::function>(e)) return function(e, what);
-  throw Error(fmt::format("evaluating {}: this kind of expression has no numeric evaluation here", what));
-}
-
-double Evaluator::function(const ex& e, const std::string& what) const {
-  using unary = double (*)(double);
-  static const std::pair<const char*, unary> functions[] = {
-      {"sin", std::sin},     {"cos", std::cos},     {"tan", std::tan},     {"asin", std::asin},
-      {"acos", std::acos},   {"atan", std::atan},   {"sinh", std::sinh},   {"cosh", std::cosh},
-      {"tanh", std::tanh},   {"asinh", std::asinh}, {"acosh", std::acosh}, {"atanh", std::atanh},
-      {"exp", std::exp},     {"log", std::log},     {"abs", std::fabs}};
-  const std::string name = GiNaC::ex_to<GiNaC::function>(e).get_name();
-  if (name == "atan2" && e.nops() == 2) return std::atan2(value(e.op(0), what), value(e.op(1), what));
-  for (const auto& [known, f] : functions)
-    if (name == known && e.nops() == 1) return f(value(e.op(0), what));
-  throw Error(fmt::format("evaluating {}: the function '{}' has no numeric evaluation here", what, name));
-}
-
-Eigen::MatrixXd evaluate_matrix(const GiNaC::matrix& m, const Evaluator& eval, const std::string& name) {
+Eigen::MatrixXd evaluate_matrix(const GiNaC::matrix& m, const DoubleEvaluator& eval, const std::string& name) {
   Eigen::MatrixXd out(m.rows(), m.cols());
   for (unsigned i = 0; i < m.rows(); ++i)
     for (unsigned j = 0; j < m.cols(); ++j) out(i, j) = eval.finite(m(i, j), fmt::format("{}[{},{}]", name, i + 1, j + 1));
   return out;
 }
 
-Eigen::VectorXd evaluate_column(const GiNaC::matrix& m, const Evaluator& eval, const std::string& name) {
+Eigen::VectorXd evaluate_column(const GiNaC::matrix& m, const DoubleEvaluator& eval, const std::string& name) {
   Eigen::VectorXd out(m.rows());
   for (unsigned i = 0; i < m.rows(); ++i) out(i) = eval.finite(m(i, 0), fmt::format("{}[{}]", name, i + 1));
   return out;
@@ -135,7 +69,7 @@ GiNaC::exmap numeric_substitution(const Model& model, const NamedValues& values)
 }
 
 NumericEquations evaluate_equations(const Model& model, const EquationsOfMotion& eom, const NamedValues& values) {
-  Evaluator eval;
+  DoubleEvaluator eval;
   for (const auto& [symbol, value] : numeric_substitution(model, values))
     eval.set(symbol, GiNaC::ex_to<GiNaC::numeric>(value).to_double());
   // each intermediate refers only to earlier ones, so one pass in order gives them all

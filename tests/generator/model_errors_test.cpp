@@ -200,7 +200,7 @@ TEST(ModelErrors, NonPositiveMass) {
 
 TEST(ModelErrors, PoleAtTheParameterDefaults) {
   expect_error(pendulum + "parameter z = 0\nparticle q(mass = 1/z, at = p)\n", 7, 10,
-               HasSubstr("division by zero at the parameters' default values"));
+               HasSubstr("the mass is infinite or undefined at the parameters' default values"));
 }
 
 TEST(ModelErrors, PoleOfAFunction) {

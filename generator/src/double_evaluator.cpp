@@ -1,0 +1,65 @@
+#include "eomgen/double_evaluator.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "eomgen/error.hpp"
+
+namespace eomgen {
+
+using GiNaC::ex;
+using GiNaC::is_a;
+
+double DoubleEvaluator::finite(const ex& e, const std::string& what) const {
+  const double x = value(e, what);
+  if (!std::isfinite(x))
+    throw Error(fmt::format("evaluating {} at this state: the result is not finite (a division by zero, "
+                            "or a root or logarithm of a negative number)", what));
+  return x;
+}
+
+double DoubleEvaluator::value(const ex& e, const std::string& what) const {
+  if (is_a<GiNaC::numeric>(e)) {
+    const GiNaC::numeric& n = GiNaC::ex_to<GiNaC::numeric>(e);
+    if (!n.is_real()) throw Error(fmt::format("evaluating {}: the expression has a complex number", what));
+    return n.to_double();
+  }
+  if (is_a<GiNaC::symbol>(e)) {
+    const auto it = values_.find(e);
+    if (it == values_.end())
+      throw Error(fmt::format("evaluating {}: it depends on '{}', which has no value here", what,
+                              GiNaC::ex_to<GiNaC::symbol>(e).get_name()));
+    return it->second;
+  }
+  if (is_a<GiNaC::add>(e) || is_a<GiNaC::mul>(e)) {
+    const bool sum = is_a<GiNaC::add>(e);
+    double x = sum ? 0.0 : 1.0;
+    for (std::size_t i = 0; i < e.nops(); ++i) x = sum ? x + value(e.op(i), what) : x * value(e.op(i), what);
+    return x;
+  }
+  if (is_a<GiNaC::power>(e)) {
+    const double base = value(e.op(0), what);
+    if (e.op(1).is_equal(GiNaC::numeric(1, 2))) return std::sqrt(base);
+    return std::pow(base, value(e.op(1), what));
+  }
+  if (is_a<GiNaC::constant>(e)) return GiNaC::ex_to<GiNaC::numeric>(e.evalf()).to_double();
+  if (is_a<GiNaC::function>(e)) return function(e, what);
+  throw Error(fmt::format("evaluating {}: this kind of expression has no numeric evaluation here", what));
+}
+
+double DoubleEvaluator::function(const ex& e, const std::string& what) const {
+  using unary = double (*)(double);
+  static const std::pair<const char*, unary> functions[] = {
+      {"sin", std::sin},     {"cos", std::cos},     {"tan", std::tan},     {"asin", std::asin},
+      {"acos", std::acos},   {"atan", std::atan},   {"sinh", std::sinh},   {"cosh", std::cosh},
+      {"tanh", std::tanh},   {"asinh", std::asinh}, {"acosh", std::acosh}, {"atanh", std::atanh},
+      {"exp", std::exp},     {"log", std::log},     {"abs", std::fabs}};
+  const std::string name = GiNaC::ex_to<GiNaC::function>(e).get_name();
+  if (name == "atan2" && e.nops() == 2) return std::atan2(value(e.op(0), what), value(e.op(1), what));
+  for (const auto& [known, f] : functions)
+    if (name == known && e.nops() == 1) return f(value(e.op(0), what));
+  throw Error(fmt::format("evaluating {}: the function '{}' has no numeric evaluation here", what, name));
+}
+
+}  // namespace eomgen
