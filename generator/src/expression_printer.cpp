@@ -70,8 +70,8 @@ std::string join(const std::vector<std::string>& parts, const std::string& separ
   return out;
 }
 
-// placeholder arguments for borrowing GiNaC's LaTeX name of a function ("\sin", "\ln", ...)
-const std::vector<GiNaC::symbol>& placeholders() {
+// stand-in arguments for borrowing GiNaC's LaTeX name of a function ("\sin", "\ln", ...)
+const std::vector<GiNaC::symbol>& argument_slots() {
   static const std::vector<GiNaC::symbol> symbols = [] {
     std::vector<GiNaC::symbol> v;
     for (int i = 0; i < 4; ++i) v.emplace_back("@@" + std::to_string(i) + "@@", "@@" + std::to_string(i) + "@@");
@@ -296,9 +296,9 @@ std::string ExpressionPrinter::print_function(const ex& e, Style style) const {
   std::vector<std::string> args;
   for (std::size_t i = 0; i < e.nops(); ++i) args.push_back(print(e.op(i), style, in_sum));
   if (style == Style::text) return f.get_name() + "(" + join(args, ", ") + ")";
-  if (args.size() > placeholders().size()) return "\\operatorname{" + f.get_name() + "}(" + join(args, ", ") + ")";
-  // GiNaC knows each function's LaTeX form (\sin, \ln, |x|): print it on placeholders, then fill in
-  GiNaC::exvector slots(placeholders().begin(), placeholders().begin() + static_cast<std::ptrdiff_t>(args.size()));
+  if (args.size() > argument_slots().size()) return "\\operatorname{" + f.get_name() + "}(" + join(args, ", ") + ")";
+  // GiNaC knows each function's LaTeX form (\sin, \ln, |x|): print it on stand-in arguments, then fill in
+  GiNaC::exvector slots(argument_slots().begin(), argument_slots().begin() + static_cast<std::ptrdiff_t>(args.size()));
   std::string s = ginac_latex(GiNaC::function(f.get_serial(), slots).hold());
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string slot = "@@" + std::to_string(i) + "@@";

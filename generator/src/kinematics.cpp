@@ -25,14 +25,20 @@ matrix dcm_to_ancestor(const MechanicalSystem& s, FrameId f, FrameId ancestor) {
   return C;
 }
 
-FrameId common_ancestor(const MechanicalSystem& s, FrameId a, FrameId b) {
-  while (s.frame(a).depth > s.frame(b).depth) a = *s.frame(a).parent;
-  while (s.frame(b).depth > s.frame(a).depth) b = *s.frame(b).parent;
+// nearest common ancestor in a tree whose nodes know their parent and depth (frames, points)
+template <class Id, class Node>
+Id common_ancestor(Id a, Id b, Node&& node) {
+  while (node(a).depth > node(b).depth) a = *node(a).parent;
+  while (node(b).depth > node(a).depth) b = *node(b).parent;
   while (a != b) {
-    a = *s.frame(a).parent;
-    b = *s.frame(b).parent;
+    a = *node(a).parent;
+    b = *node(b).parent;
   }
   return a;
+}
+
+FrameId common_ancestor(const MechanicalSystem& s, FrameId a, FrameId b) {
+  return common_ancestor(a, b, [&](FrameId f) -> const Frame& { return s.frame(f); });
 }
 
 // omega^{f,ancestor} as the sum of relative angular velocities along the path
@@ -47,13 +53,7 @@ Vector angular_velocity_to_ancestor(const MechanicalSystem& s, FrameId f, FrameI
 }
 
 PointId common_point_ancestor(const MechanicalSystem& s, PointId a, PointId b) {
-  while (s.point(a).depth > s.point(b).depth) a = *s.point(a).parent;
-  while (s.point(b).depth > s.point(a).depth) b = *s.point(b).parent;
-  while (a != b) {
-    a = *s.point(a).parent;
-    b = *s.point(b).parent;
-  }
-  return a;
+  return common_ancestor(a, b, [&](PointId p) -> const Point& { return s.point(p); });
 }
 
 Vector position_to_ancestor(const MechanicalSystem& s, PointId p, PointId ancestor) {

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "eomgen/error.hpp"
+#include "test_models.hpp"
 
 namespace eomgen {
 namespace {
@@ -30,23 +31,7 @@ Model simple_pendulum() {
   return model;
 }
 
-// point masses on massless rods, relative angles, gravity along a1
-Model double_pendulum() {
-  Model model;
-  model.name = "double_pendulum";
-  MechanicalSystem& s = model.system;
-  const Coordinate q1 = s.add_coordinate("q1"), q2 = s.add_coordinate("q2");
-  const ex m1 = s.add_parameter("m1", 1.0, "kg"), m2 = s.add_parameter("m2", 1.0, "kg");
-  const ex l1 = s.add_parameter("l1", 1.0, "m"), l2 = s.add_parameter("l2", 1.0, "m");
-  const ex g = s.add_parameter("g", 9.81, "m/s^2");
-  const FrameId b = s.add_frame("b", s.inertial_frame(), Rotation::principal(3, q1.q));
-  const FrameId c = s.add_frame("c", b, Rotation::principal(3, q2.q));
-  const PointId p1 = s.add_point("p1", s.origin(), Vector(b, l1, 0, 0));
-  s.add_particle("bob1", m1, p1);
-  s.add_particle("bob2", m2, s.add_point("p2", p1, Vector(c, l2, 0, 0)));
-  s.set_gravity(Vector(s.inertial_frame(), g, 0, 0));
-  return model;
-}
+Model double_pendulum() { return testing::double_pendulum_model(); }
 
 // the simple pendulum in Cartesian coordinates with the rod as a constraint x^2 + y^2 - l^2 = 0
 Model cartesian_pendulum() {
