@@ -18,6 +18,7 @@ struct Model {
   static constexpr int nh = 0;  // holonomic constraints (rows of phi)
   static constexpr int np = 4;  // parameters
   static constexpr int ny = 7;  // output components
+  static constexpr int ni = 0;  // independent speeds declared in the model (0: none, null space from QR of Xi)
   static constexpr const char* name = "bead_on_hoop";
   static constexpr const char* description = "Bead sliding on a hoop turning at a constant rate about its vertical diameter";
   static constexpr const char* generator_version = "0.1.0";
@@ -27,6 +28,8 @@ struct Model {
   static constexpr std::array<const char*, np> parameter_names{{"m", "R", "Omega", "g"}};
   static constexpr std::array<double, np> parameter_defaults{{double(0.05), double(0.25), double(8), double(9.81)}};
   static constexpr std::array<const char*, nc> constraint_names{{}};
+  static constexpr std::array<int, nh> holonomic_rows{{}};  // row of Xi of each entry of phi
+  static constexpr std::array<int, ni> independent_speeds{{}};  // their coordinate indices
   static constexpr std::array<const char*, ny> output_names{{"bead_pos_1", "bead_pos_2", "bead_pos_3", "bead_vel_1", "bead_vel_2", "bead_vel_3", "relative_equilibrium"}};
 
   template <class Scalar> using Vector = Eigen::Matrix<Scalar, nq, 1>;

@@ -18,6 +18,7 @@ struct Model {
   static constexpr int nh = 0;  // holonomic constraints (rows of phi)
   static constexpr int np = 5;  // parameters
   static constexpr int ny = 10;  // output components
+  static constexpr int ni = 0;  // independent speeds declared in the model (0: none, null space from QR of Xi)
   static constexpr const char* name = "heavy_top";
   static constexpr const char* description = "Heavy symmetric top spinning on a fixed pivot at its tip, 3-1-3 Euler angles";
   static constexpr const char* generator_version = "0.1.0";
@@ -27,6 +28,8 @@ struct Model {
   static constexpr std::array<const char*, np> parameter_names{{"m", "l", "J1", "J3", "g"}};
   static constexpr std::array<double, np> parameter_defaults{{double(0.5), double(0.05), double(0.00022), double(0.0004), double(9.81)}};
   static constexpr std::array<const char*, nc> constraint_names{{}};
+  static constexpr std::array<int, nh> holonomic_rows{{}};  // row of Xi of each entry of phi
+  static constexpr std::array<int, ni> independent_speeds{{}};  // their coordinate indices
   static constexpr std::array<const char*, ny> output_names{{"centre_position_1", "centre_position_2", "centre_position_3", "omega_1", "omega_2", "omega_3", "axis_1", "axis_2", "axis_3", "height"}};
 
   template <class Scalar> using Vector = Eigen::Matrix<Scalar, nq, 1>;

@@ -18,15 +18,18 @@ struct Model {
   static constexpr int nh = 0;  // holonomic constraints (rows of phi)
   static constexpr int np = 4;  // parameters
   static constexpr int ny = 5;  // output components
+  static constexpr int ni = 2;  // independent speeds declared in the model (0: none, null space from QR of Xi)
   static constexpr const char* name = "knife_edge";
   static constexpr const char* description = "Knife edge / unicycle on the plane with the no-side-slip nonholonomic constraint";
   static constexpr const char* generator_version = "0.1.0";
-  static constexpr const char* model_hash = "fe612f3c9b5ab216";
+  static constexpr const char* model_hash = "3a11780eca2b8e91";
   static constexpr std::array<const char*, nq> coordinate_names{{"x", "y", "theta"}};
   static constexpr std::array<const char*, nu> input_names{{"f", "tau"}};
   static constexpr std::array<const char*, np> parameter_names{{"m", "J1", "J2", "J3"}};
   static constexpr std::array<double, np> parameter_defaults{{double(2), double(0.02), double(0.04), double(0.05)}};
   static constexpr std::array<const char*, nc> constraint_names{{"no_side_slip"}};
+  static constexpr std::array<int, nh> holonomic_rows{{}};  // row of Xi of each entry of phi
+  static constexpr std::array<int, ni> independent_speeds{{0, 2}};  // their coordinate indices
   static constexpr std::array<const char*, ny> output_names{{"heading_1", "heading_2", "heading_3", "speed", "side_slip"}};
 
   template <class Scalar> using Vector = Eigen::Matrix<Scalar, nq, 1>;

@@ -18,6 +18,7 @@ struct Model {
   static constexpr int nh = 0;  // holonomic constraints (rows of phi)
   static constexpr int np = 4;  // parameters
   static constexpr int ny = 6;  // output components
+  static constexpr int ni = 0;  // independent speeds declared in the model (0: none, null space from QR of Xi)
   static constexpr const char* name = "planar_chain";
   static constexpr const char* description = "Planar chain of n uniform rods with relative joint angles (n-link pendulum)";
   static constexpr const char* generator_version = "0.1.0";
@@ -27,6 +28,8 @@ struct Model {
   static constexpr std::array<const char*, np> parameter_names{{"m", "l", "rd", "g"}};
   static constexpr std::array<double, np> parameter_defaults{{double(0.5), double(0.3), double(0.01), double(9.81)}};
   static constexpr std::array<const char*, nc> constraint_names{{}};
+  static constexpr std::array<int, nh> holonomic_rows{{}};  // row of Xi of each entry of phi
+  static constexpr std::array<int, ni> independent_speeds{{}};  // their coordinate indices
   static constexpr std::array<const char*, ny> output_names{{"tip_1", "tip_2", "tip_3", "tip_velocity_1", "tip_velocity_2", "tip_velocity_3"}};
 
   template <class Scalar> using Vector = Eigen::Matrix<Scalar, nq, 1>;

@@ -18,6 +18,7 @@ struct Model {
   static constexpr int nh = 1;  // holonomic constraints (rows of phi)
   static constexpr int np = 4;  // parameters
   static constexpr int ny = 7;  // output components
+  static constexpr int ni = 0;  // independent speeds declared in the model (0: none, null space from QR of Xi)
   static constexpr const char* name = "quaternion_rigid_body";
   static constexpr const char* description = "Free rigid body, scalar-last quaternion attitude with the unit-norm constraint, body torque input";
   static constexpr const char* generator_version = "0.1.0";
@@ -27,6 +28,8 @@ struct Model {
   static constexpr std::array<const char*, np> parameter_names{{"m", "J1", "J2", "J3"}};
   static constexpr std::array<double, np> parameter_defaults{{double(50), double(1.7), double(2.2), double(2.5)}};
   static constexpr std::array<const char*, nc> constraint_names{{"unit_norm"}};
+  static constexpr std::array<int, nh> holonomic_rows{{0}};  // row of Xi of each entry of phi
+  static constexpr std::array<int, ni> independent_speeds{{}};  // their coordinate indices
   static constexpr std::array<const char*, ny> output_names{{"omega_1", "omega_2", "omega_3", "angular_momentum_1", "angular_momentum_2", "angular_momentum_3", "quaternion_norm"}};
 
   template <class Scalar> using Vector = Eigen::Matrix<Scalar, nq, 1>;

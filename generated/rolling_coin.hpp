@@ -18,15 +18,18 @@ struct Model {
   static constexpr int nh = 0;  // holonomic constraints (rows of phi)
   static constexpr int np = 3;  // parameters
   static constexpr int ny = 12;  // output components
+  static constexpr int ni = 3;  // independent speeds declared in the model (0: none, null space from QR of Xi)
   static constexpr const char* name = "rolling_coin";
   static constexpr const char* description = "Thin disk (coin) rolling without slip on a plane: twist, lean, roll";
   static constexpr const char* generator_version = "0.1.0";
-  static constexpr const char* model_hash = "cd56b3f7d77baf00";
+  static constexpr const char* model_hash = "8ef37b64c80faeba";
   static constexpr std::array<const char*, nq> coordinate_names{{"x", "y", "psi", "theta", "phi"}};
   static constexpr std::array<const char*, nu> input_names{{}};
   static constexpr std::array<const char*, np> parameter_names{{"m", "r", "g"}};
   static constexpr std::array<double, np> parameter_defaults{{double(0.0085), double(0.0129), double(9.81)}};
   static constexpr std::array<const char*, nc> constraint_names{{"no_slip_1", "no_slip_2"}};
+  static constexpr std::array<int, nh> holonomic_rows{{}};  // row of Xi of each entry of phi
+  static constexpr std::array<int, ni> independent_speeds{{2, 3, 4}};  // their coordinate indices
   static constexpr std::array<const char*, ny> output_names{{"centre_1", "centre_2", "centre_3", "centre_velocity_1", "centre_velocity_2", "centre_velocity_3", "contact_1", "contact_2", "contact_3", "omega_1", "omega_2", "omega_3"}};
 
   template <class Scalar> using Vector = Eigen::Matrix<Scalar, nq, 1>;

@@ -18,6 +18,7 @@ struct Model {
   static constexpr int nh = 0;  // holonomic constraints (rows of phi)
   static constexpr int np = 9;  // parameters
   static constexpr int ny = 9;  // output components
+  static constexpr int ni = 0;  // independent speeds declared in the model (0: none, null space from QR of Xi)
   static constexpr const char* name = "spacecraft_panel";
   static constexpr const char* description = "Spacecraft bus spinning about b3 with a solar panel hinged about b2 (notes Example 3.1)";
   static constexpr const char* generator_version = "0.1.0";
@@ -27,6 +28,8 @@ struct Model {
   static constexpr std::array<const char*, np> parameter_names{{"l_fh", "l_ef", "w_p", "t_p", "m_b", "J_b1", "J_b2", "J_b3", "m_p"}};
   static constexpr std::array<double, np> parameter_defaults{{double(1.2), double(2), double(1), double(0.03), double(400), double(180), double(160), double(120), double(20)}};
   static constexpr std::array<const char*, nc> constraint_names{{}};
+  static constexpr std::array<int, nh> holonomic_rows{{}};  // row of Xi of each entry of phi
+  static constexpr std::array<int, ni> independent_speeds{{}};  // their coordinate indices
   static constexpr std::array<const char*, ny> output_names{{"tip_position_1", "tip_position_2", "tip_position_3", "tip_velocity_1", "tip_velocity_2", "tip_velocity_3", "omega_panel_1", "omega_panel_2", "omega_panel_3"}};
 
   template <class Scalar> using Vector = Eigen::Matrix<Scalar, nq, 1>;

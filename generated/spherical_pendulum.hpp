@@ -18,6 +18,7 @@ struct Model {
   static constexpr int nh = 0;  // holonomic constraints (rows of phi)
   static constexpr int np = 3;  // parameters
   static constexpr int ny = 8;  // output components
+  static constexpr int ni = 0;  // independent speeds declared in the model (0: none, null space from QR of Xi)
   static constexpr const char* name = "spherical_pendulum";
   static constexpr const char* description = "Spherical pendulum: a point mass on a massless rod with a ball-joint pivot";
   static constexpr const char* generator_version = "0.1.0";
@@ -27,6 +28,8 @@ struct Model {
   static constexpr std::array<const char*, np> parameter_names{{"m", "l", "g"}};
   static constexpr std::array<double, np> parameter_defaults{{double(1), double(1), double(9.81)}};
   static constexpr std::array<const char*, nc> constraint_names{{}};
+  static constexpr std::array<int, nh> holonomic_rows{{}};  // row of Xi of each entry of phi
+  static constexpr std::array<int, ni> independent_speeds{{}};  // their coordinate indices
   static constexpr std::array<const char*, ny> output_names{{"bob_pos_1", "bob_pos_2", "bob_pos_3", "bob_vel_1", "bob_vel_2", "bob_vel_3", "height", "angular_momentum_vertical"}};
 
   template <class Scalar> using Vector = Eigen::Matrix<Scalar, nq, 1>;

@@ -18,6 +18,7 @@ struct Model {
   static constexpr int nh = 0;  // holonomic constraints (rows of phi)
   static constexpr int np = 4;  // parameters
   static constexpr int ny = 3;  // output components
+  static constexpr int ni = 0;  // independent speeds declared in the model (0: none, null space from QR of Xi)
   static constexpr const char* name = "spring_mass_damper";
   static constexpr const char* description = "Nonlinear spring-mass-damper of the notes' equation (A.14): m q'' + d q' + (k1 + k2 q^2) q = 0";
   static constexpr const char* generator_version = "0.1.0";
@@ -27,6 +28,8 @@ struct Model {
   static constexpr std::array<const char*, np> parameter_names{{"m", "d", "k1", "k2"}};
   static constexpr std::array<double, np> parameter_defaults{{double(1), double(0.4), double(10), double(50)}};
   static constexpr std::array<const char*, nc> constraint_names{{}};
+  static constexpr std::array<int, nh> holonomic_rows{{}};  // row of Xi of each entry of phi
+  static constexpr std::array<int, ni> independent_speeds{{}};  // their coordinate indices
   static constexpr std::array<const char*, ny> output_names{{"spring_force", "damper_force", "lyapunov"}};
 
   template <class Scalar> using Vector = Eigen::Matrix<Scalar, nq, 1>;

@@ -544,7 +544,7 @@ Model Elaborator::run(const std::vector<Statement>& statements) {
   for (const Instance& in : instances_) {
     const Kind k = in.statement->kind;
     if (k != Kind::parameter && k != Kind::coordinate && k != Kind::input && k != Kind::frame && k != Kind::point &&
-        k != Kind::body)
+        k != Kind::body && k != Kind::independent)
       element(in);
   }
   checks();

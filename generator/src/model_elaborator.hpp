@@ -69,6 +69,7 @@ class Elaborator {
   void element(const Instance& instance);
   void output(const Instance& instance);
   void roll(const Instance& instance);
+  void independent_speeds();
   void checks();
 
   std::string file_;
@@ -85,6 +86,7 @@ class Elaborator {
   std::map<std::string, FrameId> frames_;
   std::map<std::string, PointId> points_;
   std::set<std::string> used_coordinates_;
+  SourceLocation independent_location_;  // of the `independent` keyword, when there is one
   bool kinematics_ready_ = false;
   bool saw_statement_ = false;
 };

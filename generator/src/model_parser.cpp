@@ -118,12 +118,13 @@ class Parser {
       expect_symbol("=", fmt::format("after the name in a {} statement", word).c_str());
       s.value = expression();
       if (s.kind == Kind::parameter && is_symbol("[")) s.text = unit();
-    } else if (word == "coordinate" || word == "input") {
-      s.kind = word == "coordinate" ? Kind::coordinate : Kind::input;
-      s.names.push_back(name(word == "coordinate" ? "a coordinate name" : "an input name"));
+    } else if (word == "coordinate" || word == "input" || word == "independent") {
+      s.kind = word == "coordinate" ? Kind::coordinate : word == "input" ? Kind::input : Kind::independent;
+      const char* what = s.kind == Kind::input ? "an input name" : "a coordinate name";
+      s.names.push_back(name(what));
       while (is_symbol(",")) {
         next();
-        s.names.push_back(name(word == "coordinate" ? "a coordinate name" : "an input name"));
+        s.names.push_back(name(what));
       }
     } else if (word == "frame" || word == "point") {
       s.kind = word == "frame" ? Kind::frame : Kind::point;
@@ -180,7 +181,7 @@ class Parser {
       error(keyword, fmt::format("unknown statement '{}': expected one of model, description, const, parameter, "
                                  "coordinate, input, frame, point, particle, body, gravity, force, moment, "
                                  "spring, damper, torsion, potential, generalized_force, constraint, roll, "
-                                 "output, for", word));
+                                 "independent, output, for", word));
     }
     end_of_statement();
     return s;

@@ -46,11 +46,11 @@ struct Argument {
 struct Statement {
   enum class Kind { model, description, constant, parameter, coordinate, input, frame, point, particle,
                     body, gravity, force, moment, spring, damper, torsion, potential, generalized_force,
-                    constraint, roll, output, loop };
+                    constraint, roll, independent, output, loop };
   Kind kind;
   SourceLocation location;  // of the keyword
   Name name;                // the declared name (most statements)
-  std::vector<Name> names;  // coordinate and input lists
+  std::vector<Name> names;  // coordinate, input and independent-speed lists
   ExprPtr value;            // `= EXPR`; constraint left side; loop first value
   ExprPtr value2;           // constraint right side; loop last value
   std::string text;         // model description, parameter unit

@@ -2,6 +2,7 @@
 #include <Eigen/Dense>
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <fstream>
 #include <random>
 #include <sstream>
@@ -13,8 +14,72 @@
 namespace eomgen {
 namespace syntax {
 
-// Checks that need every statement: an empty system, unused coordinates, and constraints
-// that are zero or linearly dependent at a generic state.
+// The independent speeds of the null-space method: declared coordinates, each listed once, one
+// per degree of freedom (nq - nc). Run by checks() once the constraints are known to be
+// independent, which then asks the remaining, dependent speeds to be solvable from them.
+void Elaborator::independent_speeds() {
+  const Instance* declaration = nullptr;
+  for (const Instance& in : instances_) {
+    if (in.statement->kind != Statement::Kind::independent) continue;
+    if (declaration) {
+      const SourceLocation& first = declaration->statement->location;
+      if (declaration->statement == in.statement)  // a loop expanded it more than once
+        throw SourceError(in.statement->location, "'independent' is repeated by its loop: declare the independent "
+                                                  "speeds once, outside a loop or in one that runs once");
+      throw SourceError(in.statement->location,
+                        fmt::format("'independent' is given twice: the independent speeds are already declared at "
+                                    "{}:{}:{}", first.file, first.line, first.column));
+    }
+    declaration = &in;
+  }
+  if (!declaration) return;
+  const Statement& s = *declaration->statement;
+  const Variables& vars = model_.system.variables();
+  std::vector<std::string> coordinate_names;
+  for (const Coordinate& c : vars.coordinates()) coordinate_names.push_back(c.name);
+  std::vector<SourceLocation> listed_at;  // parallel to model_.independent_speeds
+  for (const Name& n : s.names) {
+    const std::string name = resolve(n, declaration->environment);
+    const auto symbol = vars.find(name);
+    if (!symbol || vars.kind_of(*symbol) != SymbolKind::coordinate) {
+      const auto declared = declared_.find(name);
+      if (declared == declared_.end()) unknown_name(name, n.location, coordinate_names, "coordinate");
+      // a rate is the likely slip: the speeds are named by their coordinates
+      if (declared->second.kind == "rate")
+        throw SourceError(n.location, fmt::format("independent: '{}' is a rate: expected its coordinate '{}' (the "
+                                                  "independent speeds are the rates of the listed coordinates)",
+                                                  name, name.substr(0, name.size() - 4)));
+      const std::string& kind = declared->second.kind;
+      throw SourceError(n.location, fmt::format("independent: '{}' is {} {}, expected a coordinate", name,
+                                                std::string("aeiou").find(kind[0]) == std::string::npos ? "a" : "an",
+                                                kind));
+    }
+    const std::size_t k = *vars.coordinate_index(*symbol);
+    const auto twice = std::find(model_.independent_speeds.begin(), model_.independent_speeds.end(), k);
+    if (twice != model_.independent_speeds.end()) {
+      const SourceLocation& first = listed_at[static_cast<std::size_t>(twice - model_.independent_speeds.begin())];
+      throw SourceError(n.location, fmt::format("independent: coordinate '{}' is listed twice (first at {}:{}:{})",
+                                                name, first.file, first.line, first.column));
+    }
+    model_.independent_speeds.push_back(k);
+    listed_at.push_back(n.location);
+  }
+  // signed: checks() has already rejected more constraints than coordinates as dependent
+  const long nq = static_cast<long>(vars.coordinate_count());
+  const long nc = static_cast<long>(model_.system.constraints().size());
+  if (nc == 0)
+    throw SourceError(s.location, "'independent' in a model without constraints: every speed is independent; "
+                                  "expected no 'independent' statement");
+  const long ni = static_cast<long>(model_.independent_speeds.size());
+  if (ni != nq - nc)
+    throw SourceError(s.location, fmt::format("independent: expected nq - nc = {} - {} = {} coordinates (one per "
+                                              "degree of freedom), got {}", nq, nc, nq - nc, ni));
+  independent_location_ = s.location;
+}
+
+// Checks that need every statement: an empty system, unused coordinates, constraints that are
+// zero or linearly dependent at a generic state, and declared independent speeds that leave the
+// dependent ones unsolvable there.
 void Elaborator::checks() {
   const MechanicalSystem& sys = model_.system;
   const Variables& vars = sys.variables();
@@ -31,7 +96,6 @@ void Elaborator::checks() {
   // Xi at a generic state: parameters at their defaults, coordinates and rates at irrational-
   // looking values no special configuration is likely to hit
   const auto& constraints = sys.constraints();
-  if (constraints.empty()) return;
   std::mt19937 rng(20261121);
   std::uniform_real_distribution<double> value(0.31, 1.17);
   GiNaC::exmap state = sys.parameter_defaults();
@@ -72,6 +136,30 @@ void Elaborator::checks() {
                         fmt::format("constraint '{}' is linearly dependent on the constraints before it at a "
                                     "generic state", c.name));
     xi = grown;
+  }
+
+  // the null-space method solves the dependent speeds from Xi_d qd_d = -(Xi_i qd_i + Xi_t): Xi_d,
+  // the columns of the coordinates not listed, must be invertible at least at a generic state
+  independent_speeds();
+  const std::vector<std::size_t>& independent = model_.independent_speeds;
+  if (independent.empty()) return;
+  std::vector<std::string> dependent;
+  Eigen::MatrixXd xi_d(xi.rows(), 0);
+  for (std::size_t k = 0; k < n; ++k) {
+    if (std::find(independent.begin(), independent.end(), k) != independent.end()) continue;
+    dependent.push_back(vars.coordinates()[k].name);
+    xi_d.conservativeResize(Eigen::NoChange, xi_d.cols() + 1);
+    xi_d.col(xi_d.cols() - 1) = xi.col(static_cast<Eigen::Index>(k));
+  }
+  Eigen::FullPivLU<Eigen::MatrixXd> lu(xi_d);
+  lu.setThreshold(1e-9);
+  if (lu.rank() < xi_d.rows()) {
+    std::string names;
+    for (const std::string& d : dependent) names += (names.empty() ? "'" : ", '") + d + "'";
+    throw SourceError(independent_location_,
+                      fmt::format("independent: the constraints cannot be solved for the rates of the other "
+                                  "coordinates ({}) at a generic state: their columns of Xi are singular; expected "
+                                  "other independent coordinates", names));
   }
 }
 

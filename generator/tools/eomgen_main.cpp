@@ -138,6 +138,11 @@ void run_check(const Options& o) {
   std::cout << fmt::format("Constraints (m = {}):\n  holonomic ({}): {}\n  nonholonomic ({}): {}\n", m,
                            holonomic.size(), join(holonomic), nonholonomic.size(), join(nonholonomic));
   std::cout << fmt::format("Degrees of freedom (n - m): {}\n", static_cast<long long>(n) - static_cast<long long>(m));
+  if (!model.independent_speeds.empty()) {
+    std::vector<std::string> independent;
+    for (std::size_t k : model.independent_speeds) independent.push_back(coordinates[k] + "_dot");
+    std::cout << fmt::format("Independent speeds ({}): {}\n", independent.size(), join(independent));
+  }
   std::cout << fmt::format("Bodies ({}): {}\nParticles ({}): {}\n", bodies.size(), join(bodies), particles.size(),
                            join(particles));
   std::cout << fmt::format("Parameters ({}):", v.parameters().size()) << (v.parameters().empty() ? " none" : "") << "\n";

@@ -154,6 +154,14 @@ TEST_F(Cli, CheckSummarizesTheModel) {
   EXPECT_EQ(constrained.status, 0) << constrained.err;
   EXPECT_THAT(constrained.out, HasSubstr("Constraints (m = 1):\n  holonomic (1): rod\n  nonholonomic (0): none\n"));
   EXPECT_THAT(constrained.out, HasSubstr("Degrees of freedom (n - m): 1\n"));
+  EXPECT_THAT(constrained.out, Not(HasSubstr("Independent speeds")));
+}
+
+TEST_F(Cli, CheckListsTheDeclaredIndependentSpeeds) {
+  const std::string text = std::string(cartesian_pendulum) + "independent y\n";
+  const Outcome run = eomgen("check " + quote(model("cp_independent.eom", text)));
+  EXPECT_EQ(run.status, 0) << run.err;
+  EXPECT_THAT(run.out, HasSubstr("Degrees of freedom (n - m): 1\nIndependent speeds (1): y_dot\n"));
 }
 
 TEST_F(Cli, DefineOverridesAConstant) {

@@ -1,11 +1,14 @@
 // Every shipped model's generated header against the symbolic equations it came from, at
 // random states, to 1e-12 relative. The headers are generated at build time by
 // eomgen_add_model(), so this also exercises the CMake function.
+#include <Eigen/LU>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <string>
+#include <vector>
 
 #include "bead_on_hoop.hpp"
 #include "cart_pole.hpp"
@@ -69,6 +72,15 @@ void check_against_symbolic() {
   const eomgen::EquationsOfMotion eom = eomgen::derive_equations(model.system);
   const eomgen::Variables& vars = model.system.variables();
   ASSERT_EQ(static_cast<std::size_t>(Model::nq), vars.coordinate_count());
+  // holonomic_rows picks, in order, the rows of Xi that come from holonomic constraints
+  std::vector<int> holonomic;
+  for (std::size_t i = 0; i < model.system.constraints().size(); ++i)
+    if (model.system.constraints()[i].kind == eomgen::Constraint::Kind::holonomic) holonomic.push_back(static_cast<int>(i));
+  EXPECT_EQ(std::vector<int>(Model::holonomic_rows.begin(), Model::holonomic_rows.end()), holonomic);
+  // independent_speeds as declared in the model: none, or one per degree of freedom
+  const std::vector<int> independent(Model::independent_speeds.begin(), Model::independent_speeds.end());
+  EXPECT_EQ(independent, std::vector<int>(model.independent_speeds.begin(), model.independent_speeds.end()));
+  EXPECT_TRUE(Model::ni == 0 || Model::ni == Model::nq - Model::nc) << Model::ni;
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> uniform(-1.2, 1.2), positive(0.5, 2.0);
   for (int trial = 0; trial < 4; ++trial) {
@@ -116,6 +128,17 @@ void check_against_symbolic() {
     expect_matches(Xi_t, eom.constraint_rate_term, all, "Xi_t");
     expect_matches(b, eom.constraint_acceleration_term, all, "constraint_acceleration_term");
     expect_matches(phi, eom.holonomic_residuals, all, "phi");
+    // holonomic_rows: row holonomic_rows[i] of Xi is the gradient of phi[i]
+    for (int i = 0; i < Model::nh; ++i) {
+      const int row = Model::holonomic_rows[static_cast<std::size_t>(i)];
+      ASSERT_GE(row, 0);
+      ASSERT_LT(row, Model::nc);
+      GiNaC::matrix gradient(1, static_cast<unsigned>(Model::nq));
+      for (unsigned k = 0; k < static_cast<unsigned>(Model::nq); ++k)
+        gradient(0, k) = eom.holonomic_residuals(static_cast<unsigned>(i), 0).diff(vars.coordinates()[k].q);
+      const Eigen::MatrixXd generated_row = Xi.row(row);
+      expect_matches(generated_row, gradient, all, "holonomic_rows");
+    }
     Eigen::Matrix<double, 1, 1> T, V;
     T(0) = Model::kinetic_energy(t, q, qd, p);
     V(0) = Model::potential_energy(t, q, p);
@@ -128,6 +151,18 @@ void check_against_symbolic() {
     for (const auto& o : model.outputs)
       for (const ex& c : o.components) outputs(row++, 0) = c;
     expect_matches(y, outputs, all, "outputs");
+    // the declared independent speeds leave a dependent block of Xi that can be solved
+    if (Model::ni > 0 && Model::nc > 0) {
+      Eigen::MatrixXd dependent(Model::nc, 0);
+      for (int k = 0; k < Model::nq; ++k)
+        if (std::find(Model::independent_speeds.begin(), Model::independent_speeds.end(), k) ==
+            Model::independent_speeds.end()) {
+          dependent.conservativeResize(Eigen::NoChange, dependent.cols() + 1);
+          dependent.col(dependent.cols() - 1) = Xi.col(k);
+        }
+      ASSERT_EQ(dependent.cols(), dependent.rows());
+      EXPECT_GT(std::fabs(dependent.determinant()), 1e-6) << "dependent block of Xi:\n" << dependent;
+    }
   }
 }
 

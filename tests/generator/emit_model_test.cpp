@@ -5,6 +5,8 @@
 
 #include <vector>
 
+#include "eomgen/error.hpp"
+
 namespace eomgen {
 namespace {
 
@@ -77,6 +79,61 @@ TEST(EmitModel, MetadataAndSizes) {
   EXPECT_NE(h.find(R"(output_names{{"bob_position_1", "bob_position_2", "bob_position_3"}})"), std::string::npos);
   EXPECT_NE(h.find("namespace cart {"), std::string::npos);
   EXPECT_EQ(h.find("inverse"), std::string::npos);
+}
+
+// holonomic, nonholonomic, holonomic: Xi rows 0 and 2 are phi's entries 0 and 1
+const char* const mixed_constraints = R"(
+model mixed
+coordinate x, y, z, s
+point p = w + x*a.1 + y*a.2 + z*a.3
+particle bob(mass = 1, at = p)
+potential stiffness = s^2/2
+constraint h1: x = s
+constraint nh: y_dot = x_dot
+constraint h2: z = 1
+)";
+
+TEST(EmitModel, HolonomicRowsGiveTheRowOfXiOfEachEntryOfPhi) {
+  const std::string h = generate(mixed_constraints);
+  EXPECT_NE(h.find("static constexpr int nh = 2;"), std::string::npos);
+  EXPECT_NE(h.find("static constexpr std::array<int, nh> holonomic_rows{{0, 2}};  // row of Xi of each entry of phi\n"),
+            std::string::npos);
+  EXPECT_NE(generate(pendulum_on_cart).find("std::array<int, nh> holonomic_rows{{}};"), std::string::npos);
+}
+
+TEST(EmitModel, IndependentSpeedsAsDeclaredOrNone) {
+  const std::string declared = generate(std::string(mixed_constraints) + "independent s\n");
+  EXPECT_NE(declared.find("static constexpr int ni = 1;  // independent speeds declared in the model (0: none, "
+                          "null space from QR of Xi)\n"), std::string::npos);
+  EXPECT_NE(declared.find("static constexpr std::array<int, ni> independent_speeds{{3}};  // their coordinate indices\n"),
+            std::string::npos);
+  const std::string none = generate(mixed_constraints);
+  EXPECT_NE(none.find("static constexpr int ni = 0;"), std::string::npos);
+  EXPECT_NE(none.find("std::array<int, ni> independent_speeds{{}};"), std::string::npos);
+}
+
+TEST(EmitModel, ModelHashChangesWithTheDeclaredIndependentSpeeds) {
+  auto hash = [](const std::string& header) {
+    const std::size_t at = header.find("model_hash = \"");
+    return header.substr(at, 32);
+  };
+  const std::string none = hash(generate(mixed_constraints));
+  const std::string s = hash(generate(std::string(mixed_constraints) + "independent s\n"));
+  const std::string x = hash(generate(std::string(mixed_constraints) + "independent x\n"));
+  EXPECT_NE(none, s);
+  EXPECT_NE(none, x);
+  EXPECT_NE(s, x);
+}
+
+TEST(EmitModel, IndependentSpeedsSetThroughTheApiAreChecked) {
+  Model model = parse_model(mixed_constraints, "mixed.eom");
+  const EquationsOfMotion eom = derive_equations(model);
+  model.independent_speeds = {4};
+  EXPECT_THROW(emit_model(model, eom), EmitError);
+  model.independent_speeds = {0, 1};
+  EXPECT_THROW(emit_model(model, eom), EmitError);
+  model.independent_speeds = {3};
+  EXPECT_NO_THROW(emit_model(model, eom));
 }
 
 TEST(EmitModel, MassMatrixIsComputedAsOneTriangleAndMirrored) {

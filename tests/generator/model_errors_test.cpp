@@ -32,6 +32,15 @@ const std::string planar_mass =
     "point p = w + x*a.1 + y*a.2\n"
     "particle m(mass = m0, at = p)\n";
 
+// A blade on the plane that cannot slide sideways (nq = 3, nc = 1) on lines 1-5; cases append
+// their `independent` statements from line 6.
+const std::string knife_edge =
+    "coordinate x, y, theta\n"
+    "frame b = rotate(a, 3, theta)\n"
+    "point c = w + x*a.1 + y*a.2\n"
+    "body blade(mass = 1, centre = c, frame = b, inertia = diag(1, 1, 1))\n"
+    "constraint no_side_slip: dot(velocity(c), b.2) = 0\n";
+
 void expect_error(const std::string& text, int line, int column, const Matcher<const std::string&>& message,
                   const std::map<std::string, double>& overrides = {}) {
   SCOPED_TRACE("model text:\n" + text);
@@ -227,6 +236,53 @@ TEST(ModelErrors, ConstraintIdenticallyZero) {
 TEST(ModelErrors, LinearlyDependentConstraintsReportTheSecond) {
   expect_error(planar_mass + "constraint c1: x + y = 1\nconstraint c2: 2*x + 2*y = 3\n", 6, 12,
                HasSubstr("constraint 'c2' is linearly dependent on the constraints before it"));
+}
+
+// --- independent speeds ---
+
+TEST(ModelErrors, IndependentUnknownCoordinateSuggestsNearestCoordinate) {
+  expect_error(knife_edge + "independent x, thta\n", 6, 16, HasSubstr("unknown coordinate 'thta'; did you mean 'theta'?"));
+}
+
+TEST(ModelErrors, IndependentNameThatIsNoCoordinate) {
+  expect_error(knife_edge + "independent b, theta\n", 6, 13, HasSubstr("independent: 'b' is a frame, expected a coordinate"));
+}
+
+TEST(ModelErrors, IndependentRateInsteadOfItsCoordinate) {
+  expect_error(knife_edge + "independent x_dot, theta\n", 6, 13,
+               HasSubstr("independent: 'x_dot' is a rate: expected its coordinate 'x'"));
+}
+
+TEST(ModelErrors, IndependentCoordinateListedTwiceIsReportedAtTheSecond) {
+  expect_error(knife_edge + "independent x, x\n", 6, 16,
+               HasSubstr("independent: coordinate 'x' is listed twice (first at test.eom:6:13)"));
+}
+
+TEST(ModelErrors, IndependentStatementGivenTwice) {
+  expect_error(knife_edge + "independent x, theta\nindependent y, theta\n", 7, 1,
+               HasSubstr("'independent' is given twice: the independent speeds are already declared at test.eom:6:1"));
+}
+
+TEST(ModelErrors, IndependentStatementRepeatedByALoop) {
+  expect_error(knife_edge + "for i in 1..2\n  independent x, theta\nend\n", 7, 3,
+               HasSubstr("'independent' is repeated by its loop: declare the independent speeds once"));
+}
+
+TEST(ModelErrors, IndependentCountDiffersFromTheDegreesOfFreedom) {
+  expect_error(knife_edge + "independent theta\n", 6, 1,
+               HasSubstr("independent: expected nq - nc = 3 - 1 = 2 coordinates (one per degree of freedom), got 1"));
+}
+
+TEST(ModelErrors, IndependentInAModelWithoutConstraints) {
+  expect_error(planar_mass + "independent x\n", 5, 1,
+               HasSubstr("'independent' in a model without constraints: every speed is independent"));
+}
+
+TEST(ModelErrors, IndependentSpeedsLeavingTheDependentOnesUnsolvable) {
+  // theta_dot does not appear in the constraint, so it cannot be solved from it
+  expect_error(knife_edge + "independent x, y\n", 6, 1,
+               AllOf(HasSubstr("the constraints cannot be solved for the rates of the other coordinates ('theta')"),
+                     HasSubstr("their columns of Xi are singular")));
 }
 
 // --- the whole model ---

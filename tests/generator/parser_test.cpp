@@ -7,6 +7,7 @@
 #include <map>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "eomgen/equations_of_motion.hpp"
 #include "eomgen/kinematics.hpp"
@@ -310,6 +311,25 @@ constraint nh: x_dot = y*z_dot
   ASSERT_EQ(m.constraint_locations.size(), 2u);
   EXPECT_EQ(m.constraint_locations[1].line, 5);
   EXPECT_EQ(m.constraint_locations[1].column, 12);
+}
+
+TEST(Parser, IndependentSpeedsAreCoordinateIndicesInTheOrderGivenWhereverTheStatementStands) {
+  // declared before the coordinates it names (statement order does not matter)
+  const std::string knife_edge = R"(coordinate x, y, theta
+frame b = rotate(a, 3, theta)
+point c = w + x*a.1 + y*a.2
+body blade(mass = 1, centre = c, frame = b, inertia = diag(1, 1, 1))
+constraint no_side_slip: dot(velocity(c), b.2) = 0
+)";
+  const Model m = parse("independent theta, x\n" + knife_edge);
+  EXPECT_EQ(m.independent_speeds, (std::vector<std::size_t>{2, 0}));
+  EXPECT_TRUE(parse(knife_edge).independent_speeds.empty());
+}
+
+TEST(Parser, IndependentSpeedsTakeInterpolatedNamesInALoopThatRunsOnce) {
+  // the last two links of the chain free, the first tied to the second: q1 = q2
+  const Model m = parse(std::string(chain) + "constraint tie: q1 = q2\nfor i in n..n\n  independent q{i-1}, q{i}\nend\n");
+  EXPECT_EQ(m.independent_speeds, (std::vector<std::size_t>{1, 2}));
 }
 
 TEST(Parser, RollWithANormalGivesTwoTangentialConstraints) {

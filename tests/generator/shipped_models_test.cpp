@@ -179,6 +179,18 @@ TEST(ShippedModels, EveryModelLoadsAndDerivesWithConsistentShapes) {
   }
 }
 
+TEST(ShippedModels, OnlyTheNonholonomicModelsDeclareIndependentSpeeds) {
+  // the holonomic ones leave the choice to the runtime's QR null space
+  const std::map<std::string, std::vector<std::size_t>> declared = {{"knife_edge", {0, 2}},        // x, theta
+                                                                    {"rolling_coin", {2, 3, 4}}};  // psi, theta, phi
+  for (const auto& file : shipped_models()) {
+    SCOPED_TRACE(file.string());
+    const Model m = eomgen::load_model(file.string());
+    const auto it = declared.find(file.stem().string());
+    EXPECT_EQ(m.independent_speeds, it == declared.end() ? std::vector<std::size_t>{} : it->second);
+  }
+}
+
 TEST(ShippedModels, MassMatrixIsSymmetricPositiveSemiDefiniteAndDefiniteOnTheConstraints) {
   for (const auto& file : shipped_models()) {
     SCOPED_TRACE(file.string());

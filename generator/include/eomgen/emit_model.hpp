@@ -28,7 +28,8 @@ struct EmittedModel {
   std::vector<FunctionStatistics> statistics;
 };
 
-/// \throws EmitError if an expression cannot be printed.
+/// \throws EmitError if an expression cannot be printed, or if model.independent_speeds is neither
+///         empty nor nq - nc distinct coordinate indices.
 EmittedModel emit_model(const Model& model, const EquationsOfMotion& equations, const EmitOptions& options = {});
 
 /// `name` as a C++ identifier that cannot clash with keywords, reserved names or the

@@ -29,6 +29,10 @@ struct Model {
   /// Where each coordinate and each constraint was declared (same order as in `system`).
   std::vector<SourceLocation> coordinate_locations;
   std::vector<SourceLocation> constraint_locations;
+  /// Coordinate indices whose rates are the independent speeds of the null-space method, in the
+  /// order of the `independent` statement (nq - nc of them); empty when the model declares none
+  /// and the runtime takes the null space of Xi from a QR decomposition instead.
+  std::vector<std::size_t> independent_speeds;
   /// Integer/real constants of the file after overrides (e.g. n of a chain).
   std::map<std::string, double> constants;
 };
