@@ -1,0 +1,112 @@
+#pragma once
+/// \file
+/// Projection of q and qd back onto the constraint manifold, the alternative to Baumgarte
+/// stabilization (see Baumgarte in workspace.hpp) against the drift of an integrated DAE.
+///
+/// Positions: Gauss-Newton on phi(q, t) = 0 with minimum-norm corrections
+///   dq = Xi^T (Xi Xi^T)^{-1} e,   e = phi on the holonomic rows, 0 on the others,
+/// so a correction never violates a nonholonomic constraint to first order. Rates: the
+/// minimum-norm correction onto Xi qd + Xi_t = 0 (one step, the condition is linear in qd).
+/// The norm is Euclidean rather than M-weighted because M may be singular (quaternions).
+#include <cmath>
+#include <limits>
+
+#include "eomrt/workspace.hpp"
+
+namespace eomrt {
+
+/// Residuals of the constraints at a state.
+template <class Scalar>
+struct ConstraintResiduals {
+  Scalar position = 0;  ///< max |phi_i(q, t)| over the holonomic constraints
+  Scalar velocity = 0;  ///< max |(Xi qd + Xi_t)_i| over all constraints
+};
+
+/// Evaluates the constraint residuals at (t, q, qd).
+/// \param[in]  p      parameters
+/// \param[out] ws     workspace; ws.phi, ws.Xi, ws.Xi_t, ws.velocity_residual are overwritten
+/// \param[in]  t      time
+/// \param[in]  q, qd  coordinates and rates (dim nq)
+/// \return the largest residuals (zero for an unconstrained model)
+template <class Model, class Scalar>
+ConstraintResiduals<Scalar> constraint_residuals(
+    const typename ModelTypes<Model, Scalar>::Parameters& p, DynamicsWorkspace<Model, Scalar>& ws,
+    const Scalar& t, const typename ModelTypes<Model, Scalar>::Coordinates& q,
+    const typename ModelTypes<Model, Scalar>::Coordinates& qd) {
+  ConstraintResiduals<Scalar> r;
+  if constexpr (Model::nc > 0) {
+    Model::constraint_jacobian(t, q, p, ws.Xi);
+    Model::constraint_rate_term(t, q, p, ws.Xi_t);
+    ws.velocity_residual.noalias() = ws.Xi * qd;
+    ws.velocity_residual += ws.Xi_t;
+    r.velocity = ws.velocity_residual.cwiseAbs().maxCoeff();
+    if constexpr (Model::nh > 0) {
+      Model::holonomic_residuals(t, q, p, ws.phi);
+      r.position = ws.phi.cwiseAbs().maxCoeff();
+    }
+  }
+  return r;
+}
+
+/// Projects q onto phi(q, t) = 0 (holonomic constraints only), then qd onto Xi qd + Xi_t = 0.
+/// \param[in]     p               parameters
+/// \param[out]    ws              workspace (scratch; ws.Xi etc. hold the final evaluation)
+/// \param[in]     t               time
+/// \param[in,out] q, qd           coordinates and rates (dim nq), corrected in place
+/// \param[in]     max_iterations  Newton iterations allowed for the positions
+/// \return ok; singular_constraint_jacobian if Xi Xi^T is singular; non_finite if a term is
+///         not finite; projection_failed if the positions did not converge
+template <class Model, class Scalar>
+DynamicsStatus project_onto_constraints(const typename ModelTypes<Model, Scalar>::Parameters& p,
+                                        DynamicsWorkspace<Model, Scalar>& ws, const Scalar& t,
+                                        typename ModelTypes<Model, Scalar>::Coordinates& q,
+                                        typename ModelTypes<Model, Scalar>::Coordinates& qd,
+                                        int max_iterations = 8) {
+  if constexpr (Model::nc == 0) {
+    return DynamicsStatus::ok;
+  } else {
+    using std::abs;
+    auto& s = ws.solvers;
+    const Scalar eps = std::numeric_limits<Scalar>::epsilon();
+    const auto factor_gram = [&]() {
+      Model::constraint_jacobian(t, q, p, ws.Xi);
+      if (!ws.Xi.allFinite()) return DynamicsStatus::non_finite;
+      s.gram.noalias() = ws.Xi * ws.Xi.transpose();
+      s.gram_ldlt.compute(s.gram);
+      if (s.gram_ldlt.info() != Eigen::Success || !(s.gram_ldlt.rcond() > ws.singular_rcond))
+        return DynamicsStatus::singular_constraint_jacobian;
+      return DynamicsStatus::ok;
+    };
+    if constexpr (Model::nh > 0) {
+      bool converged = false;
+      for (int k = 0; k < max_iterations && !converged; ++k) {
+        Model::holonomic_residuals(t, q, p, ws.phi);
+        if (!ws.phi.allFinite()) return DynamicsStatus::non_finite;
+        if (ws.phi.isZero(0)) break;
+        const DynamicsStatus status = factor_gram();
+        if (status != DynamicsStatus::ok) return status;
+        s.small.setZero();
+        for (int i = 0; i < Model::nh; ++i) s.small(Model::holonomic_rows[i]) = ws.phi(i);
+        s.gram_ldlt.solveInPlace(s.small);
+        s.particular.noalias() = ws.Xi.transpose() * s.small;
+        q -= s.particular;
+        // Newton converges quadratically: once the step is at rounding level of q, phi is too
+        converged = s.particular.cwiseAbs().maxCoeff() <= 4 * eps * (1 + q.cwiseAbs().maxCoeff());
+      }
+      if (!converged) {
+        Model::holonomic_residuals(t, q, p, ws.phi);
+        if (!ws.phi.isZero(0)) return DynamicsStatus::projection_failed;
+      }
+    }
+    const DynamicsStatus status = factor_gram();
+    if (status != DynamicsStatus::ok) return status;
+    Model::constraint_rate_term(t, q, p, ws.Xi_t);
+    ws.velocity_residual.noalias() = ws.Xi * qd;
+    ws.velocity_residual += ws.Xi_t;
+    s.small = s.gram_ldlt.solve(ws.velocity_residual);
+    qd.noalias() -= ws.Xi.transpose() * s.small;
+    return q.allFinite() && qd.allFinite() ? DynamicsStatus::ok : DynamicsStatus::non_finite;
+  }
+}
+
+}  // namespace eomrt
