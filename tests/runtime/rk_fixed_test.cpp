@@ -1,12 +1,6 @@
 // Tests for tableau.hpp and rk_fixed.hpp: consistency, measured order, exactness, statuses.
 
-// Eigen checks its no-malloc flag with eigen_assert, which NDEBUG compiles out; counting
-// failed assertions instead keeps the allocation test meaningful in every build type
-namespace {
-int eigen_assert_failures = 0;
-}  // namespace
-#define EIGEN_RUNTIME_NO_MALLOC
-#define eigen_assert(x) ((x) ? void(0) : void(++eigen_assert_failures))
+#include "runtime/no_malloc.hpp"  // first: it configures Eigen
 
 #include <gtest/gtest.h>
 
@@ -217,6 +211,30 @@ TEST(IntegrateFixed, ReportsNonFiniteStatusAndTimeWhenRhsReturnsNaN) {
   EXPECT_TRUE(std::isnan(r.x(1)));
   ASSERT_EQ(observed.size(), 7u);
   EXPECT_EQ(observed.back(), 0.875);
+}
+
+TEST(IntegrateFixed, StopsWithRhsFailedAtTheLastObservedStateWhenRhsCannotEvaluate) {
+  // f cannot evaluate past t = 1, as a solve with a singular mass matrix would report
+  const auto f = [](double t, const Eigen::Vector2d& x, Eigen::Vector2d& dxdt) {
+    if (t > 1.0) return false;
+    dxdt << x(1), -x(0);
+    return true;
+  };
+  std::vector<double> observed;
+  Eigen::Vector2d last_observed(0, 0);
+  const auto r = integrate_fixed(rk4, f, 0.0, Eigen::Vector2d(1, 0), 3.0, 0.25,
+                                 [&](double t, const Eigen::Vector2d& x) {
+                                   observed.push_back(t);
+                                   last_observed = x;
+                                 });
+  // the step [1, 1.25] fails at its second stage (t = 1.125), before touching the state
+  EXPECT_EQ(r.status, IntegrateStatus::rhs_failed);
+  EXPECT_STREQ(to_string(r.status), "rhs_failed");
+  EXPECT_EQ(r.t, 1.0);
+  ASSERT_EQ(observed.size(), 4u);
+  EXPECT_EQ(observed.back(), 1.0);
+  EXPECT_EQ(r.x, last_observed);
+  EXPECT_LT((r.x - Eigen::Vector2d(std::cos(1.0), -std::sin(1.0))).norm(), 1e-4);
 }
 
 TEST(IntegrateFixed, RejectsNonPositiveStepAndReversedSpanBeforeStepping) {

@@ -2,4 +2,13 @@
 /// \file
 /// Umbrella header of the eomrt runtime: include this to get every runtime algorithm.
 #include "eomrt/tableau.hpp"
+#include "eomrt/rhs.hpp"
 #include "eomrt/rk_fixed.hpp"
+#include "eomrt/dormand_prince.hpp"
+#include "eomrt/model_traits.hpp"
+#include "eomrt/status.hpp"
+#include "eomrt/workspace.hpp"
+#include "eomrt/dynamics_unconstrained.hpp"
+#include "eomrt/dynamics_kkt.hpp"
+#include "eomrt/dynamics_null_space.hpp"
+#include "eomrt/stabilization.hpp"

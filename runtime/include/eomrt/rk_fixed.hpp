@@ -5,7 +5,8 @@
 /// Notation: n is the state dimension (x = [q; qd] gives n = nq + nv), S the number of
 /// stages of the tableau. The right-hand side is any callable
 ///   f(Scalar t, const Vector& x, Vector& dxdt)
-/// that writes all n entries of dxdt (pre-sized; it must not resize it).
+/// that writes all n entries of dxdt (pre-sized; it must not resize it) and returns void, or
+/// bool with false for "could not evaluate" (see rhs.hpp).
 #include <Eigen/Core>
 #include <array>
 #include <cmath>
@@ -15,6 +16,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "eomrt/rhs.hpp"
 #include "eomrt/tableau.hpp"
 
 namespace eomrt {
@@ -55,11 +57,14 @@ struct RkWorkspace {
 /// \param[in]     tableau  method; only the strictly lower triangle of a is read
 /// \param[in]     f        right-hand side f(t, x, dxdt), evaluated S times
 /// \param[in]     t        time at the start of the step
-/// \param[in,out] x        state (dim n); on return, the state at t + h
+/// \param[in,out] x        state (dim n); on return, the state at t + h, or unchanged if a
+///                         stage failed
 /// \param[in]     h        step size (may be negative to integrate backwards)
 /// \param[in,out] ws       scratch sized for n; on return ws.k holds the S stage derivatives
+///                         (up to the failed stage, if one failed)
+/// \return false if f reported that it could not evaluate a stage; later stages are skipped
 template <std::size_t S, typename Vector, typename Rhs>
-void rk_step(const ButcherTableau<S>& tableau, Rhs&& f, typename Vector::Scalar t, Vector& x,
+bool rk_step(const ButcherTableau<S>& tableau, Rhs&& f, typename Vector::Scalar t, Vector& x,
              typename Vector::Scalar h, RkWorkspace<Vector, S>& ws) {
   using Scalar = typename Vector::Scalar;
   const Vector& x_stage = ws.x_stage;
@@ -69,18 +74,20 @@ void rk_step(const ButcherTableau<S>& tableau, Rhs&& f, typename Vector::Scalar 
     ws.x_stage = x;
     for (std::size_t j = 0; j < i; ++j)
       if (tableau.a[i][j] != 0) ws.x_stage += (h * static_cast<Scalar>(tableau.a[i][j])) * ws.k[j];
-    f(t + static_cast<Scalar>(tableau.c[i]) * h, x_stage, ws.k[i]);
+    if (!evaluate_rhs(f, t + static_cast<Scalar>(tableau.c[i]) * h, x_stage, ws.k[i])) return false;
   }
 
   // x_next = x + h sum b_i k_i, accumulated into x so that no temporary vector is needed
   for (std::size_t i = 0; i < S; ++i)
     if (tableau.b[i] != 0) x += (h * static_cast<Scalar>(tableau.b[i])) * ws.k[i];
+  return true;
 }
 
 /// Outcome of an integration (ComputationInfo style: reported, never thrown from the loop).
 enum class IntegrateStatus {
   ok,          ///< reached t_end
   non_finite,  ///< a step produced a NaN or infinite state entry; integration stopped
+  rhs_failed,  ///< the right-hand side reported that it could not evaluate; integration stopped
 };
 
 /// \return the enumerator's name, for messages and logs
@@ -90,6 +97,8 @@ inline const char* to_string(IntegrateStatus status) {
       return "ok";
     case IntegrateStatus::non_finite:
       return "non_finite";
+    case IntegrateStatus::rhs_failed:
+      return "rhs_failed";
   }
   return "unknown";
 }
@@ -100,10 +109,12 @@ struct IntegrateResult {
   /// ok, or why the integration stopped early
   IntegrateStatus status;
   /// ok: exactly t_end. non_finite: the end time of the first step whose result is not
-  /// finite (or t0 if x0 itself is not finite)
+  /// finite (or t0 if x0 itself is not finite). rhs_failed: the start time of the step in
+  /// which f failed
   typename Vector::Scalar t;
   /// state at t (dim n); for non_finite it is kept as computed, so its NaN/Inf entries
-  /// show which coordinates diverged (the observer has already seen the last finite state)
+  /// show which coordinates diverged (the observer has already seen the last finite state);
+  /// for rhs_failed it is the last state the observer saw (or x0)
   Vector x;
 };
 
@@ -118,7 +129,7 @@ struct NoObserver {
 /// an integer takes whole steps only, leaving no sliver step). Step k ends at t0 + (k+1) h,
 /// computed directly rather than accumulated, so the times do not drift.
 /// \param[in] tableau   method
-/// \param[in] f         right-hand side f(t, x, dxdt)
+/// \param[in] f         right-hand side f(t, x, dxdt), returning void or bool (see rhs.hpp)
 /// \param[in] t0        initial time
 /// \param[in] x0        initial state (dim n)
 /// \param[in] t_end     final time, t_end >= t0
@@ -175,7 +186,11 @@ IntegrateResult<Vector> integrate_fixed(const ButcherTableau<S>& tableau, Rhs&& 
   for (long long k = 0; k < steps; ++k) {
     // the last step ends on t_end exactly, whatever rounding t0 + steps h would give
     const Scalar t_next = (k + 1 == steps) ? t_end : t0 + static_cast<Scalar>(k + 1) * h;
-    rk_step(tableau, f, result.t, result.x, t_next - result.t, ws);
+    // a failed stage leaves result.x at the start of the step, where the caller can inspect it
+    if (!rk_step(tableau, f, result.t, result.x, t_next - result.t, ws)) {
+      result.status = IntegrateStatus::rhs_failed;
+      return result;
+    }
     result.t = t_next;
     if (!result.x.allFinite()) {
       result.status = IntegrateStatus::non_finite;
