@@ -2,13 +2,7 @@
 // dynamics_unconstrained.hpp) and the constraint stabilization (stabilization.hpp), on
 // hand-written models whose answers are known in closed form.
 
-// Eigen checks its no-malloc flag with eigen_assert, which NDEBUG compiles out; counting
-// failed assertions instead keeps the allocation test meaningful in every build type
-namespace {
-int eigen_assert_failures = 0;
-}  // namespace
-#define EIGEN_RUNTIME_NO_MALLOC
-#define eigen_assert(x) ((x) ? void(0) : void(++eigen_assert_failures))
+#include "runtime/no_malloc.hpp"  // first: it configures Eigen
 
 #include <gtest/gtest.h>
 

@@ -7,6 +7,22 @@
 
 namespace eomrt::testing {
 
+/// The constraint functions of a model without constraints (nc = nh = 0), inherited.
+template <int nq>
+struct Unconstrained {
+  static constexpr int nc = 0, nh = 0;
+  static constexpr std::array<int, 0> holonomic_rows{};
+  template <class S, class P>
+  static void constraint_jacobian(const S&, const Eigen::Matrix<S, nq, 1>&, const P&, Eigen::Matrix<S, 0, nq>&) {}
+  template <class S, class P>
+  static void constraint_rate_term(const S&, const Eigen::Matrix<S, nq, 1>&, const P&, Eigen::Matrix<S, 0, 1>&) {}
+  template <class S, class P>
+  static void constraint_acceleration_term(const S&, const Eigen::Matrix<S, nq, 1>&, const Eigen::Matrix<S, nq, 1>&,
+                                           const P&, Eigen::Matrix<S, 0, 1>&) {}
+  template <class S, class P>
+  static void holonomic_residuals(const S&, const Eigen::Matrix<S, nq, 1>&, const P&, Eigen::Matrix<S, 0, 1>&) {}
+};
+
 /// Planar pendulum in Cartesian coordinates (x, y) of the bob, gravity -g along y, rod length
 /// l: phi = x^2 + y^2 - l^2, Xi = [2x, 2y], b = 2 (xd^2 + yd^2).
 struct CartesianPendulum {
@@ -56,9 +72,8 @@ struct CartesianPendulum {
 };
 
 /// Harmonic oscillator m qdd = -k q + u, unconstrained, one input.
-struct Oscillator {
-  static constexpr int nq = 1, nu = 1, nc = 0, nh = 0;
-  static constexpr std::array<int, nh> holonomic_rows{};
+struct Oscillator : Unconstrained<1> {
+  static constexpr int nq = 1, nu = 1;
   template <class S>
   struct Parameters {
     S m = S(2), k = S(8);
@@ -72,18 +87,6 @@ struct Oscillator {
     M(0, 0) = p.m;
     F(0) = -p.k * q(0) + u(0);
   }
-  template <class S>
-  static void constraint_jacobian(const S&, const V<S>&, const Parameters<S>&,
-                                  Eigen::Matrix<S, nc, nq>&) {}
-  template <class S>
-  static void constraint_rate_term(const S&, const V<S>&, const Parameters<S>&,
-                                   Eigen::Matrix<S, nc, 1>&) {}
-  template <class S>
-  static void constraint_acceleration_term(const S&, const V<S>&, const V<S>&,
-                                           const Parameters<S>&, Eigen::Matrix<S, nc, 1>&) {}
-  template <class S>
-  static void holonomic_residuals(const S&, const V<S>&, const Parameters<S>&,
-                                  Eigen::Matrix<S, nh, 1>&) {}
   template <class S>
   static S kinetic_energy(const S&, const V<S>&, const V<S>& qd, const Parameters<S>& p) {
     return p.m * qd(0) * qd(0) / 2;
@@ -144,9 +147,8 @@ struct RedundantMass {
   }
 };
 /// qdd = qd^2 from qd(0) = 1: qd = 1 / (1 - t) blows up at t = 1 (a finite-time singularity).
-struct BlowUp {
-  static constexpr int nq = 1, nu = 0, nc = 0, nh = 0;
-  static constexpr std::array<int, nh> holonomic_rows{};
+struct BlowUp : Unconstrained<1> {
+  static constexpr int nq = 1, nu = 0;
   template <class S>
   struct Parameters {};
   template <class S>
@@ -158,18 +160,6 @@ struct BlowUp {
     M(0, 0) = 1;
     F(0) = qd(0) * qd(0);
   }
-  template <class S>
-  static void constraint_jacobian(const S&, const V<S>&, const Parameters<S>&,
-                                  Eigen::Matrix<S, nc, nq>&) {}
-  template <class S>
-  static void constraint_rate_term(const S&, const V<S>&, const Parameters<S>&,
-                                   Eigen::Matrix<S, nc, 1>&) {}
-  template <class S>
-  static void constraint_acceleration_term(const S&, const V<S>&, const V<S>&,
-                                           const Parameters<S>&, Eigen::Matrix<S, nc, 1>&) {}
-  template <class S>
-  static void holonomic_residuals(const S&, const V<S>&, const Parameters<S>&,
-                                  Eigen::Matrix<S, nh, 1>&) {}
   template <class S>
   static S kinetic_energy(const S&, const V<S>&, const V<S>& qd, const Parameters<S>&) {
     return qd(0) * qd(0) / 2;
