@@ -8,6 +8,7 @@ packages=(
   libeigen3-dev libfmt-dev libgtest-dev
   libcli11-dev nlohmann-json3-dev
   texlive-latex-base
+  gnuplot-nox
 )
 
 missing=()

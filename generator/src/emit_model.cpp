@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <set>
 
+#include "eomgen/content_hash.hpp"
 #include "eomgen/cpp_printer.hpp"
 #include "eomgen/error.hpp"
 #include "eomgen/lower.hpp"
@@ -52,14 +53,6 @@ std::string sanitize_comment(const std::string& text) {
   return out;
 }
 
-std::uint64_t fnv1a(const std::string& text) {
-  std::uint64_t h = 14695981039346656037ull;
-  for (unsigned char c : text) {
-    h ^= c;
-    h *= 1099511628211ull;
-  }
-  return h;
-}
 
 }  // namespace
 
@@ -290,7 +283,7 @@ EmittedModel emit_model(const Model& model, const EquationsOfMotion& eom, const 
   h += fmt::format("  static constexpr const char* name = \"{}\";\n", cpp_string_contents(model.name));
   h += fmt::format("  static constexpr const char* description = \"{}\";\n", cpp_string_contents(model.description));
   h += fmt::format("  static constexpr const char* generator_version = \"{}\";\n", version);
-  h += fmt::format("  static constexpr const char* model_hash = \"{:016x}\";\n", fnv1a(fingerprint));
+  h += fmt::format("  static constexpr const char* model_hash = \"{:016x}\";\n", content_hash(fingerprint));
   h += fmt::format("  static constexpr std::array<const char*, nq> coordinate_names{{{{{}}}}};\n", name_list(coordinate_names));
   h += fmt::format("  static constexpr std::array<const char*, nu> input_names{{{{{}}}}};\n", name_list(input_names));
   h += fmt::format("  static constexpr std::array<const char*, np> parameter_names{{{{{}}}}};\n", name_list(parameter_names));

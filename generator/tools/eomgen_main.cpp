@@ -28,14 +28,12 @@
 #include "eomgen/model.hpp"
 #include "eomgen/numeric_evaluation.hpp"
 #include "eomgen/version.hpp"
+#include "file_output.hpp"
+#include "simulate_command.hpp"
 
 namespace {
 
-/// A command line CLI11 accepted but whose content is malformed (NAME=VALUE lists, --only).
-class UsageError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
+using eomgen::tools::UsageError;
 
 struct Options {
   std::string model_path;
@@ -52,6 +50,10 @@ struct Options {
   std::string outer_namespace = "eomgen_models";
   bool stats = false;
   bool no_cse = false;
+  // simulate
+  eomgen::tools::SimulateRequest simulate;
+  std::vector<std::string> init, inputs;
+  bool no_plot = false;
 };
 
 std::string join(const std::vector<std::string>& items) {
@@ -78,40 +80,6 @@ std::map<std::string, double> parse_assignments(const std::vector<std::string>& 
     if (!out.emplace(name, value).second) throw UsageError(fmt::format("{}: '{}' is given twice", option, name));
   }
   return out;
-}
-
-// Writes through a temporary file in the same directory renamed over the target, so a
-// failure never leaves a partial or corrupted file behind.
-void write_atomically(const std::string& path, const std::string& content) {
-  namespace fs = std::filesystem;
-  const fs::path target(path);
-  const fs::path directory = target.has_parent_path() ? target.parent_path() : fs::path(".");
-  std::string temporary;
-  int fd = -1;
-  for (int attempt = 0; fd < 0; ++attempt) {
-    temporary = (directory / fmt::format(".{}.{}-{}.tmp", target.filename().string(), ::getpid(), attempt)).string();
-    fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);  // 0666 & ~umask
-    if (fd < 0 && (errno != EEXIST || attempt >= 100))
-      throw eomgen::Error(fmt::format("writing '{}': cannot create a file in '{}': {}", path, directory.string(),
-                                      std::strerror(errno)));
-  }
-  const auto fail = [&](const std::string& what) {
-    const std::string reason = std::strerror(errno);
-    if (fd >= 0) ::close(fd);
-    ::unlink(temporary.c_str());
-    throw eomgen::Error(fmt::format("writing '{}': {}: {}", path, what, reason));
-  };
-  for (std::size_t done = 0; done < content.size();) {
-    const ssize_t n = ::write(fd, content.data() + done, content.size() - done);
-    if (n < 0 && errno == EINTR) continue;
-    if (n < 0) fail("write failed");
-    done += static_cast<std::size_t>(n);
-  }
-  if (::fsync(fd) != 0) fail("fsync failed");
-  const int closed = ::close(fd);
-  fd = -1;
-  if (closed != 0) fail("close failed");
-  if (std::rename(temporary.c_str(), path.c_str()) != 0) fail("cannot replace the file");
 }
 
 eomgen::Model load(const Options& o) { return eomgen::load_model(o.model_path, parse_assignments(o.defines, "--define")); }
@@ -181,7 +149,7 @@ void run_derive(const Options& o) {
   if (o.output_path.empty())
     std::cout << text << std::flush;
   else
-    write_atomically(o.output_path, text);
+    eomgen::tools::write_atomically(o.output_path, text);
 }
 
 // ---- generate ----
@@ -209,7 +177,7 @@ void run_generate(const Options& o) {
     std::cout << emitted.header << std::flush;
     if (o.stats) std::cerr << statistics_table(emitted.statistics);
   } else {
-    write_atomically(o.output_path, emitted.header);
+    eomgen::tools::write_atomically(o.output_path, emitted.header);
     if (o.stats) std::cout << statistics_table(emitted.statistics);
   }
 }
@@ -341,6 +309,19 @@ void run_eval(const Options& o) {
   if (!constraints.empty()) print_named("Multipliers lambda", lambda);
 }
 
+// ---- simulate ----
+
+int run_simulate(Options& o) {
+  const eomgen::Model model = load(o);
+  eomgen::tools::SimulateRequest& r = o.simulate;
+  r.model_path = o.model_path;
+  r.parameters = parse_assignments(o.set, "--set");
+  r.initial = parse_assignments(o.init, "--init");
+  r.inputs = parse_assignments(o.inputs, "--input");
+  r.plot = !o.no_plot;
+  return eomgen::tools::run_simulate(model, r);
+}
+
 // the options every subcommand has: the model file and --define
 void add_model_options(CLI::App* sub, Options& o) {
   sub->add_option("MODEL", o.model_path, "Model file (.eom)")->required()->check(CLI::ExistingFile);
@@ -397,6 +378,43 @@ int main(int argc, char** argv) {
   generate->add_flag("--stats", o.stats,
                      "Print operation counts per function, without and with shared subexpressions");
 
+  CLI::App* simulate = app.add_subcommand(
+      "simulate", "Generate, compile (cached) and run a simulation; write a CSV and plot it with gnuplot");
+  add_model_options(simulate, o);
+  eomgen::tools::SimulateRequest& r = o.simulate;
+  simulate->add_option("--t-end", r.t_end, "End time [s] (the run starts at t = 0)")
+      ->required()
+      ->check(CLI::PositiveNumber);
+  simulate->add_option("--method", r.method, "Integrator (default: dp5, or rk4 when --dt is given)")
+      ->check(CLI::IsMember({"euler", "rk4", "dp5"}));
+  simulate->add_option("--dt", r.step, "Step of euler/rk4 [s] (default 1e-3)")->check(CLI::PositiveNumber);
+  simulate->add_option("--rtol", r.rtol, "Relative tolerance of dp5 (default 1e-8)")->check(CLI::PositiveNumber);
+  simulate->add_option("--atol", r.atol, "Absolute tolerance of dp5 (default 1e-10)")->check(CLI::PositiveNumber);
+  simulate->add_option("--sample", r.sample, "Interval between CSV rows [s] (default: about 1000 rows)")
+      ->check(CLI::PositiveNumber);
+  simulate->add_option("--set", o.set, "Override a parameter: NAME=VALUE (repeatable)")
+      ->delimiter(',')
+      ->type_name("NAME=VALUE");
+  simulate->add_option("--init", o.init, "Initial coordinate or rate: q=VALUE, q_dot=VALUE (others 0)")
+      ->delimiter(',')
+      ->type_name("NAME=VALUE");
+  simulate->add_option("--input", o.inputs, "Constant input: NAME=VALUE (others 0)")
+      ->delimiter(',')
+      ->type_name("NAME=VALUE");
+  simulate->add_option("--solver", r.solver, "Constraint forces by the KKT system or the null-space method")
+      ->check(CLI::IsMember({"kkt", "null-space"}))
+      ->capture_default_str();
+  simulate->add_option("--stabilization", r.stabilization, "Constraint drift correction")
+      ->check(CLI::IsMember({"projection", "baumgarte", "none"}))
+      ->capture_default_str();
+  simulate->add_option("-o,--output", r.csv_path, "CSV file (default: MODELNAME.csv)")->type_name("FILE");
+  CLI::Option* plot = simulate->add_option("--plot", r.plot_path, "Plot file, .svg or .png (default: MODELNAME.svg)")
+                          ->type_name("FILE");
+  simulate->add_flag("--no-plot", o.no_plot, "Write the CSV only")->excludes(plot);
+  simulate->add_option("--cache-dir", r.cache_dir,
+                       "Where compiled simulations are kept (default: $EOMGEN_CACHE_DIR, else ~/.cache/eomgen)")
+      ->type_name("DIR");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -409,6 +427,7 @@ int main(int argc, char** argv) {
     if (derive->parsed()) run_derive(o);
     if (eval->parsed()) run_eval(o);
     if (generate->parsed()) run_generate(o);
+    if (simulate->parsed()) return run_simulate(o);
   } catch (const UsageError& e) {
     std::cerr << "eomgen: error: " << e.what() << "\n";
     return 2;

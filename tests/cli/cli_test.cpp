@@ -12,6 +12,8 @@
 #include <sstream>
 #include <string>
 
+#include "cli/cli_runner.hpp"
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -74,54 +76,10 @@ point p = w + x*a.1
 particle bob(mass = mm, at = p)
 )";
 
-struct Outcome {
-  int status = -1;
-  std::string out, err;
-};
-
-std::string quote(const std::string& s) { return "'" + s + "'"; }
-
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return buffer.str();
-}
-
-class Cli : public ::testing::Test {
- protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() / ("eomgen_cli_test_" + std::to_string(::getpid()) + "_" + info->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_ / "work");
-  }
-  void TearDown() override {
-    if (!HasFailure()) fs::remove_all(dir_);
-  }
-
-  // writes a model file into the work directory; returns its path
-  std::string model(const std::string& name, const std::string& text) {
-    const fs::path path = dir_ / "work" / name;
-    std::ofstream(path) << text;
-    return path.string();
-  }
-
-  // runs eomgen with `arguments` (already quoted for the shell)
-  Outcome eomgen(const std::string& arguments) {
-    const fs::path out = dir_ / "stdout", err = dir_ / "stderr";
-    const std::string command =
-        quote(EOMGEN_EXE) + " " + arguments + " > " + quote(out.string()) + " 2> " + quote(err.string());
-    const int raw = std::system(command.c_str());
-    Outcome run;
-    run.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-    run.out = slurp(out);
-    run.err = slurp(err);
-    return run;
-  }
-
-  fs::path dir_;
-};
+using eomgen::testing::Outcome;
+using eomgen::testing::quote;
+using eomgen::testing::slurp;
+using Cli = eomgen::testing::CliFixture;
 
 TEST_F(Cli, VersionAndHelp) {
   const Outcome version = eomgen("--version");

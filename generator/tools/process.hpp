@@ -1,0 +1,21 @@
+#pragma once
+// Running another program (the compiler, the compiled simulation, gnuplot) without a shell:
+// arguments go to the program as they are, so no path or name can be reinterpreted as a
+// command.
+#include <string>
+#include <vector>
+
+namespace eomgen::tools {
+
+/// Runs argv[0] (searched on PATH) with the arguments argv[1..] and waits for it.
+/// \param[in] argv        program and arguments
+/// \param[in] output_log  if not empty, the program's standard output and error go to this
+///                        file instead of ours
+/// \return its exit status; 128 + the signal number if a signal ended it
+/// \throws eomgen::Error if the program cannot be started (e.g. it is not installed)
+int run_process(const std::vector<std::string>& argv, const std::string& output_log = {});
+
+/// \return whether `program` is found on PATH (or is an executable path)
+bool program_available(const std::string& program);
+
+}  // namespace eomgen::tools
