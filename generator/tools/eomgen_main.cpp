@@ -9,8 +9,10 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <complex>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -25,6 +27,7 @@
 #include "eomgen/equation_printer.hpp"
 #include "eomgen/equations_of_motion.hpp"
 #include "eomgen/error.hpp"
+#include "eomgen/linearization.hpp"
 #include "eomgen/model.hpp"
 #include "eomgen/numeric_evaluation.hpp"
 #include "eomgen/version.hpp"
@@ -50,6 +53,8 @@ struct Options {
   std::string outer_namespace = "eomgen_models";
   bool stats = false;
   bool no_cse = false;
+  // linearize
+  bool drop_cyclic = false;
   // simulate
   eomgen::tools::SimulateRequest simulate;
   std::vector<std::string> init, inputs;
@@ -188,6 +193,7 @@ std::string number(double x) { return fmt::format("{}", x); }  // shortest text 
 
 void print_matrix(const std::string& title, const Eigen::MatrixXd& a) {
   std::cout << fmt::format("{} ({} x {}):", title, a.rows(), a.cols()) << (a.size() == 0 ? " empty" : "") << "\n";
+  if (a.size() == 0) return;
   std::vector<std::size_t> width(a.cols(), 0);
   for (Eigen::Index j = 0; j < a.cols(); ++j)
     for (Eigen::Index i = 0; i < a.rows(); ++i) width[j] = std::max(width[j], number(a(i, j)).size());
@@ -203,20 +209,27 @@ void print_named(const std::string& title, const std::vector<std::pair<std::stri
   for (const auto& [name, value] : values) std::cout << "  " << name << " = " << number(value) << "\n";
 }
 
-void run_eval(const Options& o) {
-  if (o.format != "text" && o.format != "json") throw UsageError("--format: eval prints 'text' or 'json'");
+// --at (the state) and --set (parameters) as one set of named values for the evaluation
+eomgen::NamedValues state_and_parameters(const Options& o, const eomgen::Model& model) {
   const std::map<std::string, double> at = parse_assignments(o.at, "--at");
   const std::map<std::string, double> set = parse_assignments(o.set, "--set");
   eomgen::NamedValues values = at;
   for (const auto& [name, value] : set)
     if (!values.emplace(name, value).second) throw UsageError(fmt::format("--set: '{}' is also given in --at", name));
-  const eomgen::Model model = load(o);
   const eomgen::Variables& v = model.system.variables();
   for (const auto& [name, value] : set) {
     bool is_parameter = false;
     for (const auto& p : v.parameters()) is_parameter = is_parameter || p.name == name;
     if (!is_parameter) throw eomgen::Error(fmt::format("--set: '{}' is not a parameter of the model", name));
   }
+  return values;
+}
+
+void run_eval(const Options& o) {
+  if (o.format != "text" && o.format != "json") throw UsageError("--format: eval prints 'text' or 'json'");
+  const eomgen::Model model = load(o);
+  const eomgen::NamedValues values = state_and_parameters(o, model);
+  const eomgen::Variables& v = model.system.variables();
   const eomgen::EquationsOfMotion eom = eomgen::derive_equations(model);
   const eomgen::NumericEquations eq = eomgen::evaluate_equations(model, eom, values);
   eomgen::AccelerationSolution sol;
@@ -309,6 +322,73 @@ void run_eval(const Options& o) {
   if (!constraints.empty()) print_named("Multipliers lambda", lambda);
 }
 
+// ---- linearize ----
+
+std::string latex_matrix(const Eigen::MatrixXd& a) {
+  std::string out = "\\begin{bmatrix}\n";
+  for (Eigen::Index i = 0; i < a.rows(); ++i) {
+    for (Eigen::Index j = 0; j < a.cols(); ++j) out += (j ? " & " : "  ") + number(a(i, j));
+    out += i + 1 < a.rows() ? " \\\\\n" : "\n";
+  }
+  return out + "\\end{bmatrix}";
+}
+
+std::string complex_number(const std::complex<double>& z) {
+  if (z.imag() == 0) return number(z.real());
+  return fmt::format("{} {} {}i", number(z.real()), z.imag() < 0 ? "-" : "+", number(std::abs(z.imag())));
+}
+
+void run_linearize(const Options& o) {
+  const eomgen::Model model = load(o);
+  const eomgen::NamedValues values = state_and_parameters(o, model);
+  const eomgen::EquationsOfMotion eom = eomgen::derive_equations(model);
+  const eomgen::SymbolicLinearization symbolic = eomgen::linearize_symbolic(model, eom);
+  eomgen::LinearizeOptions options;
+  options.drop_cyclic = o.drop_cyclic;
+  const eomgen::LinearModel lin = eomgen::linearize(model, eom, symbolic, values, options);
+  // an operating point whose accelerations are not zero is a point of a trajectory: A is
+  // still its linearization, but the stability theorems are about equilibria
+  const double scale = std::max(1.0, lin.M.cwiseAbs().maxCoeff());
+  const bool equilibrium = lin.qdd0.cwiseAbs().maxCoeff() <= 1e-9 * scale;
+  std::vector<std::string> point;
+  for (const auto& [name, value] : values) point.push_back(fmt::format("{} = {}", name, number(value)));
+
+  if (o.format == "latex") {
+    std::cout << fmt::format("% linearization of {} about {}\n", model.name, join(point));
+    std::cout << "A = " << latex_matrix(lin.A) << "\n\nB = " << latex_matrix(lin.B) << "\n\n";
+    std::cout << "M = " << latex_matrix(lin.M) << "\n\nD = " << latex_matrix(lin.D) << "\n\nK = "
+              << latex_matrix(lin.K) << "\n\nB_u = " << latex_matrix(lin.B_u) << "\n";
+    return;
+  }
+  std::cout << fmt::format("Linearization of {} about {} (others 0, parameters at their defaults)\n", model.name,
+                           point.empty() ? std::string("the origin") : join(point));
+  std::cout << fmt::format("Accelerations at the point: [{}]{}\n", [&] {
+    std::vector<std::string> a;
+    for (Eigen::Index i = 0; i < lin.qdd0.size(); ++i) a.push_back(number(lin.qdd0(i)));
+    return join(a);
+  }(), equilibrium ? " (an equilibrium or steady motion)" : " (not an equilibrium: A linearizes about a point of a trajectory)");
+  std::cout << fmt::format("State kept: [{}]; dropped as cyclic: {}\n", join(lin.state_names), join(lin.dropped));
+  std::cout << fmt::format("Inputs: [{}]\n\n", join(lin.input_names));
+  print_matrix("A", lin.A);
+  print_matrix("B", lin.B);
+  std::cout << "\nSecond-order form M dqdd + D dqd + K dq = B_u du (all coordinates):\n";
+  print_matrix("M", lin.M);
+  print_matrix("D (damping and gyroscopic)", lin.D);
+  print_matrix("K (stiffness)", lin.K);
+  print_matrix("B_u", lin.B_u);
+  const eomgen::StabilityReport report = eomgen::assess_stability(lin.A);
+  std::vector<std::string> eig;
+  for (Eigen::Index i = 0; i < report.eigenvalues.size(); ++i) eig.push_back(complex_number(report.eigenvalues(i)));
+  std::cout << fmt::format("\nEigenvalues of A: {}\n", join(eig));
+  if (!equilibrium) {
+    std::cout << "Stability: not assessed (the point is not an equilibrium)\n";
+    return;
+  }
+  std::cout << fmt::format("Linear system (notes, Theorem A.21): {}\n", eomgen::to_string(report.linear));
+  std::cout << fmt::format("Equilibrium, by Lyapunov's indirect method (Theorem A.22): {}\n",
+                           eomgen::to_string(report.nonlinear));
+}
+
 // ---- simulate ----
 
 int run_simulate(Options& o) {
@@ -378,6 +458,18 @@ int main(int argc, char** argv) {
   generate->add_flag("--stats", o.stats,
                      "Print operation counts per function, without and with shared subexpressions");
 
+  CLI::App* linearize = app.add_subcommand(
+      "linearize", "Linearize about an operating point: A, B, the second-order form, eigenvalues, stability");
+  add_model_options(linearize, o);
+  linearize->add_option("--at", o.at, "Operating point: q1=0.1,q1_dot=0.3,u=1,t=0 (others are 0)")
+      ->delimiter(',')
+      ->type_name("NAME=VALUE,...");
+  linearize->add_option("--set", o.set, "Override a parameter's default: NAME=VALUE (repeatable)")
+      ->delimiter(',')
+      ->type_name("NAME=VALUE");
+  linearize->add_flag("--drop-cyclic", o.drop_cyclic, "Leave coordinates that appear nowhere in M and F out of the state");
+  linearize->add_option("-f,--format", o.format, "Output format")->check(CLI::IsMember({"text", "latex"}))->capture_default_str();
+
   CLI::App* simulate = app.add_subcommand(
       "simulate", "Generate, compile (cached) and run a simulation; write a CSV and plot it with gnuplot");
   add_model_options(simulate, o);
@@ -427,6 +519,7 @@ int main(int argc, char** argv) {
     if (derive->parsed()) run_derive(o);
     if (eval->parsed()) run_eval(o);
     if (generate->parsed()) run_generate(o);
+    if (linearize->parsed()) run_linearize(o);
     if (simulate->parsed()) return run_simulate(o);
   } catch (const UsageError& e) {
     std::cerr << "eomgen: error: " << e.what() << "\n";

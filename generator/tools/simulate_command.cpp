@@ -135,7 +135,7 @@ fs::path simulation_program(const Model& model, const std::string& header, const
   std::sort(runtime_headers.begin(), runtime_headers.end());
   for (const fs::path& h : runtime_headers) key_material += h.filename().string() + "\n" + read_file(h);
   for (const std::string& part : compile_command("driver.cpp", "simulate", runtime)) key_material += part + "\n";
-  const std::string key = fmt::format("{}-{:016x}", model.name, content_hash(key_material));
+  const std::string key = fmt::format("{}-{:016x}", cpp_identifier(model.name), content_hash(key_material));
 
   const fs::path directory = cache / key;
   const fs::path program = directory / "simulate";
@@ -173,7 +173,9 @@ fs::path simulation_program(const Model& model, const std::string& header, const
   fs::rename(building, directory, ec);
   if (ec) {
     fs::remove_all(building, ec);  // another run finished the same build first: use its
-    if (!fs::exists(program)) throw Error(fmt::format("cannot move the build into '{}'", directory.string()));
+    if (!fs::exists(program))
+      throw Error(fmt::format("cannot move the build into '{}' ({}); delete that directory and run again",
+                              directory.string(), ec.message()));
   }
   return program;
 }
@@ -197,7 +199,7 @@ std::string plot_script(const Model& model, const std::string& csv, const std::s
   const std::size_t nq = vars.coordinates().size();
   const std::size_t nc = model.system.constraints().size();
   const std::size_t nu = vars.inputs().size();
-  const std::size_t t_column = 1 + 2 * nq + nc + nu + 1;  // columns count from 1; t is column 1
+  const std::size_t energy_column = 1 + 2 * nq + nc + nu + 1;  // of T; gnuplot counts from 1 (t)
   std::string s;
   s += png ? "set terminal pngcairo size 1000,800 noenhanced font 'sans,10'\n"
            : "set terminal svg size 1000,800 dynamic noenhanced font 'sans,11' background rgb 'white'\n";
@@ -212,7 +214,7 @@ std::string plot_script(const Model& model, const std::string& csv, const std::s
   s += fmt::format(
       "plot {0} using 1:{1} with lines lw 1.5 title 'T', '' using 1:{2} with lines lw 1.5 title 'V', "
       "'' using 1:{3} with lines lw 2 title 'T + V'\n",
-      gnuplot_quoted(csv), t_column, t_column + 1, t_column + 2);
+      gnuplot_quoted(csv), energy_column, energy_column + 1, energy_column + 2);
   s += "unset multiplot\nset output\n";
   return s;
 }
@@ -222,8 +224,11 @@ std::string plot_script(const Model& model, const std::string& csv, const std::s
 int run_simulate(const Model& model, const SimulateRequest& r) {
   check_names(model, r);
   const std::string method = method_of(r);
-  const std::string csv_path = r.csv_path.empty() ? model.name + ".csv" : r.csv_path;
-  const std::string plot_path = r.plot_path.empty() ? model.name + ".svg" : r.plot_path;
+  // default names from the model's name as an identifier: a name is free text in a model
+  // file without a `model` line (the file's stem), and must not become a path or an option
+  const std::string stem = cpp_identifier(model.name);
+  const std::string csv_path = r.csv_path.empty() ? stem + ".csv" : r.csv_path;
+  const std::string plot_path = r.plot_path.empty() ? stem + ".svg" : r.plot_path;
   if (r.plot) {
     const std::string ext = fs::path(plot_path).extension().string();
     if (ext != ".svg" && ext != ".png")
@@ -267,9 +272,12 @@ int run_simulate(const Model& model, const SimulateRequest& r) {
     PendingFile image(plot_path);
     PendingFile script(plot_path + ".gp");
     const std::string title = fmt::format("{}: {}", model.name, model.description);
-    write_atomically(script.path(), plot_script(model, csv_path, image.path(), fs::path(plot_path).extension() == ".png", title));
+    // absolute paths: gnuplot runs a data file named "<cmd" and an output named "|cmd" as
+    // shell commands, whatever the quoting; a path starting with '/' is never one
+    write_atomically(script.path(), plot_script(model, fs::absolute(csv_path).string(), fs::absolute(image.path()).string(),
+                                                fs::path(plot_path).extension() == ".png", title));
     const fs::path log = fs::path(script.path()).replace_extension(".log");
-    const int plotted = run_process({"gnuplot", script.path()}, log.string());
+    const int plotted = run_process({"gnuplot", fs::absolute(script.path()).string()}, log.string());
     const std::string output = read_file(log);
     std::error_code ec;
     fs::remove(log, ec);

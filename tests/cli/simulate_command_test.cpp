@@ -209,6 +209,32 @@ TEST_F(Simulate, CartesianPendulumReportsMultipliersAndResidualsWithEitherSolver
   }
 }
 
+// gnuplot runs a data file named "<cmd" as a shell command: a CSV by that name (relative, in
+// the working directory) must reach gnuplot as an absolute path and nothing may run
+TEST_F(Simulate, FileNamesThatGnuplotWouldRunAreOnlyFileNames) {
+  const fs::path work = dir_ / "work";
+  const std::string command = "cd " + quote(work.string()) + " && " + quote(EOMGEN_EXE) + " simulate " +
+                              quote(models_dir + "simple_pendulum.eom") +
+                              " --t-end 0.1 -o '<touch pwned;.csv' --plot '|touch pwned2;.svg' --cache-dir " +
+                              quote(EOMGEN_TEST_CACHE_DIR) + " > /dev/null 2>&1";
+  EXPECT_EQ(std::system(command.c_str()), 0);
+  EXPECT_FALSE(fs::exists(work / "pwned"));
+  EXPECT_FALSE(fs::exists(work / "pwned2"));
+  EXPECT_TRUE(fs::exists(work / "<touch pwned;.csv"));
+  EXPECT_TRUE(fs::exists(work / "|touch pwned2;.svg"));
+}
+
+// all coordinates 0 put the Cartesian pendulum's bob on the pivot, where its rod constraint has
+// no gradient: the error says that the initial state is the problem
+TEST_F(Simulate, InitialStateOffTheConstraintsIsExplained) {
+  const Outcome run = simulate(quote(models_dir + "cartesian_pendulum.eom") + " --t-end 1 --no-plot -o " +
+                               quote((dir_ / "work" / "c.csv").string()));
+  EXPECT_EQ(run.status, 1);
+  EXPECT_THAT(run.err, HasSubstr("stopped at t = 0 s"));
+  EXPECT_THAT(run.err, HasSubstr("at the initial state max |phi| = 0.25"));
+  EXPECT_THAT(run.err, HasSubstr("--init"));
+}
+
 TEST_F(Simulate, MalformedRequestsAreUsageErrorsBeforeAnythingIsBuilt) {
   const std::string model = quote(models_dir + "simple_pendulum.eom") + " --no-plot";
   const struct {

@@ -248,6 +248,8 @@ struct SimulationContext {
     if (s != DynamicsStatus::ok) return s;
     const Scalar T = Model::kinetic_energy(t, q, qd, p);
     const Scalar V = Model::potential_energy(t, q, p);
+    using std::isfinite;
+    if (!isfinite(T) || !isfinite(V)) return DynamicsStatus::non_finite;
     const ConstraintResiduals<Scalar> r = constraint_residuals<Model, Scalar>(p, ws, t, q, qd);
     observer(Sample<Model, Scalar>{t, q, qd, u, ws, r, T, V});
     return DynamicsStatus::ok;
@@ -263,8 +265,12 @@ void check_options(const SimulationOptions<Scalar>& o) {
         << "]";
   else if (o.integrator != Integrator::dormand_prince && !(isfinite(o.step) && o.step > 0))
     msg << "simulate: step expected positive and finite, got " << o.step;
+  else if (o.integrator != Integrator::dormand_prince && !((o.t_end - o.t0) / o.step <= Scalar(1e15)))
+    msg << "simulate: (t_end - t0) / step expected at most 1e15 steps, got " << (o.t_end - o.t0) / o.step;
   else if (!(isfinite(o.sample_interval) && o.sample_interval >= 0))
     msg << "simulate: sample interval expected >= 0 and finite, got " << o.sample_interval;
+  else if (o.sample_interval > 0 && !((o.t_end - o.t0) / o.sample_interval <= Scalar(1e15)))
+    msg << "simulate: (t_end - t0) / sample_interval expected at most 1e15 samples";
   else if (o.integrator == Integrator::dormand_prince &&
            !(o.adaptive.rtol > 0 && o.adaptive.atol >= 0 && isfinite(o.adaptive.rtol) &&
              isfinite(o.adaptive.atol)))

@@ -220,6 +220,8 @@ int simulation_main(int argc, char** argv) {
 
     detail::ProgressLine line(progress && ::isatty(STDERR_FILENO), options.t0, options.t_end);
     long long rows = 0;
+    int bad_output = -1;  // the first output found not finite, and when
+    double bad_output_time = 0;
     double energy0 = 0, max_energy_drift = 0, max_phi = 0, max_rate = 0;
     typename Types::HolonomicVector phi;
     const auto observer = [&](const Sample<Model, double>& s) {
@@ -241,6 +243,9 @@ int simulation_main(int argc, char** argv) {
         Eigen::Matrix<double, Model::ny, 1> y;
         Model::outputs(s.t, s.q, s.qd, s.u, p, y);
         for (int i = 0; i < Model::ny; ++i) std::fputc(',', csv), detail::put_number(csv, y(i));
+        // the state is fine (simulate checks it) but an output can still leave its domain
+        for (int i = 0; i < Model::ny && bad_output < 0; ++i)
+          if (!std::isfinite(y(i))) bad_output = i, bad_output_time = s.t;
       }
       std::fputc('\n', csv);
       if (rows++ == 0) energy0 = energy;
@@ -264,7 +269,26 @@ int simulation_main(int argc, char** argv) {
       for (int i = 0; i < nq; ++i)
         std::fprintf(stderr, "    %s = %.17g, %s_dot = %.17g\n", Model::coordinate_names[i], r.x(i),
                      Model::coordinate_names[i], r.x(nq + i));
+      if constexpr (Model::nc > 0) {
+        if (r.failure_time == options.t0) {
+          // the usual cause: coordinates left at 0 where the constraints do not hold
+          DynamicsWorkspace<Model, double> ws;
+          const typename Types::Coordinates q = x0.template head<nq>(), qd = x0.template tail<nq>();
+          const ConstraintResiduals<double> res = constraint_residuals<Model, double>(p, ws, options.t0, q, qd);
+          std::fprintf(stderr,
+                       "  at the initial state max |phi| = %.3g and max |Xi qd + Xi_t| = %.3g: give coordinates "
+                       "(and rates) that satisfy the constraints with --init\n",
+                       res.position, res.velocity);
+        }
+      }
       return 1;
+    }
+    if constexpr (has_outputs_v<Model>) {
+      if (bad_output >= 0) {
+        std::fprintf(stderr, "error: the output %s is not a finite number at t = %.17g s\n",
+                     Model::output_names[static_cast<std::size_t>(bad_output)], bad_output_time);
+        return 1;
+      }
     }
     if (!written) {
       std::fprintf(stderr, "error: writing '%s' failed: %s\n", csv_path.c_str(), std::strerror(errno));
