@@ -1,0 +1,222 @@
+#include "eomgen/linearization.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "eomgen/error.hpp"
+#include "eomgen/variables.hpp"
+
+namespace eomgen {
+
+using GiNaC::ex;
+using GiNaC::ex_to;
+using GiNaC::symbol;
+
+namespace {
+
+/// Derivatives of the derivation's intermediates with respect to a list of variables, bound
+/// as intermediates of their own: dz_i/dv = d value_i/dv + sum_j d value_i/dz_j dz_j/dv.
+/// A derivative that is structurally zero stays the number 0, which is how cyclic
+/// coordinates show.
+class ChainRule {
+ public:
+  ChainRule(const Subexpressions& z, std::vector<ex> variables, Subexpressions& out)
+      : variables_(std::move(variables)), out_(out) {
+    const auto& defs = z.definitions();
+    for (std::size_t i = 0; i < defs.size(); ++i) index_.emplace(defs[i].symbol, i);
+    derivative_.assign(defs.size(), std::vector<ex>(variables_.size(), 0));
+    for (std::size_t i = 0; i < defs.size(); ++i)
+      for (std::size_t k = 0; k < variables_.size(); ++k) derivative_[i][k] = out_.bind(total(defs[i].value, k));
+  }
+
+  /// d e / d variable k, e referring to model symbols and intermediates
+  ex total(const ex& e, std::size_t k) const {
+    ex d = e.diff(ex_to<symbol>(variables_[k]));
+    for (const ex& s : symbols_of(e)) {
+      const auto it = index_.find(s);
+      if (it == index_.end()) continue;
+      const ex& dz = derivative_[it->second][k];
+      if (!dz.is_zero()) d += e.diff(ex_to<symbol>(s)) * dz;
+    }
+    return d;
+  }
+
+ private:
+  std::vector<ex> variables_;
+  Subexpressions& out_;
+  std::map<ex, std::size_t, GiNaC::ex_is_less> index_;
+  std::vector<std::vector<ex>> derivative_;
+};
+
+double real_value(const ex& e, const GiNaC::exmap& values, const std::string& what) {
+  const ex v = e.subs(values, GiNaC::subs_options::no_pattern).evalf();
+  if (!GiNaC::is_a<GiNaC::numeric>(v) || !ex_to<GiNaC::numeric>(v).is_real())
+    throw Error(fmt::format("linearizing: {} is not a real number at the operating point", what));
+  const double d = ex_to<GiNaC::numeric>(v).to_double();
+  if (!std::isfinite(d)) throw Error(fmt::format("linearizing: {} is not finite at the operating point", what));
+  return d;
+}
+
+Eigen::MatrixXd numeric(const GiNaC::matrix& m, const GiNaC::exmap& values, const std::string& name) {
+  Eigen::MatrixXd out(m.rows(), m.cols());
+  for (unsigned i = 0; i < m.rows(); ++i)
+    for (unsigned j = 0; j < m.cols(); ++j)
+      out(i, j) = real_value(m(i, j), values, fmt::format("{}({}, {})", name, i, j));
+  return out;
+}
+
+}  // namespace
+
+SymbolicLinearization linearize_symbolic(const Model& model, const EquationsOfMotion& eom) {
+  if (eom.constraint_count > 0)
+    throw DerivationError(fmt::format("linearizing {}: models with constraints are not supported yet; the model has {}",
+                                      model.name, eom.constraint_count));
+  const Variables& vars = model.system.variables();
+  const std::size_t n = vars.coordinates().size(), nu = vars.inputs().size();
+  std::vector<ex> variables;
+  for (const Coordinate& c : vars.coordinates()) variables.push_back(c.q);
+  for (const Coordinate& c : vars.coordinates()) variables.push_back(c.qd);
+  for (const Input& u : vars.inputs()) variables.push_back(u.symbol);
+
+  SymbolicLinearization lin;
+  const ChainRule chain(eom.subexpressions, variables, lin.derivatives);
+  lin.K = GiNaC::matrix(n, n);
+  lin.D = GiNaC::matrix(n, n);
+  lin.B_u = GiNaC::matrix(n, nu);
+  lin.cyclic.assign(n, true);
+  for (std::size_t i = 0; i < n; ++i) {
+    ex residual = -eom.forcing(i, 0);
+    for (std::size_t j = 0; j < n; ++j) residual += eom.mass_matrix(i, j) * vars.coordinates()[j].qdd;
+    for (std::size_t k = 0; k < n; ++k) {
+      lin.K(i, k) = lin.derivatives.bind(chain.total(residual, k));
+      lin.D(i, k) = lin.derivatives.bind(chain.total(residual, n + k));
+      if (!lin.K(i, k).is_zero()) lin.cyclic[k] = false;
+    }
+    for (std::size_t k = 0; k < nu; ++k) lin.B_u(i, k) = lin.derivatives.bind(-chain.total(residual, 2 * n + k));
+  }
+  return lin;
+}
+
+LinearModel linearize(const Model& model, const EquationsOfMotion& eom, const SymbolicLinearization& symbolic,
+                      const NamedValues& point, const LinearizeOptions& options) {
+  const Variables& vars = model.system.variables();
+  const std::size_t n = vars.coordinates().size(), nu = vars.inputs().size();
+  const NumericEquations at = evaluate_equations(model, eom, point);
+  LinearModel lin;
+  lin.M = at.mass_matrix;
+  const Eigen::LLT<Eigen::MatrixXd> llt(lin.M);
+  if (llt.info() != Eigen::Success || !(llt.rcond() > 1e-13))
+    throw Error(fmt::format("linearizing {}: the mass matrix is singular at the operating point", model.name));
+  lin.qdd0 = llt.solve(at.forcing);
+
+  GiNaC::exmap values = eom.subexpressions.evaluate_all(numeric_substitution(model, point));
+  for (std::size_t j = 0; j < n; ++j) values[vars.coordinates()[j].qdd] = lin.qdd0(j);
+  values = symbolic.derivatives.evaluate_all(values);
+  lin.K = numeric(symbolic.K, values, "K");
+  lin.D = numeric(symbolic.D, values, "D");
+  lin.B_u = numeric(symbolic.B_u, values, "B_u");
+
+  std::vector<std::size_t> kept;
+  for (std::size_t k = 0; k < n; ++k) {
+    if (options.drop_cyclic && symbolic.cyclic[k])
+      lin.dropped.push_back(vars.coordinates()[k].name);
+    else
+      kept.push_back(k);
+  }
+  for (std::size_t k : kept) lin.state_names.push_back(vars.coordinates()[k].name);
+  for (const Coordinate& c : vars.coordinates()) lin.state_names.push_back(c.name + "_dot");
+  for (const Input& u : vars.inputs()) lin.input_names.push_back(u.name);
+
+  // dq' = dqd for the kept coordinates; M dqdd = -K dq - D dqd + B_u du
+  const std::size_t nk = kept.size();
+  lin.A = Eigen::MatrixXd::Zero(nk + n, nk + n);
+  lin.B = Eigen::MatrixXd::Zero(nk + n, nu);
+  for (std::size_t r = 0; r < nk; ++r) lin.A(r, nk + kept[r]) = 1;
+  Eigen::MatrixXd K_kept(n, nk);
+  for (std::size_t c = 0; c < nk; ++c) K_kept.col(c) = lin.K.col(kept[c]);
+  lin.A.bottomLeftCorner(n, nk) = -llt.solve(K_kept);
+  lin.A.bottomRightCorner(n, n) = -llt.solve(lin.D);
+  if (nu > 0) lin.B.bottomRows(n) = llt.solve(lin.B_u);
+  // -0 from negating a zero would print as "-0"
+  for (Eigen::MatrixXd* m : {&lin.A, &lin.B, &lin.K, &lin.D, &lin.B_u})
+    *m = m->unaryExpr([](double v) { return v == 0 ? 0.0 : v; });
+  return lin;
+}
+
+StabilityReport assess_stability(const Eigen::MatrixXd& A, double tolerance) {
+  StabilityReport report;
+  const Eigen::EigenSolver<Eigen::MatrixXd> solver(A, false);
+  if (solver.info() != Eigen::Success) throw Error("the eigenvalues of A did not converge");
+  report.eigenvalues = solver.eigenvalues();
+  std::vector<std::complex<double>> sorted(report.eigenvalues.data(),
+                                           report.eigenvalues.data() + report.eigenvalues.size());
+  // descending real part, then descending imaginary part: a deterministic order to print
+  std::sort(sorted.begin(), sorted.end(), [](const auto& a, const auto& b) {
+    return a.real() != b.real() ? a.real() > b.real() : a.imag() > b.imag();
+  });
+  for (std::size_t i = 0; i < sorted.size(); ++i) report.eigenvalues(static_cast<Eigen::Index>(i)) = sorted[i];
+
+  double scale = 1;
+  for (const auto& l : sorted) scale = std::max(scale, std::abs(l));
+  const double axis = tolerance * scale;
+  bool any_right = false, all_left = true;
+  for (const auto& l : sorted) {
+    any_right = any_right || l.real() > axis;
+    all_left = all_left && l.real() < -axis;
+  }
+  if (any_right) {
+    report.linear = LinearStability::unstable;
+    report.nonlinear = LyapunovVerdict::unstable;
+    return report;
+  }
+  if (all_left) {
+    report.linear = LinearStability::asymptotically_stable;
+    report.nonlinear = LyapunovVerdict::asymptotically_stable;
+    return report;
+  }
+  // on the imaginary axis: stable only if every such eigenvalue has as many eigenvectors as
+  // its multiplicity (a Jordan block there grows like t^k)
+  report.linear = LinearStability::stable;
+  report.nonlinear = LyapunovVerdict::no_conclusion;
+  const Eigen::Index n = A.rows();
+  for (std::size_t i = 0; i < sorted.size(); ++i) {
+    if (std::abs(sorted[i].real()) > axis) continue;
+    long multiplicity = 0;
+    for (const auto& other : sorted) multiplicity += std::abs(other - sorted[i]) <= 1e3 * axis;
+    if (multiplicity < 2) continue;
+    Eigen::FullPivLU<Eigen::MatrixXcd> lu(A.cast<std::complex<double>>() -
+                                          sorted[i] * Eigen::MatrixXcd::Identity(n, n));
+    lu.setThreshold(1e3 * tolerance);
+    if (n - lu.rank() < multiplicity) report.linear = LinearStability::unstable;
+  }
+  return report;
+}
+
+const char* to_string(LinearStability s) {
+  switch (s) {
+    case LinearStability::asymptotically_stable:
+      return "asymptotically stable";
+    case LinearStability::stable:
+      return "stable (eigenvalues on the imaginary axis)";
+    case LinearStability::unstable:
+      return "unstable";
+  }
+  return "unknown";
+}
+
+const char* to_string(LyapunovVerdict v) {
+  switch (v) {
+    case LyapunovVerdict::asymptotically_stable:
+      return "asymptotically stable";
+    case LyapunovVerdict::unstable:
+      return "unstable";
+    case LyapunovVerdict::no_conclusion:
+      return "no conclusion (eigenvalues on the imaginary axis)";
+  }
+  return "unknown";
+}
+
+}  // namespace eomgen
