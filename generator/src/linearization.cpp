@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <random>
 
 #include "eomgen/error.hpp"
 #include "eomgen/variables.hpp"
@@ -68,6 +69,42 @@ Eigen::MatrixXd numeric(const GiNaC::matrix& m, const GiNaC::exmap& values, cons
   return out;
 }
 
+/// A coordinate can cancel out of M and F only through identities GiNaC does not apply
+/// (sin^2 + cos^2 = 1 where an axisymmetric body turns about its axis), so a column of K that
+/// is not structurally zero is also tested in numbers: zero at several scattered states (and
+/// accelerations) to rounding means the coordinate is cyclic. The states come from a fixed
+/// seed, so the verdict is the same in every run.
+void mark_cyclic_by_evaluation(const Model& model, const EquationsOfMotion& eom, SymbolicLinearization& lin) {
+  const Variables& vars = model.system.variables();
+  const std::size_t n = vars.coordinates().size();
+  std::vector<std::size_t> candidates;
+  for (std::size_t k = 0; k < n; ++k)
+    if (!lin.cyclic[k]) candidates.push_back(k);
+  if (candidates.empty()) return;
+  std::vector<bool> vanishes(n, true);
+  std::mt19937 rng(20261122);
+  std::uniform_real_distribution<double> value(-1.5, 1.5), time(0.0, 3.0);
+  int points = 0;
+  for (int attempt = 0; attempt < 12 && points < 4; ++attempt) {
+    NamedValues at{{"t", time(rng)}};
+    for (const Coordinate& c : vars.coordinates()) at[c.name] = value(rng), at[c.name + "_dot"] = value(rng);
+    for (const Input& u : vars.inputs()) at[u.name] = value(rng);
+    try {
+      GiNaC::exmap values = eom.subexpressions.evaluate_all(numeric_substitution(model, at));
+      for (const Coordinate& c : vars.coordinates()) values[c.qdd] = value(rng);
+      values = lin.derivatives.evaluate_all(values);
+      const Eigen::MatrixXd K = numeric(lin.K, values, "K");
+      const double scale = 1 + K.cwiseAbs().maxCoeff();
+      for (std::size_t k : candidates) vanishes[k] = vanishes[k] && K.col(static_cast<Eigen::Index>(k)).cwiseAbs().maxCoeff() <= 1e-12 * scale;
+      ++points;
+    } catch (const std::exception&) {
+      // a singular state (a pole of the model): try another
+    }
+  }
+  if (points == 0) return;
+  for (std::size_t k : candidates) lin.cyclic[k] = vanishes[k];
+}
+
 }  // namespace
 
 SymbolicLinearization linearize_symbolic(const Model& model, const EquationsOfMotion& eom) {
@@ -97,6 +134,7 @@ SymbolicLinearization linearize_symbolic(const Model& model, const EquationsOfMo
     }
     for (std::size_t k = 0; k < nu; ++k) lin.B_u(i, k) = lin.derivatives.bind(-chain.total(residual, 2 * n + k));
   }
+  mark_cyclic_by_evaluation(model, eom, lin);
   return lin;
 }
 

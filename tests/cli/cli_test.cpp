@@ -259,4 +259,31 @@ TEST_F(Cli, EveryShippedModelChecksAndDerivesTheSameBytesEveryRun) {
   }
 }
 
+TEST_F(Cli, LinearizePrintsTheMatricesEigenvaluesAndVerdicts) {
+  const std::string pendulum = quote(std::string(EOMGEN_SOURCE_DIR) + "/models/simple_pendulum.eom");
+  const Outcome inverted = eomgen("linearize " + pendulum + " --at theta=3.141592653589793");
+  ASSERT_EQ(inverted.status, 0) << inverted.err;
+  EXPECT_THAT(inverted.out, HasSubstr("State kept: [theta, theta_dot]"));
+  EXPECT_THAT(inverted.out, HasSubstr("[ 19.62  0 ]"));  // g / l = 9.81 / 0.5
+  EXPECT_THAT(inverted.out, HasSubstr("Eigenvalues of A: 4.42944691807002"));
+  EXPECT_THAT(inverted.out, HasSubstr("Lyapunov's indirect method (Theorem A.22): unstable"));
+  const Outcome hanging = eomgen("linearize " + pendulum + " --set l=2.4525");
+  ASSERT_EQ(hanging.status, 0) << hanging.err;
+  EXPECT_THAT(hanging.out, HasSubstr("0 + 2i, 0 - 2i"));  // sqrt(9.81 / 2.4525) = 2
+  EXPECT_THAT(hanging.out, HasSubstr("no conclusion"));
+  const Outcome moving = eomgen("linearize " + pendulum + " --at theta=1");
+  EXPECT_THAT(moving.out, HasSubstr("not an equilibrium"));
+  EXPECT_THAT(moving.out, HasSubstr("Stability: not assessed"));
+  const Outcome latex = eomgen("linearize " + pendulum + " -f latex");
+  EXPECT_THAT(latex.out, HasSubstr("A = \\begin{bmatrix}\n  0 & 1 \\\\\n  -19.62 & 0\n\\end{bmatrix}"));
+  const Outcome cart = eomgen("linearize " + quote(std::string(EOMGEN_SOURCE_DIR) + "/models/cart_pole.eom") +
+                              " --drop-cyclic");
+  EXPECT_THAT(cart.out, HasSubstr("dropped as cyclic: x"));
+  const Outcome constrained =
+      eomgen("linearize " + quote(std::string(EOMGEN_SOURCE_DIR) + "/models/cartesian_pendulum.eom"));
+  EXPECT_EQ(constrained.status, 1);
+  EXPECT_THAT(constrained.err, HasSubstr("constraints are not supported yet"));
+  EXPECT_EQ(eomgen("linearize " + pendulum + " --at nope=1").status, 1);
+}
+
 }  // namespace

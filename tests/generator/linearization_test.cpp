@@ -1,0 +1,225 @@
+// Linearization and stability (linearization.hpp) against closed forms: the pendulum hanging
+// and inverted, the cart-pole upright, the notes' Example A.20, the sleeping top's classical
+// threshold, and finite differences of the nonlinear right-hand side away from equilibrium.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <complex>
+#include <filesystem>
+#include <string>
+
+#include "eomgen/error.hpp"
+#include "eomgen/linearization.hpp"
+#include "eomgen/model.hpp"
+#include "eomgen/numeric_evaluation.hpp"
+
+namespace eomgen {
+namespace {
+
+namespace fs = std::filesystem;
+
+Model shipped(const std::string& name) {
+  return load_model((fs::path(__FILE__).parent_path() / ".." / ".." / "models" / (name + ".eom")).string());
+}
+
+LinearModel linearize_at(const Model& model, const NamedValues& point, bool drop_cyclic = false) {
+  const EquationsOfMotion eom = derive_equations(model);
+  LinearizeOptions options;
+  options.drop_cyclic = drop_cyclic;
+  return linearize(model, eom, linearize_symbolic(model, eom), point, options);
+}
+
+::testing::AssertionResult matrices_near(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b, double tol) {
+  if (a.rows() != b.rows() || a.cols() != b.cols())
+    return ::testing::AssertionFailure() << "shapes " << a.rows() << "x" << a.cols() << " vs " << b.rows() << "x"
+                                         << b.cols();
+  const double gap = (a - b).cwiseAbs().maxCoeff();
+  if (gap <= tol) return ::testing::AssertionSuccess();
+  return ::testing::AssertionFailure() << "differ by " << gap << "\n" << a << "\nvs\n" << b;
+}
+
+TEST(Linearization, HangingPendulumOscillatesAtSqrtGOverLAndTheIndirectMethodCannotConclude) {
+  const Model model = shipped("simple_pendulum");  // l = 0.5, g = 9.81
+  const LinearModel lin = linearize_at(model, {});
+  Eigen::MatrixXd A(2, 2);
+  A << 0, 1, -9.81 / 0.5, 0;
+  EXPECT_TRUE(matrices_near(lin.A, A, 1e-12));
+  const StabilityReport report = assess_stability(lin.A);
+  const double omega = std::sqrt(9.81 / 0.5);
+  EXPECT_NEAR(report.eigenvalues(0).real(), 0.0, 1e-12);
+  EXPECT_NEAR(report.eigenvalues(0).imag(), omega, 1e-12);
+  EXPECT_NEAR(report.eigenvalues(1).imag(), -omega, 1e-12);
+  EXPECT_EQ(report.linear, LinearStability::stable);
+  EXPECT_EQ(report.nonlinear, LyapunovVerdict::no_conclusion);
+}
+
+TEST(Linearization, InvertedPendulumIsUnstableWithRateSqrtGOverL) {
+  const LinearModel lin = linearize_at(shipped("simple_pendulum"), {{"theta", M_PI}});
+  const StabilityReport report = assess_stability(lin.A);
+  EXPECT_NEAR(report.eigenvalues(0).real(), std::sqrt(9.81 / 0.5), 1e-9);
+  EXPECT_NEAR(report.eigenvalues(0).imag(), 0.0, 1e-12);
+  EXPECT_EQ(report.linear, LinearStability::unstable);
+  EXPECT_EQ(report.nonlinear, LyapunovVerdict::unstable);
+}
+
+// T = (mc + mp) xd^2 / 2 - mp (l/2) cos(theta) xd thetad + (mp l^2/4 + Jc) thetad^2 / 2 and
+// V = mp g (l/2) cos(theta) (theta = 0 upright) give at the top M = [[mc + mp, -mp l/2],
+// [-mp l/2, mp l^2/4 + Jc]], K = diag(0, -mp g l/2), D = 0 and B_u = [1; 0]
+TEST(Linearization, CartPoleUprightEqualsTheClosedForm) {
+  const double mc = 1.0, mp = 0.1, l = 1.0, rp = 0.01, g = 9.81;
+  const double Jc = mp * (l * l / 12 + rp * rp / 4);
+  Eigen::Matrix2d M, K;
+  M << mc + mp, -mp * l / 2, -mp * l / 2, mp * l * l / 4 + Jc;
+  K << 0, 0, 0, -mp * g * l / 2;
+  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(4, 4), B = Eigen::MatrixXd::Zero(4, 1);
+  A.topRightCorner(2, 2).setIdentity();
+  A.bottomLeftCorner(2, 2) = -M.inverse() * K;
+  B.bottomRows(2) = M.inverse() * Eigen::Vector2d(1, 0);
+
+  const LinearModel lin = linearize_at(shipped("cart_pole"), {});
+  EXPECT_TRUE(matrices_near(lin.M, M, 1e-14));
+  EXPECT_TRUE(matrices_near(lin.K, K, 1e-14));
+  EXPECT_TRUE(matrices_near(lin.D, Eigen::MatrixXd::Zero(2, 2), 0));
+  EXPECT_TRUE(matrices_near(lin.A, A, 1e-12));
+  EXPECT_TRUE(matrices_near(lin.B, B, 1e-12));
+  EXPECT_EQ(lin.state_names, (std::vector<std::string>{"x", "theta", "x_dot", "theta_dot"}));
+
+  // x appears nowhere in M and F: dropped on request, its row and column go
+  const LinearModel reduced = linearize_at(shipped("cart_pole"), {}, true);
+  EXPECT_EQ(reduced.dropped, (std::vector<std::string>{"x"}));
+  Eigen::MatrixXd A3(3, 3);
+  A3 << A.block(1, 1, 1, 3), A.block(2, 1, 2, 3);
+  EXPECT_TRUE(matrices_near(reduced.A, A3, 1e-12));
+}
+
+// Example A.20: m q'' + d q' + (k1 + k2 q^2) q = 0 about its only equilibrium 0 gives
+// A = [[0, 1], [-k1/m, -d/m]]; away from it the cubic spring stiffens to k1 + 3 k2 q^2
+TEST(Linearization, SpringMassDamperReproducesExampleA20) {
+  const Model model = shipped("spring_mass_damper");  // m = 1, d = 0.4, k1 = 10, k2 = 50
+  const LinearModel lin = linearize_at(model, {});
+  Eigen::MatrixXd A(2, 2);
+  A << 0, 1, -10.0, -0.4;
+  EXPECT_TRUE(matrices_near(lin.A, A, 1e-13));
+  const StabilityReport report = assess_stability(lin.A);
+  EXPECT_EQ(report.linear, LinearStability::asymptotically_stable);
+  EXPECT_EQ(report.nonlinear, LyapunovVerdict::asymptotically_stable);
+  EXPECT_NEAR(report.eigenvalues(0).real(), -0.2, 1e-12);
+
+  const LinearModel displaced = linearize_at(model, {{"q", 0.3}, {"k2", 50.0}});
+  EXPECT_NEAR(displaced.qdd0(0), -(10 + 50 * 0.09) * 0.3, 1e-12);
+  EXPECT_NEAR(displaced.A(1, 0), -(10 + 3 * 50 * 0.09), 1e-12);
+}
+
+// A symmetric top on a pivot described by 1-2-3 angles, regular where it stands upright
+const char* const sleeping_top = R"(model sleeping_top "symmetric top, Cardan angles"
+parameter m = 0.5 [kg]
+parameter l = 0.05 [m]
+parameter J1 = 2.2e-4 [kg m^2]
+parameter J3 = 4.0e-4 [kg m^2]
+parameter g = 9.81 [m/s^2]
+coordinate alpha, beta, gamma
+frame f1 = rotate(a, 1, alpha)
+frame f2 = rotate(f1, 2, beta)
+frame b = rotate(f2, 3, gamma)
+point centre = w + l*b.3
+body top(mass = m, centre = centre, frame = b, inertia = diag(J1, J1, J3))
+gravity = -g*a.3
+)";
+
+// Spinning upright at rate w, small tilts obey I1^2 s^4 + (I3^2 w^2 - 2 I1 m g l) s^2 +
+// (m g l)^2 = 0 with I1 = J1 + m l^2 about the pivot: s = +-i (I3 w +- sqrt(I3^2 w^2 -
+// 4 I1 m g l)) / (2 I1), purely imaginary exactly when I3^2 w^2 > 4 I1 m g l
+TEST(Linearization, SleepingTopIsStableExactlyAboveTheClassicalThreshold) {
+  const Model model = parse_model(sleeping_top, "sleeping_top.eom");
+  const double m = 0.5, l = 0.05, J1 = 2.2e-4, J3 = 4.0e-4, g = 9.81;
+  const double I1 = J1 + m * l * l, mgl = m * g * l;
+  const double w_critical = std::sqrt(4 * I1 * mgl) / J3;
+  const EquationsOfMotion eom = derive_equations(model);
+  const SymbolicLinearization symbolic = linearize_symbolic(model, eom);
+  EXPECT_EQ(symbolic.cyclic, (std::vector<bool>{false, false, true}));
+  LinearizeOptions drop;
+  drop.drop_cyclic = true;
+
+  for (const double factor : {1.02, 1.5, 0.98, 0.5}) {
+    SCOPED_TRACE(factor);
+    const double w = factor * w_critical;
+    const LinearModel lin = linearize(model, eom, symbolic, {{"gamma_dot", w}}, drop);
+    EXPECT_EQ(lin.dropped, (std::vector<std::string>{"gamma"}));
+    EXPECT_LT(lin.qdd0.norm(), 1e-12);  // a steady motion
+    const StabilityReport report = assess_stability(lin.A);
+    const std::complex<double> root = std::sqrt(std::complex<double>(J3 * J3 * w * w - 4 * I1 * mgl));
+    // the four tilt eigenvalues (the fifth, 0, is the spin rate's)
+    for (const std::complex<double> s : {std::complex<double>(0, 1) * (J3 * w + root) / (2 * I1),
+                                         std::complex<double>(0, 1) * (J3 * w - root) / (2 * I1)}) {
+      for (const std::complex<double> expected : {s, -s, std::conj(s), -std::conj(s)}) {
+        double nearest = 1e300;
+        for (Eigen::Index i = 0; i < report.eigenvalues.size(); ++i)
+          nearest = std::min(nearest, std::abs(report.eigenvalues(i) - expected));
+        EXPECT_LT(nearest, 1e-8 * std::abs(s)) << expected;
+      }
+    }
+    if (factor > 1) {
+      EXPECT_EQ(report.linear, LinearStability::stable);
+      EXPECT_EQ(report.nonlinear, LyapunovVerdict::no_conclusion);
+    } else {
+      EXPECT_EQ(report.linear, LinearStability::unstable);
+      EXPECT_EQ(report.nonlinear, LyapunovVerdict::unstable);
+    }
+  }
+}
+
+// away from equilibrium (qdd0 != 0) A must still be the Jacobian of [qd; M^-1 F]: compared
+// with central differences of the nonlinear right-hand side of the double pendulum
+TEST(Linearization, EqualsTheJacobianOfTheNonlinearRightHandSideAwayFromEquilibrium) {
+  const Model model = shipped("double_pendulum");
+  const NamedValues point{{"theta1", 0.7}, {"theta2", -1.1}, {"theta1_dot", 1.3}, {"theta2_dot", -0.4}};
+  const EquationsOfMotion eom = derive_equations(model);
+  const LinearModel lin = linearize(model, eom, linearize_symbolic(model, eom), point);
+  EXPECT_GT(lin.qdd0.norm(), 1.0);
+  const std::vector<std::string> names{"theta1", "theta2", "theta1_dot", "theta2_dot"};
+  const auto rhs = [&](const NamedValues& at) {
+    const NumericEquations e = evaluate_equations(model, eom, at);
+    Eigen::VectorXd f(4);
+    f << at.at("theta1_dot"), at.at("theta2_dot"), e.mass_matrix.llt().solve(e.forcing);
+    return f;
+  };
+  Eigen::MatrixXd J(4, 4);
+  const double h = 1e-6;
+  for (int k = 0; k < 4; ++k) {
+    NamedValues plus = point, minus = point;
+    plus[names[k]] += h;
+    minus[names[k]] -= h;
+    J.col(k) = (rhs(plus) - rhs(minus)) / (2 * h);
+  }
+  EXPECT_TRUE(matrices_near(lin.A, J, 1e-7));
+}
+
+TEST(Linearization, ConstrainedModelsAreRejectedWithAClearMessage) {
+  const Model model = shipped("cartesian_pendulum");
+  const EquationsOfMotion eom = derive_equations(model);
+  try {
+    linearize_symbolic(model, eom);
+    ADD_FAILURE() << "expected a DerivationError";
+  } catch (const DerivationError& e) {
+    EXPECT_NE(std::string(e.what()).find("constraints are not supported yet"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Linearization, SingularMassMatrixAtThePointIsAnError) {
+  // the 3-1-3 angles of the shipped top are singular upright
+  const Model model = shipped("heavy_top");
+  const EquationsOfMotion eom = derive_equations(model);
+  EXPECT_THROW(linearize(model, eom, linearize_symbolic(model, eom), {{"phi_dot", 50.0}}), Error);
+}
+
+TEST(Stability, RepeatedEigenvalueWithoutEnoughEigenvectorsIsUnstableForTheLinearSystem) {
+  Eigen::MatrixXd double_integrator(2, 2);
+  double_integrator << 0, 1, 0, 0;  // a Jordan block at 0: x = x0 + v0 t grows
+  EXPECT_EQ(assess_stability(double_integrator).linear, LinearStability::unstable);
+  EXPECT_EQ(assess_stability(double_integrator).nonlinear, LyapunovVerdict::no_conclusion);
+  const Eigen::MatrixXd zero = Eigen::MatrixXd::Zero(2, 2);  // two eigenvectors: stable
+  EXPECT_EQ(assess_stability(zero).linear, LinearStability::stable);
+}
+
+}  // namespace
+}  // namespace eomgen
