@@ -108,17 +108,15 @@ void mark_cyclic_by_evaluation(const Model& model, const EquationsOfMotion& eom,
 }  // namespace
 
 SymbolicLinearization linearize_symbolic(const Model& model, const EquationsOfMotion& eom) {
-  if (eom.constraint_count > 0)
-    throw DerivationError(fmt::format("linearizing {}: models with constraints are not supported yet; the model has {}",
-                                      model.name, eom.constraint_count));
   const Variables& vars = model.system.variables();
-  const std::size_t n = vars.coordinates().size(), nu = vars.inputs().size();
+  const std::size_t n = vars.coordinates().size(), nu = vars.inputs().size(), m = eom.constraint_count;
   std::vector<ex> variables;
   for (const Coordinate& c : vars.coordinates()) variables.push_back(c.q);
   for (const Coordinate& c : vars.coordinates()) variables.push_back(c.qd);
   for (const Input& u : vars.inputs()) variables.push_back(u.symbol);
 
   SymbolicLinearization lin;
+  for (std::size_t r = 0; r < m; ++r) lin.lambda.emplace_back(fmt::format("lambda{}", r + 1));
   const ChainRule chain(eom.subexpressions, variables, lin.derivatives);
   lin.K = GiNaC::matrix(n, n);
   lin.D = GiNaC::matrix(n, n);
@@ -127,6 +125,7 @@ SymbolicLinearization linearize_symbolic(const Model& model, const EquationsOfMo
   for (std::size_t i = 0; i < n; ++i) {
     ex residual = -eom.forcing(i, 0);
     for (std::size_t j = 0; j < n; ++j) residual += eom.mass_matrix(i, j) * vars.coordinates()[j].qdd;
+    for (std::size_t r = 0; r < m; ++r) residual -= eom.constraint_jacobian(r, i) * lin.lambda[r];
     for (std::size_t k = 0; k < n; ++k) {
       lin.K(i, k) = lin.derivatives.bind(chain.total(residual, k));
       lin.D(i, k) = lin.derivatives.bind(chain.total(residual, n + k));
@@ -134,16 +133,205 @@ SymbolicLinearization linearize_symbolic(const Model& model, const EquationsOfMo
     }
     for (std::size_t k = 0; k < nu; ++k) lin.B_u(i, k) = lin.derivatives.bind(-chain.total(residual, 2 * n + k));
   }
-  mark_cyclic_by_evaluation(model, eom, lin);
+  lin.S_q = GiNaC::matrix(m, n);
+  lin.S_qd = GiNaC::matrix(m, n);
+  lin.C_q = GiNaC::matrix(m, n);
+  for (std::size_t r = 0; r < m; ++r) {
+    ex acceleration = eom.constraint_acceleration_term(r, 0), velocity = eom.constraint_rate_term(r, 0);
+    for (std::size_t j = 0; j < n; ++j) {
+      acceleration += eom.constraint_jacobian(r, j) * vars.coordinates()[j].qdd;
+      velocity += eom.constraint_jacobian(r, j) * vars.coordinates()[j].qd;
+    }
+    for (std::size_t k = 0; k < n; ++k) {
+      lin.S_q(r, k) = lin.derivatives.bind(chain.total(acceleration, k));
+      lin.S_qd(r, k) = lin.derivatives.bind(chain.total(acceleration, n + k));
+      lin.C_q(r, k) = lin.derivatives.bind(chain.total(velocity, k));
+      if (!lin.S_q(r, k).is_zero() || !lin.C_q(r, k).is_zero()) lin.cyclic[k] = false;
+    }
+  }
+  if (m == 0) mark_cyclic_by_evaluation(model, eom, lin);
   return lin;
 }
+
+namespace {
+
+/// The `count` columns of `a` a column-pivoted QR takes first: the best-conditioned choice of
+/// dependent coordinates (or rates) for the rows of `a`, in increasing order.
+std::vector<Eigen::Index> pivot_columns(const Eigen::MatrixXd& a, Eigen::Index count) {
+  const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(a);
+  std::vector<Eigen::Index> columns;
+  for (Eigen::Index i = 0; i < count; ++i) columns.push_back(qr.colsPermutation().indices()(i));
+  std::sort(columns.begin(), columns.end());
+  return columns;
+}
+
+std::vector<Eigen::Index> complement(Eigen::Index n, const std::vector<Eigen::Index>& taken) {
+  std::vector<Eigen::Index> rest;
+  for (Eigen::Index i = 0; i < n; ++i)
+    if (std::find(taken.begin(), taken.end(), i) == taken.end()) rest.push_back(i);
+  return rest;
+}
+
+Eigen::MatrixXd columns_of(const Eigen::MatrixXd& a, const std::vector<Eigen::Index>& columns) {
+  Eigen::MatrixXd out(a.rows(), static_cast<Eigen::Index>(columns.size()));
+  for (std::size_t j = 0; j < columns.size(); ++j) out.col(static_cast<Eigen::Index>(j)) = a.col(columns[j]);
+  return out;
+}
+
+/// The reduced linear model of a constrained system (see the header).
+void linearize_constrained(const Model& model, const EquationsOfMotion& eom, const SymbolicLinearization& symbolic,
+                           const NamedValues& point, const LinearizeOptions& options, LinearModel& lin) {
+  const Variables& vars = model.system.variables();
+  const Eigen::Index n = static_cast<Eigen::Index>(vars.coordinates().size());
+  const Eigen::Index nu = static_cast<Eigen::Index>(vars.inputs().size());
+  const Eigen::Index m = static_cast<Eigen::Index>(eom.constraint_count);
+  const NumericEquations at = evaluate_equations(model, eom, point);
+  const Eigen::MatrixXd& Xi = at.constraint_jacobian;
+  const Eigen::VectorXd velocity_residual = [&] {
+    Eigen::VectorXd qd(n);
+    for (Eigen::Index j = 0; j < n; ++j) {
+      const auto it = point.find(vars.coordinates()[static_cast<std::size_t>(j)].name + "_dot");
+      qd(j) = it == point.end() ? 0.0 : it->second;
+    }
+    return Eigen::VectorXd(Xi * qd + at.constraint_rate_term);
+  }();
+  const double violation = std::max(at.holonomic_residuals.size() ? at.holonomic_residuals.cwiseAbs().maxCoeff() : 0.0,
+                                    velocity_residual.cwiseAbs().maxCoeff());
+  if (violation > 1e-9)
+    throw Error(fmt::format("linearizing {}: the operating point violates the constraints (largest residual "
+                            "{:.3g}); give coordinates and rates that satisfy them",
+                            model.name, violation));
+  const AccelerationSolution solution = solve_accelerations(at);
+  lin.qdd0 = solution.qdd;
+
+  GiNaC::exmap values = eom.subexpressions.evaluate_all(numeric_substitution(model, point));
+  for (Eigen::Index j = 0; j < n; ++j) values[vars.coordinates()[static_cast<std::size_t>(j)].qdd] = lin.qdd0(j);
+  for (Eigen::Index r = 0; r < m; ++r) values[symbolic.lambda[static_cast<std::size_t>(r)]] = solution.lambda(r);
+  values = symbolic.derivatives.evaluate_all(values);
+  const Eigen::MatrixXd K = numeric(symbolic.K, values, "K"), D = numeric(symbolic.D, values, "D");
+  const Eigen::MatrixXd B_u = numeric(symbolic.B_u, values, "B_u");
+  const Eigen::MatrixXd S_q = numeric(symbolic.S_q, values, "S_q"), S_qd = numeric(symbolic.S_qd, values, "S_qd");
+  const Eigen::MatrixXd C_q = numeric(symbolic.C_q, values, "C_q");
+
+  // d[qdd; lambda]/dv = -J^{-1} d[R; S]/dv with J = [[M, -Xi^T], [Xi, 0]]
+  Eigen::MatrixXd J = Eigen::MatrixXd::Zero(n + m, n + m);
+  J.topLeftCorner(n, n) = at.mass_matrix;
+  J.topRightCorner(n, m) = -Xi.transpose();
+  J.bottomLeftCorner(m, n) = Xi;
+  const Eigen::FullPivLU<Eigen::MatrixXd> lu(J);
+  if (!lu.isInvertible())
+    throw Error(fmt::format("linearizing {}: the KKT matrix is singular at the operating point", model.name));
+  Eigen::MatrixXd rhs(n + m, 2 * n + nu);
+  rhs << K, D, -B_u, S_q, S_qd, Eigen::MatrixXd::Zero(m, nu);
+  const Eigen::MatrixXd dqdd = (-lu.solve(rhs)).topRows(n);  // [d/dq, d/dqd, d/du]
+  Eigen::MatrixXd A_full = Eigen::MatrixXd::Zero(2 * n, 2 * n), B_full = Eigen::MatrixXd::Zero(2 * n, nu);
+  A_full.topRightCorner(n, n).setIdentity();
+  A_full.bottomRows(n) = dqdd.leftCols(2 * n);
+  B_full.bottomRows(n) = dqdd.rightCols(nu);
+
+  // dependent coordinates: one per holonomic constraint, where its gradient is best conditioned
+  std::vector<Eigen::Index> holonomic_rows;
+  for (Eigen::Index r = 0; r < m; ++r)
+    if (model.system.constraints()[static_cast<std::size_t>(r)].kind == Constraint::Kind::holonomic)
+      holonomic_rows.push_back(r);
+  const Eigen::Index nh = static_cast<Eigen::Index>(holonomic_rows.size());
+  Eigen::MatrixXd Phi(nh, n);
+  for (Eigen::Index r = 0; r < nh; ++r) Phi.row(r) = Xi.row(holonomic_rows[static_cast<std::size_t>(r)]);
+  const std::vector<Eigen::Index> q_dependent = nh > 0 ? pivot_columns(Phi, nh) : std::vector<Eigen::Index>{};
+  const std::vector<Eigen::Index> q_kept = complement(n, q_dependent);
+  // dependent rates: the complement of the declared independent speeds, else pivoted QR of Xi
+  std::vector<Eigen::Index> v_independent;
+  for (std::size_t k : model.independent_speeds) v_independent.push_back(static_cast<Eigen::Index>(k));
+  std::sort(v_independent.begin(), v_independent.end());
+  std::vector<Eigen::Index> v_dependent =
+      v_independent.empty() ? pivot_columns(Xi, m) : complement(n, v_independent);
+  if (v_independent.empty()) v_independent = complement(n, v_dependent);
+
+  // tangent space: dq = Tq dq_kept; dqd = Gq dq + Gv dnu (dnu the independent rates)
+  const Eigen::Index nk = static_cast<Eigen::Index>(q_kept.size()), ni = static_cast<Eigen::Index>(v_independent.size());
+  Eigen::MatrixXd Tq = Eigen::MatrixXd::Zero(n, nk);
+  for (Eigen::Index j = 0; j < nk; ++j) Tq(q_kept[static_cast<std::size_t>(j)], j) = 1;
+  if (nh > 0) {
+    const Eigen::PartialPivLU<Eigen::MatrixXd> phi_d(columns_of(Phi, q_dependent));
+    const Eigen::MatrixXd solved = -phi_d.solve(columns_of(Phi, q_kept));
+    for (Eigen::Index i = 0; i < nh; ++i) Tq.row(q_dependent[static_cast<std::size_t>(i)]) = solved.row(i);
+  }
+  const Eigen::MatrixXd Xi_d = columns_of(Xi, v_dependent);
+  const Eigen::PartialPivLU<Eigen::MatrixXd> xi_d(Xi_d);
+  if (!(std::abs(Xi_d.determinant()) > 1e-12 * std::max(1.0, Xi.cwiseAbs().maxCoeff())))
+    throw Error(fmt::format("linearizing {}: the declared independent speeds leave a singular block of Xi at the "
+                            "operating point",
+                            model.name));
+  Eigen::MatrixXd Gq = Eigen::MatrixXd::Zero(n, n), Gv = Eigen::MatrixXd::Zero(n, ni);
+  for (Eigen::Index j = 0; j < ni; ++j) Gv(v_independent[static_cast<std::size_t>(j)], j) = 1;
+  const Eigen::MatrixXd dep_v = -xi_d.solve(columns_of(Xi, v_independent));
+  const Eigen::MatrixXd dep_q = -xi_d.solve(C_q);
+  for (Eigen::Index i = 0; i < m; ++i) {
+    Gv.row(v_dependent[static_cast<std::size_t>(i)]) = dep_v.row(i);
+    Gq.row(v_dependent[static_cast<std::size_t>(i)]) = dep_q.row(i);
+  }
+  Eigen::MatrixXd T = Eigen::MatrixXd::Zero(2 * n, nk + ni);
+  T.topLeftCorner(n, nk) = Tq;
+  T.bottomLeftCorner(n, nk) = Gq * Tq;
+  T.bottomRightCorner(n, ni) = Gv;
+  Eigen::MatrixXd P = Eigen::MatrixXd::Zero(nk + ni, 2 * n);
+  for (Eigen::Index j = 0; j < nk; ++j) P(j, q_kept[static_cast<std::size_t>(j)]) = 1;
+  for (Eigen::Index j = 0; j < ni; ++j) P(nk + j, n + v_independent[static_cast<std::size_t>(j)]) = 1;
+  Eigen::MatrixXd A = P * A_full * T, B = P * B_full;
+
+  // cyclic: a kept coordinate nothing else in the reduced model depends on. Dropping one can
+  // free another (the rolling coin's heading moves only x and y), so this runs to a fixed point
+  std::vector<bool> keep(static_cast<std::size_t>(nk + ni), true);
+  const double scale = std::max(1.0, A.cwiseAbs().maxCoeff());
+  for (bool changed = options.drop_cyclic; changed;) {
+    changed = false;
+    for (Eigen::Index j = 0; j < nk; ++j) {
+      if (!keep[static_cast<std::size_t>(j)]) continue;
+      double largest = 0;
+      for (Eigen::Index i = 0; i < nk + ni; ++i)
+        if (keep[static_cast<std::size_t>(i)]) largest = std::max(largest, std::abs(A(i, j)));
+      if (largest <= 1e-12 * scale) keep[static_cast<std::size_t>(j)] = false, changed = true;
+    }
+  }
+  std::vector<Eigen::Index> rows;
+  for (Eigen::Index j = 0; j < nk; ++j) {
+    const std::string& name = vars.coordinates()[static_cast<std::size_t>(q_kept[static_cast<std::size_t>(j)])].name;
+    if (keep[static_cast<std::size_t>(j)]) {
+      rows.push_back(j);
+      lin.state_names.push_back(name);
+    } else {
+      lin.dropped.push_back(name);
+    }
+  }
+  for (Eigen::Index j = 0; j < ni; ++j) {
+    rows.push_back(nk + j);
+    lin.state_names.push_back(vars.coordinates()[static_cast<std::size_t>(v_independent[static_cast<std::size_t>(j)])].name + "_dot");
+  }
+  for (Eigen::Index i : q_dependent) lin.dependent.push_back(vars.coordinates()[static_cast<std::size_t>(i)].name);
+  for (Eigen::Index i : v_dependent) lin.dependent.push_back(vars.coordinates()[static_cast<std::size_t>(i)].name + "_dot");
+  const Eigen::Index ns = static_cast<Eigen::Index>(rows.size());
+  lin.A.resize(ns, ns);
+  lin.B.resize(ns, nu);
+  for (Eigen::Index i = 0; i < ns; ++i) {
+    for (Eigen::Index j = 0; j < ns; ++j) lin.A(i, j) = A(rows[static_cast<std::size_t>(i)], rows[static_cast<std::size_t>(j)]);
+    lin.B.row(i) = B.row(rows[static_cast<std::size_t>(i)]);
+  }
+}
+
+}  // namespace
 
 LinearModel linearize(const Model& model, const EquationsOfMotion& eom, const SymbolicLinearization& symbolic,
                       const NamedValues& point, const LinearizeOptions& options) {
   const Variables& vars = model.system.variables();
   const std::size_t n = vars.coordinates().size(), nu = vars.inputs().size();
-  const NumericEquations at = evaluate_equations(model, eom, point);
   LinearModel lin;
+  for (const Input& u : vars.inputs()) lin.input_names.push_back(u.name);
+  if (eom.constraint_count > 0) {
+    linearize_constrained(model, eom, symbolic, point, options, lin);
+    for (Eigen::MatrixXd* m : {&lin.A, &lin.B}) *m = m->unaryExpr([](double v) { return v == 0 ? 0.0 : v; });
+    return lin;
+  }
+  const NumericEquations at = evaluate_equations(model, eom, point);
   lin.M = at.mass_matrix;
   const Eigen::LLT<Eigen::MatrixXd> llt(lin.M);
   if (llt.info() != Eigen::Success || !(llt.rcond() > 1e-13))
@@ -166,7 +354,6 @@ LinearModel linearize(const Model& model, const EquationsOfMotion& eom, const Sy
   }
   for (std::size_t k : kept) lin.state_names.push_back(vars.coordinates()[k].name);
   for (const Coordinate& c : vars.coordinates()) lin.state_names.push_back(c.name + "_dot");
-  for (const Input& u : vars.inputs()) lin.input_names.push_back(u.name);
 
   // dq' = dqd for the kept coordinates; M dqdd = -K dq - D dqd + B_u du
   const std::size_t nk = kept.size();

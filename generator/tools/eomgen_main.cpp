@@ -348,7 +348,7 @@ void run_linearize(const Options& o) {
   const eomgen::LinearModel lin = eomgen::linearize(model, eom, symbolic, values, options);
   // an operating point whose accelerations are not zero is a point of a trajectory: A is
   // still its linearization, but the stability theorems are about equilibria
-  const double scale = std::max(1.0, lin.M.cwiseAbs().maxCoeff());
+  const double scale = std::max(1.0, lin.A.cwiseAbs().maxCoeff());
   const bool equilibrium = lin.qdd0.cwiseAbs().maxCoeff() <= 1e-9 * scale;
   std::vector<std::string> point;
   for (const auto& [name, value] : values) point.push_back(fmt::format("{} = {}", name, number(value)));
@@ -356,8 +356,9 @@ void run_linearize(const Options& o) {
   if (o.format == "latex") {
     std::cout << fmt::format("% linearization of {} about {}\n", model.name, join(point));
     std::cout << "A = " << latex_matrix(lin.A) << "\n\nB = " << latex_matrix(lin.B) << "\n\n";
-    std::cout << "M = " << latex_matrix(lin.M) << "\n\nD = " << latex_matrix(lin.D) << "\n\nK = "
-              << latex_matrix(lin.K) << "\n\nB_u = " << latex_matrix(lin.B_u) << "\n";
+    if (lin.M.size() > 0)
+      std::cout << "M = " << latex_matrix(lin.M) << "\n\nD = " << latex_matrix(lin.D) << "\n\nK = "
+                << latex_matrix(lin.K) << "\n\nB_u = " << latex_matrix(lin.B_u) << "\n";
     return;
   }
   std::cout << fmt::format("Linearization of {} about {} (others 0, parameters at their defaults)\n", model.name,
@@ -368,14 +369,20 @@ void run_linearize(const Options& o) {
     return join(a);
   }(), equilibrium ? " (an equilibrium or steady motion)" : " (not an equilibrium: A linearizes about a point of a trajectory)");
   std::cout << fmt::format("State kept: [{}]; dropped as cyclic: {}\n", join(lin.state_names), join(lin.dropped));
+  if (!lin.dependent.empty())
+    std::cout << fmt::format("Determined by the constraints (not states): {}\n", join(lin.dependent));
   std::cout << fmt::format("Inputs: [{}]\n\n", join(lin.input_names));
   print_matrix("A", lin.A);
   print_matrix("B", lin.B);
-  std::cout << "\nSecond-order form M dqdd + D dqd + K dq = B_u du (all coordinates):\n";
-  print_matrix("M", lin.M);
-  print_matrix("D (damping and gyroscopic)", lin.D);
-  print_matrix("K (stiffness)", lin.K);
-  print_matrix("B_u", lin.B_u);
+  if (lin.M.size() > 0) {
+    std::cout << "\nSecond-order form M dqdd + D dqd + K dq = B_u du (all coordinates):\n";
+    print_matrix("M", lin.M);
+    print_matrix("D (damping and gyroscopic)", lin.D);
+    print_matrix("K (stiffness)", lin.K);
+    print_matrix("B_u", lin.B_u);
+  } else {
+    std::cout << "\nSecond-order form: none (a constrained model's linear model is in independent states)\n";
+  }
   const eomgen::StabilityReport report = eomgen::assess_stability(lin.A);
   std::vector<std::string> eig;
   for (Eigen::Index i = 0; i < report.eigenvalues.size(); ++i) eig.push_back(complex_number(report.eigenvalues(i)));

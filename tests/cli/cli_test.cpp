@@ -279,10 +279,15 @@ TEST_F(Cli, LinearizePrintsTheMatricesEigenvaluesAndVerdicts) {
   const Outcome cart = eomgen("linearize " + quote(std::string(EOMGEN_SOURCE_DIR) + "/models/cart_pole.eom") +
                               " --drop-cyclic");
   EXPECT_THAT(cart.out, HasSubstr("dropped as cyclic: x"));
-  const Outcome constrained =
-      eomgen("linearize " + quote(std::string(EOMGEN_SOURCE_DIR) + "/models/cartesian_pendulum.eom"));
-  EXPECT_EQ(constrained.status, 1);
-  EXPECT_THAT(constrained.err, HasSubstr("constraints are not supported yet"));
+  const std::string cartesian = quote(std::string(EOMGEN_SOURCE_DIR) + "/models/cartesian_pendulum.eom");
+  const Outcome constrained = eomgen("linearize " + cartesian + " --at y=-0.5");
+  ASSERT_EQ(constrained.status, 0) << constrained.err;
+  EXPECT_THAT(constrained.out, HasSubstr("State kept: [x, x_dot]"));
+  EXPECT_THAT(constrained.out, HasSubstr("Determined by the constraints (not states): y, y_dot"));
+  EXPECT_THAT(constrained.out, HasSubstr("Second-order form: none"));
+  const Outcome off = eomgen("linearize " + cartesian);  // the bob on the pivot: off the rod
+  EXPECT_EQ(off.status, 1);
+  EXPECT_THAT(off.err, HasSubstr("violates the constraints"));
   EXPECT_EQ(eomgen("linearize " + pendulum + " --at nope=1").status, 1);
 }
 

@@ -194,14 +194,51 @@ TEST(Linearization, EqualsTheJacobianOfTheNonlinearRightHandSideAwayFromEquilibr
   EXPECT_TRUE(matrices_near(lin.A, J, 1e-7));
 }
 
-TEST(Linearization, ConstrainedModelsAreRejectedWithAClearMessage) {
-  const Model model = shipped("cartesian_pendulum");
+// x = l sin(theta) with y dependent: about the bottom, x'' = -(g/l) x exactly as the angle
+// pendulum, with no multiplier and no dependent state left
+TEST(Linearization, CartesianPendulumReducesToTheAnglePendulum) {
+  const Model model = shipped("cartesian_pendulum");  // l = 0.5
+  const LinearModel lin = linearize_at(model, {{"y", -0.5}});
+  EXPECT_EQ(lin.state_names, (std::vector<std::string>{"x", "x_dot"}));
+  EXPECT_EQ(lin.dependent, (std::vector<std::string>{"y", "y_dot"}));
+  Eigen::MatrixXd A(2, 2);
+  A << 0, 1, -9.81 / 0.5, 0;
+  EXPECT_TRUE(matrices_near(lin.A, A, 1e-12));
+  const StabilityReport report = assess_stability(lin.A);
+  EXPECT_NEAR(report.eigenvalues(0).imag(), std::sqrt(9.81 / 0.5), 1e-12);
+  EXPECT_THROW(linearize_at(model, {}), Error);  // (0, 0) is off the constraint
+}
+
+// Rolling upright and straight at speed v = r w, a thin disk's lean obeys (Euler's equations
+// about the centre, the contact force from Newton's law for the centre)
+//   (B + m r^2) theta_ddot = m g r theta - (A + m r^2) w psi_dot,   B psi_ddot = A w theta_dot,
+// A = m r^2 / 2, B = m r^2 / 4, the spin constant: besides zeros, s^2 = (4/5)(g/r - 3 w^2):
+// unstable below v_c = sqrt(g r / 3), oscillating above it
+TEST(Linearization, RollingCoinUprightIsStableExactlyAboveTheCriticalSpeed) {
+  const Model model = shipped("rolling_coin");  // r = 12.9 mm, g = 9.81
+  const double r = 12.9e-3, g = 9.81;
+  const double v_critical = std::sqrt(g * r / 3);
   const EquationsOfMotion eom = derive_equations(model);
-  try {
-    linearize_symbolic(model, eom);
-    ADD_FAILURE() << "expected a DerivationError";
-  } catch (const DerivationError& e) {
-    EXPECT_NE(std::string(e.what()).find("constraints are not supported yet"), std::string::npos) << e.what();
+  const SymbolicLinearization symbolic = linearize_symbolic(model, eom);
+  LinearizeOptions drop;
+  drop.drop_cyclic = true;
+  for (const double factor : {0.9, 1.1, 2.0}) {
+    SCOPED_TRACE(factor);
+    const double w = factor * v_critical / r;
+    // rolling along -a.2 (psi = 0): y_dot = -r w
+    const LinearModel lin = linearize(model, eom, symbolic, {{"phi_dot", w}, {"y_dot", -r * w}}, drop);
+    EXPECT_EQ(lin.state_names, (std::vector<std::string>{"theta", "psi_dot", "theta_dot", "phi_dot"}));
+    EXPECT_EQ(lin.dropped, (std::vector<std::string>{"x", "y", "psi", "phi"}));
+    EXPECT_LT(lin.qdd0.norm(), 1e-9);
+    const StabilityReport report = assess_stability(lin.A);
+    const std::complex<double> s = std::sqrt(std::complex<double>(0.8 * (g / r - 3 * w * w)));
+    for (const std::complex<double> expected : {s, -s}) {
+      double nearest = 1e300;
+      for (Eigen::Index i = 0; i < report.eigenvalues.size(); ++i)
+        nearest = std::min(nearest, std::abs(report.eigenvalues(i) - expected));
+      EXPECT_LT(nearest, 1e-6 * std::abs(s)) << expected;
+    }
+    EXPECT_EQ(report.nonlinear, factor < 1 ? LyapunovVerdict::unstable : LyapunovVerdict::no_conclusion);
   }
 }
 
