@@ -371,6 +371,84 @@ LinearModel linearize(const Model& model, const EquationsOfMotion& eom, const Sy
   return lin;
 }
 
+Equilibrium find_equilibrium(const Model& model, const EquationsOfMotion& eom, const SymbolicLinearization& symbolic,
+                             const NamedValues& guess, int max_iterations) {
+  const Variables& vars = model.system.variables();
+  const Eigen::Index n = static_cast<Eigen::Index>(vars.coordinates().size());
+  const Eigen::Index m = static_cast<Eigen::Index>(eom.constraint_count);
+  std::vector<Eigen::Index> holonomic_rows;
+  for (Eigen::Index r = 0; r < m; ++r)
+    if (model.system.constraints()[static_cast<std::size_t>(r)].kind == Constraint::Kind::holonomic)
+      holonomic_rows.push_back(r);
+  const Eigen::Index nh = static_cast<Eigen::Index>(holonomic_rows.size());
+
+  Equilibrium eq;
+  eq.point = guess;
+  const auto set_q = [&](const Eigen::VectorXd& q) {
+    for (Eigen::Index j = 0; j < n; ++j) eq.point[vars.coordinates()[static_cast<std::size_t>(j)].name] = q(j);
+  };
+  Eigen::VectorXd q(n);
+  for (Eigen::Index j = 0; j < n; ++j) {
+    const auto it = guess.find(vars.coordinates()[static_cast<std::size_t>(j)].name);
+    q(j) = it == guess.end() ? 0.0 : it->second;
+  }
+  // residual [F + Xi^T lambda; phi] at q, with lambda the least-squares fit when asked for
+  const auto residual = [&](const Eigen::VectorXd& at_q, Eigen::VectorXd& lambda, bool fit_lambda, NumericEquations& e) {
+    set_q(at_q);
+    e = evaluate_equations(model, eom, eq.point);
+    if (fit_lambda && m > 0)
+      lambda = e.constraint_jacobian.transpose().completeOrthogonalDecomposition().solve(-e.forcing);
+    Eigen::VectorXd r(n + nh);
+    r.head(n) = e.forcing + e.constraint_jacobian.transpose() * lambda;
+    r.tail(nh) = e.holonomic_residuals;
+    return r;
+  };
+  eq.lambda = Eigen::VectorXd::Zero(m);
+  NumericEquations e;
+  Eigen::VectorXd r = residual(q, eq.lambda, true, e);
+  const double tolerance = 1e-12 * std::max(1.0, r.cwiseAbs().maxCoeff());
+  for (; eq.iterations < max_iterations; ++eq.iterations) {
+    if (r.cwiseAbs().maxCoeff() <= tolerance) break;
+    GiNaC::exmap values = eom.subexpressions.evaluate_all(numeric_substitution(model, eq.point));
+    for (const Coordinate& c : vars.coordinates()) values[c.qdd] = 0.0;
+    for (Eigen::Index k = 0; k < m; ++k) values[symbolic.lambda[static_cast<std::size_t>(k)]] = eq.lambda(k);
+    values = symbolic.derivatives.evaluate_all(values);
+    const Eigen::MatrixXd K = numeric(symbolic.K, values, "K");
+    // d(F + Xi^T lambda)/dq = -K (K = dR/dq with R = M qdd - F - Xi^T lambda, qdd = 0)
+    Eigen::MatrixXd J = Eigen::MatrixXd::Zero(n + nh, n + m);
+    J.topLeftCorner(n, n) = -K;
+    J.topRightCorner(n, m) = e.constraint_jacobian.transpose();
+    for (Eigen::Index i = 0; i < nh; ++i) J.row(n + i).head(n) = e.constraint_jacobian.row(holonomic_rows[static_cast<std::size_t>(i)]);
+    const Eigen::VectorXd step = -J.completeOrthogonalDecomposition().solve(r);
+    // halve the step until the residual falls (Newton's full step can overshoot far from home)
+    double scale = 1;
+    Eigen::VectorXd q_next, lambda_next, r_next;
+    NumericEquations e_next;
+    for (int halvings = 0; halvings < 30; ++halvings, scale /= 2) {
+      q_next = q + scale * step.head(n);
+      lambda_next = eq.lambda + scale * step.tail(m);
+      try {
+        r_next = residual(q_next, lambda_next, false, e_next);
+      } catch (const Error&) {
+        continue;  // a pole of the model: shorter
+      }
+      if (r_next.cwiseAbs().maxCoeff() < r.cwiseAbs().maxCoeff()) break;
+    }
+    if (!(r_next.size() == r.size() && r_next.cwiseAbs().maxCoeff() < r.cwiseAbs().maxCoeff())) break;
+    q = q_next;
+    eq.lambda = lambda_next;
+    r = r_next;
+    e = e_next;
+  }
+  set_q(q);
+  eq.residual = r.cwiseAbs().maxCoeff();
+  if (!(eq.residual <= tolerance))
+    throw Error(fmt::format("finding an equilibrium of {}: Newton's method stopped after {} iterations with "
+                            "residual {:.3g}; try another guess",
+                            model.name, eq.iterations, eq.residual));
+  return eq;
+}
+
 StabilityReport assess_stability(const Eigen::MatrixXd& A, double tolerance) {
   StabilityReport report;
   const Eigen::EigenSolver<Eigen::MatrixXd> solver(A, false);

@@ -55,6 +55,7 @@ struct Options {
   bool no_cse = false;
   // linearize
   bool drop_cyclic = false;
+  bool find_equilibrium = false;
   // simulate
   eomgen::tools::SimulateRequest simulate;
   std::vector<std::string> init, inputs;
@@ -345,13 +346,23 @@ void run_linearize(const Options& o) {
   const eomgen::SymbolicLinearization symbolic = eomgen::linearize_symbolic(model, eom);
   eomgen::LinearizeOptions options;
   options.drop_cyclic = o.drop_cyclic;
-  const eomgen::LinearModel lin = eomgen::linearize(model, eom, symbolic, values, options);
+  eomgen::NamedValues at = values;
+  std::string found;
+  if (o.find_equilibrium) {
+    const eomgen::Equilibrium eq = eomgen::find_equilibrium(model, eom, symbolic, values);
+    at = eq.point;
+    std::vector<std::string> q;
+    for (const auto& c : model.system.variables().coordinates()) q.push_back(fmt::format("{} = {}", c.name, number(at.at(c.name))));
+    found = fmt::format("Equilibrium found from the guess by Newton's method in {} iterations: {} (residual {:.3g})\n",
+                        eq.iterations, join(q), eq.residual);
+  }
+  const eomgen::LinearModel lin = eomgen::linearize(model, eom, symbolic, at, options);
   // an operating point whose accelerations are not zero is a point of a trajectory: A is
   // still its linearization, but the stability theorems are about equilibria
   const double scale = std::max(1.0, lin.A.cwiseAbs().maxCoeff());
   const bool equilibrium = lin.qdd0.cwiseAbs().maxCoeff() <= 1e-9 * scale;
   std::vector<std::string> point;
-  for (const auto& [name, value] : values) point.push_back(fmt::format("{} = {}", name, number(value)));
+  for (const auto& [name, value] : at) point.push_back(fmt::format("{} = {}", name, number(value)));
 
   if (o.format == "latex") {
     std::cout << fmt::format("% linearization of {} about {}\n", model.name, join(point));
@@ -361,6 +372,7 @@ void run_linearize(const Options& o) {
                 << latex_matrix(lin.K) << "\n\nB_u = " << latex_matrix(lin.B_u) << "\n";
     return;
   }
+  std::cout << found;
   std::cout << fmt::format("Linearization of {} about {} (others 0, parameters at their defaults)\n", model.name,
                            point.empty() ? std::string("the origin") : join(point));
   std::cout << fmt::format("Accelerations at the point: [{}]{}\n", [&] {
@@ -474,6 +486,8 @@ int main(int argc, char** argv) {
   linearize->add_option("--set", o.set, "Override a parameter's default: NAME=VALUE (repeatable)")
       ->delimiter(',')
       ->type_name("NAME=VALUE");
+  linearize->add_flag("--equilibrium", o.find_equilibrium,
+                      "Take --at as a guess: find the equilibrium (coordinates; rates held) by Newton's method first");
   linearize->add_flag("--drop-cyclic", o.drop_cyclic, "Leave coordinates that appear nowhere in M and F out of the state");
   linearize->add_option("-f,--format", o.format, "Output format")->check(CLI::IsMember({"text", "latex"}))->capture_default_str();
 

@@ -289,6 +289,11 @@ TEST_F(Cli, LinearizePrintsTheMatricesEigenvaluesAndVerdicts) {
   EXPECT_EQ(off.status, 1);
   EXPECT_THAT(off.err, HasSubstr("violates the constraints"));
   EXPECT_EQ(eomgen("linearize " + pendulum + " --at nope=1").status, 1);
+  const Outcome found = eomgen("linearize " + pendulum + " --at theta=2.9 --equilibrium");
+  ASSERT_EQ(found.status, 0) << found.err;
+  EXPECT_THAT(found.out, HasSubstr("Equilibrium found from the guess by Newton's method in "));
+  EXPECT_THAT(found.out, HasSubstr("theta = 3.14159265358979"));
+  EXPECT_THAT(found.out, HasSubstr("Theorem A.22): unstable"));
 }
 
 }  // namespace

@@ -249,6 +249,30 @@ TEST(Linearization, SingularMassMatrixAtThePointIsAnError) {
   EXPECT_THROW(linearize(model, eom, linearize_symbolic(model, eom), {{"phi_dot", 50.0}}), Error);
 }
 
+TEST(Equilibrium, NewtonFindsTheEquilibriaOfTheShippedModelsFromNearbyGuesses) {
+  const auto solve = [](const std::string& name, const NamedValues& guess) {
+    const Model model = shipped(name);
+    const EquationsOfMotion eom = derive_equations(model);
+    return find_equilibrium(model, eom, linearize_symbolic(model, eom), guess);
+  };
+  // Example A.20: the only real equilibrium of the hardening spring is 0
+  const Equilibrium spring = solve("spring_mass_damper", {{"q", 0.7}});
+  EXPECT_NEAR(spring.point.at("q"), 0.0, 1e-12);
+  EXPECT_GT(spring.iterations, 2);
+  // the pendulum from near the top goes to the top, not the bottom
+  EXPECT_NEAR(solve("simple_pendulum", {{"theta", 2.9}}).point.at("theta"), M_PI, 1e-12);
+  // the cart may stand anywhere: the minimum-norm step leaves it where the guess put it
+  const Equilibrium cart = solve("cart_pole", {{"x", 2.0}, {"theta", 0.3}});
+  EXPECT_NEAR(cart.point.at("theta"), 0.0, 1e-12);
+  EXPECT_NEAR(cart.point.at("x"), 2.0, 1e-12);
+  // the Cartesian pendulum hangs at (0, -l), held by its rod: tension m g = -2 l lambda
+  const Equilibrium hanging = solve("cartesian_pendulum", {{"x", 0.1}, {"y", -0.4}});
+  EXPECT_NEAR(hanging.point.at("x"), 0.0, 1e-12);
+  EXPECT_NEAR(hanging.point.at("y"), -0.5, 1e-12);
+  EXPECT_NEAR(hanging.lambda(0), -1.0 * 9.81 / (2 * 0.5), 1e-10);
+  EXPECT_THROW(solve("knife_edge", {{"x_dot", 1.0}, {"tau", 1.0}}), Error);  // a steady torque: no equilibrium
+}
+
 TEST(Stability, RepeatedEigenvalueWithoutEnoughEigenvectorsIsUnstableForTheLinearSystem) {
   Eigen::MatrixXd double_integrator(2, 2);
   double_integrator << 0, 1, 0, 0;  // a Jordan block at 0: x = x0 + v0 t grows

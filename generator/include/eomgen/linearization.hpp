@@ -85,6 +85,24 @@ struct LinearizeOptions {
 LinearModel linearize(const Model& model, const EquationsOfMotion& eom, const SymbolicLinearization& symbolic,
                       const NamedValues& point, const LinearizeOptions& options = {});
 
+/// An equilibrium (or steady motion) found by Newton's method.
+struct Equilibrium {
+  NamedValues point;      ///< the guess with its coordinates replaced by the solution
+  Eigen::VectorXd lambda;  ///< multipliers holding it (dim m)
+  double residual = 0;     ///< max |F + Xi^T lambda| and |phi| at the solution
+  int iterations = 0;
+};
+
+/// Solves F(q, qd, u, t) + Xi^T lambda = 0 and phi(q, t) = 0 for q and lambda from the guess
+/// (rates, inputs, t and parameters held at their given values: qd = 0 for a static
+/// equilibrium, constant rates for a steady motion), by Newton's method with the exact
+/// Jacobian [[-K, Xi^T], [Phi, 0]] (K from `symbolic` at qdd = 0), minimum-norm steps where the
+/// equilibria form a family (a cart anywhere on its rail) and halved steps where a full one
+/// does not reduce the residual.
+/// \throws Error if Newton does not converge from the guess
+Equilibrium find_equilibrium(const Model& model, const EquationsOfMotion& eom, const SymbolicLinearization& symbolic,
+                             const NamedValues& guess, int max_iterations = 50);
+
 /// Verdicts on an equilibrium from the eigenvalues of A.
 enum class LinearStability { asymptotically_stable, stable, unstable };      ///< Theorem A.21 (the linear system)
 enum class LyapunovVerdict { asymptotically_stable, unstable, no_conclusion };  ///< Theorem A.22 (the nonlinear one)
