@@ -15,9 +15,13 @@
 #include <vector>
 
 #include "eomrt/eomrt.hpp"
+#include "runtime/scalar_types.hpp"
 
 namespace eomrt {
 namespace {
+
+using testing::ScalarName;
+using testing::Scalars;
 
 template <typename Scalar>
 using Vector2 = Eigen::Matrix<Scalar, 2, 1>;
@@ -594,13 +598,6 @@ TEST(DormandPrince, RejectsMisuseBeforeStepping) {
 // the same tests over double and long double (practice 12)
 template <typename Scalar>
 class ScalarTypes : public ::testing::Test {};
-struct ScalarName {
-  template <typename T>
-  static std::string GetName(int) {
-    return std::is_same<T, double>::value ? "double" : "long_double";
-  }
-};
-using Scalars = ::testing::Types<double, long double>;
 TYPED_TEST_SUITE(ScalarTypes, Scalars, ScalarName);
 
 TYPED_TEST(ScalarTypes, ReachesToleranceNearTheScalarsOwnPrecision) {

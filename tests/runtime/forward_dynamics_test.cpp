@@ -11,10 +11,14 @@
 #include <stdexcept>
 
 #include "eomrt/eomrt.hpp"
+#include "runtime/scalar_types.hpp"
 #include "runtime/handwritten_models.hpp"
 
 namespace eomrt {
 namespace {
+
+using testing::ScalarName;
+using testing::Scalars;
 
 using testing::CartesianPendulum;
 using testing::Oscillator;
@@ -47,8 +51,7 @@ void pendulum_state(Scalar theta, Scalar theta_dot, const typename PendulumTypes
 
 template <class Scalar>
 class ForwardDynamicsOverScalars : public ::testing::Test {};
-using Scalars = ::testing::Types<double, long double>;
-TYPED_TEST_SUITE(ForwardDynamicsOverScalars, Scalars);
+TYPED_TEST_SUITE(ForwardDynamicsOverScalars, Scalars, ScalarName);
 
 // theta'' = -g/l sin(theta); the rod tension m (g cos(theta) + l theta'^2) pulls the bob to
 // the pivot, and Xi^T lambda = 2 lambda (x, y) is that force, so lambda = -tension / (2 l)

@@ -14,9 +14,13 @@
 #include <vector>
 
 #include "eomrt/eomrt.hpp"
+#include "runtime/scalar_types.hpp"
 
 namespace eomrt {
 namespace {
+
+using testing::ScalarName;
+using testing::Scalars;
 
 template <std::size_t S>
 long double sum(const Coefficient (&v)[S]) {
@@ -147,13 +151,6 @@ TEST(RkWorkspace, RejectsDimensionDifferentFromFixedSize) {
 // the same tests over double and long double (practice 12)
 template <typename Scalar>
 class Exactness : public ::testing::Test {};
-struct ScalarName {
-  template <typename T>
-  static std::string GetName(int) {
-    return std::is_same<T, double>::value ? "double" : "long_double";
-  }
-};
-using Scalars = ::testing::Types<double, long double>;
 TYPED_TEST_SUITE(Exactness, Scalars, ScalarName);
 
 TYPED_TEST(Exactness, Rk4IntegratesCubicInTimeToRounding) {

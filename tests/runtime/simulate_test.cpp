@@ -11,11 +11,15 @@
 #include <vector>
 
 #include "eomrt/eomrt.hpp"
+#include "runtime/scalar_types.hpp"
 #include "eomrt/simulate.hpp"
 #include "runtime/handwritten_models.hpp"
 
 namespace eomrt {
 namespace {
+
+using testing::ScalarName;
+using testing::Scalars;
 
 using testing::BlowUp;
 using testing::CartesianPendulum;
@@ -148,8 +152,7 @@ TEST(Simulate, ProjectionPutsTheInitialStateOnTheConstraints) {
 
 template <class Scalar>
 class SimulateOverScalars : public ::testing::Test {};
-using Scalars = ::testing::Types<double, long double>;
-TYPED_TEST_SUITE(SimulateOverScalars, Scalars);
+TYPED_TEST_SUITE(SimulateOverScalars, Scalars, ScalarName);
 
 // energy of the Cartesian pendulum over 5 s at a tolerance near each type's precision
 TYPED_TEST(SimulateOverScalars, ConservesEnergyToTheScalarsPrecision) {
