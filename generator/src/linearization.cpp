@@ -52,21 +52,27 @@ class ChainRule {
   std::vector<std::vector<ex>> derivative_;
 };
 
-double real_value(const ex& e, const GiNaC::exmap& values, const std::string& what) {
-  const ex v = e.subs(values, GiNaC::subs_options::no_pattern).evalf();
-  if (!GiNaC::is_a<GiNaC::numeric>(v) || !ex_to<GiNaC::numeric>(v).is_real())
-    throw Error(fmt::format("linearizing: {} is not a real number at the operating point", what));
-  const double d = ex_to<GiNaC::numeric>(v).to_double();
-  if (!std::isfinite(d)) throw Error(fmt::format("linearizing: {} is not finite at the operating point", what));
-  return d;
+/// The holonomic constraints' rows of Xi, in order.
+std::vector<Eigen::Index> holonomic_rows_of(const Model& model) {
+  std::vector<Eigen::Index> rows;
+  const auto& constraints = model.system.constraints();
+  for (std::size_t r = 0; r < constraints.size(); ++r)
+    if (constraints[r].kind == Constraint::Kind::holonomic) rows.push_back(static_cast<Eigen::Index>(r));
+  return rows;
 }
 
-Eigen::MatrixXd numeric(const GiNaC::matrix& m, const GiNaC::exmap& values, const std::string& name) {
-  Eigen::MatrixXd out(m.rows(), m.cols());
-  for (unsigned i = 0; i < m.rows(); ++i)
-    for (unsigned j = 0; j < m.cols(); ++j)
-      out(i, j) = real_value(m(i, j), values, fmt::format("{}({}, {})", name, i, j));
-  return out;
+/// An evaluator at the state `point` that also knows the accelerations and multipliers the
+/// derivatives were taken at, and every derivative intermediate: the terms of `symbolic` can
+/// then be evaluated in doubles (a pole becomes inf and a clear Error, not a GiNaC exception).
+DoubleEvaluator terms_at(const Model& model, const EquationsOfMotion& eom, const SymbolicLinearization& symbolic,
+                         const NamedValues& point, const Eigen::VectorXd& qdd, const Eigen::VectorXd& lambda) {
+  DoubleEvaluator eval = evaluator_at(model, eom, point);
+  const auto& coordinates = model.system.variables().coordinates();
+  for (std::size_t j = 0; j < coordinates.size(); ++j) eval.set(coordinates[j].qdd, qdd(static_cast<Eigen::Index>(j)));
+  for (std::size_t r = 0; r < symbolic.lambda.size(); ++r) eval.set(symbolic.lambda[r], lambda(static_cast<Eigen::Index>(r)));
+  for (const auto& d : symbolic.derivatives.definitions())
+    eval.set(d.symbol, eval.value(d.value, "derivative " + d.symbol.get_name()));
+  return eval;
 }
 
 /// A coordinate can cancel out of M and F only through identities GiNaC does not apply
@@ -89,15 +95,14 @@ void mark_cyclic_by_evaluation(const Model& model, const EquationsOfMotion& eom,
     NamedValues at{{"t", time(rng)}};
     for (const Coordinate& c : vars.coordinates()) at[c.name] = value(rng), at[c.name + "_dot"] = value(rng);
     for (const Input& u : vars.inputs()) at[u.name] = value(rng);
+    Eigen::VectorXd qdd(static_cast<Eigen::Index>(n));
+    for (Eigen::Index j = 0; j < qdd.size(); ++j) qdd(j) = value(rng);
     try {
-      GiNaC::exmap values = eom.subexpressions.evaluate_all(numeric_substitution(model, at));
-      for (const Coordinate& c : vars.coordinates()) values[c.qdd] = value(rng);
-      values = lin.derivatives.evaluate_all(values);
-      const Eigen::MatrixXd K = numeric(lin.K, values, "K");
+      const Eigen::MatrixXd K = evaluate_matrix(lin.K, terms_at(model, eom, lin, at, qdd, Eigen::VectorXd()), "K");
       const double scale = 1 + K.cwiseAbs().maxCoeff();
       for (std::size_t k : candidates) vanishes[k] = vanishes[k] && K.col(static_cast<Eigen::Index>(k)).cwiseAbs().maxCoeff() <= 1e-12 * scale;
       ++points;
-    } catch (const std::exception&) {
+    } catch (const Error&) {
       // a singular state (a pole of the model): try another
     }
   }
@@ -204,14 +209,12 @@ void linearize_constrained(const Model& model, const EquationsOfMotion& eom, con
   const AccelerationSolution solution = solve_accelerations(at);
   lin.qdd0 = solution.qdd;
 
-  GiNaC::exmap values = eom.subexpressions.evaluate_all(numeric_substitution(model, point));
-  for (Eigen::Index j = 0; j < n; ++j) values[vars.coordinates()[static_cast<std::size_t>(j)].qdd] = lin.qdd0(j);
-  for (Eigen::Index r = 0; r < m; ++r) values[symbolic.lambda[static_cast<std::size_t>(r)]] = solution.lambda(r);
-  values = symbolic.derivatives.evaluate_all(values);
-  const Eigen::MatrixXd K = numeric(symbolic.K, values, "K"), D = numeric(symbolic.D, values, "D");
-  const Eigen::MatrixXd B_u = numeric(symbolic.B_u, values, "B_u");
-  const Eigen::MatrixXd S_q = numeric(symbolic.S_q, values, "S_q"), S_qd = numeric(symbolic.S_qd, values, "S_qd");
-  const Eigen::MatrixXd C_q = numeric(symbolic.C_q, values, "C_q");
+  const DoubleEvaluator eval = terms_at(model, eom, symbolic, point, lin.qdd0, solution.lambda);
+  const Eigen::MatrixXd K = evaluate_matrix(symbolic.K, eval, "K"), D = evaluate_matrix(symbolic.D, eval, "D");
+  const Eigen::MatrixXd B_u = evaluate_matrix(symbolic.B_u, eval, "B_u");
+  const Eigen::MatrixXd S_q = evaluate_matrix(symbolic.S_q, eval, "S_q");
+  const Eigen::MatrixXd S_qd = evaluate_matrix(symbolic.S_qd, eval, "S_qd");
+  const Eigen::MatrixXd C_q = evaluate_matrix(symbolic.C_q, eval, "C_q");
 
   // d[qdd; lambda]/dv = -J^{-1} d[R; S]/dv with J = [[M, -Xi^T], [Xi, 0]]
   Eigen::MatrixXd J = Eigen::MatrixXd::Zero(n + m, n + m);
@@ -230,10 +233,7 @@ void linearize_constrained(const Model& model, const EquationsOfMotion& eom, con
   B_full.bottomRows(n) = dqdd.rightCols(nu);
 
   // dependent coordinates: one per holonomic constraint, where its gradient is best conditioned
-  std::vector<Eigen::Index> holonomic_rows;
-  for (Eigen::Index r = 0; r < m; ++r)
-    if (model.system.constraints()[static_cast<std::size_t>(r)].kind == Constraint::Kind::holonomic)
-      holonomic_rows.push_back(r);
+  const std::vector<Eigen::Index> holonomic_rows = holonomic_rows_of(model);
   const Eigen::Index nh = static_cast<Eigen::Index>(holonomic_rows.size());
   Eigen::MatrixXd Phi(nh, n);
   for (Eigen::Index r = 0; r < nh; ++r) Phi.row(r) = Xi.row(holonomic_rows[static_cast<std::size_t>(r)]);
@@ -338,12 +338,10 @@ LinearModel linearize(const Model& model, const EquationsOfMotion& eom, const Sy
     throw Error(fmt::format("linearizing {}: the mass matrix is singular at the operating point", model.name));
   lin.qdd0 = llt.solve(at.forcing);
 
-  GiNaC::exmap values = eom.subexpressions.evaluate_all(numeric_substitution(model, point));
-  for (std::size_t j = 0; j < n; ++j) values[vars.coordinates()[j].qdd] = lin.qdd0(j);
-  values = symbolic.derivatives.evaluate_all(values);
-  lin.K = numeric(symbolic.K, values, "K");
-  lin.D = numeric(symbolic.D, values, "D");
-  lin.B_u = numeric(symbolic.B_u, values, "B_u");
+  const DoubleEvaluator eval = terms_at(model, eom, symbolic, point, lin.qdd0, Eigen::VectorXd());
+  lin.K = evaluate_matrix(symbolic.K, eval, "K");
+  lin.D = evaluate_matrix(symbolic.D, eval, "D");
+  lin.B_u = evaluate_matrix(symbolic.B_u, eval, "B_u");
 
   std::vector<std::size_t> kept;
   for (std::size_t k = 0; k < n; ++k) {
@@ -376,10 +374,7 @@ Equilibrium find_equilibrium(const Model& model, const EquationsOfMotion& eom, c
   const Variables& vars = model.system.variables();
   const Eigen::Index n = static_cast<Eigen::Index>(vars.coordinates().size());
   const Eigen::Index m = static_cast<Eigen::Index>(eom.constraint_count);
-  std::vector<Eigen::Index> holonomic_rows;
-  for (Eigen::Index r = 0; r < m; ++r)
-    if (model.system.constraints()[static_cast<std::size_t>(r)].kind == Constraint::Kind::holonomic)
-      holonomic_rows.push_back(r);
+  const std::vector<Eigen::Index> holonomic_rows = holonomic_rows_of(model);
   const Eigen::Index nh = static_cast<Eigen::Index>(holonomic_rows.size());
 
   Equilibrium eq;
@@ -409,11 +404,8 @@ Equilibrium find_equilibrium(const Model& model, const EquationsOfMotion& eom, c
   const double tolerance = 1e-12 * std::max(1.0, r.cwiseAbs().maxCoeff());
   for (; eq.iterations < max_iterations; ++eq.iterations) {
     if (r.cwiseAbs().maxCoeff() <= tolerance) break;
-    GiNaC::exmap values = eom.subexpressions.evaluate_all(numeric_substitution(model, eq.point));
-    for (const Coordinate& c : vars.coordinates()) values[c.qdd] = 0.0;
-    for (Eigen::Index k = 0; k < m; ++k) values[symbolic.lambda[static_cast<std::size_t>(k)]] = eq.lambda(k);
-    values = symbolic.derivatives.evaluate_all(values);
-    const Eigen::MatrixXd K = numeric(symbolic.K, values, "K");
+    const Eigen::MatrixXd K =
+        evaluate_matrix(symbolic.K, terms_at(model, eom, symbolic, eq.point, Eigen::VectorXd::Zero(n), eq.lambda), "K");
     // d(F + Xi^T lambda)/dq = -K (K = dR/dq with R = M qdd - F - Xi^T lambda, qdd = 0)
     Eigen::MatrixXd J = Eigen::MatrixXd::Zero(n + nh, n + m);
     J.topLeftCorner(n, n) = -K;

@@ -22,13 +22,6 @@ std::string join(const std::vector<std::string>& items) {
 }
 
 
-Eigen::MatrixXd evaluate_matrix(const GiNaC::matrix& m, const DoubleEvaluator& eval, const std::string& name) {
-  Eigen::MatrixXd out(m.rows(), m.cols());
-  for (unsigned i = 0; i < m.rows(); ++i)
-    for (unsigned j = 0; j < m.cols(); ++j) out(i, j) = eval.finite(m(i, j), fmt::format("{}[{},{}]", name, i + 1, j + 1));
-  return out;
-}
-
 Eigen::VectorXd evaluate_column(const GiNaC::matrix& m, const DoubleEvaluator& eval, const std::string& name) {
   Eigen::VectorXd out(m.rows());
   for (unsigned i = 0; i < m.rows(); ++i) out(i) = eval.finite(m(i, 0), fmt::format("{}[{}]", name, i + 1));
@@ -68,13 +61,25 @@ GiNaC::exmap numeric_substitution(const Model& model, const NamedValues& values)
   return out;
 }
 
-NumericEquations evaluate_equations(const Model& model, const EquationsOfMotion& eom, const NamedValues& values) {
+Eigen::MatrixXd evaluate_matrix(const GiNaC::matrix& m, const DoubleEvaluator& eval, const std::string& name) {
+  Eigen::MatrixXd out(m.rows(), m.cols());
+  for (unsigned i = 0; i < m.rows(); ++i)
+    for (unsigned j = 0; j < m.cols(); ++j) out(i, j) = eval.finite(m(i, j), fmt::format("{}[{},{}]", name, i + 1, j + 1));
+  return out;
+}
+
+DoubleEvaluator evaluator_at(const Model& model, const EquationsOfMotion& eom, const NamedValues& values) {
   DoubleEvaluator eval;
   for (const auto& [symbol, value] : numeric_substitution(model, values))
     eval.set(symbol, GiNaC::ex_to<GiNaC::numeric>(value).to_double());
   // each intermediate refers only to earlier ones, so one pass in order gives them all
   for (const auto& d : eom.subexpressions.definitions())
     eval.set(d.symbol, eval.value(d.value, "intermediate " + d.symbol.get_name()));
+  return eval;
+}
+
+NumericEquations evaluate_equations(const Model& model, const EquationsOfMotion& eom, const NamedValues& values) {
+  const DoubleEvaluator eval = evaluator_at(model, eom, values);
 
   NumericEquations out;
   out.mass_matrix = evaluate_matrix(eom.mass_matrix, eval, "M");

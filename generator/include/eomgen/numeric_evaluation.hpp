@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "eomgen/double_evaluator.hpp"
 #include "eomgen/equations_of_motion.hpp"
 #include "eomgen/model.hpp"
 
@@ -44,6 +45,15 @@ struct AccelerationSolution {
 /// \throws Error for a name that is not a coordinate, rate, input, parameter or "t"; the
 ///   message lists the accepted names.
 GiNaC::exmap numeric_substitution(const Model& model, const NamedValues& values);
+
+/// A double evaluator holding the state `values` (see numeric_substitution) and every
+/// intermediate of `eom` computed from it, in order.
+/// \throws Error as numeric_substitution does, or for an intermediate that is not real
+DoubleEvaluator evaluator_at(const Model& model, const EquationsOfMotion& eom, const NamedValues& values);
+
+/// Every entry of m as a finite double; `name` names m in messages.
+/// \throws Error for an entry that is not a finite real number
+Eigen::MatrixXd evaluate_matrix(const GiNaC::matrix& m, const DoubleEvaluator& eval, const std::string& name);
 
 /// Evaluates every part of `eom` (derived from model.system) and the model's outputs at the
 /// state `values` (see numeric_substitution).
