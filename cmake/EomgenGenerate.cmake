@@ -1,10 +1,11 @@
-# eomgen_add_model(TARGET name MODEL file.eom [OUTPUT header.hpp] [DEFINE n=8 ...])
+# eomgen_add_model(TARGET name MODEL file.eom [OUTPUT header.hpp] [DEFINE n=8 ...] [LINEARIZATION])
 #
 # Generates a C++ header from a model file at build time and makes `name` an INTERFACE
 # library that carries its include directory (and Eigen). The header is regenerated when
-# the model file or the eomgen generator changes.
+# the model file or the eomgen generator changes. LINEARIZATION also emits linearization()
+# (eomgen generate --linearization).
 function(eomgen_add_model)
-  cmake_parse_arguments(ARG "" "TARGET;MODEL;OUTPUT" "DEFINE" ${ARGN})
+  cmake_parse_arguments(ARG "LINEARIZATION" "TARGET;MODEL;OUTPUT" "DEFINE" ${ARGN})
   if(NOT ARG_TARGET OR NOT ARG_MODEL)
     message(FATAL_ERROR "eomgen_add_model: TARGET and MODEL are required")
   endif()
@@ -19,6 +20,9 @@ function(eomgen_add_model)
   foreach(definition IN LISTS ARG_DEFINE)
     list(APPEND defines --define ${definition})
   endforeach()
+  if(ARG_LINEARIZATION)
+    list(APPEND defines --linearization)
+  endif()
   add_custom_command(
     OUTPUT ${output}
     COMMAND ${CMAKE_COMMAND} -E make_directory ${output_dir}

@@ -3,13 +3,16 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <optional>
 #include <set>
 
 #include "eomgen/content_hash.hpp"
 #include "eomgen/cpp_printer.hpp"
 #include "eomgen/error.hpp"
+#include "eomgen/linearization.hpp"
 #include "eomgen/lower.hpp"
 #include "eomgen/version.hpp"
+#include "linearization_source.hpp"
 
 namespace eomgen {
 namespace {
@@ -43,6 +46,7 @@ struct FunctionSpec {
   std::vector<LoweringTarget> targets;
   std::vector<std::pair<std::string, std::string>> mirrors;  // target = source after the body
   std::string scalar_result;  // name of the scalar result variable, if returns Scalar
+  bool uses_derivatives = false;  // refers to the linearization's derivative intermediates
 };
 
 std::string sanitize_comment(const std::string& text) {
@@ -110,6 +114,13 @@ EmittedModel emit_model(const Model& model, const EquationsOfMotion& eom, const 
   }
   for (std::size_t k = 0; k < vars.inputs().size(); ++k) names[vars.inputs()[k].symbol] = fmt::format("u({})", k);
   for (const Parameter& p : vars.parameters()) names[p.symbol] = "p." + cpp_identifier(p.name);
+  // the linearization's derivatives are taken at given accelerations and multipliers
+  std::optional<SymbolicLinearization> linearization;
+  if (options.linearization) {
+    linearization = linearize_symbolic(model, eom);
+    for (std::size_t k = 0; k < n; ++k) names[vars.coordinates()[k].qdd] = fmt::format("qdd({})", k);
+    for (std::size_t r = 0; r < m; ++r) names[linearization->lambda[r]] = fmt::format("lambda({})", r);
+  }
 
   std::vector<FunctionSpec> functions;
   auto mass_targets = [&](FunctionSpec& f) {
@@ -188,11 +199,40 @@ EmittedModel emit_model(const Model& model, const EquationsOfMotion& eom, const 
     for (std::size_t k = 0; k < ny; ++k) f.targets.push_back({fmt::format("y({})", k), output_component(model, eom, k)});
     functions.push_back(f);
   }
+  if (linearization) {
+    const bool constrained = m > 0;
+    FunctionSpec f{"linearization_terms",
+                   constrained ? "K = dR/dq, D = dR/dqd, B_u = dF/du of R = M qdd - F - Xi^T lambda, and S_q, S_qd of "
+                                 "S = Xi qdd + b, at the given qdd and lambda"
+                               : "K = dR/dq, D = dR/dqd, B_u = dF/du of R = M qdd - F, at the given qdd",
+                   "void",
+                   constrained ? "const Vector<Scalar>& qdd, const ConstraintVector<Scalar>& lambda, MassMatrix<Scalar>& K, "
+                                 "MassMatrix<Scalar>& D, InputMatrix<Scalar>& B_u, ConstraintJacobian<Scalar>& S_q, "
+                                 "ConstraintJacobian<Scalar>& S_qd"
+                               : "const Vector<Scalar>& qdd, MassMatrix<Scalar>& K, MassMatrix<Scalar>& D, "
+                                 "InputMatrix<Scalar>& B_u"};
+    f.needs_qd = f.needs_u = true;
+    f.uses_derivatives = true;
+    auto matrix_targets = [&](const std::string& name, const GiNaC::matrix& a) {
+      for (unsigned i = 0; i < a.rows(); ++i)
+        for (unsigned j = 0; j < a.cols(); ++j) f.targets.push_back({fmt::format("{}({}, {})", name, i, j), a(i, j)});
+    };
+    matrix_targets("K", linearization->K);
+    matrix_targets("D", linearization->D);
+    matrix_targets("B_u", linearization->B_u);
+    if (constrained) {
+      matrix_targets("S_q", linearization->S_q);
+      matrix_targets("S_qd", linearization->S_qd);
+    }
+    functions.push_back(f);
+  }
 
   EmittedModel result;
   std::string body;
   for (FunctionSpec& f : functions) {
-    const ir::Program program = lower(f.targets, eom.subexpressions, names);
+    const ir::Program program =
+        f.uses_derivatives ? lower(f.targets, {&eom.subexpressions, &linearization->derivatives}, names)
+                           : lower(f.targets, eom.subexpressions, names);
     result.statistics.push_back({f.name, ir::count_operations_without_sharing(program), ir::count_operations(program)});
     std::string code;
     if (!f.scalar_result.empty()) code += fmt::format("    Scalar {} = Scalar(0);\n", f.scalar_result);
@@ -228,6 +268,7 @@ EmittedModel emit_model(const Model& model, const EquationsOfMotion& eom, const 
             "    using std::log; using std::abs; using std::pow;\n";
     body += code + "  }\n";
   }
+  if (linearization) body += linearization_source(m > 0);
 
   // metadata
   auto name_list = [](const std::vector<std::string>& items) {
@@ -269,7 +310,9 @@ EmittedModel emit_model(const Model& model, const EquationsOfMotion& eom, const 
                    version, sanitize_comment(options.source_name.empty() ? model.name : options.source_name));
   h += "// Needs only Eigen. Every function is templated on the scalar type, allocates nothing and\n"
        "// does not throw: safe to call from a real-time loop.\n";
-  h += "#pragma once\n\n#include <Eigen/Core>\n\n#include <array>\n#include <cmath>\n\n";
+  h += linearization ? "#pragma once\n\n#include <Eigen/Cholesky>\n#include <Eigen/Core>\n#include <Eigen/LU>\n\n"
+                       "#include <array>\n#include <cmath>\n\n"
+                     : "#pragma once\n\n#include <Eigen/Core>\n\n#include <array>\n#include <cmath>\n\n";
   h += fmt::format("namespace {} {{\nnamespace {} {{\n\n", cpp_identifier(options.outer_namespace), model_name);
   h += "struct Model {\n";
   h += fmt::format("  static constexpr int nq = {};  // coordinates (and rates)\n", n);
@@ -300,7 +343,12 @@ EmittedModel emit_model(const Model& model, const EquationsOfMotion& eom, const 
        "  template <class Scalar> using ConstraintJacobian = Eigen::Matrix<Scalar, nc, nq>;\n"
        "  template <class Scalar> using ConstraintVector = Eigen::Matrix<Scalar, nc, 1>;\n"
        "  template <class Scalar> using HolonomicVector = Eigen::Matrix<Scalar, nh, 1>;\n"
-       "  template <class Scalar> using OutputVector = Eigen::Matrix<Scalar, ny, 1>;\n\n";
+       "  template <class Scalar> using OutputVector = Eigen::Matrix<Scalar, ny, 1>;\n";
+  if (linearization)
+    h += "  template <class Scalar> using InputMatrix = Eigen::Matrix<Scalar, nq, nu>;\n"
+         "  template <class Scalar> using StateMatrix = Eigen::Matrix<Scalar, 2 * nq, 2 * nq>;\n"
+         "  template <class Scalar> using StateInputMatrix = Eigen::Matrix<Scalar, 2 * nq, nu>;\n";
+  h += "\n";
   h += "  /// Parameters, defaulted to the model's values.\n  template <class Scalar>\n  struct Parameters {\n";
   h += parameter_fields;
   h += "    /// The fields in the order of parameter_names, to set parameters by index or name.\n";

@@ -44,8 +44,9 @@ bool commutative(Op op) { return op == Op::add || op == Op::multiply; }
 
 class Lowering {
  public:
-  Lowering(const Subexpressions& z, const VariableNames& variables) : variables_(variables) {
-    for (const auto& d : z.definitions()) definitions_.emplace(d.symbol, d.value);
+  Lowering(const std::vector<const Subexpressions*>& sets, const VariableNames& variables) : variables_(variables) {
+    for (const Subexpressions* z : sets)
+      for (const auto& d : z->definitions()) definitions_.emplace(d.symbol, d.value);
   }
 
   std::size_t node(const ex& e) {
@@ -264,6 +265,11 @@ class Lowering {
 }  // namespace
 
 ir::Program lower(const std::vector<LoweringTarget>& targets, const Subexpressions& subexpressions,
+                  const VariableNames& variables) {
+  return lower(targets, std::vector<const Subexpressions*>{&subexpressions}, variables);
+}
+
+ir::Program lower(const std::vector<LoweringTarget>& targets, const std::vector<const Subexpressions*>& subexpressions,
                   const VariableNames& variables) {
   Lowering lowering(subexpressions, variables);
   std::vector<std::pair<std::string, std::size_t>> outputs;

@@ -53,6 +53,7 @@ struct Options {
   std::string outer_namespace = "eomgen_models";
   bool stats = false;
   bool no_cse = false;
+  bool emit_linearization = false;
   // linearize
   bool drop_cyclic = false;
   bool find_equilibrium = false;
@@ -176,6 +177,7 @@ void run_generate(const Options& o) {
   eomgen::EmitOptions emit;
   emit.outer_namespace = o.outer_namespace;
   emit.share_subexpressions = !o.no_cse;
+  emit.linearization = o.emit_linearization;
   // the file name only: a path would make the header differ between checkouts
   emit.source_name = std::filesystem::path(o.model_path).filename().string();
   const eomgen::EmittedModel emitted = eomgen::emit_model(model, eom, emit);
@@ -476,6 +478,9 @@ int main(int argc, char** argv) {
                      "Write every output as its own expression tree, without shared temporaries (for comparison)");
   generate->add_flag("--stats", o.stats,
                      "Print operation counts per function, without and with shared subexpressions");
+  generate->add_flag("--linearization", o.emit_linearization,
+                     "Also emit linearization(t, q, qd, u, p, A, B) and its terms: A and B about any operating "
+                     "point, from exact derivatives (for gain scheduling)");
 
   CLI::App* linearize = app.add_subcommand(
       "linearize", "Linearize about an operating point: A, B, the second-order form, eigenvalues, stability");

@@ -259,6 +259,25 @@ TEST_F(Cli, EveryShippedModelChecksAndDerivesTheSameBytesEveryRun) {
   }
 }
 
+TEST_F(Cli, GenerateLinearizationAddsTheFunctionsOnlyWhenAsked) {
+  const std::string dp = model("dp.eom", double_pendulum), cp = model("cp.eom", cartesian_pendulum);
+  const Outcome plain = eomgen("generate " + quote(dp));
+  const Outcome linearized = eomgen("generate --linearization " + quote(dp));
+  ASSERT_EQ(linearized.status, 0) << linearized.err;
+  EXPECT_THAT(plain.out, Not(HasSubstr("linearization")));
+  EXPECT_THAT(linearized.out, HasSubstr("static bool linearization("));
+  EXPECT_THAT(linearized.out, HasSubstr("static bool second_order_linearization("));
+  EXPECT_THAT(linearized.out, HasSubstr("static void linearization_terms("));
+  EXPECT_THAT(linearized.out, HasSubstr("#include <Eigen/Cholesky>"));
+  EXPECT_EQ(eomgen("generate --linearization " + quote(dp)).out, linearized.out);  // byte-identical
+  // a constrained model gets the KKT form, with the multipliers among the terms' arguments
+  const Outcome constrained = eomgen("generate --linearization " + quote(cp));
+  ASSERT_EQ(constrained.status, 0) << constrained.err;
+  EXPECT_THAT(constrained.out, HasSubstr("const ConstraintVector<Scalar>& lambda"));
+  EXPECT_THAT(constrained.out, HasSubstr("Eigen::PartialPivLU<Square>"));
+  EXPECT_THAT(constrained.out, Not(HasSubstr("second_order_linearization")));
+}
+
 TEST_F(Cli, LinearizePrintsTheMatricesEigenvaluesAndVerdicts) {
   const std::string pendulum = quote(std::string(EOMGEN_SOURCE_DIR) + "/models/simple_pendulum.eom");
   const Outcome inverted = eomgen("linearize " + pendulum + " --at theta=3.141592653589793");

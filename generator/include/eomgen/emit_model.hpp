@@ -14,6 +14,9 @@ struct EmitOptions {
   std::string source_name;  // file name shown in the banner (sanitized)
   /// false: print every output as its own tree, without shared temporaries (for comparison)
   bool share_subexpressions = true;
+  /// also emit linearization_terms() and linearization(): A and B about any operating point,
+  /// from exact derivatives (for gain scheduling)
+  bool linearization = false;
 };
 
 /// Operation counts of one generated function.

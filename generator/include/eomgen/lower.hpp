@@ -30,4 +30,9 @@ using VariableNames = std::map<GiNaC::ex, std::string, GiNaC::ex_is_less>;
 ir::Program lower(const std::vector<LoweringTarget>& targets, const Subexpressions& subexpressions,
                   const VariableNames& variables);
 
+/// The same over several sets of intermediates (the derivation's, then their derivatives,
+/// which refer to them); symbols must be distinct across the sets.
+ir::Program lower(const std::vector<LoweringTarget>& targets, const std::vector<const Subexpressions*>& subexpressions,
+                  const VariableNames& variables);
+
 }  // namespace eomgen
