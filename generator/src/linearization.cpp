@@ -26,21 +26,34 @@ class ChainRule {
  public:
   ChainRule(const Subexpressions& z, std::vector<ex> variables, Subexpressions& out)
       : variables_(std::move(variables)), out_(out) {
+    for (std::size_t k = 0; k < variables_.size(); ++k) variable_index_.emplace(variables_[k], k);
     const auto& defs = z.definitions();
     for (std::size_t i = 0; i < defs.size(); ++i) index_.emplace(defs[i].symbol, i);
-    derivative_.assign(defs.size(), std::vector<ex>(variables_.size(), 0));
-    for (std::size_t i = 0; i < defs.size(); ++i)
-      for (std::size_t k = 0; k < variables_.size(); ++k) derivative_[i][k] = out_.bind(total(defs[i].value, k));
+    derivative_.reserve(defs.size());
+    for (const auto& d : defs) {
+      std::vector<ex> gradient = total(d.value);
+      for (ex& g : gradient) g = out_.bind(g);
+      derivative_.push_back(std::move(gradient));
+    }
   }
 
-  /// d e / d variable k, e referring to model symbols and intermediates
-  ex total(const ex& e, std::size_t k) const {
-    ex d = e.diff(ex_to<symbol>(variables_[k]));
+  /// d e / d v for every variable v, e referring to model symbols and intermediates. Each
+  /// partial derivative of e is taken once and reused along every variable: differentiating
+  /// a large expression (a row of M qdd - F) is the expensive step, not the accumulation.
+  std::vector<ex> total(const ex& e) const {
+    std::vector<ex> d(variables_.size(), 0);
     for (const ex& s : symbols_of(e)) {
+      if (const auto v = variable_index_.find(s); v != variable_index_.end()) {
+        d[v->second] += e.diff(ex_to<symbol>(s));
+        continue;
+      }
       const auto it = index_.find(s);
       if (it == index_.end()) continue;
-      const ex& dz = derivative_[it->second][k];
-      if (!dz.is_zero()) d += e.diff(ex_to<symbol>(s)) * dz;
+      const std::vector<ex>& dz = derivative_[it->second];
+      if (std::all_of(dz.begin(), dz.end(), [](const ex& x) { return x.is_zero(); })) continue;
+      const ex partial = e.diff(ex_to<symbol>(s));
+      for (std::size_t k = 0; k < dz.size(); ++k)
+        if (!dz[k].is_zero()) d[k] += partial * dz[k];
     }
     return d;
   }
@@ -48,6 +61,7 @@ class ChainRule {
  private:
   std::vector<ex> variables_;
   Subexpressions& out_;
+  std::map<ex, std::size_t, GiNaC::ex_is_less> variable_index_;
   std::map<ex, std::size_t, GiNaC::ex_is_less> index_;
   std::vector<std::vector<ex>> derivative_;
 };
@@ -131,12 +145,13 @@ SymbolicLinearization linearize_symbolic(const Model& model, const EquationsOfMo
     ex residual = -eom.forcing(i, 0);
     for (std::size_t j = 0; j < n; ++j) residual += eom.mass_matrix(i, j) * vars.coordinates()[j].qdd;
     for (std::size_t r = 0; r < m; ++r) residual -= eom.constraint_jacobian(r, i) * lin.lambda[r];
+    const std::vector<ex> gradient = chain.total(residual);
     for (std::size_t k = 0; k < n; ++k) {
-      lin.K(i, k) = lin.derivatives.bind(chain.total(residual, k));
-      lin.D(i, k) = lin.derivatives.bind(chain.total(residual, n + k));
+      lin.K(i, k) = lin.derivatives.bind(gradient[k]);
+      lin.D(i, k) = lin.derivatives.bind(gradient[n + k]);
       if (!lin.K(i, k).is_zero()) lin.cyclic[k] = false;
     }
-    for (std::size_t k = 0; k < nu; ++k) lin.B_u(i, k) = lin.derivatives.bind(-chain.total(residual, 2 * n + k));
+    for (std::size_t k = 0; k < nu; ++k) lin.B_u(i, k) = lin.derivatives.bind(-gradient[2 * n + k]);
   }
   lin.S_q = GiNaC::matrix(m, n);
   lin.S_qd = GiNaC::matrix(m, n);
@@ -147,10 +162,11 @@ SymbolicLinearization linearize_symbolic(const Model& model, const EquationsOfMo
       acceleration += eom.constraint_jacobian(r, j) * vars.coordinates()[j].qdd;
       velocity += eom.constraint_jacobian(r, j) * vars.coordinates()[j].qd;
     }
+    const std::vector<ex> d_acceleration = chain.total(acceleration), d_velocity = chain.total(velocity);
     for (std::size_t k = 0; k < n; ++k) {
-      lin.S_q(r, k) = lin.derivatives.bind(chain.total(acceleration, k));
-      lin.S_qd(r, k) = lin.derivatives.bind(chain.total(acceleration, n + k));
-      lin.C_q(r, k) = lin.derivatives.bind(chain.total(velocity, k));
+      lin.S_q(r, k) = lin.derivatives.bind(d_acceleration[k]);
+      lin.S_qd(r, k) = lin.derivatives.bind(d_acceleration[n + k]);
+      lin.C_q(r, k) = lin.derivatives.bind(d_velocity[k]);
       if (!lin.S_q(r, k).is_zero() || !lin.C_q(r, k).is_zero()) lin.cyclic[k] = false;
     }
   }
