@@ -8,6 +8,9 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <functional>
+#include <sstream>
 
 #include "eomgen/error.hpp"
 
@@ -31,23 +34,60 @@ int create_temporary(const std::string& path, std::string& temporary) {
   }
 }
 
+// The file a rename should replace: a symbolic link is followed, so the link stays and the file
+// it names gets the content (as any program writing through the link would do).
+std::string resolve_links(const std::string& path) {
+  namespace fs = std::filesystem;
+  std::error_code error;
+  if (!fs::is_symlink(fs::symlink_status(path, error))) return path;
+  const fs::path resolved = fs::weakly_canonical(path, error);
+  return error ? path : resolved.string();
+}
+
+// A device, FIFO or socket (`-o /dev/null`, `-o /dev/stdout`, a pipe): renaming a file over it
+// would replace the special file itself, so it is written in place instead; there is nothing
+// to be atomic about for a stream.
+bool is_special(const std::string& path) {
+  namespace fs = std::filesystem;
+  std::error_code error;
+  const fs::file_status status = fs::status(path, error);
+  return !error && fs::exists(status) && !fs::is_regular_file(status) && !fs::is_directory(status);
+}
+
+void write_all(int fd, const char* data, std::size_t size, const std::function<void(const char*)>& fail) {
+  for (std::size_t done = 0; done < size;) {
+    const ssize_t n = ::write(fd, data + done, size - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) fail("write failed");
+    done += static_cast<std::size_t>(n);
+  }
+}
+
+void write_in_place(const std::string& path, const std::string& content) {
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CLOEXEC);
+  if (fd < 0) throw Error(fmt::format("writing '{}': cannot open it: {}", path, std::strerror(errno)));
+  write_all(fd, content.data(), content.size(), [&](const char* what) {
+    const std::string reason = std::strerror(errno);
+    ::close(fd);
+    throw Error(fmt::format("writing '{}': {}: {}", path, what, reason));
+  });
+  if (::close(fd) != 0) throw Error(fmt::format("writing '{}': close failed: {}", path, std::strerror(errno)));
+}
+
 }  // namespace
 
-void write_atomically(const std::string& path, const std::string& content) {
+void write_atomically(const std::string& requested, const std::string& content) {
+  const std::string path = resolve_links(requested);
+  if (is_special(path)) return write_in_place(path, content);
   std::string temporary;
   int fd = create_temporary(path, temporary);
   const auto fail = [&](const std::string& what) {
     const std::string reason = std::strerror(errno);
     if (fd >= 0) ::close(fd);
     ::unlink(temporary.c_str());
-    throw Error(fmt::format("writing '{}': {}: {}", path, what, reason));
+    throw Error(fmt::format("writing '{}': {}: {}", requested, what, reason));
   };
-  for (std::size_t done = 0; done < content.size();) {
-    const ssize_t n = ::write(fd, content.data() + done, content.size() - done);
-    if (n < 0 && errno == EINTR) continue;
-    if (n < 0) fail("write failed");
-    done += static_cast<std::size_t>(n);
-  }
+  write_all(fd, content.data(), content.size(), fail);
   if (::fsync(fd) != 0) fail("fsync failed");
   const int closed = ::close(fd);
   fd = -1;
@@ -55,7 +95,7 @@ void write_atomically(const std::string& path, const std::string& content) {
   if (std::rename(temporary.c_str(), path.c_str()) != 0) fail("cannot replace the file");
 }
 
-PendingFile::PendingFile(std::string target) : target_(std::move(target)) {
+PendingFile::PendingFile(std::string target) : target_(resolve_links(target)) {
   ::close(create_temporary(target_, temporary_));
 }
 
@@ -64,6 +104,15 @@ PendingFile::~PendingFile() {
 }
 
 void PendingFile::commit() {
+  if (is_special(target_)) {
+    std::ifstream in(temporary_, std::ios::binary);
+    std::ostringstream content;
+    content << in.rdbuf();
+    write_in_place(target_, content.str());
+    ::unlink(temporary_.c_str());
+    committed_ = true;
+    return;
+  }
   if (std::rename(temporary_.c_str(), target_.c_str()) != 0)
     throw Error(fmt::format("writing '{}': cannot replace the file: {}", target_, std::strerror(errno)));
   committed_ = true;

@@ -5,7 +5,8 @@
 
 namespace eomgen::tools {
 
-/// Writes `content` to `path` through a temporary file renamed over it.
+/// Writes `content` to `path` through a temporary file renamed over it. A symbolic link is
+/// followed (the link stays); a device or FIFO (/dev/null, a pipe) is written in place.
 /// \throws eomgen::Error if the file cannot be written; the target is then untouched
 void write_atomically(const std::string& path, const std::string& content);
 

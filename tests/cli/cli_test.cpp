@@ -2,6 +2,8 @@
 // checks what a user sees: exit status, standard output and standard error, files written.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <fcntl.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -173,6 +175,34 @@ TEST_F(Cli, OutputFileIsWrittenWholeOrNotAtAll) {
   EXPECT_THAT(to_directory.err, StartsWith("eomgen: error: writing"));
   for (const auto& entry : fs::directory_iterator(dir_ / "work"))
     EXPECT_THAT(entry.path().filename().string(), Not(HasSubstr(".tmp"))) << "left behind";
+}
+
+TEST_F(Cli, OutputThroughASymlinkOrIntoAFifoKeepsThem) {
+  // renaming the finished file over the target would replace a link with a file, and a device
+  // or pipe (-o /dev/null) with a regular file
+  const std::string good = model("dp.eom", double_pendulum);
+  const std::string expected = eomgen("derive " + quote(good)).out;
+  const fs::path file = dir_ / "real.txt", link = dir_ / "link.txt";
+  std::ofstream(file) << "old";
+  fs::create_symlink(file, link);
+  ASSERT_EQ(eomgen("derive " + quote(good) + " -o " + quote(link.string())).status, 0);
+  EXPECT_TRUE(fs::is_symlink(link));
+  EXPECT_EQ(slurp(file), expected);
+
+  // the read end opened first (non-blocking), so eomgen's open for writing succeeds and its few
+  // kilobytes fit the pipe's buffer: no thread, and no hang if the pipe were replaced
+  const fs::path fifo = dir_ / "pipe";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  const int read_end = ::open(fifo.c_str(), O_RDONLY | O_NONBLOCK);
+  ASSERT_GE(read_end, 0);
+  const Outcome piped = eomgen("derive " + quote(good) + " -o " + quote(fifo.string()));
+  std::string received;
+  char buffer[4096];
+  for (ssize_t n; (n = ::read(read_end, buffer, sizeof buffer)) > 0;) received.append(buffer, static_cast<std::size_t>(n));
+  ::close(read_end);
+  EXPECT_EQ(piped.status, 0) << piped.err;
+  EXPECT_EQ(received, expected);
+  EXPECT_EQ(fs::status(fifo).type(), fs::file_type::fifo);
 }
 
 TEST_F(Cli, ModelErrorsExitOneWithFileLineColumn) {
