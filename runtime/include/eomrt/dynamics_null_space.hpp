@@ -128,7 +128,7 @@ DynamicsStatus forward_dynamics_null_space(
     ws.declared_basis_used = declared;
     s.reduced_mass.noalias() = s.upsilon.transpose() * ws.M * s.upsilon;
     s.reduced_llt.compute(s.reduced_mass);
-    if (s.reduced_llt.info() != Eigen::Success || !(s.reduced_llt.rcond() > ws.singular_rcond))
+    if (!cholesky_is_regular(s.reduced_llt, ws.singular_rcond))
       return DynamicsStatus::singular_mass_matrix;
     ws.qdd = ws.F;
     ws.qdd.noalias() -= ws.M * s.particular;

@@ -12,8 +12,8 @@ template <class Model, class Scalar>
 DynamicsStatus solve_mass_matrix(DynamicsWorkspace<Model, Scalar>& ws) {
   ws.mass_llt.compute(ws.M);
   // LLT reports only a non-positive pivot; a tiny positive one (a configuration next to a
-  // singularity, e.g. a gimbal lock) is caught by the condition estimate
-  if (ws.mass_llt.info() != Eigen::Success || !(ws.mass_llt.rcond() > ws.singular_rcond))
+  // singularity, e.g. a gimbal lock) is caught by the pivot ratio
+  if (!cholesky_is_regular(ws.mass_llt, ws.singular_rcond))
     return DynamicsStatus::singular_mass_matrix;
   ws.qdd = ws.mass_llt.solve(ws.F);
   return ws.qdd.allFinite() ? DynamicsStatus::ok : DynamicsStatus::non_finite;

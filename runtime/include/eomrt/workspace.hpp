@@ -20,6 +20,20 @@ struct Baumgarte {
   Scalar beta = 0;   ///< [1/s] natural frequency pulling phi back to zero
 };
 
+/// Whether a Cholesky factorization L L^T of a symmetric matrix is numerically positive
+/// definite: no failed pivot, and (min L_ii / max L_ii)^2 > threshold. That ratio of the
+/// smallest to the largest pivot bounds 1/cond from above and drops to 0 exactly where a
+/// configuration makes M singular (a gimbal lock); it costs O(n), where Eigen's rcond()
+/// estimate costs more than evaluating M and F of a small model.
+template <class Llt, class Scalar>
+bool cholesky_is_regular(const Llt& llt, const Scalar& threshold) {
+  if (llt.info() != Eigen::Success) return false;
+  const auto pivots = llt.matrixLLT().diagonal();
+  if (pivots.size() == 0) return true;
+  const Scalar smallest = pivots.minCoeff(), largest = pivots.maxCoeff();
+  return smallest * smallest > threshold * largest * largest;
+}
+
 namespace detail {
 
 /// Factorizations only a constrained model needs; empty for nc = 0, where Eigen's fixed-size
@@ -80,7 +94,8 @@ struct DynamicsWorkspace {
 
   /// Reciprocal condition number below which a factorization counts as singular. A solve with
   /// a worse conditioned matrix would return digits of noise; failing loudly is the better
-  /// service. 1e3 eps: about 2e-13 in double.
+  /// service. 1e3 eps: about 2e-13 in double. Cholesky factorizations of mass matrices compare
+  /// it with their pivot ratio (see cholesky_is_regular), the others with Eigen's rcond().
   Scalar singular_rcond = Scalar(1000) * std::numeric_limits<Scalar>::epsilon();
 
   DynamicsWorkspace() {
