@@ -289,6 +289,16 @@ TEST_F(Cli, EveryShippedModelChecksAndDerivesTheSameBytesEveryRun) {
   }
 }
 
+TEST_F(Cli, GenerateStatsPrintsOperationCountsAndTimes) {
+  const std::string dp = model("dp.eom", double_pendulum);
+  const Outcome stats = eomgen("generate --stats -o " + quote((dir_ / "dp.hpp").string()) + " " + quote(dp));
+  ASSERT_EQ(stats.status, 0) << stats.err;
+  EXPECT_THAT(stats.out, HasSubstr("mass_matrix_and_forcing"));
+  EXPECT_THAT(stats.out, ::testing::ContainsRegex("time \\[ms\\]: parse [0-9.]+, derive [0-9.]+, emit [0-9.]+\n"));
+  // the header itself does not depend on --stats
+  EXPECT_EQ(slurp(dir_ / "dp.hpp"), eomgen("generate " + quote(dp)).out);
+}
+
 TEST_F(Cli, GenerateLinearizationAddsTheFunctionsOnlyWhenAsked) {
   const std::string dp = model("dp.eom", double_pendulum), cp = model("cp.eom", cartesian_pendulum);
   const Outcome plain = eomgen("generate " + quote(dp));
