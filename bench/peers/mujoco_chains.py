@@ -29,54 +29,43 @@ def r(x):
     return repr(float(x))
 
 
-def planar(n, m=0.5, l=0.3, rd=0.01, g=9.81):
-    # same association as the generated code: 1/12 m (l^2 + 3 rd^2)
-    ia = 0.08333333333333333 * m * (l * l + rd * rd * 3)
-    ib = 0.5 * m * rd * rd
-    out = [f'<mujoco model="planar_chain_{n}">',
+def chain(name, body, n, gravity, offset, joints, inertial):
+    """n nested bodies named body1..bodyn, each hung at `offset` (MJCF vector text) from the
+    one above, with the hinges `joints` [(joint name prefix, axis)] and `inertial` attributes"""
+    out = [f'<mujoco model="{name}_{n}">',
            '  <compiler angle="radian" inertiafromgeom="false"/>',
-           f'  <option timestep="0.001" integrator="RK4" gravity="0 {r(-g)} 0">',
+           f'  <option timestep="0.001" integrator="RK4" gravity="{gravity}">',
            '    <flag contact="disable"/>',
            '  </option>',
            '  <worldbody>']
     ind = '    '
     for i in range(1, n + 1):
-        pos = '0 0 0' if i == 1 else f'0 {r(-l)} 0'
-        out.append(f'{ind}<body name="rod{i}" pos="{pos}">')
-        out.append(f'{ind}  <joint name="q{i}" type="hinge" axis="0 0 1" pos="0 0 0"/>')
-        out.append(f'{ind}  <inertial pos="0 {r(-0.5 * l)} 0" mass="{r(m)}" '
-                   f'diaginertia="{r(ia)} {r(ib)} {r(ia)}"/>')
+        pos = '0 0 0' if i == 1 else offset
+        out.append(f'{ind}<body name="{body}{i}" pos="{pos}">')
+        for joint, axis in joints:
+            out.append(f'{ind}  <joint name="{joint}{i}" type="hinge" axis="{axis}" pos="0 0 0"/>')
+        out.append(f'{ind}  <inertial {inertial}/>')
         ind += '  '
     for i in range(n, 0, -1):
         ind = ind[:-2]
         out.append(f'{ind}</body>')
     out += ['  </worldbody>', '</mujoco>']
     return '\n'.join(out) + '\n'
+
+
+def planar(n, m=0.5, l=0.3, rd=0.01, g=9.81):
+    # same association as the generated code: 1/12 m (l^2 + 3 rd^2)
+    ia = 0.08333333333333333 * m * (l * l + rd * rd * 3)
+    ib = 0.5 * m * rd * rd
+    return chain('planar_chain', 'rod', n, f'0 {r(-g)} 0', f'0 {r(-l)} 0', [('q', '0 0 1')],
+                 f'pos="0 {r(-0.5 * l)} 0" mass="{r(m)}" diaginertia="{r(ia)} {r(ib)} {r(ia)}"')
 
 
 def universal(n, m=1.0, l=0.4, rd=0.02, g=9.81):
     ia = 0.08333333333333333 * m * (l * l + rd * rd * 3)
     ic = 0.5 * m * rd * rd
-    out = [f'<mujoco model="universal_chain_{n}">',
-           '  <compiler angle="radian" inertiafromgeom="false"/>',
-           f'  <option timestep="0.001" integrator="RK4" gravity="0 0 {r(-g)}">',
-           '    <flag contact="disable"/>',
-           '  </option>',
-           '  <worldbody>']
-    ind = '    '
-    for i in range(1, n + 1):
-        pos = '0 0 0' if i == 1 else f'0 0 {r(-l)}'
-        out.append(f'{ind}<body name="link{i}" pos="{pos}">')
-        out.append(f'{ind}  <joint name="alpha{i}" type="hinge" axis="1 0 0" pos="0 0 0"/>')
-        out.append(f'{ind}  <joint name="beta{i}" type="hinge" axis="0 1 0" pos="0 0 0"/>')
-        out.append(f'{ind}  <inertial pos="0 0 {r(-0.5 * l)}" mass="{r(m)}" '
-                   f'diaginertia="{r(ia)} {r(ia)} {r(ic)}"/>')
-        ind += '  '
-    for i in range(n, 0, -1):
-        ind = ind[:-2]
-        out.append(f'{ind}</body>')
-    out += ['  </worldbody>', '</mujoco>']
-    return '\n'.join(out) + '\n'
+    return chain('universal_chain', 'link', n, f'0 0 {r(-g)}', f'0 0 {r(-l)}', [('alpha', '1 0 0'), ('beta', '0 1 0')],
+                 f'pos="0 0 {r(-0.5 * l)}" mass="{r(m)}" diaginertia="{r(ia)} {r(ia)} {r(ic)}"')
 
 
 def main():
