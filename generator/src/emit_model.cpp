@@ -46,7 +46,6 @@ struct FunctionSpec {
   std::vector<LoweringTarget> targets;
   std::vector<std::pair<std::string, std::string>> mirrors;  // target = source after the body
   std::string scalar_result;  // name of the scalar result variable, if returns Scalar
-  bool uses_derivatives = false;  // refers to the linearization's derivative intermediates
 };
 
 std::string sanitize_comment(const std::string& text) {
@@ -212,7 +211,6 @@ EmittedModel emit_model(const Model& model, const EquationsOfMotion& eom, const 
                                : "const Vector<Scalar>& qdd, MassMatrix<Scalar>& K, MassMatrix<Scalar>& D, "
                                  "InputMatrix<Scalar>& B_u"};
     f.needs_qd = f.needs_u = true;
-    f.uses_derivatives = true;
     auto matrix_targets = [&](const std::string& name, const GiNaC::matrix& a) {
       for (unsigned i = 0; i < a.rows(); ++i)
         for (unsigned j = 0; j < a.cols(); ++j) f.targets.push_back({fmt::format("{}({}, {})", name, i, j), a(i, j)});
@@ -229,10 +227,14 @@ EmittedModel emit_model(const Model& model, const EquationsOfMotion& eom, const 
 
   EmittedModel result;
   std::string body;
-  for (FunctionSpec& f : functions) {
-    const ir::Program program =
-        f.uses_derivatives ? lower(f.targets, {&eom.subexpressions, &linearization->derivatives}, names)
-                           : lower(f.targets, eom.subexpressions, names);
+  std::vector<const Subexpressions*> intermediates{&eom.subexpressions};
+  if (linearization) intermediates.push_back(&linearization->derivatives);
+  std::vector<std::vector<LoweringTarget>> all_targets;
+  for (const FunctionSpec& f : functions) all_targets.push_back(f.targets);
+  const std::vector<ir::Program> programs = lower_functions(all_targets, intermediates, names);
+  for (std::size_t index = 0; index < functions.size(); ++index) {
+    const FunctionSpec& f = functions[index];
+    const ir::Program& program = programs[index];
     result.statistics.push_back({f.name, ir::count_operations_without_sharing(program), ir::count_operations(program)});
     std::string code;
     if (!f.scalar_result.empty()) code += fmt::format("    Scalar {} = Scalar(0);\n", f.scalar_result);

@@ -271,13 +271,23 @@ ir::Program lower(const std::vector<LoweringTarget>& targets, const Subexpressio
 
 ir::Program lower(const std::vector<LoweringTarget>& targets, const std::vector<const Subexpressions*>& subexpressions,
                   const VariableNames& variables) {
+  return lower_functions({targets}, subexpressions, variables).front();
+}
+
+std::vector<ir::Program> lower_functions(const std::vector<std::vector<LoweringTarget>>& functions,
+                                         const std::vector<const Subexpressions*>& subexpressions,
+                                         const VariableNames& variables) {
   Lowering lowering(subexpressions, variables);
-  std::vector<std::pair<std::string, std::size_t>> outputs;
-  for (const LoweringTarget& t : targets) {
-    const std::size_t n = lowering.node(t.value);
-    if (!lowering.is_zero(n)) outputs.emplace_back(t.target, n);
+  std::vector<ir::Program> programs;
+  for (const std::vector<LoweringTarget>& targets : functions) {
+    std::vector<std::pair<std::string, std::size_t>> outputs;
+    for (const LoweringTarget& t : targets) {
+      const std::size_t n = lowering.node(t.value);
+      if (!lowering.is_zero(n)) outputs.emplace_back(t.target, n);
+    }
+    programs.push_back(lowering.finish(outputs));
   }
-  return lowering.finish(outputs);
+  return programs;
 }
 
 }  // namespace eomgen

@@ -35,4 +35,11 @@ ir::Program lower(const std::vector<LoweringTarget>& targets, const Subexpressio
 ir::Program lower(const std::vector<LoweringTarget>& targets, const std::vector<const Subexpressions*>& subexpressions,
                   const VariableNames& variables);
 
+/// One program per function, lowering the shared graph once: M and F appear in mass_matrix,
+/// forcing and mass_matrix_and_forcing alike. Each program is what lower() gives for its
+/// targets alone.
+std::vector<ir::Program> lower_functions(const std::vector<std::vector<LoweringTarget>>& functions,
+                                         const std::vector<const Subexpressions*>& subexpressions,
+                                         const VariableNames& variables);
+
 }  // namespace eomgen
