@@ -312,9 +312,10 @@ EmittedModel emit_model(const Model& model, const EquationsOfMotion& eom, const 
                    version, sanitize_comment(options.source_name.empty() ? model.name : options.source_name));
   h += "// Needs only Eigen. Every function is templated on the scalar type, allocates nothing and\n"
        "// does not throw: safe to call from a real-time loop.\n";
-  h += linearization ? "#pragma once\n\n#include <Eigen/Cholesky>\n#include <Eigen/Core>\n#include <Eigen/LU>\n\n"
-                       "#include <array>\n#include <cmath>\n\n"
-                     : "#pragma once\n\n#include <Eigen/Core>\n\n#include <array>\n#include <cmath>\n\n";
+  // linearization() factors M (Cholesky) and the KKT matrix (LU)
+  h += "#pragma once\n\n";
+  h += linearization ? "#include <Eigen/Cholesky>\n#include <Eigen/Core>\n#include <Eigen/LU>\n" : "#include <Eigen/Core>\n";
+  h += "\n#include <array>\n#include <cmath>\n\n";
   h += fmt::format("namespace {} {{\nnamespace {} {{\n\n", cpp_identifier(options.outer_namespace), model_name);
   h += "struct Model {\n";
   h += fmt::format("  static constexpr int nq = {};  // coordinates (and rates)\n", n);

@@ -8,20 +8,30 @@ constexpr const char* singular = "Scalar(1000) * Eigen::NumTraits<Scalar>::epsil
 
 std::string unconstrained() {
   return std::string(R"cpp(
+  /// M at (t, q, qd, u), its Cholesky factor and the point's own accelerations qdd0 = M^-1 F.
+  /// Returns false where M is not (numerically) positive definite: the runtime's test, the
+  /// pivot ratio (min L_ii / max L_ii)^2, cheap and zero where M is singular.
+  template <class Scalar>
+  static bool operating_point_accelerations(const Scalar& t, const Vector<Scalar>& q, const Vector<Scalar>& qd, const Inputs<Scalar>& u, const Parameters<Scalar>& p, MassMatrix<Scalar>& M, Eigen::LLT<MassMatrix<Scalar>>& llt, Vector<Scalar>& qdd) noexcept {
+    Vector<Scalar> F;
+    mass_matrix_and_forcing(t, q, qd, u, p, M, F);
+    llt.compute(M);
+    if (llt.info() != Eigen::Success) return false;
+    const Scalar smallest = llt.matrixLLT().diagonal().minCoeff(), largest = llt.matrixLLT().diagonal().maxCoeff();
+    if (!(smallest * smallest > )cpp") + singular + R"cpp( * largest * largest)) return false;
+    qdd = llt.solve(F);
+    return true;
+  }
+
   /// The second-order form M dqdd + D dqd + K dq = B_u du about (t, q, qd, u), with K taken at
   /// the point's own accelerations qdd0 = M^-1 F (zero at an equilibrium; not at a steady
   /// motion, where dM/dq qdd0 belongs to K). Returns false, the outputs unspecified, where M is
   /// not (numerically) positive definite.
   template <class Scalar>
   static bool second_order_linearization(const Scalar& t, const Vector<Scalar>& q, const Vector<Scalar>& qd, const Inputs<Scalar>& u, const Parameters<Scalar>& p, MassMatrix<Scalar>& M, MassMatrix<Scalar>& D, MassMatrix<Scalar>& K, InputMatrix<Scalar>& B_u) noexcept {
-    Vector<Scalar> F;
-    mass_matrix_and_forcing(t, q, qd, u, p, M, F);
-    const Eigen::LLT<MassMatrix<Scalar>> llt(M);
-    if (llt.info() != Eigen::Success) return false;
-    // the runtime's test of M: the pivot ratio (min L_ii / max L_ii)^2, cheap and zero where M is
-    const Scalar smallest = llt.matrixLLT().diagonal().minCoeff(), largest = llt.matrixLLT().diagonal().maxCoeff();
-    if (!(smallest * smallest > )cpp") + singular + R"cpp( * largest * largest)) return false;
-    const Vector<Scalar> qdd = llt.solve(F);
+    Eigen::LLT<MassMatrix<Scalar>> llt;
+    Vector<Scalar> qdd;
+    if (!operating_point_accelerations(t, q, qd, u, p, M, llt, qdd)) return false;
     linearization_terms(t, q, qd, u, p, qdd, K, D, B_u);
     return true;
   }
@@ -33,8 +43,10 @@ std::string unconstrained() {
   static bool linearization(const Scalar& t, const Vector<Scalar>& q, const Vector<Scalar>& qd, const Inputs<Scalar>& u, const Parameters<Scalar>& p, StateMatrix<Scalar>& A, StateInputMatrix<Scalar>& B) noexcept {
     MassMatrix<Scalar> M, D, K;
     InputMatrix<Scalar> B_u;
-    if (!second_order_linearization(t, q, qd, u, p, M, D, K, B_u)) return false;
-    const Eigen::LLT<MassMatrix<Scalar>> llt(M);
+    Eigen::LLT<MassMatrix<Scalar>> llt;
+    Vector<Scalar> qdd;
+    if (!operating_point_accelerations(t, q, qd, u, p, M, llt, qdd)) return false;
+    linearization_terms(t, q, qd, u, p, qdd, K, D, B_u);
     A.setZero();
     A.template topRightCorner<nq, nq>().setIdentity();
     A.template bottomLeftCorner<nq, nq>() = -llt.solve(K);

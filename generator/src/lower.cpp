@@ -266,12 +266,7 @@ class Lowering {
 
 ir::Program lower(const std::vector<LoweringTarget>& targets, const Subexpressions& subexpressions,
                   const VariableNames& variables) {
-  return lower(targets, std::vector<const Subexpressions*>{&subexpressions}, variables);
-}
-
-ir::Program lower(const std::vector<LoweringTarget>& targets, const std::vector<const Subexpressions*>& subexpressions,
-                  const VariableNames& variables) {
-  return lower_functions({targets}, subexpressions, variables).front();
+  return lower_functions({targets}, {&subexpressions}, variables).front();
 }
 
 std::vector<ir::Program> lower_functions(const std::vector<std::vector<LoweringTarget>>& functions,

@@ -30,14 +30,10 @@ using VariableNames = std::map<GiNaC::ex, std::string, GiNaC::ex_is_less>;
 ir::Program lower(const std::vector<LoweringTarget>& targets, const Subexpressions& subexpressions,
                   const VariableNames& variables);
 
-/// The same over several sets of intermediates (the derivation's, then their derivatives,
-/// which refer to them); symbols must be distinct across the sets.
-ir::Program lower(const std::vector<LoweringTarget>& targets, const std::vector<const Subexpressions*>& subexpressions,
-                  const VariableNames& variables);
-
 /// One program per function, lowering the shared graph once: M and F appear in mass_matrix,
 /// forcing and mass_matrix_and_forcing alike. Each program is what lower() gives for its
-/// targets alone.
+/// targets alone. Several sets of intermediates may be given (the derivation's, then the
+/// linearization's derivatives, which refer to them); their symbols must be distinct.
 std::vector<ir::Program> lower_functions(const std::vector<std::vector<LoweringTarget>>& functions,
                                          const std::vector<const Subexpressions*>& subexpressions,
                                          const VariableNames& variables);
