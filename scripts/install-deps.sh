@@ -5,7 +5,7 @@ set -euo pipefail
 packages=(
   g++ cmake make pkg-config
   libginac-dev libcln-dev ginac-tools
-  libeigen3-dev libfmt-dev libgtest-dev
+  libeigen3-dev libfmt-dev libgtest-dev libgmock-dev
   libcli11-dev nlohmann-json3-dev
   texlive-latex-base
   gnuplot-nox
