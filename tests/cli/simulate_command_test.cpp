@@ -141,6 +141,23 @@ TEST_F(Simulate, SecondRunReusesTheCompiledSimulation) {
   EXPECT_NEAR(table.rows.back()[1], pendulum_angle(0.1, 0.0, 3.7 / 0.5, 1.0), 1e-8);  // rk4, h = 10 ms
 }
 
+// the same request writes the same bytes in every process (numbers included)
+TEST_F(Simulate, SameRequestWritesIdenticalCsvBytesInThreeProcesses) {
+  const std::string model = quote(models_dir + "cart_pole.eom") + " --t-end 2 --init theta=3,x_dot=0.4 --no-plot";
+  std::string first;
+  for (int run = 1; run <= 3; ++run) {
+    const fs::path csv = dir_ / "work" / ("run" + std::to_string(run) + ".csv");
+    const Outcome o = simulate(model + " -o " + quote(csv.string()));
+    ASSERT_EQ(o.status, 0) << o.err;
+    if (run == 1) {
+      first = slurp(csv);
+      EXPECT_GT(read_csv(csv).rows.size(), 100u);
+    } else {
+      EXPECT_EQ(slurp(csv), first) << "run " << run;
+    }
+  }
+}
+
 TEST_F(Simulate, ChangedModelIsCompiledAgain) {
   std::string text = slurp(models_dir + "simple_pendulum.eom");
   const std::string from = "parameter l = 0.5", to = "parameter l = 0.25";
