@@ -3,7 +3,7 @@
 set -euo pipefail
 
 packages=(
-  g++ cmake make pkg-config
+  g++ cmake make ninja-build ccache pkg-config
   libginac-dev libcln-dev ginac-tools
   libeigen3-dev libfmt-dev libgtest-dev libgmock-dev
   libcli11-dev nlohmann-json3-dev

@@ -23,15 +23,6 @@ State<Model> cartesian_pendulum_start() {
   return make_state<Model>({0.4330127018922193, -0.25}, {0.5, 0.8660254037844386});
 }
 
-/// inputs that keep the knife edge and the quaternion body busy: a steady push and a
-/// time-varying torque, so the constraints carry real load
-struct WobblyInputs {
-  template <class Scalar, class X, class U>
-  void operator()(const Scalar& t, const X&, U& u) const {
-    for (int i = 0; i < u.size(); ++i) u(i) = 0.3 * std::sin(1.7 * t + i) + 0.1 * i;
-  }
-};
-
 template <class Model>
 void expect_constraints_held(const State<Model>& x0, Stabilization stabilization) {
   SCOPED_TRACE(Model::name);

@@ -19,7 +19,7 @@ State<Model> start() { return make_state<Model>({1.2, -0.5}, {0.0, 1.0}); }
 State<Model> reference_end() {
   SimulationOptions<double> o = adaptive(1.0, 1e-13);
   o.adaptive.atol = 1e-15;
-  const SimulationResult<Model, double> r = simulate<Model>(Parameters<Model>{}, start(), o);
+  const SimulationResult<Model, double> r = run<Model>(start(), o).result;
   EXPECT_EQ(r.status, SimulationStatus::ok);
   return r.x;
 }
@@ -27,7 +27,7 @@ State<Model> reference_end() {
 double fixed_step_error(Integrator method, double h, const State<Model>& reference) {
   SimulationOptions<double> o = fixed(method, 1.0, h);
   o.sample_interval = 0;
-  const SimulationResult<Model, double> r = simulate<Model>(Parameters<Model>{}, start(), o);
+  const SimulationResult<Model, double> r = run<Model>(start(), o).result;
   EXPECT_EQ(r.status, SimulationStatus::ok);
   EXPECT_EQ(r.t, 1.0);
   return (r.x - reference).norm();
@@ -56,7 +56,7 @@ TEST(ConvergenceOrder, DormandPrinceErrorFallsWithTheFifthPowerOfTheStepCount) {
     SimulationOptions<double> o = adaptive(1.0, rtol);
     o.adaptive.atol = rtol;
     o.sample_interval = 0;
-    const SimulationResult<Model, double> r = simulate<Model>(Parameters<Model>{}, start(), o);
+    const SimulationResult<Model, double> r = run<Model>(start(), o).result;
     ASSERT_EQ(r.status, SimulationStatus::ok);
     log_steps.push_back(std::log(static_cast<double>(r.steps)));
     log_errors.push_back(std::log((r.x - reference).norm()));

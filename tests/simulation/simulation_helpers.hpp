@@ -48,22 +48,22 @@ struct Trajectory {
   }
 };
 
+/// inputs that keep the knife edge and the quaternion body busy: a steady push and a
+/// time-varying torque, so the constraints carry real load
+struct WobblyInputs {
+  template <class Scalar, class X, class U>
+  void operator()(const Scalar& t, const X&, U& u) const {
+    for (int i = 0; i < u.size(); ++i) u(i) = 0.3 * std::sin(1.7 * t + i) + 0.1 * i;
+  }
+};
+
+/// Simulates `Model` from x0 and keeps every sample. Only declared here: each model's
+/// simulation is compiled once, in its own translation unit (simulation_run.hpp, instantiated
+/// for ZeroInputs and WobblyInputs by tests/CMakeLists.txt), instead of once in every test file
+/// that runs it; a missing instantiation is a link error naming the model.
 template <class Model, class InputFn = ZeroInputs>
 Trajectory<Model> run(const State<Model>& x0, const SimulationOptions<double>& options,
-                      const Parameters<Model>& p = {}, InputFn input = {}) {
-  Trajectory<Model> tr;
-  tr.result = simulate<Model>(p, x0, options, input, [&tr](const Sample<Model, double>& s) {
-    tr.t.push_back(s.t);
-    State<Model> x;
-    x << s.q, s.qd;
-    tr.x.push_back(x);
-    tr.lambda.push_back(s.ws.lambda);
-    tr.energy.push_back(s.kinetic_energy + s.potential_energy);
-    tr.max_position_residual = std::max(tr.max_position_residual, s.residuals.position);
-    tr.max_velocity_residual = std::max(tr.max_velocity_residual, s.residuals.velocity);
-  });
-  return tr;
-}
+                      const Parameters<Model>& p = {}, InputFn input = {});
 
 /// Dormand-Prince 5(4) at the given tolerance, sampled every 10 ms.
 inline SimulationOptions<double> adaptive(double t_end, double rtol) {
