@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <optional>
 
 #include "eomgen/error.hpp"
 
@@ -156,10 +157,17 @@ std::optional<std::size_t> Variables::coordinate_index(const GiNaC::ex& symbol) 
 void Variables::require_known_symbols(const GiNaC::ex& e, const std::string& what) const {
   GiNaC::exset symbols;
   collect_symbols(e, symbols);
+  // the set iterates in GiNaC's address-seeded order: name the alphabetically first unknown
+  // symbol, so that the message is the same in every process
+  std::optional<std::string> unknown;
   for (const auto& s : symbols)
-    if (kinds_.find(s) == kinds_.end())
-      throw ModelError(fmt::format("{}: '{}' is not a time, coordinate, rate, parameter or input "
-                                   "of this model", what, GiNaC::ex_to<GiNaC::symbol>(s).get_name()));
+    if (kinds_.find(s) == kinds_.end()) {
+      const std::string name = GiNaC::ex_to<GiNaC::symbol>(s).get_name();
+      if (!unknown || name < *unknown) unknown = name;
+    }
+  if (unknown)
+    throw ModelError(fmt::format("{}: '{}' is not a time, coordinate, rate, parameter or input of this model",
+                                 what, *unknown));
 }
 
 GiNaC::ex Variables::time_derivative(const GiNaC::ex& e) const {

@@ -341,6 +341,8 @@ void run_eval(const Options& o) {
 // ---- linearize ----
 
 std::string latex_matrix(const Eigen::MatrixXd& a) {
+  // an empty bmatrix (B of a model without inputs) would be rows of nothing: say what it is
+  if (a.size() == 0) return fmt::format("\\text{{(empty, {} \\times {})}}", a.rows(), a.cols());
   std::string out = "\\begin{bmatrix}\n";
   for (Eigen::Index i = 0; i < a.rows(); ++i) {
     for (Eigen::Index j = 0; j < a.cols(); ++j) out += (j ? " & " : "  ") + number(a(i, j));

@@ -335,6 +335,7 @@ TEST_F(Cli, LinearizePrintsTheMatricesEigenvaluesAndVerdicts) {
   EXPECT_THAT(moving.out, HasSubstr("Stability: not assessed"));
   const Outcome latex = eomgen("linearize " + pendulum + " -f latex");
   EXPECT_THAT(latex.out, HasSubstr("A = \\begin{bmatrix}\n  0 & 1 \\\\\n  -19.62 & 0\n\\end{bmatrix}"));
+  EXPECT_THAT(latex.out, HasSubstr("B = \\text{(empty, 2 \\times 0)}"));  // no inputs: no rows of nothing
   const Outcome cart = eomgen("linearize " + quote(std::string(EOMGEN_SOURCE_DIR) + "/models/cart_pole.eom") +
                               " --drop-cyclic");
   EXPECT_THAT(cart.out, HasSubstr("dropped as cyclic: x"));
