@@ -9,7 +9,6 @@
 
 #include <cmath>
 #include <complex>
-#include <filesystem>
 #include <string>
 
 #include "cart_pole.hpp"
@@ -22,10 +21,10 @@
 #include "heavy_top.hpp"
 #include "rolling_coin.hpp"
 #include "spacecraft_panel.hpp"
+#include "support/source_dir.hpp"
 
 namespace {
 
-namespace fs = std::filesystem;
 using eomgen::NamedValues;
 
 template <class Model>
@@ -63,7 +62,7 @@ Generated generated_linearization(const OperatingPoint<Model>& x) {
 }
 
 eomgen::Model shipped(const std::string& name) {
-  return eomgen::load_model((fs::path(__FILE__).parent_path() / ".." / ".." / "models" / (name + ".eom")).string());
+  return eomgen::load_model(eomgen::testing::shipped_model_path(name));
 }
 
 eomgen::LinearModel generator_linearization(const std::string& name, const NamedValues& point) {

@@ -27,6 +27,7 @@
 #include "spherical_pendulum.hpp"
 #include "spring_mass_damper.hpp"
 #include "universal_chain.hpp"
+#include "support/source_dir.hpp"
 
 namespace {
 
@@ -60,11 +61,7 @@ void expect_matches(const Matrix& generated, const GiNaC::matrix& symbolic, cons
         EXPECT_NEAR(generated(i, j), expected(i, j), 1e-12 * scale) << what << "(" << i << "," << j << ")";
 }
 
-// model file path from this source file's location: tests/generated/ -> models/
-std::string model_path(const std::string& name) {
-  std::string here = __FILE__;
-  return here.substr(0, here.rfind("/tests/")) + "/models/" + name + ".eom";
-}
+std::string model_path(const std::string& name) { return eomgen::testing::shipped_model_path(name); }
 
 template <class Model>
 void check_against_symbolic() {

@@ -5,21 +5,20 @@
 
 #include <cmath>
 #include <complex>
-#include <filesystem>
 #include <string>
 
 #include "eomgen/error.hpp"
 #include "eomgen/linearization.hpp"
 #include "eomgen/model.hpp"
 #include "eomgen/numeric_evaluation.hpp"
+#include "support/source_dir.hpp"
 
 namespace eomgen {
 namespace {
 
-namespace fs = std::filesystem;
 
 Model shipped(const std::string& name) {
-  return load_model((fs::path(__FILE__).parent_path() / ".." / ".." / "models" / (name + ".eom")).string());
+  return load_model(eomgen::testing::shipped_model_path(name));
 }
 
 LinearModel linearize_at(const Model& model, const NamedValues& point, bool drop_cyclic = false) {

@@ -24,6 +24,7 @@
 #include "eomgen/rotation.hpp"
 #include "eomgen/simplify.hpp"
 #include "test_utils.hpp"
+#include "support/source_dir.hpp"
 
 namespace {
 
@@ -45,7 +46,7 @@ using GiNaC::pow;
 using GiNaC::sin;
 
 // The models sit two directories above this file: tests/generator/ -> models/.
-fs::path models_dir() { return fs::path(__FILE__).parent_path() / ".." / ".." / "models"; }
+fs::path models_dir() { return eomgen::testing::source_dir() / "models"; }
 
 fs::path model_path(const std::string& name) { return models_dir() / (name + ".eom"); }
 

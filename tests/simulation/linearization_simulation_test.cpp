@@ -4,7 +4,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <filesystem>
 #include <vector>
 
 #include "cart_pole.hpp"
@@ -12,15 +11,15 @@
 #include "eomgen/linearization.hpp"
 #include "eomgen/model.hpp"
 #include "simulation/simulation_helpers.hpp"
+#include "support/source_dir.hpp"
 
 namespace eomrt::testing {
 namespace {
 
-namespace fs = std::filesystem;
 
 eomgen::LinearModel linear_model(const std::string& name, const eomgen::NamedValues& point) {
   const eomgen::Model model =
-      eomgen::load_model((fs::path(__FILE__).parent_path() / ".." / ".." / "models" / (name + ".eom")).string());
+      eomgen::load_model(eomgen::testing::shipped_model_path(name));
   const eomgen::EquationsOfMotion eom = eomgen::derive_equations(model);
   return eomgen::linearize(model, eom, eomgen::linearize_symbolic(model, eom), point);
 }
