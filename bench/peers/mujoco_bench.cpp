@@ -8,7 +8,7 @@
 //
 // 1. cross-check at random states (fixed seed): MuJoCo's mj_fullM(qM), -qfrc_bias and qacc
 //    after mj_forward against our M, F and qdd (relative max-abs errors); then kinematics
-//    (body xmat against the DCMs of CONVENTIONS.md, tip position and velocity against the
+//    (body xmat against the DCMs of docs/conventions.md, tip position and velocity against the
 //    model's outputs), which is what pins down the joint axis signs and order;
 // 2. ns per call, interleaved rounds, medians (see the op list in main);
 // 3. 10 s of RK4 at dt = 1 ms from q = 0.3 (all joint angles; universal: beta = -0.2),
@@ -117,11 +117,11 @@ int main(int argc, char** argv) {
   // Kinematic check. M, F and qacc cannot tell a joint axis from its negative, nor hinge x-y
   // from y-x, here: the mirrored chain has the same dynamics in its coordinates (verified:
   // axis -x or swapped axes in the universal MJCF still pass the check above to 1e-15). So
-  // compare each body's orientation with the DCMs of CONVENTIONS.md built from q, and the tip
+  // compare each body's orientation with the DCMs of docs/conventions.md built from q, and the tip
   // position and velocity with the model's outputs (tip = o_n, tip_velocity, in a).
   {
     using M3 = Eigen::Matrix3d;
-    auto C = [](int axis, double x) {  // principal rotations of CONVENTIONS.md
+    auto C = [](int axis, double x) {  // principal rotations of docs/conventions.md
       const double c = std::cos(x), s = std::sin(x);
       M3 r;
       if (axis == 1) r << 1, 0, 0, 0, c, s, 0, -s, c;

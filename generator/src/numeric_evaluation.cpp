@@ -115,7 +115,7 @@ AccelerationSolution solve_accelerations(const NumericEquations& eq) {
     out.lambda.resize(0);
     return out;
   }
-  // [[M, -Xi^T], [-Xi, 0]] [qdd; lambda] = [F; dXi/dt qd + dXi_t/dt], CONVENTIONS.md (KKT)
+  // [[M, -Xi^T], [-Xi, 0]] [qdd; lambda] = [F; dXi/dt qd + dXi_t/dt], docs/conventions.md (KKT)
   Eigen::MatrixXd K = Eigen::MatrixXd::Zero(n + m, n + m);
   K.topLeftCorner(n, n) = eq.mass_matrix;
   K.topRightCorner(n, m) = -eq.constraint_jacobian.transpose();

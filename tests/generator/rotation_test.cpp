@@ -1,5 +1,5 @@
 // Tests of the direction cosine matrices and angular velocities of eomgen/rotation.hpp against
-// CONVENTIONS.md and the course notes (Example 2.9, Example 2.11, the Euler 1-2-3 rate example).
+// docs/conventions.md and the course notes (Example 2.9, Example 2.11, the Euler 1-2-3 rate example).
 #include "eomgen/rotation.hpp"
 
 #include <gtest/gtest.h>
@@ -111,7 +111,7 @@ Eigen::Vector3d random_vec(std::mt19937& rng, double r = 1.5) {
   return Eigen::Vector3d(uniform(rng, -r, r), uniform(rng, -r, r), uniform(rng, -r, r));
 }
 
-/// Numeric (Eigen) principal rotation, with the sign of the sines of CONVENTIONS.md.
+/// Numeric (Eigen) principal rotation, with the sign of the sines of docs/conventions.md.
 Eigen::Matrix3d C_num(int axis, double x) {
   const double c = std::cos(x), s = std::sin(x);
   Eigen::Matrix3d m;
@@ -295,7 +295,7 @@ TEST(CrossAgreement, QuaternionOfAxisAndHalfAngleEqualsAxisAngle) {
     const double angle = uniform(rng, -6, 6);
     const exmap at{{a1, u(0)}, {a2, u(1)}, {a3, u(2)}, {phi, angle}};
     EXPECT_TRUE(near(num(Cq, at), num(Ca, at)));
-    // and both equal the closed form of CONVENTIONS.md evaluated independently
+    // and both equal the closed form of docs/conventions.md evaluated independently
     EXPECT_TRUE(near(num(Ca, at), axis_angle_num(u, angle)));
   }
 }
@@ -351,7 +351,7 @@ TEST(CrossAgreement, EachEulerSequenceIsTheProductOfItsPrincipalRotations) {
 }
 
 TEST(CrossAgreement, EulerSequenceMatchesProductOfNumericPrincipalRotations) {
-  // independent of the library's principal_rotation: Eigen matrices written from CONVENTIONS.md
+  // independent of the library's principal_rotation: Eigen matrices written from docs/conventions.md
   const realsymbol t1("t1"), t2("t2"), t3("t3");
   std::mt19937 rng(23);
   for (const auto& name : all_sequences()) {

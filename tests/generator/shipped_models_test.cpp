@@ -3,7 +3,7 @@
 // the same equations as the system built through the C++ API, the hand closed forms and the
 // course notes' results (equation A.14 / Example A.20, Example 3.1, section 3.7.0.2).
 //
-// Conventions (CONVENTIONS.md): v_b = C_ba v_a; C3(x) = [[c, s, 0], [-s, c, 0], [0, 0, 1]];
+// Conventions (docs/conventions.md): v_b = C_ba v_a; C3(x) = [[c, s, 0], [-s, c, 0], [0, 0, 1]];
 // Euler i-j-k: C_ba = Ck(t3) Cj(t2) Ci(t1); M(q) qdd = F(q, qd, t, u) + Xi^T lambda.
 #include <Eigen/Dense>
 #include <ginac/ginac.h>

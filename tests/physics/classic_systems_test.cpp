@@ -3,7 +3,7 @@
 // does not depend on the form of the equations: the energy balance and, for the heavy top,
 // Euler's equations about the fixed pivot.
 //
-// Conventions (CONVENTIONS.md): v_b = C_ba v_a; C3(x) = [[c, s, 0], [-s, c, 0], [0, 0, 1]];
+// Conventions (docs/conventions.md): v_b = C_ba v_a; C3(x) = [[c, s, 0], [-s, c, 0], [0, 0, 1]];
 // Euler i-j-k: C_ba = Ck(t3) Cj(t2) Ci(t1); M(q) qdd = F(q, qd, t, u).
 #include <Eigen/Dense>
 #include <ginac/ginac.h>

@@ -63,7 +63,7 @@ NumericEquations evaluate_equations(const Model& model, const EquationsOfMotion&
                                     const NamedValues& values);
 
 /// Solves for qdd and lambda. Without constraints: M qdd = F by Cholesky (LLT). With them: the
-/// KKT system of CONVENTIONS.md, [[M, -Xi^T], [-Xi, 0]] [qdd; lambda] = [F; dXi/dt qd + dXi_t/dt],
+/// KKT system of docs/conventions.md, [[M, -Xi^T], [-Xi, 0]] [qdd; lambda] = [F; dXi/dt qd + dXi_t/dt],
 /// by full-pivoting LU, so that a singular M with a regular KKT matrix (quaternion attitude
 /// with its norm constraint) works.
 /// \throws Error if M is not positive definite (no constraints) or the KKT matrix is singular.

@@ -1,5 +1,5 @@
 #pragma once
-// Direction cosine matrices C_ba of every parameterization in CONVENTIONS.md, and the
+// Direction cosine matrices C_ba of every parameterization in docs/conventions.md, and the
 // angular velocity omega_b^ba each one implies.
 #include <ginac/ginac.h>
 
@@ -30,7 +30,7 @@ struct EulerSequence {
 };
 
 /// The rotation of a child frame b relative to its parent a, in one of the parameterizations
-/// of CONVENTIONS.md. Holds the parameters so the angular velocity can use the rate relation
+/// of docs/conventions.md. Holds the parameters so the angular velocity can use the rate relation
 /// of that parameterization (each one is Poisson's equation worked out, and tested as such).
 class Rotation {
  public:

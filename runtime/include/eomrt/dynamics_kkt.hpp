@@ -1,6 +1,6 @@
 #pragma once
 /// \file
-/// Forward dynamics with Lagrange multipliers: the KKT system of CONVENTIONS.md,
+/// Forward dynamics with Lagrange multipliers: the KKT system of docs/conventions.md,
 ///   [[M, -Xi^T], [-Xi, 0]] [qdd; lambda] = [F; b],   b = dXi/dt qd + dXi_t/dt,
 /// (with Baumgarte terms b becomes -r, see Baumgarte). M alone may be singular, e.g. for a
 /// quaternion attitude with omega = 2 S(q) qd, where M has rank nq - 1; the KKT matrix is

@@ -18,7 +18,7 @@
 ///   static constexpr int ny + outputs(t, q, qd, u, p, y)      named outputs
 ///   static constexpr int ni + std::array<int, ni> independent_speeds   for the null-space method
 /// The equations are M(q) qdd = F + Xi^T lambda with Xi qd + Xi_t = 0 and, at acceleration
-/// level, Xi qdd + b = 0 (CONVENTIONS.md).
+/// level, Xi qdd + b = 0 (docs/conventions.md).
 #include <Eigen/Core>
 #include <array>
 #include <type_traits>
