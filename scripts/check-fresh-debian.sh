@@ -43,7 +43,7 @@ if [ "$rebuild" -eq 1 ] || [ ! -f "$tarball" ]; then
   run_root mkdir -p "$cache"
   staging="$(mktemp -d /var/tmp/eomgen-debootstrap.XXXXXX)"
   run_root debootstrap --variant=minbase --include=git,ca-certificates,sudo bookworm "$staging" "$mirror" \
-    >"$cache/debootstrap.log" 2>&1 || { tail -20 "$cache/debootstrap.log"; exit 1; }
+    >"$cache/debootstrap.log" 2>&1 || { tail -20 "$cache/debootstrap.log"; run_root rm -rf "$staging"; exit 1; }
   run_root tar -C "$staging" -czf "$tarball.partial" .
   run_root mv "$tarball.partial" "$tarball"
   run_root rm -rf "$staging"
@@ -60,15 +60,17 @@ cleanup() {
 trap cleanup EXIT
 run_root mkdir -p "$chroot_dir"
 run_root tar -C "$chroot_dir" -xzf "$tarball"
-for fs in proc sys dev dev/pts; do
-  case "$fs" in
-    proc) run_root mount -t proc proc "$chroot_dir/proc" ;;
-    sys) run_root mount -t sysfs sys "$chroot_dir/sys" ;;
-    dev) run_root mount --bind /dev "$chroot_dir/dev" ;;
-    dev/pts) run_root mount -t devpts devpts "$chroot_dir/dev/pts" ;;
-  esac
-  mounted+=("$chroot_dir/$fs")
-done
+# mount_into DIR MOUNT-ARGUMENTS...: mounts at $chroot_dir/DIR and remembers it for cleanup
+mount_into() {
+  local dir="$chroot_dir/$1"
+  shift
+  run_root mount "$@" "$dir"
+  mounted+=("$dir")
+}
+mount_into proc -t proc proc
+mount_into sys -t sysfs sys
+mount_into dev --bind /dev
+mount_into dev/pts -t devpts devpts
 run_root cp /etc/resolv.conf "$chroot_dir/etc/resolv.conf"
 
 # a clean clone of what is committed, as CI takes it
