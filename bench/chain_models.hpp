@@ -3,7 +3,7 @@
 // every call creates fresh symbols, so two chains never share state.
 #include <cstddef>
 
-#include "eomgen/mechanical_system.hpp"
+#include "eomgen/mechanics/mechanical_system.hpp"
 
 namespace eomgen::bench {
 

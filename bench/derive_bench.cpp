@@ -29,9 +29,9 @@
 #include <vector>
 
 #include "chain_models.hpp"
-#include "eomgen/equations_of_motion.hpp"
-#include "eomgen/literal_lagrange.hpp"
-#include "eomgen/mechanical_system.hpp"
+#include "eomgen/derivation/equations_of_motion.hpp"
+#include "eomgen/derivation/literal_lagrange.hpp"
+#include "eomgen/mechanics/mechanical_system.hpp"
 
 #ifndef EOMGEN_BENCH_BUILD_TYPE
 #define EOMGEN_BENCH_BUILD_TYPE "unknown"

@@ -3,8 +3,8 @@
 // Two point masses m1, m2 hang from massless rods of lengths l1, l2. Frame b turns by q1 about
 // a3 relative to the inertial frame a, frame c by q2 (relative angle) about b3; the rods lie
 // along b1 and c1, and gravity g points along a1 (down), so q1 = q2 = 0 hangs straight down.
-#include <eomgen/equations_of_motion.hpp>
-#include <eomgen/simplify.hpp>
+#include <eomgen/derivation/equations_of_motion.hpp>
+#include <eomgen/symbolic/simplify.hpp>
 
 #include <iostream>
 

@@ -1,6 +1,7 @@
 #pragma once
 // Small models built through the C++ API, shared by tests that need the same system.
-#include "eomgen/model.hpp"
+#include "eomgen/derivation/model_equations.hpp"
+#include "eomgen/language/model_file.hpp"
 
 namespace eomgen::testing {
 

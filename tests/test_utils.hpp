@@ -7,8 +7,8 @@
 #include <random>
 #include <string>
 
-#include "eomgen/mechanical_system.hpp"
-#include "eomgen/subexpressions.hpp"
+#include "eomgen/mechanics/mechanical_system.hpp"
+#include "eomgen/symbolic/subexpressions.hpp"
 
 namespace eomgen::testing {
 

@@ -14,9 +14,10 @@
 #include "cart_pole.hpp"
 #include "cartesian_pendulum.hpp"
 #include "double_pendulum.hpp"
-#include "eomgen/equations_of_motion.hpp"
-#include "eomgen/linearization.hpp"
-#include "eomgen/model.hpp"
+#include "eomgen/derivation/equations_of_motion.hpp"
+#include "eomgen/derivation/linearization.hpp"
+#include "eomgen/derivation/model_equations.hpp"
+#include "eomgen/language/model_file.hpp"
 #include "eomrt/dynamics_kkt.hpp"
 #include "heavy_top.hpp"
 #include "rolling_coin.hpp"
@@ -67,7 +68,7 @@ eomgen::Model shipped(const std::string& name) {
 
 eomgen::LinearModel generator_linearization(const std::string& name, const NamedValues& point) {
   const eomgen::Model model = shipped(name);
-  const eomgen::EquationsOfMotion eom = eomgen::derive_equations(model);
+  const eomgen::ModelEquations eom = eomgen::derive_equations(model);
   return eomgen::linearize(model, eom, eomgen::linearize_symbolic(model, eom), point);
 }
 

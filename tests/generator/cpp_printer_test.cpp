@@ -1,5 +1,5 @@
 // The printer on hand-built programs: precedence, signs, temporaries, numbers.
-#include "eomgen/cpp_printer.hpp"
+#include "eomgen/codegen/cpp_printer.hpp"
 
 #include <gtest/gtest.h>
 

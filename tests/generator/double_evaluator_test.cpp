@@ -1,7 +1,7 @@
 // The double evaluator's sums and products give the same bits whatever order GiNaC keeps their
 // operands in (an order that follows addresses and so changes between processes): sums are
 // the exact sum rounded once, products multiply magnitudes in increasing order.
-#include "eomgen/double_evaluator.hpp"
+#include "eomgen/symbolic/double_evaluator.hpp"
 
 #include <ginac/ginac.h>
 #include <gtest/gtest.h>

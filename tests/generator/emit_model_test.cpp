@@ -1,11 +1,12 @@
 // Header assembly: identifiers that cannot inject code, byte-identical output, metadata.
-#include "eomgen/emit_model.hpp"
+#include "eomgen/codegen/emit_model.hpp"
 
 #include <gtest/gtest.h>
 
 #include <vector>
 
-#include "eomgen/error.hpp"
+#include "eomgen/base/error.hpp"
+#include "eomgen/language/model_file.hpp"
 
 namespace eomgen {
 namespace {
@@ -127,7 +128,7 @@ TEST(EmitModel, ModelHashChangesWithTheDeclaredIndependentSpeeds) {
 
 TEST(EmitModel, IndependentSpeedsSetThroughTheApiAreChecked) {
   Model model = parse_model(mixed_constraints, "mixed.eom");
-  const EquationsOfMotion eom = derive_equations(model);
+  const ModelEquations eom = derive_equations(model);
   model.independent_speeds = {4};
   EXPECT_THROW(emit_model(model, eom), EmitError);
   model.independent_speeds = {0, 1};

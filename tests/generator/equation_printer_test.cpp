@@ -1,4 +1,4 @@
-#include "eomgen/equation_printer.hpp"
+#include "eomgen/report/equation_printer.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -12,7 +12,7 @@
 #include <set>
 #include <string>
 
-#include "eomgen/error.hpp"
+#include "eomgen/base/error.hpp"
 #include "test_models.hpp"
 
 namespace eomgen {
@@ -212,7 +212,7 @@ TEST(SharedForm, ListsEveryUsedIntermediateOnceInOrder) {
 
 TEST(SharedForm, ChosenAutomaticallyForLargeSystemsOnly) {
   const Model pendulum = simple_pendulum(), chain = planar_chain(6);
-  const EquationsOfMotion small = derive_equations(pendulum), large = derive_equations(chain);
+  const ModelEquations small = derive_equations(pendulum), large = derive_equations(chain);
   PrintOptions options;
   EXPECT_LT(written_out_size(pendulum, small, options.parts), 100);
   EXPECT_FALSE(uses_shared_form(pendulum, small, options));

@@ -1,13 +1,13 @@
 // derive_equations: constraint terms against hand derivations, a rheonomic system, and every
 // kind of load against the independent literal Lagrange derivation.
-#include "eomgen/equations_of_motion.hpp"
+#include "eomgen/derivation/equations_of_motion.hpp"
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
 #include <gtest/gtest.h>
 
-#include "eomgen/literal_lagrange.hpp"
-#include "eomgen/simplify.hpp"
+#include "eomgen/derivation/literal_lagrange.hpp"
+#include "eomgen/symbolic/simplify.hpp"
 #include "test_utils.hpp"
 
 namespace eomgen {

@@ -1,4 +1,4 @@
-#include "eomgen/expression_printer.hpp"
+#include "eomgen/report/expression_printer.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,12 +1,12 @@
 // Kinematics on the frame and point trees: the notes' Example 3.1 (spacecraft bus with a
 // rotating solar panel), the rolling coin of section 3.7.0.2, and consistency of DCMs,
 // angular velocities and the transport theorem between arbitrary frames.
-#include "eomgen/kinematics.hpp"
+#include "eomgen/mechanics/kinematics.hpp"
 
 #include <gtest/gtest.h>
 
-#include "eomgen/error.hpp"
-#include "eomgen/simplify.hpp"
+#include "eomgen/base/error.hpp"
+#include "eomgen/symbolic/simplify.hpp"
 #include "test_utils.hpp"
 
 namespace eomgen {

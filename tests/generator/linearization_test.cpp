@@ -7,10 +7,11 @@
 #include <complex>
 #include <string>
 
-#include "eomgen/error.hpp"
-#include "eomgen/linearization.hpp"
-#include "eomgen/model.hpp"
-#include "eomgen/numeric_evaluation.hpp"
+#include "eomgen/base/error.hpp"
+#include "eomgen/derivation/linearization.hpp"
+#include "eomgen/derivation/model_equations.hpp"
+#include "eomgen/language/model_file.hpp"
+#include "eomgen/derivation/numeric_evaluation.hpp"
 #include "support/source_dir.hpp"
 
 namespace eomgen {
@@ -22,7 +23,7 @@ Model shipped(const std::string& name) {
 }
 
 LinearModel linearize_at(const Model& model, const NamedValues& point, bool drop_cyclic = false) {
-  const EquationsOfMotion eom = derive_equations(model);
+  const ModelEquations eom = derive_equations(model);
   LinearizeOptions options;
   options.drop_cyclic = drop_cyclic;
   return linearize(model, eom, linearize_symbolic(model, eom), point, options);
@@ -133,7 +134,7 @@ TEST(Linearization, SleepingTopIsStableExactlyAboveTheClassicalThreshold) {
   const double m = 0.5, l = 0.05, J1 = 2.2e-4, J3 = 4.0e-4, g = 9.81;
   const double I1 = J1 + m * l * l, mgl = m * g * l;
   const double w_critical = std::sqrt(4 * I1 * mgl) / J3;
-  const EquationsOfMotion eom = derive_equations(model);
+  const ModelEquations eom = derive_equations(model);
   const SymbolicLinearization symbolic = linearize_symbolic(model, eom);
   EXPECT_EQ(symbolic.cyclic, (std::vector<bool>{false, false, true}));
   LinearizeOptions drop;
@@ -172,7 +173,7 @@ TEST(Linearization, SleepingTopIsStableExactlyAboveTheClassicalThreshold) {
 TEST(Linearization, EqualsTheJacobianOfTheNonlinearRightHandSideAwayFromEquilibrium) {
   const Model model = shipped("double_pendulum");
   const NamedValues point{{"theta1", 0.7}, {"theta2", -1.1}, {"theta1_dot", 1.3}, {"theta2_dot", -0.4}};
-  const EquationsOfMotion eom = derive_equations(model);
+  const ModelEquations eom = derive_equations(model);
   const LinearModel lin = linearize(model, eom, linearize_symbolic(model, eom), point);
   EXPECT_GT(lin.qdd0.norm(), 1.0);
   const std::vector<std::string> names{"theta1", "theta2", "theta1_dot", "theta2_dot"};
@@ -217,7 +218,7 @@ TEST(Linearization, RollingCoinUprightIsStableExactlyAboveTheCriticalSpeed) {
   const Model model = shipped("rolling_coin");  // r = 12.9 mm, g = 9.81
   const double r = 12.9e-3, g = 9.81;
   const double v_critical = std::sqrt(g * r / 3);
-  const EquationsOfMotion eom = derive_equations(model);
+  const ModelEquations eom = derive_equations(model);
   const SymbolicLinearization symbolic = linearize_symbolic(model, eom);
   LinearizeOptions drop;
   drop.drop_cyclic = true;
@@ -244,14 +245,14 @@ TEST(Linearization, RollingCoinUprightIsStableExactlyAboveTheCriticalSpeed) {
 TEST(Linearization, SingularMassMatrixAtThePointIsAnError) {
   // the 3-1-3 angles of the shipped top are singular upright
   const Model model = shipped("heavy_top");
-  const EquationsOfMotion eom = derive_equations(model);
+  const ModelEquations eom = derive_equations(model);
   EXPECT_THROW(linearize(model, eom, linearize_symbolic(model, eom), {{"phi_dot", 50.0}}), Error);
 }
 
 TEST(Equilibrium, NewtonFindsTheEquilibriaOfTheShippedModelsFromNearbyGuesses) {
   const auto solve = [](const std::string& name, const NamedValues& guess) {
     const Model model = shipped(name);
-    const EquationsOfMotion eom = derive_equations(model);
+    const ModelEquations eom = derive_equations(model);
     return find_equilibrium(model, eom, linearize_symbolic(model, eom), guess);
   };
   // Example A.20: the only real equilibrium of the hardening spring is 0

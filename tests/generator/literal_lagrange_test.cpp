@@ -1,8 +1,8 @@
-#include "eomgen/literal_lagrange.hpp"
+#include "eomgen/derivation/literal_lagrange.hpp"
 
 #include <gtest/gtest.h>
 
-#include "eomgen/simplify.hpp"
+#include "eomgen/symbolic/simplify.hpp"
 
 namespace eomgen {
 namespace {

@@ -1,10 +1,10 @@
 // Lowering: sharing, integer powers, canonical order, and errors.
-#include "eomgen/lower.hpp"
+#include "eomgen/codegen/lower.hpp"
 
 #include <gtest/gtest.h>
 
-#include "eomgen/cpp_printer.hpp"
-#include "eomgen/error.hpp"
+#include "eomgen/codegen/cpp_printer.hpp"
+#include "eomgen/base/error.hpp"
 
 namespace eomgen {
 namespace {

@@ -1,11 +1,11 @@
 // Validation when building a MechanicalSystem: every bad input is a ModelError that names it.
-#include "eomgen/mechanical_system.hpp"
+#include "eomgen/mechanics/mechanical_system.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "eomgen/error.hpp"
-#include "eomgen/simplify.hpp"
+#include "eomgen/base/error.hpp"
+#include "eomgen/symbolic/simplify.hpp"
 
 namespace eomgen {
 namespace {

@@ -6,8 +6,9 @@
 #include <map>
 #include <string>
 
-#include "eomgen/error.hpp"
-#include "eomgen/model.hpp"
+#include "eomgen/base/error.hpp"
+#include "eomgen/derivation/model_equations.hpp"
+#include "eomgen/language/model_file.hpp"
 
 namespace eomgen {
 namespace {

@@ -1,4 +1,4 @@
-#include "eomgen/numeric_evaluation.hpp"
+#include "eomgen/derivation/numeric_evaluation.hpp"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -6,7 +6,7 @@
 #include <cmath>
 #include <string>
 
-#include "eomgen/error.hpp"
+#include "eomgen/base/error.hpp"
 #include "test_models.hpp"
 
 namespace eomgen {

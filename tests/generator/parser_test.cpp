@@ -9,10 +9,11 @@
 #include <string>
 #include <vector>
 
-#include "eomgen/equations_of_motion.hpp"
-#include "eomgen/kinematics.hpp"
-#include "eomgen/model.hpp"
-#include "eomgen/simplify.hpp"
+#include "eomgen/derivation/equations_of_motion.hpp"
+#include "eomgen/mechanics/kinematics.hpp"
+#include "eomgen/derivation/model_equations.hpp"
+#include "eomgen/language/model_file.hpp"
+#include "eomgen/symbolic/simplify.hpp"
 
 namespace eomgen {
 namespace {

@@ -1,6 +1,6 @@
 // Tests of the direction cosine matrices and angular velocities of eomgen/rotation.hpp against
 // docs/conventions.md and the course notes (Example 2.9, Example 2.11, the Euler 1-2-3 rate example).
-#include "eomgen/rotation.hpp"
+#include "eomgen/mechanics/rotation.hpp"
 
 #include <gtest/gtest.h>
 
@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "eomgen/error.hpp"
-#include "eomgen/variables.hpp"
+#include "eomgen/base/error.hpp"
+#include "eomgen/mechanics/variables.hpp"
 
 namespace {
 

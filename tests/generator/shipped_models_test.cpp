@@ -18,11 +18,12 @@
 #include <string>
 #include <vector>
 
-#include "eomgen/equations_of_motion.hpp"
-#include "eomgen/mechanical_system.hpp"
-#include "eomgen/model.hpp"
-#include "eomgen/rotation.hpp"
-#include "eomgen/simplify.hpp"
+#include "eomgen/derivation/equations_of_motion.hpp"
+#include "eomgen/mechanics/mechanical_system.hpp"
+#include "eomgen/derivation/model_equations.hpp"
+#include "eomgen/language/model_file.hpp"
+#include "eomgen/mechanics/rotation.hpp"
+#include "eomgen/symbolic/simplify.hpp"
 #include "test_utils.hpp"
 #include "support/source_dir.hpp"
 

@@ -1,4 +1,4 @@
-#include "eomgen/simplify.hpp"
+#include "eomgen/symbolic/simplify.hpp"
 
 #include <gtest/gtest.h>
 

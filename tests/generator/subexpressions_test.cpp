@@ -1,4 +1,4 @@
-#include "eomgen/subexpressions.hpp"
+#include "eomgen/symbolic/subexpressions.hpp"
 
 #include <gtest/gtest.h>
 

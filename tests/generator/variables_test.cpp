@@ -1,12 +1,12 @@
 // Tests of eomgen::Variables: declaration of symbols, name checks, lookup and the total time
 // derivative by the chain rule.
-#include "eomgen/variables.hpp"
+#include "eomgen/mechanics/variables.hpp"
 
 #include <gtest/gtest.h>
 
 #include <string>
 
-#include "eomgen/error.hpp"
+#include "eomgen/base/error.hpp"
 
 namespace {
 

@@ -1,8 +1,8 @@
-#include "eomgen/vector.hpp"
+#include "eomgen/mechanics/vector.hpp"
 
 #include <gtest/gtest.h>
 
-#include "eomgen/error.hpp"
+#include "eomgen/base/error.hpp"
 
 namespace eomgen {
 namespace {

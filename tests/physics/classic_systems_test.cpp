@@ -13,11 +13,11 @@
 #include <cstddef>
 #include <vector>
 
-#include "eomgen/equations_of_motion.hpp"
-#include "eomgen/kinematics.hpp"
-#include "eomgen/literal_lagrange.hpp"
-#include "eomgen/mechanical_system.hpp"
-#include "eomgen/rotation.hpp"
+#include "eomgen/derivation/equations_of_motion.hpp"
+#include "eomgen/mechanics/kinematics.hpp"
+#include "eomgen/derivation/literal_lagrange.hpp"
+#include "eomgen/mechanics/mechanical_system.hpp"
+#include "eomgen/mechanics/rotation.hpp"
 #include "test_utils.hpp"
 
 namespace {

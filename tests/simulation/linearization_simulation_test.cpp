@@ -8,8 +8,9 @@
 
 #include "cart_pole.hpp"
 #include "double_pendulum.hpp"
-#include "eomgen/linearization.hpp"
-#include "eomgen/model.hpp"
+#include "eomgen/derivation/linearization.hpp"
+#include "eomgen/derivation/model_equations.hpp"
+#include "eomgen/language/model_file.hpp"
 #include "simulation/simulation_helpers.hpp"
 #include "support/source_dir.hpp"
 
@@ -20,7 +21,7 @@ namespace {
 eomgen::LinearModel linear_model(const std::string& name, const eomgen::NamedValues& point) {
   const eomgen::Model model =
       eomgen::load_model(eomgen::testing::shipped_model_path(name));
-  const eomgen::EquationsOfMotion eom = eomgen::derive_equations(model);
+  const eomgen::ModelEquations eom = eomgen::derive_equations(model);
   return eomgen::linearize(model, eom, eomgen::linearize_symbolic(model, eom), point);
 }
 

@@ -1,0 +1,580 @@
+// The eomgen command line: parses arguments (CLI11), loads the model, calls the library and
+// prints. No algebra lives here.
+//
+// Exit status: 0 success; 1 an error in the model or at the requested state (eomgen::Error;
+// a model file error reads "file:line:col: error: ..."); 2 a malformed command line.
+#include <CLI/CLI.hpp>
+#include <fcntl.h>
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <complex>
+#include <cstdio>
+#include <cstring>
+#include <chrono>
+#include <filesystem>
+#include <iostream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "eomgen/codegen/emit_model.hpp"
+#include "eomgen/report/equation_printer.hpp"
+#include "eomgen/derivation/equations_of_motion.hpp"
+#include "eomgen/base/error.hpp"
+#include "eomgen/derivation/linearization.hpp"
+#include "eomgen/derivation/model_equations.hpp"
+#include "eomgen/language/model_file.hpp"
+#include "eomgen/derivation/numeric_evaluation.hpp"
+#include "eomgen/base/version.hpp"
+#include "file_output.hpp"
+#include "simulate_command.hpp"
+
+namespace {
+
+using eomgen::tools::UsageError;
+
+struct Options {
+  std::string model_path;
+  std::vector<std::string> defines;  // --define NAME=VALUE
+  // derive
+  std::string format = "text";
+  std::string only;
+  bool shared = false;
+  bool expand = false;
+  std::string output_path;
+  // eval
+  std::vector<std::string> at, set;
+  // generate
+  std::string outer_namespace = "eomgen_models";
+  bool stats = false;
+  bool no_cse = false;
+  bool emit_linearization = false;
+  // linearize
+  bool drop_cyclic = false;
+  bool find_equilibrium = false;
+  // simulate
+  eomgen::tools::SimulateRequest simulate;
+  std::vector<std::string> init, inputs;
+  bool no_plot = false;
+};
+
+std::string join(const std::vector<std::string>& items) {
+  std::string out;
+  for (std::size_t i = 0; i < items.size(); ++i) out += (i ? ", " : "") + items[i];
+  return items.empty() ? "none" : out;
+}
+
+// "a=1", "b=-2.5e3" -> {a: 1, b: -2500}; `option` names the flag in messages
+std::map<std::string, double> parse_assignments(const std::vector<std::string>& items, const std::string& option) {
+  std::map<std::string, double> out;
+  for (const std::string& item : items) {
+    const auto eq = item.find('=');
+    if (eq == std::string::npos || eq == 0 || eq + 1 == item.size())
+      throw UsageError(fmt::format("{}: expected NAME=VALUE, got '{}'", option, item));
+    const std::string name = item.substr(0, eq);
+    std::string text = item.substr(eq + 1);
+    if (text[0] == '+') text.erase(0, 1);
+    double value = 0.0;
+    // from_chars: locale-independent, and must consume the whole text
+    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+    if (ec != std::errc() || end != text.data() + text.size() || !std::isfinite(value))
+      throw UsageError(fmt::format("{}: '{}' in '{}' is not a finite number", option, item.substr(eq + 1), item));
+    if (!out.emplace(name, value).second) throw UsageError(fmt::format("{}: '{}' is given twice", option, name));
+  }
+  return out;
+}
+
+eomgen::Model load(const Options& o) { return eomgen::load_model(o.model_path, parse_assignments(o.defines, "--define")); }
+
+void run_check(const Options& o) {
+  const eomgen::Model model = load(o);
+  const eomgen::MechanicalSystem& s = model.system;
+  const eomgen::Variables& v = s.variables();
+  // deriving is cheap (linear in the model) and catches what only the derivation can see
+  const eomgen::EquationsOfMotion eom = eomgen::derive_equations(s);
+  std::vector<std::string> coordinates, holonomic, nonholonomic, bodies, particles, inputs, outputs;
+  for (const auto& c : v.coordinates()) coordinates.push_back(c.name);
+  for (const auto& c : s.constraints())
+    (c.kind == eomgen::Constraint::Kind::holonomic ? holonomic : nonholonomic).push_back(c.name);
+  for (const auto& b : s.rigid_bodies()) bodies.push_back(b.name);
+  for (const auto& p : s.particles()) particles.push_back(p.name);
+  for (const auto& u : v.inputs()) inputs.push_back(u.name);
+  for (const auto& out : model.outputs)
+    outputs.push_back(out.components.size() == 1 ? out.name : fmt::format("{} ({} components)", out.name, out.components.size()));
+  const std::size_t n = coordinates.size(), m = s.constraints().size();
+  std::cout << "Model: " << model.name << "\n";
+  if (!model.description.empty()) std::cout << "Description: " << model.description << "\n";
+  std::cout << fmt::format("Coordinates (n = {}): {}\n", n, join(coordinates));
+  std::cout << fmt::format("Constraints (m = {}):\n  holonomic ({}): {}\n  nonholonomic ({}): {}\n", m,
+                           holonomic.size(), join(holonomic), nonholonomic.size(), join(nonholonomic));
+  std::cout << fmt::format("Degrees of freedom (n - m): {}\n", static_cast<long long>(n) - static_cast<long long>(m));
+  if (!model.independent_speeds.empty()) {
+    std::vector<std::string> independent;
+    for (std::size_t k : model.independent_speeds) independent.push_back(coordinates[k] + "_dot");
+    std::cout << fmt::format("Independent speeds ({}): {}\n", independent.size(), join(independent));
+  }
+  std::cout << fmt::format("Bodies ({}): {}\nParticles ({}): {}\n", bodies.size(), join(bodies), particles.size(),
+                           join(particles));
+  std::cout << fmt::format("Parameters ({}):", v.parameters().size()) << (v.parameters().empty() ? " none" : "") << "\n";
+  for (const auto& p : v.parameters())
+    std::cout << fmt::format("  {} = {}", p.name, p.default_value) << (p.unit.empty() ? "" : " [" + p.unit + "]") << "\n";
+  if (!model.constants.empty()) {
+    std::vector<std::string> constants;
+    for (const auto& [name, value] : model.constants) constants.push_back(fmt::format("{} = {}", name, value));
+    std::cout << fmt::format("Constants ({}): {}\n", constants.size(), join(constants));
+  }
+  std::cout << fmt::format("Inputs ({}): {}\nOutputs ({}): {}\n", inputs.size(), join(inputs), outputs.size(),
+                           join(outputs));
+  std::cout << fmt::format("Derivation: ok ({} shared intermediates)\n", eom.subexpressions.size());
+}
+
+void run_derive(const Options& o) {
+  eomgen::PrintOptions print;
+  static const std::map<std::string, eomgen::EquationFormat> formats = {
+      {"text", eomgen::EquationFormat::text},
+      {"latex", eomgen::EquationFormat::latex},
+      {"markdown", eomgen::EquationFormat::markdown}};
+  print.format = formats.at(o.format);  // CLI11 checked membership
+  if (!o.only.empty()) {
+    try {
+      print.parts = eomgen::parse_equation_parts(o.only);
+    } catch (const eomgen::Error& e) {
+      throw UsageError(fmt::format("--only: {}", e.what()));
+    }
+  }
+  if (o.shared) print.intermediates = eomgen::IntermediateForm::shared;
+  if (o.expand) print.intermediates = eomgen::IntermediateForm::written_out;
+  const eomgen::Model model = load(o);
+  const eomgen::ModelEquations eom = eomgen::derive_equations(model);
+  // render completely before writing anything, so an error leaves no output behind
+  const std::string text = eomgen::format_equations(model, eom, print);
+  if (o.output_path.empty())
+    std::cout << text << std::flush;
+  else
+    eomgen::tools::write_atomically(o.output_path, text);
+}
+
+// ---- generate ----
+
+std::string statistics_table(const std::vector<eomgen::FunctionStatistics>& statistics) {
+  std::string out = fmt::format("{:<30} {:>12} {:>12} {:>8} {:>8} {:>8} {:>8}\n", "function", "unoptimized",
+                                "optimized", "adds", "muls", "divs", "calls");
+  for (const auto& s : statistics)
+    out += fmt::format("{:<30} {:>12} {:>12} {:>8} {:>8} {:>8} {:>8}\n", s.function, s.unoptimized.total(),
+                       s.optimized.total(), s.optimized.additions, s.optimized.multiplications,
+                       s.optimized.divisions, s.optimized.calls);
+  return out;
+}
+
+void run_generate(const Options& o) {
+  using clock = std::chrono::steady_clock;
+  const auto milliseconds = [](clock::duration d) { return std::chrono::duration<double, std::milli>(d).count(); };
+  const auto start = clock::now();
+  const eomgen::Model model = load(o);
+  const auto loaded = clock::now();
+  const eomgen::ModelEquations eom = eomgen::derive_equations(model);
+  const auto derived = clock::now();
+  eomgen::EmitOptions emit;
+  emit.outer_namespace = o.outer_namespace;
+  emit.share_subexpressions = !o.no_cse;
+  emit.linearization = o.emit_linearization;
+  // the file name only: a path would make the header differ between checkouts
+  emit.source_name = std::filesystem::path(o.model_path).filename().string();
+  const eomgen::EmittedModel emitted = eomgen::emit_model(model, eom, emit);
+  // wall times inside the process (what a build step or a benchmark against an in-process
+  // peer should compare), not the program's start-up
+  const std::string stats =
+      o.stats ? statistics_table(emitted.statistics) +
+                    fmt::format("time [ms]: parse {:.3f}, derive {:.3f}, emit {:.3f}\n", milliseconds(loaded - start),
+                                milliseconds(derived - loaded), milliseconds(clock::now() - derived))
+              : std::string();
+  if (o.output_path.empty()) {
+    std::cout << emitted.header << std::flush;
+    std::cerr << stats;
+  } else {
+    eomgen::tools::write_atomically(o.output_path, emitted.header);
+    std::cout << stats;
+  }
+}
+
+// ---- eval ----
+
+std::string number(double x) { return fmt::format("{}", x); }  // shortest text that reads back exactly
+
+void print_matrix(const std::string& title, const Eigen::MatrixXd& a) {
+  std::cout << fmt::format("{} ({} x {}):", title, a.rows(), a.cols()) << (a.size() == 0 ? " empty" : "") << "\n";
+  if (a.size() == 0) return;
+  std::vector<std::size_t> width(a.cols(), 0);
+  for (Eigen::Index j = 0; j < a.cols(); ++j)
+    for (Eigen::Index i = 0; i < a.rows(); ++i) width[j] = std::max(width[j], number(a(i, j)).size());
+  for (Eigen::Index i = 0; i < a.rows(); ++i) {
+    std::cout << "  [";
+    for (Eigen::Index j = 0; j < a.cols(); ++j) std::cout << (j ? "  " : " ") << fmt::format("{:>{}}", number(a(i, j)), width[j]);
+    std::cout << " ]\n";
+  }
+}
+
+void print_named(const std::string& title, const std::vector<std::pair<std::string, double>>& values) {
+  std::cout << title << ":" << (values.empty() ? " none" : "") << "\n";
+  for (const auto& [name, value] : values) std::cout << "  " << name << " = " << number(value) << "\n";
+}
+
+// --at (the state) and --set (parameters) as one set of named values for the evaluation
+eomgen::NamedValues state_and_parameters(const Options& o, const eomgen::Model& model) {
+  const std::map<std::string, double> at = parse_assignments(o.at, "--at");
+  const std::map<std::string, double> set = parse_assignments(o.set, "--set");
+  eomgen::NamedValues values = at;
+  for (const auto& [name, value] : set)
+    if (!values.emplace(name, value).second) throw UsageError(fmt::format("--set: '{}' is also given in --at", name));
+  const eomgen::Variables& v = model.system.variables();
+  for (const auto& [name, value] : set) {
+    bool is_parameter = false;
+    for (const auto& p : v.parameters()) is_parameter = is_parameter || p.name == name;
+    if (!is_parameter) throw eomgen::Error(fmt::format("--set: '{}' is not a parameter of the model", name));
+  }
+  return values;
+}
+
+void run_eval(const Options& o) {
+  if (o.format != "text" && o.format != "json") throw UsageError("--format: eval prints 'text' or 'json'");
+  const eomgen::Model model = load(o);
+  const eomgen::NamedValues values = state_and_parameters(o, model);
+  const eomgen::Variables& v = model.system.variables();
+  const eomgen::ModelEquations eom = eomgen::derive_equations(model);
+  const eomgen::NumericEquations eq = eomgen::evaluate_equations(model, eom, values);
+  eomgen::AccelerationSolution sol;
+  try {
+    sol = eomgen::solve_accelerations(eq);
+  } catch (const eomgen::Error& e) {
+    // the usual cause is a state off the constraints (the all-zero default for a quaternion)
+    if (eq.holonomic_residuals.size() == 0 || eq.holonomic_residuals.norm() < 1e-9) throw;
+    throw eomgen::Error(fmt::format("{}; note that the state violates the holonomic constraints: "
+                                    "|phi| = {:.3g}", e.what(), eq.holonomic_residuals.norm()));
+  }
+
+  // the state and parameters actually used, in declaration order
+  auto value_of = [&](const std::string& name, double fallback) {
+    const auto it = values.find(name);
+    return it == values.end() ? fallback : it->second;
+  };
+  std::vector<std::pair<std::string, double>> state{{"t", value_of("t", 0.0)}}, parameters, qdd, lambda;
+  std::vector<std::string> coordinates, constraints;
+  for (const auto& c : v.coordinates()) {
+    coordinates.push_back(c.name);
+    state.emplace_back(c.name, value_of(c.name, 0.0));
+    state.emplace_back(c.qd.get_name(), value_of(c.qd.get_name(), 0.0));
+    qdd.emplace_back(c.qdd.get_name(), sol.qdd(static_cast<Eigen::Index>(qdd.size())));
+  }
+  for (const auto& u : v.inputs()) state.emplace_back(u.name, value_of(u.name, 0.0));
+  for (const auto& p : v.parameters()) parameters.emplace_back(p.name, value_of(p.name, p.default_value));
+  for (const auto& c : model.system.constraints()) {
+    constraints.push_back(c.name);
+    lambda.emplace_back(c.name, sol.lambda(static_cast<Eigen::Index>(lambda.size())));
+  }
+
+  if (o.format == "json") {
+    using json = nlohmann::ordered_json;  // keys in a fixed, readable order
+    auto rows = [](const Eigen::MatrixXd& a) {
+      json out = json::array();
+      for (Eigen::Index i = 0; i < a.rows(); ++i) {
+        json row = json::array();
+        for (Eigen::Index j = 0; j < a.cols(); ++j) row.push_back(a(i, j));
+        out.push_back(row);
+      }
+      return out;
+    };
+    auto column = [](const Eigen::VectorXd& x) { return json(std::vector<double>(x.data(), x.data() + x.size())); };
+    auto object = [](const std::vector<std::pair<std::string, double>>& values) {
+      json out = json::object();
+      for (const auto& [name, value] : values) out[name] = value;
+      return out;
+    };
+    json j;
+    j["model"] = model.name;
+    j["coordinates"] = coordinates;
+    j["constraints"] = constraints;
+    j["state"] = object(state);
+    j["parameters"] = object(parameters);
+    j["M"] = rows(eq.mass_matrix);
+    j["F"] = column(eq.forcing);
+    j["Xi"] = rows(eq.constraint_jacobian);
+    j["Xi_t"] = column(eq.constraint_rate_term);
+    j["constraint_bias"] = column(eq.constraint_acceleration_term);
+    j["phi"] = column(eq.holonomic_residuals);
+    j["T"] = eq.kinetic_energy;
+    j["V"] = eq.potential_energy;
+    j["qdd"] = column(sol.qdd);
+    j["lambda"] = column(sol.lambda);
+    j["outputs"] = object(eq.outputs);
+    // one key per line, each value compact (a matrix on one line as an array of rows);
+    // nlohmann writes the shortest decimal that reads back to the same double
+    std::cout << "{";
+    for (auto it = j.begin(); it != j.end(); ++it)
+      std::cout << (it == j.begin() ? "\n  " : ",\n  ") << json(it.key()).dump() << ": " << it.value().dump();
+    std::cout << "\n}\n";
+    return;
+  }
+  std::cout << "Model " << model.name << "\n";
+  print_named("State", state);
+  print_named("Parameters", parameters);
+  print_matrix("M", eq.mass_matrix);
+  print_matrix("F", eq.forcing);
+  if (!constraints.empty()) {
+    std::cout << "Constraints: " << join(constraints) << "\n";
+    print_matrix("Xi", eq.constraint_jacobian);
+    print_matrix("Xi_t", eq.constraint_rate_term);
+    print_matrix("constraint_bias = dXi/dt qd + dXi_t/dt", eq.constraint_acceleration_term);
+    print_matrix("phi", eq.holonomic_residuals);
+  }
+  std::cout << "T = " << number(eq.kinetic_energy) << "\nV = " << number(eq.potential_energy) << "\n";
+  print_named("Outputs", eq.outputs);
+  print_named("Accelerations qdd", qdd);
+  if (!constraints.empty()) print_named("Multipliers lambda", lambda);
+}
+
+// ---- linearize ----
+
+std::string latex_matrix(const Eigen::MatrixXd& a) {
+  // an empty bmatrix (B of a model without inputs) would be rows of nothing: say what it is
+  if (a.size() == 0) return fmt::format("\\text{{(empty, {} \\times {})}}", a.rows(), a.cols());
+  std::string out = "\\begin{bmatrix}\n";
+  for (Eigen::Index i = 0; i < a.rows(); ++i) {
+    for (Eigen::Index j = 0; j < a.cols(); ++j) out += (j ? " & " : "  ") + number(a(i, j));
+    out += i + 1 < a.rows() ? " \\\\\n" : "\n";
+  }
+  return out + "\\end{bmatrix}";
+}
+
+std::string complex_number(const std::complex<double>& z) {
+  if (z.imag() == 0) return number(z.real());
+  return fmt::format("{} {} {}i", number(z.real()), z.imag() < 0 ? "-" : "+", number(std::abs(z.imag())));
+}
+
+void run_linearize(const Options& o) {
+  const eomgen::Model model = load(o);
+  const eomgen::NamedValues values = state_and_parameters(o, model);
+  const eomgen::ModelEquations eom = eomgen::derive_equations(model);
+  const eomgen::SymbolicLinearization symbolic = eomgen::linearize_symbolic(model, eom);
+  eomgen::LinearizeOptions options;
+  options.drop_cyclic = o.drop_cyclic;
+  eomgen::NamedValues at = values;
+  std::string found;
+  if (o.find_equilibrium) {
+    const eomgen::Equilibrium eq = eomgen::find_equilibrium(model, eom, symbolic, values);
+    at = eq.point;
+    std::vector<std::string> q;
+    for (const auto& c : model.system.variables().coordinates()) q.push_back(fmt::format("{} = {}", c.name, number(at.at(c.name))));
+    found = fmt::format("Equilibrium found from the guess by Newton's method in {} iterations: {} (residual {:.3g})\n",
+                        eq.iterations, join(q), eq.residual);
+  }
+  const eomgen::LinearModel lin = eomgen::linearize(model, eom, symbolic, at, options);
+  // an operating point whose accelerations are not zero is a point of a trajectory: A is
+  // still its linearization, but the stability theorems are about equilibria
+  const double scale = std::max(1.0, lin.A.cwiseAbs().maxCoeff());
+  const bool equilibrium = lin.qdd0.cwiseAbs().maxCoeff() <= 1e-9 * scale;
+  std::vector<std::string> point;
+  for (const auto& [name, value] : at) point.push_back(fmt::format("{} = {}", name, number(value)));
+
+  if (o.format == "latex") {
+    std::cout << fmt::format("% linearization of {} about {}\n", model.name, join(point));
+    std::cout << "A = " << latex_matrix(lin.A) << "\n\nB = " << latex_matrix(lin.B) << "\n\n";
+    if (lin.M.size() > 0)
+      std::cout << "M = " << latex_matrix(lin.M) << "\n\nD = " << latex_matrix(lin.D) << "\n\nK = "
+                << latex_matrix(lin.K) << "\n\nB_u = " << latex_matrix(lin.B_u) << "\n";
+    return;
+  }
+  std::cout << found;
+  std::cout << fmt::format("Linearization of {} about {} (others 0, parameters at their defaults)\n", model.name,
+                           point.empty() ? std::string("the origin") : join(point));
+  std::cout << fmt::format("Accelerations at the point: [{}]{}\n", [&] {
+    std::vector<std::string> a;
+    for (Eigen::Index i = 0; i < lin.qdd0.size(); ++i) a.push_back(number(lin.qdd0(i)));
+    return join(a);
+  }(), equilibrium ? " (an equilibrium or steady motion)" : " (not an equilibrium: A linearizes about a point of a trajectory)");
+  std::cout << fmt::format("State kept: [{}]; dropped as cyclic: {}\n", join(lin.state_names), join(lin.dropped));
+  if (!lin.dependent.empty())
+    std::cout << fmt::format("Determined by the constraints (not states): {}\n", join(lin.dependent));
+  std::cout << fmt::format("Inputs: [{}]\n\n", join(lin.input_names));
+  print_matrix("A", lin.A);
+  print_matrix("B", lin.B);
+  if (lin.M.size() > 0) {
+    std::cout << "\nSecond-order form M dqdd + D dqd + K dq = B_u du (all coordinates):\n";
+    print_matrix("M", lin.M);
+    print_matrix("D (damping and gyroscopic)", lin.D);
+    print_matrix("K (stiffness)", lin.K);
+    print_matrix("B_u", lin.B_u);
+  } else {
+    std::cout << "\nSecond-order form: none (a constrained model's linear model is in independent states)\n";
+  }
+  const eomgen::StabilityReport report = eomgen::assess_stability(lin.A);
+  std::vector<std::string> eig;
+  for (Eigen::Index i = 0; i < report.eigenvalues.size(); ++i) eig.push_back(complex_number(report.eigenvalues(i)));
+  std::cout << fmt::format("\nEigenvalues of A: {}\n", join(eig));
+  if (!equilibrium) {
+    std::cout << "Stability: not assessed (the point is not an equilibrium)\n";
+    return;
+  }
+  std::cout << fmt::format("Linear system (notes, Theorem A.21): {}\n", eomgen::to_string(report.linear));
+  std::cout << fmt::format("Equilibrium, by Lyapunov's indirect method (Theorem A.22): {}\n",
+                           eomgen::to_string(report.nonlinear));
+}
+
+// ---- simulate ----
+
+int run_simulate(Options& o) {
+  const eomgen::Model model = load(o);
+  eomgen::tools::SimulateRequest& r = o.simulate;
+  r.model_path = o.model_path;
+  r.parameters = parse_assignments(o.set, "--set");
+  r.initial = parse_assignments(o.init, "--init");
+  r.inputs = parse_assignments(o.inputs, "--input");
+  r.plot = !o.no_plot;
+  return eomgen::tools::run_simulate(model, r);
+}
+
+// the options every subcommand has: the model file and --define
+void add_model_options(CLI::App* sub, Options& o) {
+  sub->add_option("MODEL", o.model_path, "Model file (.eom)")->required()->check(CLI::ExistingFile);
+  sub->add_option("-D,--define", o.defines, "Override a 'const' of the model: NAME=VALUE (repeatable)")
+      ->delimiter(',')
+      ->type_name("NAME=VALUE");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"eomgen: equations of motion M(q) qdd = F(q, qd, t, u) + Xi^T lambda from a model file", "eomgen"};
+  app.set_version_flag("--version", std::string("eomgen ") + eomgen::version);
+  app.require_subcommand(1);
+  app.footer("Exit status: 0 success, 1 error in the model or at the state, 2 usage error.");
+  Options o;
+
+  CLI::App* check = app.add_subcommand("check", "Check a model and summarize it");
+  add_model_options(check, o);
+
+  CLI::App* derive = app.add_subcommand("derive", "Derive and print the equations of motion");
+  derive->alias("show");
+  add_model_options(derive, o);
+  derive->add_option("-f,--format", o.format, "Output format")
+      ->check(CLI::IsMember({"text", "latex", "markdown"}))
+      ->capture_default_str();
+  derive->add_option("--only", o.only, "Parts to print, comma-separated: M,F,Xi,Xi_t,constraint_bias,phi,T,V,outputs")
+      ->type_name("PARTS");
+  CLI::Option* shared = derive->add_flag("--intermediates", o.shared,
+                                         "Print in terms of shared intermediates, then their definitions");
+  derive->add_flag("--expand", o.expand, "Write intermediates out even for a large system (may be slow)")
+      ->excludes(shared);
+  derive->add_option("-o,--output", o.output_path, "Write to FILE instead of standard output (atomically)")
+      ->type_name("FILE");
+
+  CLI::App* eval = app.add_subcommand("eval", "Evaluate the equations numerically and solve for qdd, lambda");
+  add_model_options(eval, o);
+  eval->add_option("--at", o.at, "State: q1=0.1,q1_dot=0.3,u=1,t=0 (others are 0)")
+      ->delimiter(',')
+      ->type_name("NAME=VALUE,...");
+  eval->add_option("--set", o.set, "Override a parameter's default: NAME=VALUE (repeatable)")
+      ->delimiter(',')
+      ->type_name("NAME=VALUE");
+  eval->add_option("-f,--format", o.format, "Output format")->check(CLI::IsMember({"text", "json"}))->capture_default_str();
+
+  CLI::App* generate = app.add_subcommand("generate", "Emit an optimized C++ header (Eigen only) for the model");
+  add_model_options(generate, o);
+  generate->add_option("-o,--output", o.output_path, "Write to FILE instead of standard output (atomically)")
+      ->type_name("FILE");
+  generate->add_option("--namespace", o.outer_namespace, "Outer namespace of the generated code")
+      ->capture_default_str();
+  generate->add_flag("--no-cse", o.no_cse,
+                     "Write every output as its own expression tree, without shared temporaries (for comparison)");
+  generate->add_flag("--stats", o.stats,
+                     "Print operation counts per function, without and with shared subexpressions");
+  generate->add_flag("--linearization", o.emit_linearization,
+                     "Also emit linearization(t, q, qd, u, p, A, B) and its terms: A and B about any operating "
+                     "point, from exact derivatives (for gain scheduling)");
+
+  CLI::App* linearize = app.add_subcommand(
+      "linearize", "Linearize about an operating point: A, B, the second-order form, eigenvalues, stability");
+  add_model_options(linearize, o);
+  linearize->add_option("--at", o.at, "Operating point: q1=0.1,q1_dot=0.3,u=1,t=0 (others are 0)")
+      ->delimiter(',')
+      ->type_name("NAME=VALUE,...");
+  linearize->add_option("--set", o.set, "Override a parameter's default: NAME=VALUE (repeatable)")
+      ->delimiter(',')
+      ->type_name("NAME=VALUE");
+  linearize->add_flag("--equilibrium", o.find_equilibrium,
+                      "Take --at as a guess: find the equilibrium (coordinates; rates held) by Newton's method first");
+  linearize->add_flag("--drop-cyclic", o.drop_cyclic, "Leave coordinates that appear nowhere in M and F out of the state");
+  linearize->add_option("-f,--format", o.format, "Output format")->check(CLI::IsMember({"text", "latex"}))->capture_default_str();
+
+  CLI::App* simulate = app.add_subcommand(
+      "simulate", "Generate, compile (cached) and run a simulation; write a CSV and plot it with gnuplot");
+  add_model_options(simulate, o);
+  eomgen::tools::SimulateRequest& r = o.simulate;
+  simulate->add_option("--t-end", r.t_end, "End time [s] (the run starts at t = 0)")
+      ->required()
+      ->check(CLI::PositiveNumber);
+  simulate->add_option("--method", r.method, "Integrator (default: dp5, or rk4 when --dt is given)")
+      ->check(CLI::IsMember({"euler", "rk4", "dp5"}));
+  simulate->add_option("--dt", r.step, "Step of euler/rk4 [s] (default 1e-3)")->check(CLI::PositiveNumber);
+  simulate->add_option("--rtol", r.rtol, "Relative tolerance of dp5 (default 1e-8)")->check(CLI::PositiveNumber);
+  simulate->add_option("--atol", r.atol, "Absolute tolerance of dp5 (default 1e-10)")->check(CLI::PositiveNumber);
+  simulate->add_option("--sample", r.sample, "Interval between CSV rows [s] (default: about 1000 rows)")
+      ->check(CLI::PositiveNumber);
+  simulate->add_option("--set", o.set, "Override a parameter: NAME=VALUE (repeatable)")
+      ->delimiter(',')
+      ->type_name("NAME=VALUE");
+  simulate->add_option("--init", o.init, "Initial coordinate or rate: q=VALUE, q_dot=VALUE (others 0)")
+      ->delimiter(',')
+      ->type_name("NAME=VALUE");
+  simulate->add_option("--input", o.inputs, "Constant input: NAME=VALUE (others 0)")
+      ->delimiter(',')
+      ->type_name("NAME=VALUE");
+  simulate->add_option("--solver", r.solver, "Constraint forces by the KKT system or the null-space method")
+      ->check(CLI::IsMember({"kkt", "null-space"}))
+      ->capture_default_str();
+  simulate->add_option("--stabilization", r.stabilization, "Constraint drift correction")
+      ->check(CLI::IsMember({"projection", "baumgarte", "none"}))
+      ->capture_default_str();
+  simulate->add_option("-o,--output", r.csv_path, "CSV file (default: MODELNAME.csv)")->type_name("FILE");
+  CLI::Option* plot = simulate->add_option("--plot", r.plot_path, "Plot file, .svg or .png (default: MODELNAME.svg)")
+                          ->type_name("FILE");
+  simulate->add_flag("--no-plot", o.no_plot, "Write the CSV only")->excludes(plot);
+  simulate->add_option("--cache-dir", r.cache_dir,
+                       "Where compiled simulations are kept (default: $EOMGEN_CACHE_DIR, else ~/.cache/eomgen)")
+      ->type_name("DIR");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version: printed to stdout
+    std::cerr << "eomgen: error: " << e.what() << "\nRun with --help for more information.\n";
+    return 2;
+  }
+  try {
+    if (check->parsed()) run_check(o);
+    if (derive->parsed()) run_derive(o);
+    if (eval->parsed()) run_eval(o);
+    if (generate->parsed()) run_generate(o);
+    if (linearize->parsed()) run_linearize(o);
+    if (simulate->parsed()) return run_simulate(o);
+  } catch (const UsageError& e) {
+    std::cerr << "eomgen: error: " << e.what() << "\n";
+    return 2;
+  } catch (const eomgen::SourceError& e) {
+    std::cerr << e.what() << "\n";  // already "file:line:col: error: ..."
+    return 1;
+  } catch (const eomgen::Error& e) {
+    std::cerr << "eomgen: error: " << e.what() << "\n";
+    return 1;
+  } catch (const std::exception& e) {  // GiNaC or the system: not the user's fault, but still fatal
+    std::cerr << "eomgen: internal error: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,121 @@
+#include "file_output.hpp"
+
+#include <fcntl.h>
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <sstream>
+
+#include "eomgen/base/error.hpp"
+
+namespace eomgen::tools {
+
+namespace {
+
+// Creates a new empty file next to `path` (O_EXCL: never someone else's) and returns its
+// descriptor and name; the caller closes or unlinks it.
+int create_temporary(const std::string& path, std::string& temporary) {
+  namespace fs = std::filesystem;
+  const fs::path target(path);
+  const fs::path directory = target.has_parent_path() ? target.parent_path() : fs::path(".");
+  for (int attempt = 0;; ++attempt) {
+    temporary = (directory / fmt::format(".{}.{}-{}.tmp", target.filename().string(), ::getpid(), attempt)).string();
+    const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);  // 0666 & ~umask
+    if (fd >= 0) return fd;
+    if (errno != EEXIST || attempt >= 100)
+      throw Error(fmt::format("writing '{}': cannot create a file in '{}': {}", path, directory.string(),
+                              std::strerror(errno)));
+  }
+}
+
+// The file a rename should replace: a symbolic link is followed, so the link stays and the file
+// it names gets the content (as any program writing through the link would do).
+std::string resolve_links(const std::string& path) {
+  namespace fs = std::filesystem;
+  std::error_code error;
+  if (!fs::is_symlink(fs::symlink_status(path, error))) return path;
+  const fs::path resolved = fs::weakly_canonical(path, error);
+  return error ? path : resolved.string();
+}
+
+// A device, FIFO or socket (`-o /dev/null`, `-o /dev/stdout`, a pipe): renaming a file over it
+// would replace the special file itself, so it is written in place instead; there is nothing
+// to be atomic about for a stream.
+bool is_special(const std::string& path) {
+  namespace fs = std::filesystem;
+  std::error_code error;
+  const fs::file_status status = fs::status(path, error);
+  return !error && fs::exists(status) && !fs::is_regular_file(status) && !fs::is_directory(status);
+}
+
+void write_all(int fd, const char* data, std::size_t size, const std::function<void(const char*)>& fail) {
+  for (std::size_t done = 0; done < size;) {
+    const ssize_t n = ::write(fd, data + done, size - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) fail("write failed");
+    done += static_cast<std::size_t>(n);
+  }
+}
+
+void write_in_place(const std::string& path, const std::string& content) {
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CLOEXEC);
+  if (fd < 0) throw Error(fmt::format("writing '{}': cannot open it: {}", path, std::strerror(errno)));
+  write_all(fd, content.data(), content.size(), [&](const char* what) {
+    const std::string reason = std::strerror(errno);
+    ::close(fd);
+    throw Error(fmt::format("writing '{}': {}: {}", path, what, reason));
+  });
+  if (::close(fd) != 0) throw Error(fmt::format("writing '{}': close failed: {}", path, std::strerror(errno)));
+}
+
+}  // namespace
+
+void write_atomically(const std::string& requested, const std::string& content) {
+  const std::string path = resolve_links(requested);
+  if (is_special(path)) return write_in_place(path, content);
+  std::string temporary;
+  int fd = create_temporary(path, temporary);
+  const auto fail = [&](const std::string& what) {
+    const std::string reason = std::strerror(errno);
+    if (fd >= 0) ::close(fd);
+    ::unlink(temporary.c_str());
+    throw Error(fmt::format("writing '{}': {}: {}", requested, what, reason));
+  };
+  write_all(fd, content.data(), content.size(), fail);
+  if (::fsync(fd) != 0) fail("fsync failed");
+  const int closed = ::close(fd);
+  fd = -1;
+  if (closed != 0) fail("close failed");
+  if (std::rename(temporary.c_str(), path.c_str()) != 0) fail("cannot replace the file");
+}
+
+PendingFile::PendingFile(std::string target) : target_(resolve_links(target)) {
+  ::close(create_temporary(target_, temporary_));
+}
+
+PendingFile::~PendingFile() {
+  if (!committed_) ::unlink(temporary_.c_str());
+}
+
+void PendingFile::commit() {
+  if (is_special(target_)) {
+    std::ifstream in(temporary_, std::ios::binary);
+    std::ostringstream content;
+    content << in.rdbuf();
+    write_in_place(target_, content.str());
+    ::unlink(temporary_.c_str());
+    committed_ = true;
+    return;
+  }
+  if (std::rename(temporary_.c_str(), target_.c_str()) != 0)
+    throw Error(fmt::format("writing '{}': cannot replace the file: {}", target_, std::strerror(errno)));
+  committed_ = true;
+}
+
+}  // namespace eomgen::tools

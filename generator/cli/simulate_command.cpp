@@ -1,0 +1,291 @@
+#include "simulate_command.hpp"
+
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <set>
+#include <sstream>
+
+#include "eomgen/base/content_hash.hpp"
+#include "eomgen/codegen/emit_model.hpp"
+#include "eomgen/derivation/equations_of_motion.hpp"
+#include "eomgen/base/error.hpp"
+#include "eomgen/base/version.hpp"
+#include "eomgen_build_config.hpp"
+#include "file_output.hpp"
+#include "process.hpp"
+
+namespace eomgen::tools {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string read_file(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::string join(const std::vector<std::string>& items) {
+  std::string out;
+  for (std::size_t i = 0; i < items.size(); ++i) out += (i ? ", " : "") + items[i];
+  return items.empty() ? "none" : out;
+}
+
+/// %.17g: the value the user gave, exactly, for the simulation program to read back
+std::string exact(double v) { return fmt::format("{:.17g}", v); }
+
+/// Every name the request uses must be one of the model's; reported before anything is built.
+void check_names(const Model& model, const SimulateRequest& r) {
+  const Variables& vars = model.system.variables();
+  std::vector<std::string> parameters, coordinates, rates, inputs;
+  for (const Parameter& p : vars.parameters()) parameters.push_back(p.name);
+  for (const Coordinate& c : vars.coordinates()) coordinates.push_back(c.name), rates.push_back(c.name + "_dot");
+  for (const Input& u : vars.inputs()) inputs.push_back(u.name);
+  const auto has = [](const std::vector<std::string>& names, const std::string& n) {
+    return std::find(names.begin(), names.end(), n) != names.end();
+  };
+  for (const auto& [name, value] : r.parameters)
+    if (!has(parameters, name))
+      throw UsageError(fmt::format("--set: '{}' is not a parameter of {}; its parameters: {}", name, model.name,
+                                   join(parameters)));
+  for (const auto& [name, value] : r.initial)
+    if (!has(coordinates, name) && !has(rates, name))
+      throw UsageError(fmt::format("--init: '{}' is not a coordinate or rate of {}; expected one of {} or {}", name,
+                                   model.name, join(coordinates), join(rates)));
+  for (const auto& [name, value] : r.inputs)
+    if (!has(inputs, name))
+      throw UsageError(fmt::format("--input: '{}' is not an input of {}; its inputs: {}", name, model.name,
+                                   join(inputs)));
+}
+
+std::string method_of(const SimulateRequest& r) {
+  const std::string method = !r.method.empty() ? r.method : (r.step > 0 ? "rk4" : "dp5");
+  if (method == "dp5" && r.step > 0)
+    throw UsageError("--dt: dp5 chooses its own steps; give --rtol, or a fixed-step --method (rk4, euler)");
+  if (method != "dp5" && (r.rtol > 0 || r.atol > 0))
+    throw UsageError(fmt::format("--rtol/--atol: {} takes fixed steps; give --dt, or --method dp5", method));
+  return method;
+}
+
+fs::path cache_root(const SimulateRequest& r) {
+  if (!r.cache_dir.empty()) return r.cache_dir;
+  if (const char* dir = std::getenv("EOMGEN_CACHE_DIR"); dir && *dir) return dir;
+  if (const char* dir = std::getenv("XDG_CACHE_HOME"); dir && *dir) return fs::path(dir) / "eomgen";
+  if (const char* home = std::getenv("HOME"); home && *home) return fs::path(home) / ".cache" / "eomgen";
+  throw Error("no cache directory: set EOMGEN_CACHE_DIR or HOME, or pass --cache-dir");
+}
+
+/// The runtime headers: next to an installed eomgen (bin/../include), else the source tree.
+fs::path runtime_include_dir() {
+  if (const char* dir = std::getenv("EOMGEN_RUNTIME_INCLUDE_DIR"); dir && *dir) return dir;
+  std::error_code ec;
+  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  if (!ec) {
+    const fs::path installed = exe.parent_path() / build_config::installed_runtime_include_dir;
+    if (fs::exists(installed / "eomrt" / "simulation_program.hpp", ec)) return installed;
+  }
+  const fs::path source = build_config::source_runtime_include_dir;
+  if (fs::exists(source / "eomrt" / "simulation_program.hpp", ec)) return source;
+  throw Error(fmt::format("the eomrt runtime headers are neither next to eomgen nor in '{}'; set "
+                          "EOMGEN_RUNTIME_INCLUDE_DIR to the directory that holds eomrt/",
+                          source.string()));
+}
+
+/// The compiler command: the configured compiler and flags, never fast math (it would break
+/// the NaN checks that make failures loud, and the reproducibility of the results).
+std::vector<std::string> compile_command(const fs::path& source, const fs::path& output, const fs::path& runtime) {
+  std::vector<std::string> cmd{build_config::cxx_compiler};
+  std::istringstream flags(build_config::cxx_flags);
+  for (std::string flag; flags >> flag;) cmd.push_back(flag);
+  for (const char* extra : {"-std=c++17", "-fno-fast-math"}) cmd.push_back(extra);
+  cmd.push_back("-I" + source.parent_path().string());
+  cmd.push_back("-I" + runtime.string());
+  cmd.push_back(std::string("-I") + build_config::eigen_include_dir);
+  cmd.push_back(source.string());
+  cmd.push_back("-o");
+  cmd.push_back(output.string());
+  return cmd;
+}
+
+/// Builds the simulation program for `header` unless the cache has it; returns its path.
+fs::path simulation_program(const Model& model, const std::string& header, const fs::path& cache) {
+  const std::string driver = fmt::format(
+      "// The simulation program of model '{}', written by eomgen simulate.\n"
+      "#include \"model.hpp\"\n#include \"eomrt/simulation_program.hpp\"\n\n"
+      "int main(int argc, char** argv) {{\n"
+      "  return eomrt::simulation_main<eomgen_models::{}::Model>(argc, argv);\n}}\n",
+      cpp_string_contents(model.name), cpp_identifier(model.name));
+  const fs::path runtime = runtime_include_dir();
+
+  // the key covers everything the program is built from, so a stale build is never reused
+  std::string key_material = fmt::format("eomgen {}\n", version);
+  key_material += header + driver;
+  std::vector<fs::path> runtime_headers;
+  for (const auto& entry : fs::directory_iterator(runtime / "eomrt"))
+    if (entry.path().extension() == ".hpp") runtime_headers.push_back(entry.path());
+  std::sort(runtime_headers.begin(), runtime_headers.end());
+  for (const fs::path& h : runtime_headers) key_material += h.filename().string() + "\n" + read_file(h);
+  for (const std::string& part : compile_command("driver.cpp", "simulate", runtime)) key_material += part + "\n";
+  const std::string key = fmt::format("{}-{:016x}", cpp_identifier(model.name), content_hash(key_material));
+
+  const fs::path directory = cache / key;
+  const fs::path program = directory / "simulate";
+  std::error_code ec;
+  if (fs::exists(program, ec)) {
+    std::cerr << fmt::format("eomgen: using the cached build {}\n", directory.string());
+    return program;
+  }
+
+  // built in a private directory, renamed into place when complete: a concurrent run or an
+  // interrupted build never leaves a half-built program under the key
+  fs::create_directories(cache, ec);
+  if (ec) throw Error(fmt::format("cannot create the cache directory '{}': {}", cache.string(), ec.message()));
+  const fs::path building = cache / fmt::format(".{}.{}.tmp", key, ::getpid());
+  fs::remove_all(building, ec);
+  fs::create_directories(building, ec);
+  if (ec) throw Error(fmt::format("cannot create '{}': {}", building.string(), ec.message()));
+  write_atomically((building / "model.hpp").string(), header);
+  write_atomically((building / "driver.cpp").string(), driver);
+  const std::vector<std::string> cmd = compile_command(building / "driver.cpp", building / "simulate", runtime);
+  std::cerr << fmt::format("eomgen: compiling the simulation of {} with {} ...\n", model.name, cmd.front());
+  const auto start = std::chrono::steady_clock::now();
+  const fs::path log = building / "compile.log";
+  const int status = run_process(cmd, log.string());
+  if (status != 0) {
+    const std::string output = read_file(log);
+    fs::remove_all(building, ec);
+    throw Error(fmt::format("compiling the generated simulation failed (exit status {}); this is a bug in eomgen "
+                            "or a broken compiler setup. Compiler output:\n{}",
+                            status, output.substr(0, 4000)));
+  }
+  std::cerr << fmt::format(
+      "eomgen: compiled in {:.1f} s, cached in {}\n",
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), directory.string());
+  fs::rename(building, directory, ec);
+  if (ec) {
+    fs::remove_all(building, ec);  // another run finished the same build first: use its
+    if (!fs::exists(program))
+      throw Error(fmt::format("cannot move the build into '{}' ({}); delete that directory and run again",
+                              directory.string(), ec.message()));
+  }
+  return program;
+}
+
+/// A string for gnuplot's single quotes, where only the quote itself is special ('' in it).
+std::string gnuplot_quoted(const std::string& text) {
+  std::string out = "'";
+  for (char c : text) {
+    if (c == '\'') out += '\'';
+    if (c == '\n' || c == '\r') continue;
+    out += c;
+  }
+  return out + "'";
+}
+
+/// gnuplot script: coordinates against time above, T, V and T+V below; `image` is where gnuplot
+/// writes (a temporary name), `png` chooses the terminal (else SVG).
+std::string plot_script(const Model& model, const std::string& csv, const std::string& image, bool png,
+                        const std::string& title) {
+  const Variables& vars = model.system.variables();
+  const std::size_t nq = vars.coordinates().size();
+  const std::size_t nc = model.system.constraints().size();
+  const std::size_t nu = vars.inputs().size();
+  const std::size_t energy_column = 1 + 2 * nq + nc + nu + 1;  // of T; gnuplot counts from 1 (t)
+  std::string s;
+  s += png ? "set terminal pngcairo size 1000,800 noenhanced font 'sans,10'\n"
+           : "set terminal svg size 1000,800 dynamic noenhanced font 'sans,11' background rgb 'white'\n";
+  s += "set output " + gnuplot_quoted(image) + "\n";
+  s += "set datafile separator ','\n";
+  s += "set grid\nset key outside right top\nset xlabel 't [s]'\n";
+  s += "set multiplot layout 2,1 title " + gnuplot_quoted(title) + "\n";
+  s += "set ylabel 'coordinates'\n";
+  s += fmt::format("plot for [i=2:{}] {} using 1:i with lines lw 1.5 title columnheader(i)\n", 1 + nq,
+                   gnuplot_quoted(csv));
+  s += "set ylabel 'energy [J]'\n";
+  s += fmt::format(
+      "plot {0} using 1:{1} with lines lw 1.5 title 'T', '' using 1:{2} with lines lw 1.5 title 'V', "
+      "'' using 1:{3} with lines lw 2 title 'T + V'\n",
+      gnuplot_quoted(csv), energy_column, energy_column + 1, energy_column + 2);
+  s += "unset multiplot\nset output\n";
+  return s;
+}
+
+}  // namespace
+
+int run_simulate(const Model& model, const SimulateRequest& r) {
+  check_names(model, r);
+  const std::string method = method_of(r);
+  // default names from the model's name as an identifier: a name is free text in a model
+  // file without a `model` line (the file's stem), and must not become a path or an option
+  const std::string stem = cpp_identifier(model.name);
+  const std::string csv_path = r.csv_path.empty() ? stem + ".csv" : r.csv_path;
+  const std::string plot_path = r.plot_path.empty() ? stem + ".svg" : r.plot_path;
+  if (r.plot) {
+    const std::string ext = fs::path(plot_path).extension().string();
+    if (ext != ".svg" && ext != ".png")
+      throw UsageError(fmt::format("--plot: expected a .svg or .png file, got '{}'", plot_path));
+    if (!program_available("gnuplot"))
+      throw Error("gnuplot is not installed (on Debian: apt-get install gnuplot-nox); install it or pass --no-plot");
+  }
+
+  const ModelEquations eom = derive_equations(model);
+  EmitOptions emit;
+  emit.source_name = fs::path(r.model_path).filename().string();
+  const std::string header = emit_model(model, eom, emit).header;
+  const fs::path program = simulation_program(model, header, cache_root(r));
+
+  std::vector<std::string> cmd{program.string(), "--t-end", exact(r.t_end), "--method", method,
+                               "--solver", r.solver, "--stabilization", r.stabilization};
+  if (r.step > 0) cmd.insert(cmd.end(), {"--dt", exact(r.step)});
+  if (r.rtol > 0) cmd.insert(cmd.end(), {"--rtol", exact(r.rtol)});
+  if (r.atol > 0) cmd.insert(cmd.end(), {"--atol", exact(r.atol)});
+  if (r.sample > 0) cmd.insert(cmd.end(), {"--sample", exact(r.sample)});
+  for (const auto& [name, value] : r.parameters) cmd.insert(cmd.end(), {"--set", name + "=" + exact(value)});
+  for (const auto& [name, value] : r.initial) cmd.insert(cmd.end(), {"--init", name + "=" + exact(value)});
+  for (const auto& [name, value] : r.inputs) cmd.insert(cmd.end(), {"--input", name + "=" + exact(value)});
+  if (::isatty(STDERR_FILENO)) cmd.push_back("--progress");
+
+  PendingFile csv(csv_path);
+  cmd.insert(cmd.end(), {"--csv", csv.path()});
+  std::cout << std::flush;
+  const int status = run_process(cmd);
+  if (status == 1) {
+    std::cerr << fmt::format("eomgen: error: the simulation of {} failed (see above); no CSV or plot was written\n",
+                             model.name);
+    return 1;
+  }
+  if (status != 0)
+    throw Error(fmt::format("the simulation program of {} ended with status {}", model.name, status));
+  csv.commit();
+  std::cout << fmt::format("CSV:  {}\n", csv_path);
+
+  if (r.plot) {
+    PendingFile image(plot_path);
+    PendingFile script(plot_path + ".gp");
+    const std::string title = fmt::format("{}: {}", model.name, model.description);
+    // absolute paths: gnuplot runs a data file named "<cmd" and an output named "|cmd" as
+    // shell commands, whatever the quoting; a path starting with '/' is never one
+    write_atomically(script.path(), plot_script(model, fs::absolute(csv_path).string(), fs::absolute(image.path()).string(),
+                                                fs::path(plot_path).extension() == ".png", title));
+    const fs::path log = fs::path(script.path()).replace_extension(".log");
+    const int plotted = run_process({"gnuplot", fs::absolute(script.path()).string()}, log.string());
+    const std::string output = read_file(log);
+    std::error_code ec;
+    fs::remove(log, ec);
+    if (plotted != 0) throw Error(fmt::format("gnuplot failed (exit status {}):\n{}", plotted, output));
+    image.commit();
+    std::cout << fmt::format("plot: {}\n", plot_path);
+  }
+  return 0;
+}
+
+}  // namespace eomgen::tools

@@ -1,0 +1,45 @@
+#pragma once
+// `eomgen simulate`: generate a model's code, compile it with the runtime's simulation program
+// into a cache keyed by content, run it, and plot the result with gnuplot.
+#include <map>
+#include <string>
+#include <vector>
+
+#include "eomgen/derivation/model_equations.hpp"
+#include "eomgen/language/model_file.hpp"
+
+namespace eomgen::tools {
+
+/// A command line CLI11 accepted but whose content is malformed (exit status 2).
+class UsageError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// What the user asked `eomgen simulate` for; numbers are already parsed and finite.
+struct SimulateRequest {
+  std::string model_path;
+  double t_end = 0;
+  std::string method;  ///< euler, rk4, dp5; empty: rk4 when a step is given, else dp5
+  double step = 0;     ///< 0: not given
+  double rtol = 0;     ///< 0: not given
+  double atol = 0;     ///< 0: not given
+  double sample = 0;   ///< 0: about 1000 rows
+  std::string solver = "kkt";
+  std::string stabilization = "projection";
+  std::map<std::string, double> parameters;  ///< --set
+  std::map<std::string, double> initial;     ///< --init (coordinates and NAME_dot rates)
+  std::map<std::string, double> inputs;      ///< --input (constant inputs)
+  std::string csv_path;                      ///< empty: <model>.csv
+  std::string plot_path;                     ///< empty: <model>.svg
+  bool plot = true;
+  std::string cache_dir;  ///< empty: $EOMGEN_CACHE_DIR, else $XDG_CACHE_HOME/eomgen, else ~/.cache/eomgen
+};
+
+/// Runs the request for an already loaded model.
+/// \return the exit status: 0, or 1 when the simulation failed (its message is on stderr)
+/// \throws UsageError for names or settings the model does not have
+/// \throws eomgen::Error when compiling, running or plotting fails
+int run_simulate(const Model& model, const SimulateRequest& request);
+
+}  // namespace eomgen::tools

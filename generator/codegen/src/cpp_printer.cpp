@@ -1,0 +1,154 @@
+#include "eomgen/codegen/cpp_printer.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace eomgen {
+namespace {
+
+using ir::Op;
+
+// binding strength of what an instruction prints as
+int precedence(Op op) {
+  switch (op) {
+    case Op::add: return 1;
+    case Op::multiply:
+    case Op::divide: return 2;
+    case Op::negate: return 3;
+    case Op::number:
+    case Op::variable:
+    case Op::power:
+    case Op::sqrt:
+    case Op::sin:
+    case Op::cos:
+    case Op::tan:
+    case Op::asin:
+    case Op::acos:
+    case Op::atan:
+    case Op::atan2:
+    case Op::sinh:
+    case Op::cosh:
+    case Op::tanh:
+    case Op::exp:
+    case Op::log:
+    case Op::abs: return 4;
+  }
+  return 4;
+}
+
+class Printer {
+ public:
+  Printer(const ir::Program& p, const CppPrintOptions& o) : program_(p), options_(o), uses_(p.instructions.size(), 0),
+        names_(p.instructions.size()) {
+    for (const auto& in : p.instructions)
+      for (std::size_t a : in.args) ++uses_[a];
+    for (const auto& out : p.outputs) ++uses_[out.value];
+  }
+
+  std::string run() {
+    std::string body;
+    std::size_t temporaries = 0;
+    for (std::size_t i = 0; i < program_.instructions.size(); ++i) {
+      const ir::Instruction& in = program_.instructions[i];
+      if (in.op == Op::number || in.op == Op::variable || uses_[i] <= 1 || !options_.share_subexpressions) continue;
+      names_[i] = fmt::format("{}{}", options_.temporary_prefix, temporaries++);
+      body += fmt::format("{}const {} {} = {};\n", options_.indent, options_.scalar, names_[i], expression(i));
+    }
+    for (const ir::Assignment& out : program_.outputs)
+      body += fmt::format("{}{} = {};\n", options_.indent, out.target, operand(out.value, 0));
+    return body;
+  }
+
+ private:
+  // the text of instruction i where an operand of at least `needed` precedence is required
+  std::string operand(std::size_t i, int needed) {
+    const ir::Instruction& in = program_.instructions[i];
+    if (!names_[i].empty()) return names_[i];
+    const std::string text = expression(i);
+    return precedence(in.op) < needed ? "(" + text + ")" : text;
+  }
+
+  std::string expression(std::size_t i) {
+    const ir::Instruction& in = program_.instructions[i];
+    switch (in.op) {
+      case Op::number:
+        return cpp_number(in.number, options_.scalar);
+      case Op::variable:
+        return in.variable;
+      case Op::add: {
+        // a non-negated term first, then " - x" for negated terms
+        std::vector<std::size_t> terms = in.args;
+        for (std::size_t k = 0; k < terms.size(); ++k)
+          if (program_.instructions[terms[k]].op != Op::negate || !names_[terms[k]].empty()) {
+            std::rotate(terms.begin(), terms.begin() + static_cast<long>(k), terms.begin() + static_cast<long>(k) + 1);
+            break;
+          }
+        std::string s;
+        for (std::size_t k = 0; k < terms.size(); ++k) {
+          const ir::Instruction& t = program_.instructions[terms[k]];
+          if (t.op == Op::negate && names_[terms[k]].empty()) {
+            s += (k ? " - " : "-") + operand(t.args[0], 2);
+          } else {
+            s += (k ? " + " : "") + operand(terms[k], 1);
+          }
+        }
+        return s;
+      }
+      case Op::multiply: {
+        std::string s;
+        for (std::size_t k = 0; k < in.args.size(); ++k) {
+          // a negated factor is parenthesized: a * (-b)
+          const int needed = program_.instructions[in.args[k]].op == Op::negate ? 4 : 2;
+          s += (k ? " * " : "") + operand(in.args[k], needed);
+        }
+        return s;
+      }
+      case Op::divide:
+        return operand(in.args[0], 2) + " / " + operand(in.args[1], 3);
+      case Op::negate:
+        return "-" + operand(in.args[0], 3);
+      case Op::power:
+      case Op::sqrt:
+      case Op::sin:
+      case Op::cos:
+      case Op::tan:
+      case Op::asin:
+      case Op::acos:
+      case Op::atan:
+      case Op::atan2:
+      case Op::sinh:
+      case Op::cosh:
+      case Op::tanh:
+      case Op::exp:
+      case Op::log:
+      case Op::abs: {
+        std::string s = std::string(ir::call_name(in.op)) + "(";
+        for (std::size_t k = 0; k < in.args.size(); ++k) s += (k ? ", " : "") + operand(in.args[k], 0);
+        return s + ")";
+      }
+    }
+    return "";
+  }
+
+  const ir::Program& program_;
+  const CppPrintOptions& options_;
+  std::vector<std::size_t> uses_;
+  std::vector<std::string> names_;
+};
+
+}  // namespace
+
+std::string cpp_number(double value, const std::string& scalar) {
+  if (value == std::floor(value) && std::fabs(value) < 1e15) return fmt::format("{}({})", scalar, static_cast<long long>(value));
+  // shortest text that reads back to the same double
+  return fmt::format("{}({})", scalar, value);
+}
+
+std::string print_cpp(const ir::Program& program, const CppPrintOptions& options) {
+  return Printer(program, options).run();
+}
+
+}  // namespace eomgen

@@ -1,0 +1,288 @@
+#include "eomgen/codegen/lower.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cstring>
+#include <tuple>
+
+#include "eomgen/base/error.hpp"
+
+namespace eomgen {
+namespace {
+
+using GiNaC::ex;
+using ir::Op;
+
+// A node of the shared graph before it is put in emission order.
+struct Node {
+  Op op;
+  std::vector<std::size_t> args;
+  double number = 0.0;
+  std::string variable;
+  std::uint64_t signature = 0;  // from content only: names, values, structure
+};
+
+std::uint64_t mix(std::uint64_t h, std::uint64_t v) {
+  // FNV-1a over the 8 bytes of v
+  for (int i = 0; i < 8; ++i) {
+    h ^= (v >> (8 * i)) & 0xffu;
+    h *= 1099511628211ull;
+  }
+  return h;
+}
+
+std::uint64_t mix(std::uint64_t h, const std::string& s) {
+  for (unsigned char c : s) {
+    h ^= c;
+    h *= 1099511628211ull;
+  }
+  return mix(h, s.size());
+}
+
+bool commutative(Op op) { return op == Op::add || op == Op::multiply; }
+
+class Lowering {
+ public:
+  Lowering(const std::vector<const Subexpressions*>& sets, const VariableNames& variables) : variables_(variables) {
+    for (const Subexpressions* z : sets)
+      for (const auto& d : z->definitions()) definitions_.emplace(d.symbol, d.value);
+  }
+
+  std::size_t node(const ex& e) {
+    auto it = memo_.find(e);
+    if (it != memo_.end()) return it->second;
+    const std::size_t id = build(e);
+    memo_.emplace(e, id);
+    return id;
+  }
+
+  ir::Program finish(const std::vector<std::pair<std::string, std::size_t>>& outputs) {
+    // emission order: depth-first from the outputs in their order, arguments in canonical order
+    std::vector<std::size_t> order(nodes_.size(), SIZE_MAX);
+    ir::Program program;
+    std::vector<std::pair<std::size_t, bool>> stack;
+    for (const auto& [target, root] : outputs) {
+      stack.push_back({root, false});
+      while (!stack.empty()) {
+        auto [n, expanded] = stack.back();
+        stack.pop_back();
+        if (order[n] != SIZE_MAX) continue;
+        if (!expanded) {
+          stack.push_back({n, true});
+          for (auto a = nodes_[n].args.rbegin(); a != nodes_[n].args.rend(); ++a)
+            if (order[*a] == SIZE_MAX) stack.push_back({*a, false});
+          continue;
+        }
+        ir::Instruction in{nodes_[n].op, {}, nodes_[n].number, nodes_[n].variable};
+        for (std::size_t a : nodes_[n].args) in.args.push_back(order[a]);
+        order[n] = program.instructions.size();
+        program.instructions.push_back(std::move(in));
+      }
+      program.outputs.push_back(ir::Assignment{target, order[root]});
+    }
+    return program;
+  }
+
+  bool is_zero(std::size_t n) const { return nodes_[n].op == Op::number && nodes_[n].number == 0.0; }
+
+ private:
+  std::size_t intern(Node n) {
+    if (commutative(n.op))
+      std::sort(n.args.begin(), n.args.end(), [&](std::size_t a, std::size_t b) {
+        return std::tie(nodes_[a].signature, a) < std::tie(nodes_[b].signature, b);
+      });
+    std::uint64_t h = mix(14695981039346656037ull, static_cast<std::uint64_t>(n.op));
+    std::uint64_t bits = 0;
+    std::memcpy(&bits, &n.number, sizeof bits);
+    h = mix(h, bits);
+    h = mix(h, n.variable);
+    for (std::size_t a : n.args) h = mix(h, nodes_[a].signature);
+    n.signature = h;
+    const auto key = std::make_tuple(n.op, n.args, bits, n.variable);
+    auto it = interned_.find(key);
+    if (it != interned_.end()) return it->second;
+    nodes_.push_back(std::move(n));
+    interned_.emplace(key, nodes_.size() - 1);
+    return nodes_.size() - 1;
+  }
+
+  std::size_t number(double v) { return intern(Node{Op::number, {}, v, {}}); }
+  std::size_t unary(Op op, std::size_t a) { return intern(Node{op, {a}, 0.0, {}}); }
+
+  // Signs are canonical: GiNaC writes the same value as l*(a - b) in one run and -l*(b - a)
+  // in another (its term order follows address-seeded hashes), so every negation is moved
+  // to the outside of products and quotients and every sum starts with a positive term.
+  bool negated(std::size_t n) const { return nodes_[n].op == Op::negate; }
+  std::size_t magnitude(std::size_t n) const { return negated(n) ? nodes_[n].args[0] : n; }
+  std::size_t negate(std::size_t n) { return negated(n) ? nodes_[n].args[0] : unary(Op::negate, n); }
+  std::size_t with_sign(bool negative, std::size_t n) { return negative ? negate(n) : n; }
+
+  std::size_t nary(Op op, std::vector<std::size_t> args) {
+    if (args.size() == 1) return args[0];
+    if (op == Op::multiply) {
+      bool negative = false;
+      for (std::size_t& a : args) {
+        negative ^= negated(a);
+        a = magnitude(a);
+      }
+      return with_sign(negative, intern(Node{op, std::move(args), 0.0, {}}));
+    }
+    if (op == Op::add) {
+      // the term whose magnitude sorts first decides the orientation of the sum
+      const auto first = std::min_element(args.begin(), args.end(), [&](std::size_t a, std::size_t b) {
+        return std::tie(nodes_[magnitude(a)].signature, a) < std::tie(nodes_[magnitude(b)].signature, b);
+      });
+      const bool flip = negated(*first);
+      if (flip)
+        for (std::size_t& a : args) a = negate(a);
+      return with_sign(flip, intern(Node{op, std::move(args), 0.0, {}}));
+    }
+    return intern(Node{op, std::move(args), 0.0, {}});
+  }
+
+  std::size_t quotient(std::size_t a, std::size_t b) {
+    return with_sign(negated(a) != negated(b), intern(Node{Op::divide, {magnitude(a), magnitude(b)}, 0.0, {}}));
+  }
+
+  // x^n for a positive integer n by repeated squaring, so x^4 = (x*x)*(x*x) shares x*x;
+  // (-x)^n = x^n for even n
+  std::size_t integer_power(std::size_t x, long n) {
+    if (n == 1) return x;
+    if (negated(x)) return with_sign(n % 2 == 1, integer_power(magnitude(x), n));
+    const std::size_t half = integer_power(x, n / 2);
+    const std::size_t square = nary(Op::multiply, {half, half});
+    return n % 2 ? nary(Op::multiply, {square, x}) : square;
+  }
+
+  std::size_t power(const ex& base, const ex& exponent) {
+    const std::size_t b = node(base);
+    if (GiNaC::is_a<GiNaC::numeric>(exponent)) {
+      const GiNaC::numeric e = GiNaC::ex_to<GiNaC::numeric>(exponent);
+      if (e.is_integer() && e.is_pos_integer()) return integer_power(b, e.to_long());
+      if (e.is_integer()) return quotient(number(1.0), integer_power(b, -e.to_long()));
+      if (e == GiNaC::numeric(1, 2)) return unary(Op::sqrt, b);
+      if (e == GiNaC::numeric(-1, 2)) return quotient(number(1.0), unary(Op::sqrt, b));
+      if (e.is_rational() && e.denom() == 2) {
+        // x^(k/2) = sqrt(x)^k
+        const std::size_t root = unary(Op::sqrt, b);
+        const long k = e.numer().to_long();
+        return k > 0 ? integer_power(root, k) : quotient(number(1.0), integer_power(root, -k));
+      }
+    }
+    return intern(Node{Op::power, {b, node(exponent)}, 0.0, {}});
+  }
+
+  std::size_t product(const ex& e) {
+    // numeric coefficient, factors above and below the line
+    double coefficient = 1.0;
+    std::vector<std::size_t> above, below;
+    for (std::size_t i = 0; i < e.nops(); ++i) {
+      const ex f = e.op(i);
+      if (GiNaC::is_a<GiNaC::numeric>(f)) {
+        coefficient *= GiNaC::ex_to<GiNaC::numeric>(f).to_double();
+      } else if (GiNaC::is_a<GiNaC::power>(f) && GiNaC::is_a<GiNaC::numeric>(f.op(1)) &&
+                 GiNaC::ex_to<GiNaC::numeric>(f.op(1)).is_negative()) {
+        below.push_back(node(GiNaC::pow(f.op(0), -f.op(1))));
+      } else {
+        above.push_back(node(f));
+      }
+    }
+    const bool negative = coefficient < 0;
+    if (std::fabs(coefficient) != 1.0) above.push_back(number(std::fabs(coefficient)));
+    std::size_t value = above.empty() ? number(1.0) : nary(Op::multiply, above);
+    if (!below.empty()) value = quotient(value, nary(Op::multiply, below));
+    return with_sign(negative, value);
+  }
+
+  std::size_t function(const ex& e) {
+    const std::string name = GiNaC::ex_to<GiNaC::function>(e).get_name();
+    static const std::map<std::string, Op> ops = {
+        {"sin", Op::sin},   {"cos", Op::cos},   {"tan", Op::tan},   {"asin", Op::asin}, {"acos", Op::acos},
+        {"atan", Op::atan}, {"sinh", Op::sinh}, {"cosh", Op::cosh}, {"tanh", Op::tanh}, {"exp", Op::exp},
+        {"log", Op::log},   {"abs", Op::abs},   {"atan2", Op::atan2}};
+    auto it = ops.find(name);
+    if (it == ops.end()) throw EmitError(fmt::format("code emission: the function '{}' has no C++ form", name));
+    Node n{it->second, {}, 0.0, {}};
+    for (std::size_t i = 0; i < e.nops(); ++i) n.args.push_back(node(e.op(i)));
+    if ((it->second == Op::atan2) != (n.args.size() == 2))
+      throw EmitError(fmt::format("code emission: '{}' called with {} arguments", name, n.args.size()));
+    // odd functions take the argument's sign outside, even ones drop it
+    const Op op = it->second;
+    if (n.args.size() == 1 && negated(n.args[0])) {
+      const bool odd = op == Op::sin || op == Op::tan || op == Op::asin || op == Op::atan || op == Op::sinh ||
+                       op == Op::tanh;
+      const bool even = op == Op::cos || op == Op::cosh || op == Op::abs;
+      if (odd || even) {
+        n.args[0] = magnitude(n.args[0]);
+        return with_sign(odd, intern(std::move(n)));
+      }
+    }
+    return intern(std::move(n));
+  }
+
+  std::size_t build(const ex& e) {
+    if (GiNaC::is_a<GiNaC::numeric>(e)) {
+      const GiNaC::numeric v = GiNaC::ex_to<GiNaC::numeric>(e);
+      if (!v.is_real()) throw EmitError("code emission: complex number in an expression");
+      const double d = v.to_double();
+      return d < 0 ? negate(number(-d)) : number(d);
+    }
+    if (GiNaC::is_a<GiNaC::symbol>(e)) {
+      auto def = definitions_.find(e);
+      if (def != definitions_.end()) return node(def->second);
+      auto var = variables_.find(e);
+      if (var == variables_.end())
+        throw EmitError(fmt::format("code emission: the symbol '{}' is not an input of this function",
+                                    GiNaC::ex_to<GiNaC::symbol>(e).get_name()));
+      return intern(Node{Op::variable, {}, 0.0, var->second});
+    }
+    if (GiNaC::is_a<GiNaC::constant>(e)) return number(GiNaC::ex_to<GiNaC::numeric>(e.evalf()).to_double());
+    if (GiNaC::is_a<GiNaC::add>(e)) {
+      std::vector<std::size_t> terms;
+      for (std::size_t i = 0; i < e.nops(); ++i) terms.push_back(node(e.op(i)));
+      return nary(Op::add, terms);
+    }
+    if (GiNaC::is_a<GiNaC::mul>(e)) return product(e);
+    if (GiNaC::is_a<GiNaC::power>(e)) return power(e.op(0), e.op(1));
+    if (GiNaC::is_a<GiNaC::function>(e)) return function(e);
+    throw EmitError(fmt::format("code emission: cannot print the expression '{}'", ex_to_string(e)));
+  }
+
+  static std::string ex_to_string(const ex& e) {
+    std::ostringstream s;
+    s << e;
+    return s.str();
+  }
+
+  const VariableNames& variables_;
+  std::map<ex, ex, GiNaC::ex_is_less> definitions_;
+  std::map<ex, std::size_t, GiNaC::ex_is_less> memo_;
+  std::vector<Node> nodes_;
+  std::map<std::tuple<Op, std::vector<std::size_t>, std::uint64_t, std::string>, std::size_t> interned_;
+};
+
+}  // namespace
+
+ir::Program lower(const std::vector<LoweringTarget>& targets, const Subexpressions& subexpressions,
+                  const VariableNames& variables) {
+  return lower_functions({targets}, {&subexpressions}, variables).front();
+}
+
+std::vector<ir::Program> lower_functions(const std::vector<std::vector<LoweringTarget>>& functions,
+                                         const std::vector<const Subexpressions*>& subexpressions,
+                                         const VariableNames& variables) {
+  Lowering lowering(subexpressions, variables);
+  std::vector<ir::Program> programs;
+  for (const std::vector<LoweringTarget>& targets : functions) {
+    std::vector<std::pair<std::string, std::size_t>> outputs;
+    for (const LoweringTarget& t : targets) {
+      const std::size_t n = lowering.node(t.value);
+      if (!lowering.is_zero(n)) outputs.emplace_back(t.target, n);
+    }
+    programs.push_back(lowering.finish(outputs));
+  }
+  return programs;
+}
+
+}  // namespace eomgen

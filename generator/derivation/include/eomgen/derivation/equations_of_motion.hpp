@@ -1,0 +1,41 @@
+#pragma once
+// Lagrange's equations with Pfaffian constraints, M(q) qdd = F(q, qd, t, u) + Xi^T lambda,
+// derived in Kane's form (partial velocities), which equals Lagrange's for holonomic
+// coordinates and avoids differentiating the Lagrangian:
+//   M_jk = sum_B m V_j . V_k + W_j . J W_k                     ( = d2T / dqd_j dqd_k )
+//   F_k  = Q_k - sum_B m V_k . a0 + W_k . (J alpha0 + omega x J omega)
+// with V_k, W_k the partial (angular) velocities and a0, alpha0 the accelerations at qdd = 0.
+//
+// The two forms are identical when every rotation's rate relation is Poisson's equation for all
+// values of its parameters (principal rotations, Euler angles, Rodrigues and modified Rodrigues
+// parameters). Quaternions and axis/angle satisfy it only on their norm constraint; there M is
+// the same and F differs from literal Lagrange by a multiple of the constraint gradient, so the
+// accelerations of the KKT system agree and only lambda differs (it is then zero for a norm
+// constraint that transmits no force, as it should be).
+#include <ginac/ginac.h>
+
+#include "eomgen/mechanics/mechanical_system.hpp"
+#include "eomgen/symbolic/subexpressions.hpp"
+
+namespace eomgen {
+
+/// The derived equations. Every matrix may refer to the intermediates of `subexpressions`.
+struct EquationsOfMotion {
+  Subexpressions subexpressions;
+  GiNaC::matrix mass_matrix;                   ///< M, n x n, symmetric
+  GiNaC::matrix forcing;                       ///< F, n x 1
+  GiNaC::matrix constraint_jacobian;           ///< Xi, m x n
+  GiNaC::matrix constraint_rate_term;          ///< Xi_t, m x 1
+  GiNaC::matrix constraint_acceleration_term;  ///< dXi/dt qd + dXi_t/dt, m x 1
+  GiNaC::matrix holonomic_residuals;           ///< phi(q, t) of the holonomic rows, m_h x 1
+  GiNaC::ex kinetic_energy;                    ///< T
+  GiNaC::ex potential_energy;                  ///< V
+  std::size_t coordinate_count = 0;            ///< n
+  std::size_t constraint_count = 0;            ///< m
+};
+
+/// Derives the equations of motion. Pure: the system is only read.
+/// \throws DerivationError if an expression cannot be differentiated (e.g. an input in a rotation).
+EquationsOfMotion derive_equations(const MechanicalSystem& system);
+
+}  // namespace eomgen

@@ -1,0 +1,533 @@
+#include "eomgen/derivation/linearization.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <random>
+
+#include "eomgen/base/error.hpp"
+#include "eomgen/mechanics/variables.hpp"
+
+namespace eomgen {
+
+using GiNaC::ex;
+using GiNaC::ex_to;
+using GiNaC::symbol;
+
+namespace {
+
+/// Derivatives of the derivation's intermediates with respect to a list of variables, bound
+/// as intermediates of their own: dz_i/dv = d value_i/dv + sum_j d value_i/dz_j dz_j/dv.
+/// A derivative that is structurally zero stays the number 0, which is how cyclic
+/// coordinates show.
+class ChainRule {
+ public:
+  ChainRule(const Subexpressions& z, std::vector<ex> variables, Subexpressions& out)
+      : variables_(std::move(variables)), out_(out) {
+    for (std::size_t k = 0; k < variables_.size(); ++k) variable_index_.emplace(variables_[k], k);
+    const auto& defs = z.definitions();
+    for (std::size_t i = 0; i < defs.size(); ++i) index_.emplace(defs[i].symbol, i);
+    derivative_.reserve(defs.size());
+    for (const auto& d : defs) {
+      std::vector<ex> gradient = total(d.value);
+      for (ex& g : gradient) g = out_.bind(g);
+      derivative_.push_back(std::move(gradient));
+    }
+  }
+
+  /// d e / d v for every variable v, e referring to model symbols and intermediates. Each
+  /// partial derivative of e is taken once and reused along every variable: differentiating
+  /// a large expression (a row of M qdd - F) is the expensive step, not the accumulation.
+  std::vector<ex> total(const ex& e) const {
+    std::vector<ex> d(variables_.size(), 0);
+    for (const ex& s : symbols_of(e)) {
+      if (const auto v = variable_index_.find(s); v != variable_index_.end()) {
+        d[v->second] += e.diff(ex_to<symbol>(s));
+        continue;
+      }
+      const auto it = index_.find(s);
+      if (it == index_.end()) continue;
+      const std::vector<ex>& dz = derivative_[it->second];
+      if (std::all_of(dz.begin(), dz.end(), [](const ex& x) { return x.is_zero(); })) continue;
+      const ex partial = e.diff(ex_to<symbol>(s));
+      for (std::size_t k = 0; k < dz.size(); ++k)
+        if (!dz[k].is_zero()) d[k] += partial * dz[k];
+    }
+    return d;
+  }
+
+ private:
+  std::vector<ex> variables_;
+  Subexpressions& out_;
+  std::map<ex, std::size_t, GiNaC::ex_is_less> variable_index_;
+  std::map<ex, std::size_t, GiNaC::ex_is_less> index_;
+  std::vector<std::vector<ex>> derivative_;
+};
+
+/// The holonomic constraints' rows of Xi, in order.
+std::vector<Eigen::Index> holonomic_rows_of(const Model& model) {
+  std::vector<Eigen::Index> rows;
+  const auto& constraints = model.system.constraints();
+  for (std::size_t r = 0; r < constraints.size(); ++r)
+    if (constraints[r].kind == Constraint::Kind::holonomic) rows.push_back(static_cast<Eigen::Index>(r));
+  return rows;
+}
+
+/// An evaluator at the state `point` that also knows the accelerations and multipliers the
+/// derivatives were taken at, and every derivative intermediate: the terms of `symbolic` can
+/// then be evaluated in doubles (a pole becomes inf and a clear Error, not a GiNaC exception).
+DoubleEvaluator terms_at(const Model& model, const ModelEquations& eom, const SymbolicLinearization& symbolic,
+                         const NamedValues& point, const Eigen::VectorXd& qdd, const Eigen::VectorXd& lambda) {
+  DoubleEvaluator eval = evaluator_at(model, eom, point);
+  const auto& coordinates = model.system.variables().coordinates();
+  for (std::size_t j = 0; j < coordinates.size(); ++j) eval.set(coordinates[j].qdd, qdd(static_cast<Eigen::Index>(j)));
+  for (std::size_t r = 0; r < symbolic.lambda.size(); ++r) eval.set(symbolic.lambda[r], lambda(static_cast<Eigen::Index>(r)));
+  for (const auto& d : symbolic.derivatives.definitions())
+    eval.set(d.symbol, eval.value(d.value, "derivative " + d.symbol.get_name()));
+  return eval;
+}
+
+/// A coordinate can cancel out of M and F only through identities GiNaC does not apply
+/// (sin^2 + cos^2 = 1 where an axisymmetric body turns about its axis), so a column of K that
+/// is not structurally zero is also tested in numbers: zero at several scattered states (and
+/// accelerations) to rounding means the coordinate is cyclic. The states come from a fixed
+/// seed, so the verdict is the same in every run.
+void mark_cyclic_by_evaluation(const Model& model, const ModelEquations& eom, SymbolicLinearization& lin) {
+  const Variables& vars = model.system.variables();
+  const std::size_t n = vars.coordinates().size();
+  std::vector<std::size_t> candidates;
+  for (std::size_t k = 0; k < n; ++k)
+    if (!lin.cyclic[k]) candidates.push_back(k);
+  if (candidates.empty()) return;
+  std::vector<bool> vanishes(n, true);
+  std::mt19937 rng(20261122);
+  std::uniform_real_distribution<double> value(-1.5, 1.5), time(0.0, 3.0);
+  int points = 0;
+  for (int attempt = 0; attempt < 12 && points < 4; ++attempt) {
+    NamedValues at{{"t", time(rng)}};
+    for (const Coordinate& c : vars.coordinates()) at[c.name] = value(rng), at[c.name + "_dot"] = value(rng);
+    for (const Input& u : vars.inputs()) at[u.name] = value(rng);
+    Eigen::VectorXd qdd(static_cast<Eigen::Index>(n));
+    for (Eigen::Index j = 0; j < qdd.size(); ++j) qdd(j) = value(rng);
+    try {
+      const Eigen::MatrixXd K = evaluate_matrix(lin.K, terms_at(model, eom, lin, at, qdd, Eigen::VectorXd()), "K");
+      const double scale = 1 + K.cwiseAbs().maxCoeff();
+      for (std::size_t k : candidates) vanishes[k] = vanishes[k] && K.col(static_cast<Eigen::Index>(k)).cwiseAbs().maxCoeff() <= 1e-12 * scale;
+      ++points;
+    } catch (const Error&) {
+      // a singular state (a pole of the model): try another
+    }
+  }
+  if (points == 0) return;
+  for (std::size_t k : candidates) lin.cyclic[k] = vanishes[k];
+}
+
+}  // namespace
+
+SymbolicLinearization linearize_symbolic(const Model& model, const ModelEquations& eom) {
+  const Variables& vars = model.system.variables();
+  const std::size_t n = vars.coordinates().size(), nu = vars.inputs().size(), m = eom.constraint_count;
+  std::vector<ex> variables;
+  for (const Coordinate& c : vars.coordinates()) variables.push_back(c.q);
+  for (const Coordinate& c : vars.coordinates()) variables.push_back(c.qd);
+  for (const Input& u : vars.inputs()) variables.push_back(u.symbol);
+
+  SymbolicLinearization lin;
+  for (std::size_t r = 0; r < m; ++r) lin.lambda.emplace_back(fmt::format("lambda{}", r + 1));
+  const ChainRule chain(eom.subexpressions, variables, lin.derivatives);
+  lin.K = GiNaC::matrix(n, n);
+  lin.D = GiNaC::matrix(n, n);
+  lin.B_u = GiNaC::matrix(n, nu);
+  lin.cyclic.assign(n, true);
+  for (std::size_t i = 0; i < n; ++i) {
+    ex residual = -eom.forcing(i, 0);
+    for (std::size_t j = 0; j < n; ++j) residual += eom.mass_matrix(i, j) * vars.coordinates()[j].qdd;
+    for (std::size_t r = 0; r < m; ++r) residual -= eom.constraint_jacobian(r, i) * lin.lambda[r];
+    const std::vector<ex> gradient = chain.total(residual);
+    for (std::size_t k = 0; k < n; ++k) {
+      lin.K(i, k) = lin.derivatives.bind(gradient[k]);
+      lin.D(i, k) = lin.derivatives.bind(gradient[n + k]);
+      if (!lin.K(i, k).is_zero()) lin.cyclic[k] = false;
+    }
+    for (std::size_t k = 0; k < nu; ++k) lin.B_u(i, k) = lin.derivatives.bind(-gradient[2 * n + k]);
+  }
+  lin.S_q = GiNaC::matrix(m, n);
+  lin.S_qd = GiNaC::matrix(m, n);
+  lin.C_q = GiNaC::matrix(m, n);
+  for (std::size_t r = 0; r < m; ++r) {
+    ex acceleration = eom.constraint_acceleration_term(r, 0), velocity = eom.constraint_rate_term(r, 0);
+    for (std::size_t j = 0; j < n; ++j) {
+      acceleration += eom.constraint_jacobian(r, j) * vars.coordinates()[j].qdd;
+      velocity += eom.constraint_jacobian(r, j) * vars.coordinates()[j].qd;
+    }
+    const std::vector<ex> d_acceleration = chain.total(acceleration), d_velocity = chain.total(velocity);
+    for (std::size_t k = 0; k < n; ++k) {
+      lin.S_q(r, k) = lin.derivatives.bind(d_acceleration[k]);
+      lin.S_qd(r, k) = lin.derivatives.bind(d_acceleration[n + k]);
+      lin.C_q(r, k) = lin.derivatives.bind(d_velocity[k]);
+      if (!lin.S_q(r, k).is_zero() || !lin.C_q(r, k).is_zero()) lin.cyclic[k] = false;
+    }
+  }
+  if (m == 0) mark_cyclic_by_evaluation(model, eom, lin);
+  return lin;
+}
+
+namespace {
+
+/// The `count` columns of `a` a column-pivoted QR takes first: the best-conditioned choice of
+/// dependent coordinates (or rates) for the rows of `a`, in increasing order.
+std::vector<Eigen::Index> pivot_columns(const Eigen::MatrixXd& a, Eigen::Index count) {
+  const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(a);
+  std::vector<Eigen::Index> columns;
+  for (Eigen::Index i = 0; i < count; ++i) columns.push_back(qr.colsPermutation().indices()(i));
+  std::sort(columns.begin(), columns.end());
+  return columns;
+}
+
+std::vector<Eigen::Index> complement(Eigen::Index n, const std::vector<Eigen::Index>& taken) {
+  std::vector<Eigen::Index> rest;
+  for (Eigen::Index i = 0; i < n; ++i)
+    if (std::find(taken.begin(), taken.end(), i) == taken.end()) rest.push_back(i);
+  return rest;
+}
+
+Eigen::MatrixXd columns_of(const Eigen::MatrixXd& a, const std::vector<Eigen::Index>& columns) {
+  Eigen::MatrixXd out(a.rows(), static_cast<Eigen::Index>(columns.size()));
+  for (std::size_t j = 0; j < columns.size(); ++j) out.col(static_cast<Eigen::Index>(j)) = a.col(columns[j]);
+  return out;
+}
+
+/// The reduced linear model of a constrained system (see the header).
+void linearize_constrained(const Model& model, const ModelEquations& eom, const SymbolicLinearization& symbolic,
+                           const NamedValues& point, const LinearizeOptions& options, LinearModel& lin) {
+  const Variables& vars = model.system.variables();
+  const Eigen::Index n = static_cast<Eigen::Index>(vars.coordinates().size());
+  const Eigen::Index nu = static_cast<Eigen::Index>(vars.inputs().size());
+  const Eigen::Index m = static_cast<Eigen::Index>(eom.constraint_count);
+  const NumericEquations at = evaluate_equations(model, eom, point);
+  const Eigen::MatrixXd& Xi = at.constraint_jacobian;
+  const Eigen::VectorXd velocity_residual = [&] {
+    Eigen::VectorXd qd(n);
+    for (Eigen::Index j = 0; j < n; ++j) {
+      const auto it = point.find(vars.coordinates()[static_cast<std::size_t>(j)].name + "_dot");
+      qd(j) = it == point.end() ? 0.0 : it->second;
+    }
+    return Eigen::VectorXd(Xi * qd + at.constraint_rate_term);
+  }();
+  const double violation = std::max(at.holonomic_residuals.size() ? at.holonomic_residuals.cwiseAbs().maxCoeff() : 0.0,
+                                    velocity_residual.cwiseAbs().maxCoeff());
+  if (violation > 1e-9)
+    throw Error(fmt::format("linearizing {}: the operating point violates the constraints (largest residual "
+                            "{:.3g}); give coordinates and rates that satisfy them",
+                            model.name, violation));
+  const AccelerationSolution solution = solve_accelerations(at);
+  lin.qdd0 = solution.qdd;
+
+  const DoubleEvaluator eval = terms_at(model, eom, symbolic, point, lin.qdd0, solution.lambda);
+  const Eigen::MatrixXd K = evaluate_matrix(symbolic.K, eval, "K"), D = evaluate_matrix(symbolic.D, eval, "D");
+  const Eigen::MatrixXd B_u = evaluate_matrix(symbolic.B_u, eval, "B_u");
+  const Eigen::MatrixXd S_q = evaluate_matrix(symbolic.S_q, eval, "S_q");
+  const Eigen::MatrixXd S_qd = evaluate_matrix(symbolic.S_qd, eval, "S_qd");
+  const Eigen::MatrixXd C_q = evaluate_matrix(symbolic.C_q, eval, "C_q");
+
+  // d[qdd; lambda]/dv = -J^{-1} d[R; S]/dv with J = [[M, -Xi^T], [Xi, 0]]
+  Eigen::MatrixXd J = Eigen::MatrixXd::Zero(n + m, n + m);
+  J.topLeftCorner(n, n) = at.mass_matrix;
+  J.topRightCorner(n, m) = -Xi.transpose();
+  J.bottomLeftCorner(m, n) = Xi;
+  const Eigen::FullPivLU<Eigen::MatrixXd> lu(J);
+  if (!lu.isInvertible())
+    throw Error(fmt::format("linearizing {}: the KKT matrix is singular at the operating point", model.name));
+  Eigen::MatrixXd rhs(n + m, 2 * n + nu);
+  rhs << K, D, -B_u, S_q, S_qd, Eigen::MatrixXd::Zero(m, nu);
+  const Eigen::MatrixXd dqdd = (-lu.solve(rhs)).topRows(n);  // [d/dq, d/dqd, d/du]
+  Eigen::MatrixXd A_full = Eigen::MatrixXd::Zero(2 * n, 2 * n), B_full = Eigen::MatrixXd::Zero(2 * n, nu);
+  A_full.topRightCorner(n, n).setIdentity();
+  A_full.bottomRows(n) = dqdd.leftCols(2 * n);
+  B_full.bottomRows(n) = dqdd.rightCols(nu);
+
+  // dependent coordinates: one per holonomic constraint, where its gradient is best conditioned
+  const std::vector<Eigen::Index> holonomic_rows = holonomic_rows_of(model);
+  const Eigen::Index nh = static_cast<Eigen::Index>(holonomic_rows.size());
+  Eigen::MatrixXd Phi(nh, n);
+  for (Eigen::Index r = 0; r < nh; ++r) Phi.row(r) = Xi.row(holonomic_rows[static_cast<std::size_t>(r)]);
+  const std::vector<Eigen::Index> q_dependent = nh > 0 ? pivot_columns(Phi, nh) : std::vector<Eigen::Index>{};
+  const std::vector<Eigen::Index> q_kept = complement(n, q_dependent);
+  // dependent rates: the complement of the declared independent speeds, else pivoted QR of Xi
+  std::vector<Eigen::Index> v_independent;
+  for (std::size_t k : model.independent_speeds) v_independent.push_back(static_cast<Eigen::Index>(k));
+  std::sort(v_independent.begin(), v_independent.end());
+  std::vector<Eigen::Index> v_dependent =
+      v_independent.empty() ? pivot_columns(Xi, m) : complement(n, v_independent);
+  if (v_independent.empty()) v_independent = complement(n, v_dependent);
+
+  // tangent space: dq = Tq dq_kept; dqd = Gq dq + Gv dnu (dnu the independent rates)
+  const Eigen::Index nk = static_cast<Eigen::Index>(q_kept.size()), ni = static_cast<Eigen::Index>(v_independent.size());
+  Eigen::MatrixXd Tq = Eigen::MatrixXd::Zero(n, nk);
+  for (Eigen::Index j = 0; j < nk; ++j) Tq(q_kept[static_cast<std::size_t>(j)], j) = 1;
+  if (nh > 0) {
+    const Eigen::PartialPivLU<Eigen::MatrixXd> phi_d(columns_of(Phi, q_dependent));
+    const Eigen::MatrixXd solved = -phi_d.solve(columns_of(Phi, q_kept));
+    for (Eigen::Index i = 0; i < nh; ++i) Tq.row(q_dependent[static_cast<std::size_t>(i)]) = solved.row(i);
+  }
+  const Eigen::MatrixXd Xi_d = columns_of(Xi, v_dependent);
+  const Eigen::PartialPivLU<Eigen::MatrixXd> xi_d(Xi_d);
+  if (!(std::abs(Xi_d.determinant()) > 1e-12 * std::max(1.0, Xi.cwiseAbs().maxCoeff())))
+    throw Error(fmt::format("linearizing {}: the declared independent speeds leave a singular block of Xi at the "
+                            "operating point",
+                            model.name));
+  Eigen::MatrixXd Gq = Eigen::MatrixXd::Zero(n, n), Gv = Eigen::MatrixXd::Zero(n, ni);
+  for (Eigen::Index j = 0; j < ni; ++j) Gv(v_independent[static_cast<std::size_t>(j)], j) = 1;
+  const Eigen::MatrixXd dep_v = -xi_d.solve(columns_of(Xi, v_independent));
+  const Eigen::MatrixXd dep_q = -xi_d.solve(C_q);
+  for (Eigen::Index i = 0; i < m; ++i) {
+    Gv.row(v_dependent[static_cast<std::size_t>(i)]) = dep_v.row(i);
+    Gq.row(v_dependent[static_cast<std::size_t>(i)]) = dep_q.row(i);
+  }
+  Eigen::MatrixXd T = Eigen::MatrixXd::Zero(2 * n, nk + ni);
+  T.topLeftCorner(n, nk) = Tq;
+  T.bottomLeftCorner(n, nk) = Gq * Tq;
+  T.bottomRightCorner(n, ni) = Gv;
+  Eigen::MatrixXd P = Eigen::MatrixXd::Zero(nk + ni, 2 * n);
+  for (Eigen::Index j = 0; j < nk; ++j) P(j, q_kept[static_cast<std::size_t>(j)]) = 1;
+  for (Eigen::Index j = 0; j < ni; ++j) P(nk + j, n + v_independent[static_cast<std::size_t>(j)]) = 1;
+  Eigen::MatrixXd A = P * A_full * T, B = P * B_full;
+
+  // cyclic: a kept coordinate nothing else in the reduced model depends on. Dropping one can
+  // free another (the rolling coin's heading moves only x and y), so this runs to a fixed point
+  std::vector<bool> keep(static_cast<std::size_t>(nk + ni), true);
+  const double scale = std::max(1.0, A.cwiseAbs().maxCoeff());
+  for (bool changed = options.drop_cyclic; changed;) {
+    changed = false;
+    for (Eigen::Index j = 0; j < nk; ++j) {
+      if (!keep[static_cast<std::size_t>(j)]) continue;
+      double largest = 0;
+      for (Eigen::Index i = 0; i < nk + ni; ++i)
+        if (keep[static_cast<std::size_t>(i)]) largest = std::max(largest, std::abs(A(i, j)));
+      if (largest <= 1e-12 * scale) keep[static_cast<std::size_t>(j)] = false, changed = true;
+    }
+  }
+  std::vector<Eigen::Index> rows;
+  for (Eigen::Index j = 0; j < nk; ++j) {
+    const std::string& name = vars.coordinates()[static_cast<std::size_t>(q_kept[static_cast<std::size_t>(j)])].name;
+    if (keep[static_cast<std::size_t>(j)]) {
+      rows.push_back(j);
+      lin.state_names.push_back(name);
+    } else {
+      lin.dropped.push_back(name);
+    }
+  }
+  for (Eigen::Index j = 0; j < ni; ++j) {
+    rows.push_back(nk + j);
+    lin.state_names.push_back(vars.coordinates()[static_cast<std::size_t>(v_independent[static_cast<std::size_t>(j)])].name + "_dot");
+  }
+  for (Eigen::Index i : q_dependent) lin.dependent.push_back(vars.coordinates()[static_cast<std::size_t>(i)].name);
+  for (Eigen::Index i : v_dependent) lin.dependent.push_back(vars.coordinates()[static_cast<std::size_t>(i)].name + "_dot");
+  const Eigen::Index ns = static_cast<Eigen::Index>(rows.size());
+  lin.A.resize(ns, ns);
+  lin.B.resize(ns, nu);
+  for (Eigen::Index i = 0; i < ns; ++i) {
+    for (Eigen::Index j = 0; j < ns; ++j) lin.A(i, j) = A(rows[static_cast<std::size_t>(i)], rows[static_cast<std::size_t>(j)]);
+    lin.B.row(i) = B.row(rows[static_cast<std::size_t>(i)]);
+  }
+}
+
+}  // namespace
+
+LinearModel linearize(const Model& model, const ModelEquations& eom, const SymbolicLinearization& symbolic,
+                      const NamedValues& point, const LinearizeOptions& options) {
+  const Variables& vars = model.system.variables();
+  const std::size_t n = vars.coordinates().size(), nu = vars.inputs().size();
+  LinearModel lin;
+  for (const Input& u : vars.inputs()) lin.input_names.push_back(u.name);
+  if (eom.constraint_count > 0) {
+    linearize_constrained(model, eom, symbolic, point, options, lin);
+    for (Eigen::MatrixXd* m : {&lin.A, &lin.B}) *m = m->unaryExpr([](double v) { return v == 0 ? 0.0 : v; });
+    return lin;
+  }
+  const NumericEquations at = evaluate_equations(model, eom, point);
+  lin.M = at.mass_matrix;
+  const Eigen::LLT<Eigen::MatrixXd> llt(lin.M);
+  if (llt.info() != Eigen::Success || !(llt.rcond() > 1e-13))
+    throw Error(fmt::format("linearizing {}: the mass matrix is singular at the operating point", model.name));
+  lin.qdd0 = llt.solve(at.forcing);
+
+  const DoubleEvaluator eval = terms_at(model, eom, symbolic, point, lin.qdd0, Eigen::VectorXd());
+  lin.K = evaluate_matrix(symbolic.K, eval, "K");
+  lin.D = evaluate_matrix(symbolic.D, eval, "D");
+  lin.B_u = evaluate_matrix(symbolic.B_u, eval, "B_u");
+
+  std::vector<std::size_t> kept;
+  for (std::size_t k = 0; k < n; ++k) {
+    if (options.drop_cyclic && symbolic.cyclic[k])
+      lin.dropped.push_back(vars.coordinates()[k].name);
+    else
+      kept.push_back(k);
+  }
+  for (std::size_t k : kept) lin.state_names.push_back(vars.coordinates()[k].name);
+  for (const Coordinate& c : vars.coordinates()) lin.state_names.push_back(c.name + "_dot");
+
+  // dq' = dqd for the kept coordinates; M dqdd = -K dq - D dqd + B_u du
+  const std::size_t nk = kept.size();
+  lin.A = Eigen::MatrixXd::Zero(nk + n, nk + n);
+  lin.B = Eigen::MatrixXd::Zero(nk + n, nu);
+  for (std::size_t r = 0; r < nk; ++r) lin.A(r, nk + kept[r]) = 1;
+  Eigen::MatrixXd K_kept(n, nk);
+  for (std::size_t c = 0; c < nk; ++c) K_kept.col(c) = lin.K.col(kept[c]);
+  lin.A.bottomLeftCorner(n, nk) = -llt.solve(K_kept);
+  lin.A.bottomRightCorner(n, n) = -llt.solve(lin.D);
+  if (nu > 0) lin.B.bottomRows(n) = llt.solve(lin.B_u);
+  // -0 from negating a zero would print as "-0"
+  for (Eigen::MatrixXd* m : {&lin.A, &lin.B, &lin.K, &lin.D, &lin.B_u})
+    *m = m->unaryExpr([](double v) { return v == 0 ? 0.0 : v; });
+  return lin;
+}
+
+Equilibrium find_equilibrium(const Model& model, const ModelEquations& eom, const SymbolicLinearization& symbolic,
+                             const NamedValues& guess, int max_iterations) {
+  const Variables& vars = model.system.variables();
+  const Eigen::Index n = static_cast<Eigen::Index>(vars.coordinates().size());
+  const Eigen::Index m = static_cast<Eigen::Index>(eom.constraint_count);
+  const std::vector<Eigen::Index> holonomic_rows = holonomic_rows_of(model);
+  const Eigen::Index nh = static_cast<Eigen::Index>(holonomic_rows.size());
+
+  Equilibrium eq;
+  eq.point = guess;
+  const auto set_q = [&](const Eigen::VectorXd& q) {
+    for (Eigen::Index j = 0; j < n; ++j) eq.point[vars.coordinates()[static_cast<std::size_t>(j)].name] = q(j);
+  };
+  Eigen::VectorXd q(n);
+  for (Eigen::Index j = 0; j < n; ++j) {
+    const auto it = guess.find(vars.coordinates()[static_cast<std::size_t>(j)].name);
+    q(j) = it == guess.end() ? 0.0 : it->second;
+  }
+  // residual [F + Xi^T lambda; phi] at q, with lambda the least-squares fit when asked for
+  const auto residual = [&](const Eigen::VectorXd& at_q, Eigen::VectorXd& lambda, bool fit_lambda, NumericEquations& e) {
+    set_q(at_q);
+    e = evaluate_equations(model, eom, eq.point);
+    if (fit_lambda && m > 0)
+      lambda = e.constraint_jacobian.transpose().completeOrthogonalDecomposition().solve(-e.forcing);
+    Eigen::VectorXd r(n + nh);
+    r.head(n) = e.forcing + e.constraint_jacobian.transpose() * lambda;
+    r.tail(nh) = e.holonomic_residuals;
+    return r;
+  };
+  eq.lambda = Eigen::VectorXd::Zero(m);
+  NumericEquations e;
+  Eigen::VectorXd r = residual(q, eq.lambda, true, e);
+  const double tolerance = 1e-12 * std::max(1.0, r.cwiseAbs().maxCoeff());
+  for (; eq.iterations < max_iterations; ++eq.iterations) {
+    if (r.cwiseAbs().maxCoeff() <= tolerance) break;
+    const Eigen::MatrixXd K =
+        evaluate_matrix(symbolic.K, terms_at(model, eom, symbolic, eq.point, Eigen::VectorXd::Zero(n), eq.lambda), "K");
+    // d(F + Xi^T lambda)/dq = -K (K = dR/dq with R = M qdd - F - Xi^T lambda, qdd = 0)
+    Eigen::MatrixXd J = Eigen::MatrixXd::Zero(n + nh, n + m);
+    J.topLeftCorner(n, n) = -K;
+    J.topRightCorner(n, m) = e.constraint_jacobian.transpose();
+    for (Eigen::Index i = 0; i < nh; ++i) J.row(n + i).head(n) = e.constraint_jacobian.row(holonomic_rows[static_cast<std::size_t>(i)]);
+    const Eigen::VectorXd step = -J.completeOrthogonalDecomposition().solve(r);
+    // halve the step until the residual falls (Newton's full step can overshoot far from home)
+    double scale = 1;
+    Eigen::VectorXd q_next, lambda_next, r_next;
+    NumericEquations e_next;
+    for (int halvings = 0; halvings < 30; ++halvings, scale /= 2) {
+      q_next = q + scale * step.head(n);
+      lambda_next = eq.lambda + scale * step.tail(m);
+      try {
+        r_next = residual(q_next, lambda_next, false, e_next);
+      } catch (const Error&) {
+        continue;  // a pole of the model: shorter
+      }
+      if (r_next.cwiseAbs().maxCoeff() < r.cwiseAbs().maxCoeff()) break;
+    }
+    if (!(r_next.size() == r.size() && r_next.cwiseAbs().maxCoeff() < r.cwiseAbs().maxCoeff())) break;
+    q = q_next;
+    eq.lambda = lambda_next;
+    r = r_next;
+    e = e_next;
+  }
+  set_q(q);
+  eq.residual = r.cwiseAbs().maxCoeff();
+  if (!(eq.residual <= tolerance))
+    throw Error(fmt::format("finding an equilibrium of {}: Newton's method stopped after {} iterations with "
+                            "residual {:.3g}; try another guess",
+                            model.name, eq.iterations, eq.residual));
+  return eq;
+}
+
+StabilityReport assess_stability(const Eigen::MatrixXd& A, double tolerance) {
+  StabilityReport report;
+  const Eigen::EigenSolver<Eigen::MatrixXd> solver(A, false);
+  if (solver.info() != Eigen::Success) throw Error("the eigenvalues of A did not converge");
+  report.eigenvalues = solver.eigenvalues();
+  std::vector<std::complex<double>> sorted(report.eigenvalues.data(),
+                                           report.eigenvalues.data() + report.eigenvalues.size());
+  // descending real part, then descending imaginary part: a deterministic order to print
+  std::sort(sorted.begin(), sorted.end(), [](const auto& a, const auto& b) {
+    return a.real() != b.real() ? a.real() > b.real() : a.imag() > b.imag();
+  });
+  for (std::size_t i = 0; i < sorted.size(); ++i) report.eigenvalues(static_cast<Eigen::Index>(i)) = sorted[i];
+
+  double scale = 1;
+  for (const auto& l : sorted) scale = std::max(scale, std::abs(l));
+  const double axis = tolerance * scale;
+  bool any_right = false, all_left = true;
+  for (const auto& l : sorted) {
+    any_right = any_right || l.real() > axis;
+    all_left = all_left && l.real() < -axis;
+  }
+  if (any_right) {
+    report.linear = LinearStability::unstable;
+    report.nonlinear = LyapunovVerdict::unstable;
+    return report;
+  }
+  if (all_left) {
+    report.linear = LinearStability::asymptotically_stable;
+    report.nonlinear = LyapunovVerdict::asymptotically_stable;
+    return report;
+  }
+  // on the imaginary axis: stable only if every such eigenvalue has as many eigenvectors as
+  // its multiplicity (a Jordan block there grows like t^k)
+  report.linear = LinearStability::stable;
+  report.nonlinear = LyapunovVerdict::no_conclusion;
+  const Eigen::Index n = A.rows();
+  for (std::size_t i = 0; i < sorted.size(); ++i) {
+    if (std::abs(sorted[i].real()) > axis) continue;
+    long multiplicity = 0;
+    for (const auto& other : sorted) multiplicity += std::abs(other - sorted[i]) <= 1e3 * axis;
+    if (multiplicity < 2) continue;
+    Eigen::FullPivLU<Eigen::MatrixXcd> lu(A.cast<std::complex<double>>() -
+                                          sorted[i] * Eigen::MatrixXcd::Identity(n, n));
+    lu.setThreshold(1e3 * tolerance);
+    if (n - lu.rank() < multiplicity) report.linear = LinearStability::unstable;
+  }
+  return report;
+}
+
+const char* to_string(LinearStability s) {
+  switch (s) {
+    case LinearStability::asymptotically_stable:
+      return "asymptotically stable";
+    case LinearStability::stable:
+      return "stable (eigenvalues on the imaginary axis)";
+    case LinearStability::unstable:
+      return "unstable";
+  }
+  return "unknown";
+}
+
+const char* to_string(LyapunovVerdict v) {
+  switch (v) {
+    case LyapunovVerdict::asymptotically_stable:
+      return "asymptotically stable";
+    case LyapunovVerdict::unstable:
+      return "unstable";
+    case LyapunovVerdict::no_conclusion:
+      return "no conclusion (eigenvalues on the imaginary axis)";
+  }
+  return "unknown";
+}
+
+}  // namespace eomgen

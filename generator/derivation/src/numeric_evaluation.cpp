@@ -1,0 +1,138 @@
+#include "eomgen/derivation/numeric_evaluation.hpp"
+
+#include "eomgen/symbolic/double_evaluator.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <limits>
+
+#include "eomgen/base/error.hpp"
+
+namespace eomgen {
+namespace {
+
+using GiNaC::ex;
+using GiNaC::is_a;
+
+std::string join(const std::vector<std::string>& items) {
+  std::string out;
+  for (std::size_t i = 0; i < items.size(); ++i) out += (i ? ", " : "") + items[i];
+  return out;
+}
+
+
+Eigen::VectorXd evaluate_column(const GiNaC::matrix& m, const DoubleEvaluator& eval, const std::string& name) {
+  Eigen::VectorXd out(m.rows());
+  for (unsigned i = 0; i < m.rows(); ++i) out(i) = eval.finite(m(i, 0), fmt::format("{}[{}]", name, i + 1));
+  return out;
+}
+
+}  // namespace
+
+GiNaC::exmap numeric_substitution(const Model& model, const NamedValues& values) {
+  const Variables& v = model.system.variables();
+  GiNaC::exmap out;
+  std::map<std::string, ex> by_name;
+  std::vector<std::string> accepted;  // in declaration order, for the error message
+  auto accept = [&](const std::string& name, const ex& symbol, double default_value) {
+    accepted.push_back(name);
+    by_name.emplace(name, symbol);
+    out[symbol] = default_value;
+  };
+  accept("t", v.time(), 0.0);
+  for (const Coordinate& c : v.coordinates()) {
+    accept(c.name, c.q, 0.0);
+    accept(c.qd.get_name(), c.qd, 0.0);
+  }
+  for (const Input& u : v.inputs()) accept(u.name, u.symbol, 0.0);
+  for (const Parameter& p : v.parameters()) accept(p.name, p.symbol, p.default_value);
+  for (const auto& [name, value] : values) {
+    const auto it = by_name.find(name);
+    if (it == by_name.end()) {
+      // accelerations are what the equations are solved for, so they cannot be given
+      const bool acceleration = v.find(name).has_value();
+      throw Error(fmt::format("evaluating at a state: {} '{}'; accepted names: {}",
+                              acceleration ? "accelerations are solved for, not given:" : "unknown name", name,
+                              join(accepted)));
+    }
+    out[it->second] = value;
+  }
+  return out;
+}
+
+Eigen::MatrixXd evaluate_matrix(const GiNaC::matrix& m, const DoubleEvaluator& eval, const std::string& name) {
+  Eigen::MatrixXd out(m.rows(), m.cols());
+  for (unsigned i = 0; i < m.rows(); ++i)
+    for (unsigned j = 0; j < m.cols(); ++j) out(i, j) = eval.finite(m(i, j), fmt::format("{}[{},{}]", name, i + 1, j + 1));
+  return out;
+}
+
+DoubleEvaluator evaluator_at(const Model& model, const ModelEquations& eom, const NamedValues& values) {
+  DoubleEvaluator eval;
+  for (const auto& [symbol, value] : numeric_substitution(model, values))
+    eval.set(symbol, GiNaC::ex_to<GiNaC::numeric>(value).to_double());
+  // each intermediate refers only to earlier ones, so one pass in order gives them all
+  for (const auto& d : eom.subexpressions.definitions())
+    eval.set(d.symbol, eval.value(d.value, "intermediate " + d.symbol.get_name()));
+  return eval;
+}
+
+NumericEquations evaluate_equations(const Model& model, const ModelEquations& eom, const NamedValues& values) {
+  const DoubleEvaluator eval = evaluator_at(model, eom, values);
+
+  NumericEquations out;
+  out.mass_matrix = evaluate_matrix(eom.mass_matrix, eval, "M");
+  out.forcing = evaluate_column(eom.forcing, eval, "F");
+  out.constraint_jacobian = evaluate_matrix(eom.constraint_jacobian, eval, "Xi");
+  out.constraint_rate_term = evaluate_column(eom.constraint_rate_term, eval, "Xi_t");
+  out.constraint_acceleration_term = evaluate_column(eom.constraint_acceleration_term, eval, "constraint_bias");
+  out.holonomic_residuals = evaluate_column(eom.holonomic_residuals, eval, "phi");
+  out.kinetic_energy = eval.finite(eom.kinetic_energy, "T");
+  out.potential_energy = eval.finite(eom.potential_energy, "V");
+  std::size_t k = 0;
+  for (const Output& o : model.outputs)
+    for (std::size_t i = 0; i < o.components.size(); ++i, ++k) {
+      const std::string label = o.labels.size() == o.components.size() ? o.labels[i]
+                                : o.components.size() == 1         ? o.name
+                                                                   : fmt::format("{}_{}", o.name, i + 1);
+      out.outputs.emplace_back(label, eval.finite(eom.output_component(k), "output '" + label + "'"));
+    }
+  return out;
+}
+
+AccelerationSolution solve_accelerations(const NumericEquations& eq) {
+  const Eigen::Index n = eq.mass_matrix.rows(), m = eq.constraint_jacobian.rows();
+  AccelerationSolution out;
+  if (m == 0) {
+    // M is symmetric positive definite for a proper choice of coordinates; a singular or
+    // indefinite M means the coordinates are redundant and need a constraint
+    const Eigen::LLT<Eigen::MatrixXd> llt(eq.mass_matrix);
+    if (llt.info() != Eigen::Success || llt.rcond() < std::numeric_limits<double>::epsilon())
+      throw Error("solving M qdd = F: the mass matrix is not positive definite at this state "
+                  "(redundant coordinates need a constraint)");
+    out.qdd = llt.solve(eq.forcing);
+    out.lambda.resize(0);
+    return out;
+  }
+  // [[M, -Xi^T], [-Xi, 0]] [qdd; lambda] = [F; dXi/dt qd + dXi_t/dt], docs/conventions.md (KKT)
+  Eigen::MatrixXd K = Eigen::MatrixXd::Zero(n + m, n + m);
+  K.topLeftCorner(n, n) = eq.mass_matrix;
+  K.topRightCorner(n, m) = -eq.constraint_jacobian.transpose();
+  K.bottomLeftCorner(m, n) = -eq.constraint_jacobian;
+  Eigen::VectorXd rhs(n + m);
+  rhs << eq.forcing, eq.constraint_acceleration_term;
+  // full pivoting: M alone may be singular (quaternions) while K is regular
+  const Eigen::FullPivLU<Eigen::MatrixXd> lu(K);
+  if (!lu.isInvertible())
+    throw Error(fmt::format("solving the KKT system [[M, -Xi^T], [-Xi, 0]]: the matrix is singular at this "
+                            "state (rank {} of {}): the constraints are dependent, or M is singular on "
+                            "the directions they allow",
+                            lu.rank(), n + m));
+  const Eigen::VectorXd x = lu.solve(rhs);
+  out.qdd = x.head(n);
+  out.lambda = x.tail(m);
+  return out;
+}
+
+}  // namespace eomgen

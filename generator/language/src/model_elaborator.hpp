@@ -1,0 +1,94 @@
+#pragma once
+// Turns the syntax tree of a model file into a Model, through the C++ API: loops expanded,
+// names resolved, frames and points built in dependency order whatever the file order.
+#include <ginac/ginac.h>
+
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "eomgen/mechanics/model.hpp"
+#include "model_syntax.hpp"
+
+namespace eomgen::syntax {
+
+/// The value of an expression: the language has scalars, physical vectors, columns (rotation
+/// parameters) and matrices (inertia, explicit DCMs).
+struct Value {
+  enum class Kind { scalar, vector, column, matrix };
+  Kind kind = Kind::scalar;
+  GiNaC::ex scalar;
+  eomgen::Vector vector;
+  GiNaC::matrix matrix;  // column: n x 1
+  static Value of(GiNaC::ex e) { Value v; v.kind = Kind::scalar; v.scalar = std::move(e); return v; }
+  static Value of(eomgen::Vector u) { Value v; v.kind = Kind::vector; v.vector = std::move(u); return v; }
+};
+
+std::string kind_name(Value::Kind kind);
+
+/// Loop variables of the current iteration.
+using Environment = std::map<std::string, GiNaC::numeric>;
+
+/// One statement to elaborate, with the loop variables it was expanded under.
+struct Instance {
+  const Statement* statement;
+  Environment environment;
+};
+
+class Elaborator {
+ public:
+  Elaborator(std::string file, const std::map<std::string, double>& overrides);
+  Model run(const std::vector<Statement>& statements);
+
+  // expression evaluation (model_expression.cpp)
+  Value evaluate(const ExprPtr& e, const Environment& env);
+  GiNaC::ex scalar(const ExprPtr& e, const Environment& env, const std::string& what);
+  eomgen::Vector vector(const ExprPtr& e, const Environment& env, const std::string& what);
+  GiNaC::numeric constant(const ExprPtr& e, const Environment& env, const std::string& what);
+  int integer(const ExprPtr& e, const Environment& env, const std::string& what);
+  std::string resolve(const Name& name, const Environment& env);
+  FrameId frame_named(const Name& name, const Environment& env);
+  PointId point_named(const Name& name, const Environment& env);
+
+ private:
+  friend class ExpressionEvaluator;
+  Value call(const Expr& e, const Environment& env);
+  Value name_value(const Expr& e, const Environment& env);
+  [[noreturn]] void unknown_name(const std::string& name, const SourceLocation& at,
+                                 const std::vector<std::string>& candidates, const std::string& what);
+
+  // statements (model_elaborator.cpp)
+  void constants(const std::vector<Statement>& statements);
+  void flatten(const std::vector<Statement>& statements, const Environment& env);
+  void declare(const std::string& name, const std::string& kind, const SourceLocation& at);
+  void declarations();
+  void collect_frames_and_points();
+  FrameId build_frame(const std::string& name, std::vector<std::string>& stack);
+  PointId build_point(const std::string& name, std::vector<std::string>& stack);
+  void element(const Instance& instance);
+  void output(const Instance& instance);
+  void roll(const Instance& instance);
+  void independent_speeds();
+  void checks();
+
+  std::string file_;
+  std::map<std::string, double> overrides_;
+  Model model_;
+  std::map<std::string, GiNaC::ex> constants_;
+  struct Declared {
+    std::string kind;
+    SourceLocation location;
+  };
+  std::map<std::string, Declared> declared_;
+  std::vector<Instance> instances_;
+  std::map<std::string, std::size_t> frame_instances_, point_instances_;  // name -> index in instances_
+  std::map<std::string, FrameId> frames_;
+  std::map<std::string, PointId> points_;
+  std::set<std::string> used_coordinates_;
+  SourceLocation independent_location_;  // of the `independent` keyword, when there is one
+  bool kinematics_ready_ = false;
+  bool saw_statement_ = false;
+};
+
+}  // namespace eomgen::syntax

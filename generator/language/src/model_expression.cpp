@@ -1,0 +1,373 @@
+// Evaluation of model-file expressions into scalars, physical vectors, columns and matrices.
+#include <fmt/format.h>
+
+#include <algorithm>
+
+#include "eomgen/base/error.hpp"
+#include "eomgen/mechanics/kinematics.hpp"
+#include "model_elaborator.hpp"
+
+namespace eomgen::syntax {
+namespace {
+
+using GiNaC::ex;
+
+const std::vector<std::string> scalar_functions = {"sin",  "cos",  "tan",  "asin", "acos", "atan", "atan2",
+                                                   "sinh", "cosh", "tanh", "sqrt", "exp",  "log",  "abs"};
+const std::vector<std::string> other_functions = {"dot", "norm", "cross", "position", "velocity",
+                                                  "angular_velocity", "diag"};
+const std::vector<std::string> frame_functions = {"rotate", "euler", "axis_angle", "quaternion", "rodrigues",
+                                                  "mrp", "dcm"};
+
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = up;
+    }
+  }
+  return row[b.size()];
+}
+
+// exact rational from decimal text, so 0.1 stays 1/10 in the equations
+GiNaC::numeric exact_number(const std::string& text) {
+  std::string digits;
+  long exponent = 0;
+  std::size_t i = 0;
+  for (; i < text.size() && text[i] != 'e' && text[i] != 'E'; ++i) {
+    if (text[i] == '.') continue;
+    digits += text[i];
+  }
+  const auto dot = text.find('.');
+  if (dot != std::string::npos) exponent -= static_cast<long>(std::min(i, text.size()) - dot - 1);
+  if (i < text.size()) {
+    // GiNaC would happily build 10^999999999; anything beyond a double's range is a typo
+    const long written = std::stol(text.substr(i + 1));  // std::out_of_range for absurd lengths
+    if (written < -400 || written > 400) throw std::out_of_range("exponent");
+    exponent += written;
+  }
+  return GiNaC::numeric(digits.c_str()) * GiNaC::pow(GiNaC::numeric(10), GiNaC::numeric(exponent));
+}
+
+}  // namespace
+
+std::string kind_name(Value::Kind kind) {
+  switch (kind) {
+    case Value::Kind::scalar: return "a scalar";
+    case Value::Kind::vector: return "a vector";
+    case Value::Kind::column: return "a column [x, y, z]";
+    case Value::Kind::matrix: return "a matrix";
+  }
+  return "a value";
+}
+
+void Elaborator::unknown_name(const std::string& name, const SourceLocation& at,
+                              const std::vector<std::string>& candidates, const std::string& what) {
+  std::string best;
+  std::size_t best_distance = std::max<std::size_t>(2, name.size() / 3) + 1;
+  for (const auto& c : candidates) {
+    const std::size_t d = edit_distance(name, c);
+    if (d < best_distance) {
+      best_distance = d;
+      best = c;
+    }
+  }
+  throw SourceError(at, best.empty() ? fmt::format("unknown {} '{}'", what, name)
+                                     : fmt::format("unknown {} '{}'; did you mean '{}'?", what, name, best));
+}
+
+std::string Elaborator::resolve(const Name& name, const Environment& env) {
+  std::string out;
+  for (const auto& piece : name.pieces) {
+    if (!piece.index) {
+      out += piece.literal;
+      continue;
+    }
+    // q{i-1} at i = 0 would give "q-1", which is no identifier (and no valid C++ name later)
+    const int index = integer(piece.index, env, "an index in a name");
+    if (index < 0)
+      throw SourceError(start_of(*piece.index), fmt::format("an index in a name: expected 0 or more, got {}", index));
+    out += std::to_string(index);
+  }
+  return out;
+}
+
+GiNaC::numeric Elaborator::constant(const ExprPtr& e, const Environment& env, const std::string& what) {
+  const ex value = scalar(e, env, what).evalf();
+  if (!GiNaC::is_a<GiNaC::numeric>(scalar(e, env, what)) && !GiNaC::is_a<GiNaC::numeric>(value))
+    throw SourceError(start_of(*e), fmt::format("{}: expected a constant (numbers and consts only)", what));
+  const ex exact = scalar(e, env, what);
+  return GiNaC::ex_to<GiNaC::numeric>(GiNaC::is_a<GiNaC::numeric>(exact) ? exact : value);
+}
+
+int Elaborator::integer(const ExprPtr& e, const Environment& env, const std::string& what) {
+  const GiNaC::numeric n = constant(e, env, what);
+  if (!n.is_integer())
+    throw SourceError(start_of(*e), fmt::format("{}: expected an integer, got {}", what, n.to_double()));
+  // to_int() silently wraps beyond 32 bits
+  if (GiNaC::abs(n) > 1000000000)
+    throw SourceError(start_of(*e), fmt::format("{}: expected an integer between -10^9 and 10^9", what));
+  return n.to_int();
+}
+
+ex Elaborator::scalar(const ExprPtr& e, const Environment& env, const std::string& what) {
+  Value v = evaluate(e, env);
+  if (v.kind != Value::Kind::scalar)
+    throw SourceError(start_of(*e), fmt::format("{}: expected a scalar, got {}", what, kind_name(v.kind)));
+  return v.scalar;
+}
+
+eomgen::Vector Elaborator::vector(const ExprPtr& e, const Environment& env, const std::string& what) {
+  Value v = evaluate(e, env);
+  if (v.kind != Value::Kind::vector)
+    throw SourceError(start_of(*e), fmt::format("{}: expected a vector (such as g*a.3 or [x, y, z] in b), got {}",
+                                               what, kind_name(v.kind)));
+  return v.vector;
+}
+
+FrameId Elaborator::frame_named(const Name& name, const Environment& env) {
+  const std::string n = resolve(name, env);
+  auto it = frames_.find(n);
+  if (it != frames_.end()) return it->second;
+  std::vector<std::string> known;
+  for (const auto& [k, v] : frames_) known.push_back(k);
+  for (const auto& [k, v] : frame_instances_) known.push_back(k);
+  unknown_name(n, name.location, known, "frame");
+}
+
+PointId Elaborator::point_named(const Name& name, const Environment& env) {
+  const std::string n = resolve(name, env);
+  auto it = points_.find(n);
+  if (it != points_.end()) return it->second;
+  std::vector<std::string> known;
+  for (const auto& [k, v] : points_) known.push_back(k);
+  for (const auto& [k, v] : point_instances_) known.push_back(k);  // defined later in the file
+  unknown_name(n, name.location, known, "point");
+}
+
+Value Elaborator::name_value(const Expr& e, const Environment& env) {
+  const std::string n = resolve(e.name, env);
+  if (auto it = env.find(n); it != env.end()) return Value::of(ex(it->second));
+  if (auto it = constants_.find(n); it != constants_.end()) return Value::of(it->second);
+  if (n == "pi") return Value::of(GiNaC::Pi);
+  const Variables& vars = model_.system.variables();
+  if (auto symbol = vars.find(n)) {
+    const auto kind = vars.kind_of(*symbol);
+    if (kind == SymbolKind::acceleration)
+      throw SourceError(e.location, fmt::format("'{}' is an acceleration; accelerations may not appear in a model "
+                                                "(the equations of motion give them): expected coordinates and "
+                                                "rates only", n));
+    if (kind == SymbolKind::coordinate || kind == SymbolKind::rate)
+      used_coordinates_.insert(vars.coordinates()[*vars.coordinate_index(*symbol)].name);
+    return Value::of(ex(*symbol));
+  }
+  if (auto it = declared_.find(n); it != declared_.end())
+    throw SourceError(e.location, fmt::format("expected a scalar or a vector, got the {} '{}'{}", it->second.kind, n,
+                                              it->second.kind == "frame"
+                                                  ? fmt::format(" (its basis vectors are {0}.1, {0}.2, {0}.3)", n)
+                                                  : ""));
+  std::vector<std::string> known = {"t", "pi"};
+  for (const auto& [k, v] : env) known.push_back(k);
+  for (const auto& [k, v] : constants_) known.push_back(k);
+  for (const auto& [k, v] : declared_) known.push_back(k);
+  for (const auto& c : vars.coordinates()) known.push_back(c.qd.get_name());
+  unknown_name(n, e.location, known, "name");
+}
+
+Value Elaborator::call(const Expr& e, const Environment& env) {
+  const std::string f = resolve(e.name, env);
+  auto arity = [&](std::size_t lo, std::size_t hi) {
+    if (e.args.size() < lo || e.args.size() > hi)
+      throw SourceError(e.location, lo == hi ? fmt::format("{}() takes {} argument{}, got {}", f, lo, lo == 1 ? "" : "s", e.args.size())
+                                             : fmt::format("{}() takes {} to {} arguments, got {}", f, lo, hi, e.args.size()));
+  };
+  auto arg_scalar = [&](std::size_t i) { return scalar(e.args[i], env, fmt::format("argument {} of {}()", i + 1, f)); };
+  auto arg_vector = [&](std::size_t i) { return vector(e.args[i], env, fmt::format("argument {} of {}()", i + 1, f)); };
+  auto arg_name = [&](std::size_t i) -> const Name& {
+    if (e.args[i]->kind != Expr::Kind::name)
+      throw SourceError(e.args[i]->location, fmt::format("argument {} of {}(): expected a name", i + 1, f));
+    return e.args[i]->name;
+  };
+  auto need_kinematics = [&] {
+    if (!kinematics_ready_)
+      throw SourceError(e.location, fmt::format("{}() may not be used in frame or point definitions; write the "
+                                                "vector from basis vectors instead", f));
+  };
+  const MechanicalSystem& s = model_.system;
+  if (std::find(scalar_functions.begin(), scalar_functions.end(), f) != scalar_functions.end()) try {
+    if (f == "atan2") {
+      arity(2, 2);
+      return Value::of(GiNaC::atan2(arg_scalar(0), arg_scalar(1)));
+    }
+    arity(1, 1);
+    const ex x = arg_scalar(0);
+    if (f == "sin") return Value::of(GiNaC::sin(x));
+    if (f == "cos") return Value::of(GiNaC::cos(x));
+    if (f == "tan") return Value::of(GiNaC::tan(x));
+    if (f == "asin") return Value::of(GiNaC::asin(x));
+    if (f == "acos") return Value::of(GiNaC::acos(x));
+    if (f == "atan") return Value::of(GiNaC::atan(x));
+    if (f == "sinh") return Value::of(GiNaC::sinh(x));
+    if (f == "cosh") return Value::of(GiNaC::cosh(x));
+    if (f == "tanh") return Value::of(GiNaC::tanh(x));
+    if (f == "sqrt") return Value::of(GiNaC::sqrt(x));
+    if (f == "exp") return Value::of(GiNaC::exp(x));
+    if (f == "log") return Value::of(GiNaC::log(x));
+    return Value::of(GiNaC::abs(x));
+  } catch (const GiNaC::pole_error&) {
+    // GiNaC evaluates log(0), tan(pi/2)... eagerly and throws; that is an error in the file
+    throw SourceError(e.location, fmt::format("{}() is infinite at this argument: expected an argument where it is "
+                                              "finite", f));
+  }
+  if (f == "diag") {
+    arity(3, 3);
+    Value v;
+    v.kind = Value::Kind::matrix;
+    v.matrix = GiNaC::matrix(3, 3);
+    for (unsigned i = 0; i < 3; ++i) v.matrix(i, i) = arg_scalar(i);
+    return v;
+  }
+  if (f == "dot" || f == "cross") {
+    arity(2, 2);
+    need_kinematics();
+    if (f == "dot") return Value::of(eomgen::dot(s, arg_vector(0), arg_vector(1)));
+    return Value::of(eomgen::cross(s, arg_vector(0), arg_vector(1)));
+  }
+  if (f == "norm") {
+    arity(1, 1);
+    need_kinematics();
+    const eomgen::Vector u = arg_vector(0);
+    return Value::of(GiNaC::sqrt(eomgen::dot(s, u, u)));
+  }
+  if (f == "position") {
+    arity(1, 2);
+    need_kinematics();
+    const PointId p = point_named(arg_name(0), env);
+    return Value::of(eomgen::position(s, p, e.args.size() == 2 ? point_named(arg_name(1), env) : s.origin()));
+  }
+  if (f == "velocity") {
+    arity(1, 1);
+    need_kinematics();
+    return Value::of(eomgen::velocity(s, point_named(arg_name(0), env)));
+  }
+  if (f == "angular_velocity") {
+    arity(1, 2);
+    need_kinematics();
+    const FrameId b = frame_named(arg_name(0), env);
+    return Value::of(eomgen::angular_velocity(s, b, e.args.size() == 2 ? frame_named(arg_name(1), env) : s.inertial_frame()));
+  }
+  if (std::find(frame_functions.begin(), frame_functions.end(), f) != frame_functions.end())
+    throw SourceError(e.location, fmt::format("{}() defines a frame: use it as 'frame NAME = {}(...)'", f, f));
+  std::vector<std::string> known = scalar_functions;
+  known.insert(known.end(), other_functions.begin(), other_functions.end());
+  unknown_name(f, e.location, known, "function");
+}
+
+Value Elaborator::evaluate(const ExprPtr& ptr, const Environment& env) {
+  const Expr& e = *ptr;
+  auto binary = [&] {
+    return std::pair<Value, Value>{evaluate(e.args[0], env), evaluate(e.args[1], env)};
+  };
+  auto mismatch = [&](const char* operation, const Value& a, const Value& b) -> SourceError {
+    return SourceError(e.location, fmt::format("cannot {} {} and {}", operation, kind_name(a.kind), kind_name(b.kind)));
+  };
+  using K = Value::Kind;
+  switch (e.kind) {
+    case Expr::Kind::number:
+      try {
+        return Value::of(ex(exact_number(e.number_text)));
+      } catch (const std::out_of_range&) {
+        throw SourceError(e.location, fmt::format("number '{}' is out of range: expected an exponent between -400 "
+                                                  "and 400", e.number_text));
+      }
+    case Expr::Kind::name:
+      return name_value(e, env);
+    case Expr::Kind::call:
+      return call(e, env);
+    case Expr::Kind::negate: {
+      Value v = evaluate(e.args[0], env);
+      if (v.kind == K::scalar) return Value::of(-v.scalar);
+      if (v.kind == K::vector) return Value::of(-v.vector);
+      throw SourceError(e.location, fmt::format("cannot negate {}", kind_name(v.kind)));
+    }
+    case Expr::Kind::add:
+    case Expr::Kind::subtract: {
+      auto [a, b] = binary();
+      const bool add = e.kind == Expr::Kind::add;
+      if (a.kind == K::scalar && b.kind == K::scalar) return Value::of(add ? a.scalar + b.scalar : a.scalar - b.scalar);
+      if (a.kind == K::vector && b.kind == K::vector) return Value::of(add ? a.vector + b.vector : a.vector - b.vector);
+      throw mismatch(add ? "add" : "subtract", a, b);
+    }
+    case Expr::Kind::multiply: {
+      auto [a, b] = binary();
+      if (a.kind == K::scalar && b.kind == K::scalar) return Value::of(a.scalar * b.scalar);
+      if (a.kind == K::scalar && b.kind == K::vector) return Value::of(a.scalar * b.vector);
+      if (a.kind == K::vector && b.kind == K::scalar) return Value::of(b.scalar * a.vector);
+      if (a.kind == K::vector && b.kind == K::vector)
+        throw SourceError(e.location, "cannot multiply two vectors: use dot(u, v) or cross(u, v)");
+      throw mismatch("multiply", a, b);
+    }
+    case Expr::Kind::divide: {
+      auto [a, b] = binary();
+      if (b.kind != K::scalar) throw SourceError(e.location, fmt::format("cannot divide by {}", kind_name(b.kind)));
+      if (b.scalar.is_zero()) throw SourceError(e.location, "division by zero");
+      if (a.kind == K::scalar) return Value::of(a.scalar / b.scalar);
+      if (a.kind == K::vector) return Value::of(GiNaC::ex(1) / b.scalar * a.vector);
+      throw mismatch("divide", a, b);
+    }
+    case Expr::Kind::power: {
+      auto [a, b] = binary();
+      if (a.kind != K::scalar || b.kind != K::scalar) throw mismatch("raise to a power", a, b);
+      // GiNaC evaluates 0^-k eagerly and throws from inside pow(), leaking the half-built
+      // power: reject it before GiNaC sees it
+      if (a.scalar.is_zero() && GiNaC::is_a<GiNaC::numeric>(b.scalar) &&
+          GiNaC::ex_to<GiNaC::numeric>(b.scalar).is_negative())
+        throw SourceError(e.location, "zero raised to a negative power: expected a non-zero base");
+      try {
+        return Value::of(GiNaC::pow(a.scalar, b.scalar));
+      } catch (const GiNaC::pole_error&) {  // 0^-1 is evaluated (and thrown) eagerly
+        throw SourceError(e.location, "zero raised to a negative power: expected a non-zero base");
+      }
+    }
+    case Expr::Kind::list: {
+      std::vector<Value> items;
+      for (const auto& item : e.args) items.push_back(evaluate(item, env));
+      Value v;
+      if (!items.empty() && std::all_of(items.begin(), items.end(), [](const Value& x) { return x.kind == K::scalar; })) {
+        v.kind = K::column;
+        v.matrix = GiNaC::matrix(static_cast<unsigned>(items.size()), 1);
+        for (unsigned i = 0; i < items.size(); ++i) v.matrix(i, 0) = items[i].scalar;
+        return v;
+      }
+      if (!items.empty() && std::all_of(items.begin(), items.end(), [&](const Value& x) {
+            return x.kind == K::column && x.matrix.rows() == items[0].matrix.rows();
+          })) {
+        v.kind = K::matrix;
+        v.matrix = GiNaC::matrix(static_cast<unsigned>(items.size()), items[0].matrix.rows());
+        for (unsigned i = 0; i < items.size(); ++i)
+          for (unsigned j = 0; j < items[0].matrix.rows(); ++j) v.matrix(i, j) = items[i].matrix(j, 0);
+        return v;
+      }
+      throw SourceError(e.location, "expected a list of scalars [x, y, z] or of equally long rows [[...], [...]]");
+    }
+    case Expr::Kind::in_frame: {
+      const Value list = evaluate(e.args[0], env);
+      if (list.kind != K::column || list.matrix.rows() != 3)
+        throw SourceError(e.location, "expected three scalar components before 'in': [x, y, z] in FRAME");
+      return Value::of(eomgen::Vector(frame_named(e.name, env), list.matrix));
+    }
+    case Expr::Kind::basis: {
+      GiNaC::matrix unit(3, 1);
+      unit(e.basis_index - 1, 0) = 1;
+      return Value::of(eomgen::Vector(frame_named(e.name, env), unit));
+    }
+  }
+  throw SourceError(e.location, "unsupported expression");
+}
+
+}  // namespace eomgen::syntax

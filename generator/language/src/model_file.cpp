@@ -1,0 +1,188 @@
+// parse_model / load_model, and the checks that need the whole model.
+#include <Eigen/Dense>
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <fstream>
+#include <random>
+#include <sstream>
+
+#include "eomgen/base/error.hpp"
+#include "eomgen/language/model_file.hpp"
+#include "model_elaborator.hpp"
+
+namespace eomgen {
+namespace syntax {
+
+// The independent speeds of the null-space method: declared coordinates, each listed once, one
+// per degree of freedom (nq - nc). Run by checks() once the constraints are known to be
+// independent, which then asks the remaining, dependent speeds to be solvable from them.
+void Elaborator::independent_speeds() {
+  const Instance* declaration = nullptr;
+  for (const Instance& in : instances_) {
+    if (in.statement->kind != Statement::Kind::independent) continue;
+    if (declaration) {
+      const SourceLocation& first = declaration->statement->location;
+      if (declaration->statement == in.statement)  // a loop expanded it more than once
+        throw SourceError(in.statement->location, "'independent' is repeated by its loop: declare the independent "
+                                                  "speeds once, outside a loop or in one that runs once");
+      throw SourceError(in.statement->location,
+                        fmt::format("'independent' is given twice: the independent speeds are already declared at "
+                                    "{}:{}:{}", first.file, first.line, first.column));
+    }
+    declaration = &in;
+  }
+  if (!declaration) return;
+  const Statement& s = *declaration->statement;
+  const Variables& vars = model_.system.variables();
+  std::vector<std::string> coordinate_names;
+  for (const Coordinate& c : vars.coordinates()) coordinate_names.push_back(c.name);
+  std::vector<SourceLocation> listed_at;  // parallel to model_.independent_speeds
+  for (const Name& n : s.names) {
+    const std::string name = resolve(n, declaration->environment);
+    const auto symbol = vars.find(name);
+    if (!symbol || vars.kind_of(*symbol) != SymbolKind::coordinate) {
+      const auto declared = declared_.find(name);
+      if (declared == declared_.end()) unknown_name(name, n.location, coordinate_names, "coordinate");
+      // a rate is the likely slip: the speeds are named by their coordinates
+      if (declared->second.kind == "rate")
+        throw SourceError(n.location, fmt::format("independent: '{}' is a rate: expected its coordinate '{}' (the "
+                                                  "independent speeds are the rates of the listed coordinates)",
+                                                  name, name.substr(0, name.size() - 4)));
+      const std::string& kind = declared->second.kind;
+      throw SourceError(n.location, fmt::format("independent: '{}' is {} {}, expected a coordinate", name,
+                                                std::string("aeiou").find(kind[0]) == std::string::npos ? "a" : "an",
+                                                kind));
+    }
+    const std::size_t k = *vars.coordinate_index(*symbol);
+    const auto twice = std::find(model_.independent_speeds.begin(), model_.independent_speeds.end(), k);
+    if (twice != model_.independent_speeds.end()) {
+      const SourceLocation& first = listed_at[static_cast<std::size_t>(twice - model_.independent_speeds.begin())];
+      throw SourceError(n.location, fmt::format("independent: coordinate '{}' is listed twice (first at {}:{}:{})",
+                                                name, first.file, first.line, first.column));
+    }
+    model_.independent_speeds.push_back(k);
+    listed_at.push_back(n.location);
+  }
+  // signed: checks() has already rejected more constraints than coordinates as dependent
+  const long nq = static_cast<long>(vars.coordinate_count());
+  const long nc = static_cast<long>(model_.system.constraints().size());
+  if (nc == 0)
+    throw SourceError(s.location, "'independent' in a model without constraints: every speed is independent; "
+                                  "expected no 'independent' statement");
+  const long ni = static_cast<long>(model_.independent_speeds.size());
+  if (ni != nq - nc)
+    throw SourceError(s.location, fmt::format("independent: expected nq - nc = {} - {} = {} coordinates (one per "
+                                              "degree of freedom), got {}", nq, nc, nq - nc, ni));
+  independent_location_ = s.location;
+}
+
+// Checks that need every statement: an empty system, unused coordinates, constraints that are
+// zero or linearly dependent at a generic state, and declared independent speeds that leave the
+// dependent ones unsolvable there.
+void Elaborator::checks() {
+  const MechanicalSystem& sys = model_.system;
+  const Variables& vars = sys.variables();
+  const SourceLocation top{file_, 1, 1};
+  if (vars.coordinate_count() == 0)
+    throw SourceError(top, "the model declares no coordinates: expected 'coordinate NAME, ...'");
+  if (sys.particles().empty() && sys.rigid_bodies().empty())
+    throw SourceError(top, "the model has no particle or body, so it has no mass: expected 'particle' or 'body'");
+  for (std::size_t k = 0; k < vars.coordinate_count(); ++k)
+    if (!used_coordinates_.count(vars.coordinates()[k].name))
+      throw SourceError(model_.coordinate_locations[k],
+                        fmt::format("coordinate '{}' is declared but never used", vars.coordinates()[k].name));
+
+  // Xi at a generic state: parameters at their defaults, coordinates and rates at irrational-
+  // looking values no special configuration is likely to hit
+  const auto& constraints = sys.constraints();
+  std::mt19937 rng(20261121);
+  std::uniform_real_distribution<double> value(0.31, 1.17);
+  GiNaC::exmap state = sys.parameter_defaults();
+  state[vars.time()] = 0.73;
+  for (const auto& c : vars.coordinates()) {
+    state[c.q] = value(rng);
+    state[c.qd] = value(rng);
+  }
+  const std::size_t n = vars.coordinate_count();
+  Eigen::MatrixXd xi(0, static_cast<Eigen::Index>(n));
+  for (std::size_t i = 0; i < constraints.size(); ++i) {
+    const Constraint& c = constraints[i];
+    Eigen::RowVectorXd row(n);
+    for (std::size_t k = 0; k < n; ++k) {
+      const auto& coord = vars.coordinates()[k];
+      const GiNaC::ex d = c.expression.diff(GiNaC::ex_to<GiNaC::symbol>(
+          GiNaC::ex(c.kind == Constraint::Kind::holonomic ? coord.q : coord.qd)));
+      GiNaC::ex v;
+      try {
+        v = d.subs(state, GiNaC::subs_options::no_pattern).evalf();
+      } catch (const GiNaC::pole_error&) {  // e.g. 1/l with a parameter l that defaults to 0
+        v = GiNaC::I;                       // reported below as not a real number
+      }
+      if (!GiNaC::is_a<GiNaC::numeric>(v) || !GiNaC::ex_to<GiNaC::numeric>(v).is_real())
+        throw SourceError(model_.constraint_locations[i],
+                          fmt::format("constraint '{}': its Jacobian is not a real number at a generic state", c.name));
+      row[static_cast<Eigen::Index>(k)] = GiNaC::ex_to<GiNaC::numeric>(v).to_double();
+    }
+    if (row.norm() < 1e-12)
+      throw SourceError(model_.constraint_locations[i],
+                        fmt::format("constraint '{}' is identically zero: its Jacobian vanishes at a generic state", c.name));
+    Eigen::MatrixXd grown(xi.rows() + 1, xi.cols());
+    grown << xi, row;
+    Eigen::FullPivLU<Eigen::MatrixXd> lu(grown);
+    lu.setThreshold(1e-9);
+    if (lu.rank() < grown.rows())
+      throw SourceError(model_.constraint_locations[i],
+                        fmt::format("constraint '{}' is linearly dependent on the constraints before it at a "
+                                    "generic state", c.name));
+    xi = grown;
+  }
+
+  // the null-space method solves the dependent speeds from Xi_d qd_d = -(Xi_i qd_i + Xi_t): Xi_d,
+  // the columns of the coordinates not listed, must be invertible at least at a generic state
+  independent_speeds();
+  const std::vector<std::size_t>& independent = model_.independent_speeds;
+  if (independent.empty()) return;
+  std::vector<std::string> dependent;
+  Eigen::MatrixXd xi_d(xi.rows(), 0);
+  for (std::size_t k = 0; k < n; ++k) {
+    if (std::find(independent.begin(), independent.end(), k) != independent.end()) continue;
+    dependent.push_back(vars.coordinates()[k].name);
+    xi_d.conservativeResize(Eigen::NoChange, xi_d.cols() + 1);
+    xi_d.col(xi_d.cols() - 1) = xi.col(static_cast<Eigen::Index>(k));
+  }
+  Eigen::FullPivLU<Eigen::MatrixXd> lu(xi_d);
+  lu.setThreshold(1e-9);
+  if (lu.rank() < xi_d.rows()) {
+    std::string names;
+    for (const std::string& d : dependent) names += (names.empty() ? "'" : ", '") + d + "'";
+    throw SourceError(independent_location_,
+                      fmt::format("independent: the constraints cannot be solved for the rates of the other "
+                                  "coordinates ({}) at a generic state: their columns of Xi are singular; expected "
+                                  "other independent coordinates", names));
+  }
+}
+
+}  // namespace syntax
+
+Model parse_model(const std::string& text, const std::string& file_name,
+                  const std::map<std::string, double>& overrides) {
+  const auto statements = syntax::parse_statements(text, file_name);
+  syntax::Elaborator elaborator(file_name, overrides);
+  Model model = elaborator.run(statements);
+  if (model.name.empty()) {
+    std::string stem = file_name.substr(file_name.find_last_of('/') + 1);
+    model.name = stem.substr(0, stem.find('.'));
+  }
+  return model;
+}
+
+Model load_model(const std::string& path, const std::map<std::string, double>& overrides) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error(fmt::format("{}: error: cannot read the model file", path));
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  return parse_model(buffer.str(), path, overrides);
+}
+
+}  // namespace eomgen

@@ -1,0 +1,355 @@
+// Recursive-descent parser: tokens -> statements with expression trees.
+#include <fmt/format.h>
+
+#include <map>
+
+#include "eomgen/base/error.hpp"
+#include "model_lexer.hpp"
+#include "model_syntax.hpp"
+
+namespace eomgen::syntax {
+namespace {
+
+using Kind = Statement::Kind;
+
+const std::map<std::string, Kind> element_keywords = {
+    {"particle", Kind::particle}, {"body", Kind::body},     {"force", Kind::force},
+    {"moment", Kind::moment},     {"spring", Kind::spring}, {"damper", Kind::damper},
+    {"torsion", Kind::torsion},   {"roll", Kind::roll},     {"generalized_force", Kind::generalized_force}};
+
+class Parser {
+ public:
+  Parser(std::vector<Token> tokens, std::string text) : tokens_(std::move(tokens)), text_(std::move(text)) {}
+
+  std::vector<Statement> statements(bool inside_loop) {
+    std::vector<Statement> out;
+    for (;;) {
+      skip_newlines();
+      if (peek().kind == Token::Kind::end) {
+        if (inside_loop) error(peek(), "expected 'end' to close the 'for' loop");
+        return out;
+      }
+      if (is_word("end")) {
+        if (!inside_loop) error(peek(), "'end' without a 'for' loop");
+        next();
+        end_of_statement();
+        return out;
+      }
+      out.push_back(statement());
+    }
+  }
+
+  ExprPtr whole_expression() {
+    ExprPtr e = expression();
+    skip_newlines();
+    if (peek().kind != Token::Kind::end) error(peek(), fmt::format("unexpected {} in expression", describe(peek())));
+    return e;
+  }
+
+ private:
+  const Token& peek(std::size_t ahead = 0) const { return tokens_[std::min(pos_ + ahead, tokens_.size() - 1)]; }
+  const Token& next() { return tokens_[pos_ < tokens_.size() - 1 ? pos_++ : pos_]; }
+  bool is_symbol(const char* s) const { return peek().kind == Token::Kind::symbol && peek().text == s; }
+  bool is_word(const char* s) const { return peek().kind == Token::Kind::identifier && peek().text == s; }
+  void skip_newlines() {
+    while (peek().kind == Token::Kind::newline) next();
+  }
+  [[noreturn]] void error(const Token& t, const std::string& message) const { throw SourceError(t.location, message); }
+
+  const Token& expect_symbol(const char* s, const char* context) {
+    if (!is_symbol(s)) error(peek(), fmt::format("expected '{}' {}, got {}", s, context, describe(peek())));
+    return next();
+  }
+  void end_of_statement() {
+    if (peek().kind != Token::Kind::newline && peek().kind != Token::Kind::end)
+      error(peek(), fmt::format("expected end of line after the statement, got {}", describe(peek())));
+  }
+
+  Name name(const char* what) {
+    if (peek().kind != Token::Kind::identifier)
+      error(peek(), fmt::format("expected {} (an identifier), got {}", what, describe(peek())));
+    return make_name(next());
+  }
+
+  // splits "q{i-1}x" into pieces, parsing each {...} as an expression at its own position
+  Name make_name(const Token& t) {
+    Name n;
+    n.location = t.location;
+    std::size_t k = 0;
+    std::string literal;
+    while (k < t.text.size()) {
+      if (t.text[k] != '{') {
+        literal += t.text[k++];
+        continue;
+      }
+      if (!literal.empty()) n.pieces.push_back({literal, nullptr});
+      literal.clear();
+      const std::size_t close = t.text.find('}', k);
+      SourceLocation at = t.location;
+      at.column += static_cast<int>(k) + 1;
+      const std::string inner = t.text.substr(k + 1, close - k - 1);
+      if (inner.find('{') != std::string::npos) throw SourceError(at, "nested '{' in a name");
+      n.pieces.push_back({"", parse_expression_text(inner, at)});
+      k = close + 1;
+    }
+    if (!literal.empty()) n.pieces.push_back({literal, nullptr});
+    return n;
+  }
+
+  Statement statement() {
+    const Token& keyword = peek();
+    if (keyword.kind != Token::Kind::identifier)
+      error(keyword, fmt::format("expected a statement keyword, got {}", describe(keyword)));
+    const std::string word = keyword.text;
+    next();
+    Statement s;
+    s.location = keyword.location;
+    if (word == "model") {
+      s.kind = Kind::model;
+      s.name = name("the model name");
+      if (peek().kind == Token::Kind::string) s.text = next().text;
+    } else if (word == "description") {
+      s.kind = Kind::description;
+      if (peek().kind != Token::Kind::string) error(peek(), "expected a string in double quotes after 'description'");
+      s.text = next().text;
+    } else if (word == "const" || word == "parameter" || word == "potential") {
+      s.kind = word == "const" ? Kind::constant : word == "parameter" ? Kind::parameter : Kind::potential;
+      s.name = name(word == "potential" ? "the potential's name" : "a name");
+      expect_symbol("=", fmt::format("after the name in a {} statement", word).c_str());
+      s.value = expression();
+      if (s.kind == Kind::parameter && is_symbol("[")) s.text = unit();
+    } else if (word == "coordinate" || word == "input" || word == "independent") {
+      s.kind = word == "coordinate" ? Kind::coordinate : word == "input" ? Kind::input : Kind::independent;
+      const char* what = s.kind == Kind::input ? "an input name" : "a coordinate name";
+      s.names.push_back(name(what));
+      while (is_symbol(",")) {
+        next();
+        s.names.push_back(name(what));
+      }
+    } else if (word == "frame" || word == "point") {
+      s.kind = word == "frame" ? Kind::frame : Kind::point;
+      s.name = name(word == "frame" ? "the frame's name" : "the point's name");
+      expect_symbol("=", fmt::format("after the {} name", word).c_str());
+      s.value = expression();
+    } else if (word == "gravity") {
+      s.kind = Kind::gravity;
+      expect_symbol("=", "after 'gravity'");
+      s.value = expression();
+    } else if (word == "constraint") {
+      s.kind = Kind::constraint;
+      s.name = name("the constraint's name");
+      expect_symbol(":", "after the constraint's name");
+      s.value = expression();
+      expect_symbol("=", "in the constraint (write LEFT = RIGHT)");
+      s.value2 = expression();
+    } else if (word == "output") {
+      s.kind = Kind::output;
+      s.name = name("the output's name");
+      expect_symbol("=", "after the output's name");
+      s.value = expression();
+      if (is_word("in")) {
+        next();
+        s.frame = name("a frame name after 'in'");
+        s.has_frame = true;
+      }
+    } else if (word == "for") {
+      s.kind = Kind::loop;
+      s.name = name("the loop variable");
+      if (!is_word("in")) error(peek(), fmt::format("expected 'in' after the loop variable, got {}", describe(peek())));
+      next();
+      s.value = expression();
+      expect_symbol("..", "between the first and last value of the loop (for i in 1..n)");
+      s.value2 = expression();
+      end_of_statement();
+      s.body = statements(true);
+      return s;
+    } else if (auto it = element_keywords.find(word); it != element_keywords.end()) {
+      s.kind = it->second;
+      s.name = name(fmt::format("the {}'s name", word).c_str());
+      expect_symbol("(", fmt::format("after the {}'s name, then key = value arguments", word).c_str());
+      while (!is_symbol(")")) {
+        const Token& key = peek();
+        if (key.kind != Token::Kind::identifier)
+          error(key, fmt::format("expected an argument name (key = value), got {}", describe(key)));
+        next();
+        expect_symbol("=", fmt::format("after the argument name '{}'", key.text).c_str());
+        s.arguments.push_back(Argument{key.text, expression(), key.location});
+        if (!is_symbol(")")) expect_symbol(",", "or ')' after an argument");
+      }
+      next();
+    } else {
+      error(keyword, fmt::format("unknown statement '{}': expected one of model, description, const, parameter, "
+                                 "coordinate, input, frame, point, particle, body, gravity, force, moment, "
+                                 "spring, damper, torsion, potential, generalized_force, constraint, roll, "
+                                 "independent, output, for", word));
+    }
+    end_of_statement();
+    return s;
+  }
+
+  // the raw text between [ and ], kept as written: [m/s^2]
+  std::string unit() {
+    const Token& open = next();
+    std::size_t start = open.end_offset;
+    while (!is_symbol("]")) {
+      if (peek().kind == Token::Kind::newline || peek().kind == Token::Kind::end)
+        error(open, "unterminated unit: expected ']'");
+      next();
+    }
+    const Token& close = next();
+    std::string u = text_.substr(start, close.offset - start);
+    while (!u.empty() && u.front() == ' ') u.erase(u.begin());
+    while (!u.empty() && u.back() == ' ') u.pop_back();
+    return u;
+  }
+
+  static ExprPtr make(Expr::Kind kind, SourceLocation loc, std::vector<ExprPtr> args = {}) {
+    auto e = std::make_shared<Expr>();
+    e->kind = kind;
+    e->location = std::move(loc);
+    e->args = std::move(args);
+    return e;
+  }
+
+  ExprPtr expression() {
+    ExprPtr left = term();
+    while (is_symbol("+") || is_symbol("-")) {
+      const Token& op = next();
+      left = make(op.text == "+" ? Expr::Kind::add : Expr::Kind::subtract, op.location, {left, term()});
+    }
+    return left;
+  }
+
+  ExprPtr term() {
+    ExprPtr left = unary();
+    while (is_symbol("*") || is_symbol("/")) {
+      const Token& op = next();
+      left = make(op.text == "*" ? Expr::Kind::multiply : Expr::Kind::divide, op.location, {left, unary()});
+    }
+    return left;
+  }
+
+  ExprPtr unary() {
+    if (is_symbol("-")) {
+      const Token& op = next();
+      return make(Expr::Kind::negate, op.location, {unary()});
+    }
+    if (is_symbol("+")) {
+      next();
+      return unary();
+    }
+    return power();
+  }
+
+  ExprPtr power() {
+    ExprPtr base = postfix();
+    if (is_symbol("^")) {
+      const Token& op = next();
+      return make(Expr::Kind::power, op.location, {base, unary()});  // right associative
+    }
+    return base;
+  }
+
+  ExprPtr postfix() {
+    ExprPtr e = primary();
+    if (is_symbol(".") && e->kind == Expr::Kind::name) {
+      const Token& dot = next();
+      if (peek().kind != Token::Kind::number || (peek().text != "1" && peek().text != "2" && peek().text != "3"))
+        error(peek(), fmt::format("expected 1, 2 or 3 after '.' (a basis vector such as b.1), got {}", describe(peek())));
+      auto b = std::make_shared<Expr>();
+      b->kind = Expr::Kind::basis;
+      b->location = e->location;
+      b->name = e->name;
+      b->basis_index = next().text[0] - '0';
+      (void)dot;
+      return b;
+    }
+    return e;
+  }
+
+  ExprPtr primary() {
+    const Token& t = peek();
+    if (t.kind == Token::Kind::number) {
+      next();
+      auto e = make(Expr::Kind::number, t.location);
+      std::const_pointer_cast<Expr>(e)->number_text = t.text;
+      return e;
+    }
+    if (t.kind == Token::Kind::identifier) {
+      next();
+      auto e = std::make_shared<Expr>();
+      e->location = t.location;
+      e->name = make_name(t);
+      if (is_symbol("(")) {
+        next();
+        e->kind = Expr::Kind::call;
+        while (!is_symbol(")")) {
+          e->args.push_back(expression());
+          if (!is_symbol(")")) expect_symbol(",", "or ')' between function arguments");
+        }
+        next();
+      } else {
+        e->kind = Expr::Kind::name;
+      }
+      return e;
+    }
+    if (is_symbol("(")) {
+      next();
+      ExprPtr inner = expression();
+      expect_symbol(")", "to close '('");
+      return inner;
+    }
+    if (is_symbol("[")) {
+      next();
+      auto list = std::make_shared<Expr>();
+      list->kind = Expr::Kind::list;
+      list->location = t.location;
+      while (!is_symbol("]")) {
+        list->args.push_back(expression());
+        if (!is_symbol("]")) expect_symbol(",", "or ']' between list elements");
+      }
+      next();
+      if (is_word("in")) {
+        next();
+        auto framed = std::make_shared<Expr>();
+        framed->kind = Expr::Kind::in_frame;
+        framed->location = t.location;
+        framed->name = name("a frame name after 'in'");
+        framed->args = {list};
+        return framed;
+      }
+      return list;
+    }
+    error(t, fmt::format("expected an expression (a number, a name, '(' or '['), got {}", describe(t)));
+  }
+
+  std::vector<Token> tokens_;
+  std::string text_;
+  std::size_t pos_ = 0;
+};
+
+}  // namespace
+
+const SourceLocation& start_of(const Expr& e) {
+  switch (e.kind) {
+    case Expr::Kind::add:
+    case Expr::Kind::subtract:
+    case Expr::Kind::multiply:
+    case Expr::Kind::divide:
+    case Expr::Kind::power: return start_of(*e.args[0]);
+    default: return e.location;
+  }
+}
+
+std::vector<Statement> parse_statements(const std::string& text, const std::string& file) {
+  Parser p(tokenize(text, file), text);
+  return p.statements(false);
+}
+
+ExprPtr parse_expression_text(const std::string& text, const SourceLocation& start) {
+  if (text.find_first_not_of(" \t") == std::string::npos) throw SourceError(start, "expected an expression inside '{}'");
+  Parser p(tokenize(text, start.file, start.line, start.column), text);
+  return p.whole_expression();
+}
+
+}  // namespace eomgen::syntax

@@ -1,0 +1,69 @@
+#pragma once
+// Syntax tree of a model file, before names are resolved and loops expanded.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "eomgen/base/source_location.hpp"
+
+namespace eomgen::syntax {
+
+struct Expr;
+using ExprPtr = std::shared_ptr<const Expr>;
+
+/// An identifier, possibly with `{expression}` pieces filled in per loop iteration: q{i-1}.
+struct Name {
+  struct Piece {
+    std::string literal;  // used when index is null
+    ExprPtr index;
+  };
+  std::vector<Piece> pieces;
+  SourceLocation location;
+  bool is_plain() const { return pieces.size() == 1 && !pieces[0].index; }
+  std::string plain() const { return pieces.empty() ? std::string() : pieces[0].literal; }
+};
+
+struct Expr {
+  enum class Kind { number, name, negate, add, subtract, multiply, divide, power, call, list, in_frame, basis };
+  Kind kind;
+  SourceLocation location;
+  std::string number_text;    // number
+  Name name;                  // name, call (function), in_frame and basis (frame)
+  int basis_index = 0;        // basis: 1, 2 or 3
+  std::vector<ExprPtr> args;  // operands, call arguments, list elements; in_frame: the list
+};
+
+/// Where an expression starts. An operator node sits at its operator, which is right for
+/// "cannot add ..." but not for a message about the whole expression ("expected a vector").
+const SourceLocation& start_of(const Expr& e);
+
+struct Argument {
+  std::string key;
+  ExprPtr value;
+  SourceLocation location;
+};
+
+struct Statement {
+  enum class Kind { model, description, constant, parameter, coordinate, input, frame, point, particle,
+                    body, gravity, force, moment, spring, damper, torsion, potential, generalized_force,
+                    constraint, roll, independent, output, loop };
+  Kind kind;
+  SourceLocation location;  // of the keyword
+  Name name;                // the declared name (most statements)
+  std::vector<Name> names;  // coordinate, input and independent-speed lists
+  ExprPtr value;            // `= EXPR`; constraint left side; loop first value
+  ExprPtr value2;           // constraint right side; loop last value
+  std::string text;         // model description, parameter unit
+  std::vector<Argument> arguments;  // NAME(key = value, ...)
+  Name frame;               // output ... in FRAME
+  bool has_frame = false;
+  std::vector<Statement> body;  // loop body
+};
+
+/// Parses the text of a model file. \throws SourceError.
+std::vector<Statement> parse_statements(const std::string& text, const std::string& file);
+
+/// Parses one expression (used for `{...}` pieces of names). \throws SourceError.
+ExprPtr parse_expression_text(const std::string& text, const SourceLocation& start);
+
+}  // namespace eomgen::syntax

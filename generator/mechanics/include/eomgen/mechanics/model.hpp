@@ -1,0 +1,40 @@
+#pragma once
+// A model: the mechanical system built through the C++ API, plus what a model file says beyond
+// it (name, description, named outputs) and where each declaration sits in the file, so later
+// checks can point at it. The language layer builds it (eomgen/language/model_file.hpp); the
+// derivation turns it into equations (eomgen/derivation/model_equations.hpp).
+#include <map>
+#include <string>
+#include <vector>
+
+#include "eomgen/mechanics/mechanical_system.hpp"
+#include "eomgen/base/source_location.hpp"
+
+namespace eomgen {
+
+/// A named quantity for post-processing: a scalar, or the components of a vector resolved in
+/// a frame (`labels` then holds "name_1", "name_2", "name_3").
+struct Output {
+  std::string name;
+  std::vector<GiNaC::ex> components;  // expressions in q, qd, t, parameters, inputs
+  std::vector<std::string> labels;    // one per component
+  SourceLocation location;
+};
+
+struct Model {
+  std::string name;
+  std::string description;
+  MechanicalSystem system;
+  std::vector<Output> outputs;
+  /// Where each coordinate and each constraint was declared (same order as in `system`).
+  std::vector<SourceLocation> coordinate_locations;
+  std::vector<SourceLocation> constraint_locations;
+  /// Coordinate indices whose rates are the independent speeds of the null-space method, in the
+  /// order of the `independent` statement (nq - nc of them); empty when the model declares none
+  /// and the runtime takes the null space of Xi from a QR decomposition instead.
+  std::vector<std::size_t> independent_speeds;
+  /// Integer/real constants of the file after overrides (e.g. n of a chain).
+  std::map<std::string, double> constants;
+};
+
+}  // namespace eomgen

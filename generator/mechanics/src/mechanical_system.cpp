@@ -1,0 +1,293 @@
+#include "eomgen/mechanics/mechanical_system.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "eomgen/symbolic/double_evaluator.hpp"
+#include "eomgen/base/error.hpp"
+
+namespace eomgen {
+namespace {
+
+using GiNaC::ex;
+
+bool contains_kind(const Variables& v, const ex& e, SymbolKind kind) { return v.contains(e, kind); }
+
+// Numeric value of a constant expression at the parameters' defaults, if it has one. Evaluated
+// in doubles: a pole (1/z with z = 0) gives inf, not a GiNaC exception (which would leak).
+std::optional<double> numeric_value(const ex& e, const GiNaC::exmap& defaults) {
+  DoubleEvaluator evaluator;
+  for (const auto& [symbol, value] : defaults) evaluator.set(symbol, GiNaC::ex_to<GiNaC::numeric>(value).to_double());
+  try {
+    return evaluator.value(e, "a constant");
+  } catch (const Error&) {
+    return std::nullopt;  // depends on coordinates, rates or inputs
+  }
+}
+
+}  // namespace
+
+MechanicalSystem::MechanicalSystem(const std::string& inertial_frame, const std::string& origin) {
+  frames_.push_back(Frame{inertial_frame, std::nullopt, Rotation::identity(), GiNaC::matrix(3, 1), 0});
+  points_.push_back(Point{origin, std::nullopt, Vector(), 0});
+  element_names_ = {inertial_frame};
+  require_unique_element_name(origin, "inertial origin");
+}
+
+void MechanicalSystem::require_unique_element_name(const std::string& name, const std::string& what) {
+  if (name.empty()) throw ModelError(fmt::format("{}: the name is empty", what));
+  if (std::find(element_names_.begin(), element_names_.end(), name) != element_names_.end())
+    throw ModelError(fmt::format("{} '{}': the name is already used", what, name));
+  element_names_.push_back(name);
+}
+
+void MechanicalSystem::require_frame(FrameId id, const std::string& what) const {
+  if (id.index >= frames_.size())
+    throw ModelError(fmt::format("{}: frame #{} does not exist", what, id.index));
+}
+
+void MechanicalSystem::require_point(PointId id, const std::string& what) const {
+  if (id.index >= points_.size())
+    throw ModelError(fmt::format("{}: point #{} does not exist", what, id.index));
+}
+
+void MechanicalSystem::require_vector(const Vector& v, const std::string& what) const {
+  for (const auto& [frame, c] : v.terms()) {
+    require_frame(frame, what);
+    for (unsigned i = 0; i < 3; ++i) variables_.require_known_symbols(c(i, 0), what);
+  }
+}
+
+FrameId MechanicalSystem::add_frame(const std::string& name, FrameId parent, const Rotation& rotation) {
+  const std::string what = fmt::format("frame '{}'", name);
+  require_frame(parent, what);
+  const auto& C = rotation.dcm();
+  for (unsigned i = 0; i < 3; ++i)
+    for (unsigned j = 0; j < 3; ++j) {
+      variables_.require_known_symbols(C(i, j), what);
+      if (contains_kind(variables_, C(i, j), SymbolKind::rate) ||
+          contains_kind(variables_, C(i, j), SymbolKind::acceleration) ||
+          contains_kind(variables_, C(i, j), SymbolKind::input))
+        throw ModelError(fmt::format("{}: a rotation may depend on coordinates, parameters and t "
+                                     "only, not on rates, accelerations or inputs", what));
+    }
+  require_unique_element_name(name, "frame");
+  frames_.push_back(Frame{name, parent, rotation, rotation.angular_velocity(variables_),
+                          frames_[parent.index].depth + 1});
+  return FrameId{frames_.size() - 1};
+}
+
+PointId MechanicalSystem::add_point(const std::string& name, PointId parent, const Vector& offset) {
+  const std::string what = fmt::format("point '{}'", name);
+  require_point(parent, what);
+  require_vector(offset, what);
+  for (const auto& [frame, c] : offset.terms())
+    for (unsigned i = 0; i < 3; ++i)
+      if (contains_kind(variables_, c(i, 0), SymbolKind::rate) ||
+          contains_kind(variables_, c(i, 0), SymbolKind::input))
+        throw ModelError(fmt::format("{}: a position may depend on coordinates, parameters and t "
+                                     "only, not on rates or inputs", what));
+  require_unique_element_name(name, "point");
+  points_.push_back(Point{name, parent, offset, points_[parent.index].depth + 1});
+  return PointId{points_.size() - 1};
+}
+
+GiNaC::exmap MechanicalSystem::parameter_defaults() const {
+  GiNaC::exmap m;
+  for (const auto& p : variables_.parameters()) m[p.symbol] = p.default_value;
+  return m;
+}
+
+void MechanicalSystem::add_particle(const std::string& name, const ex& mass, PointId point) {
+  const std::string what = fmt::format("particle '{}'", name);
+  require_point(point, what);
+  variables_.require_known_symbols(mass, what);
+  auto m = numeric_value(mass, parameter_defaults());
+  if (!m) throw ModelError(fmt::format("{}: the mass must be a constant (parameters and numbers)", what));
+  if (!std::isfinite(*m))
+    throw ModelError(fmt::format("{}: the mass is infinite or undefined at the parameters' default values "
+                                 "(a division by zero): expected a finite positive value", what));
+  if (!(*m > 0)) throw ModelError(fmt::format("{}: the mass must be positive, got {}", what, *m));
+  require_unique_element_name(name, "particle");
+  particles_.push_back(Particle{name, mass, point});
+}
+
+void MechanicalSystem::add_rigid_body(const std::string& name, const ex& mass, PointId mass_centre,
+                                      FrameId frame, const GiNaC::matrix& inertia) {
+  const std::string what = fmt::format("rigid body '{}'", name);
+  require_point(mass_centre, what);
+  require_frame(frame, what);
+  variables_.require_known_symbols(mass, what);
+  if (inertia.rows() != 3 || inertia.cols() != 3)
+    throw ModelError(fmt::format("{}: expected a 3x3 inertia matrix, got {}x{}", what, inertia.rows(), inertia.cols()));
+  const auto defaults = parameter_defaults();
+  auto m = numeric_value(mass, defaults);
+  if (!m) throw ModelError(fmt::format("{}: the mass must be a constant (parameters and numbers)", what));
+  if (!std::isfinite(*m))
+    throw ModelError(fmt::format("{}: the mass is infinite or undefined at the parameters' default values "
+                                 "(a division by zero): expected a finite positive value", what));
+  if (!(*m > 0)) throw ModelError(fmt::format("{}: the mass must be positive, got {}", what, *m));
+  double J[3][3];
+  for (unsigned i = 0; i < 3; ++i)
+    for (unsigned j = 0; j < 3; ++j) {
+      variables_.require_known_symbols(inertia(i, j), what);
+      auto value = numeric_value(inertia(i, j), defaults);
+      if (!value)
+        throw ModelError(fmt::format("{}: inertia entry ({},{}) must be a constant", what, i + 1, j + 1));
+      J[i][j] = *value;
+    }
+  for (unsigned i = 0; i < 3; ++i)
+    for (unsigned j = i + 1; j < 3; ++j)
+      if (!(inertia(i, j) - inertia(j, i)).normal().is_zero())
+        throw ModelError(fmt::format("{}: the inertia matrix must be symmetric, but entry ({},{}) "
+                                     "differs from ({},{})", what, i + 1, j + 1, j + 1, i + 1));
+  // Sylvester's criterion on the leading principal minors
+  const double d1 = J[0][0];
+  const double d2 = J[0][0] * J[1][1] - J[0][1] * J[1][0];
+  const double d3 = J[0][0] * (J[1][1] * J[2][2] - J[1][2] * J[2][1]) -
+                    J[0][1] * (J[1][0] * J[2][2] - J[1][2] * J[2][0]) +
+                    J[0][2] * (J[1][0] * J[2][1] - J[1][1] * J[2][0]);
+  if (!(d1 > 0 && d2 > 0 && d3 > 0))
+    throw ModelError(fmt::format("{}: the inertia matrix must be positive definite; its leading "
+                                 "minors at the default parameters are {}, {}, {}", what, d1, d2, d3));
+  require_unique_element_name(name, "rigid body");
+  rigid_bodies_.push_back(RigidBody{name, mass, mass_centre, frame, inertia});
+}
+
+void MechanicalSystem::set_gravity(const Vector& g) {
+  require_vector(g, "gravity");
+  gravity_ = g;
+}
+
+void MechanicalSystem::add_force(PointId point, const Vector& force) {
+  require_point(point, "force");
+  require_vector(force, "force");
+  forces_.push_back(PointForce{point, force});
+}
+
+void MechanicalSystem::add_moment(FrameId body_frame, const Vector& moment) {
+  require_frame(body_frame, "moment");
+  require_vector(moment, "moment");
+  moments_.push_back(BodyMoment{body_frame, moment});
+}
+
+void MechanicalSystem::add_spring(const std::string& name, PointId a, PointId b, const ex& stiffness,
+                                  const ex& rest_length) {
+  const std::string what = fmt::format("spring '{}'", name);
+  require_point(a, what);
+  require_point(b, what);
+  if (a == b) throw ModelError(fmt::format("{}: the two points must differ", what));
+  variables_.require_known_symbols(stiffness, what);
+  variables_.require_known_symbols(rest_length, what);
+  require_unique_element_name(name, "spring");
+  springs_.push_back(LinearSpring{name, a, b, stiffness, rest_length});
+}
+
+void MechanicalSystem::add_torsional_spring(const std::string& name, const ex& angle,
+                                            const ex& stiffness, const ex& rest_angle) {
+  const std::string what = fmt::format("torsional spring '{}'", name);
+  for (const ex& e : {angle, stiffness, rest_angle}) variables_.require_known_symbols(e, what);
+  if (contains_kind(variables_, angle, SymbolKind::rate) || contains_kind(variables_, angle, SymbolKind::input))
+    throw ModelError(fmt::format("{}: the angle must depend on coordinates, parameters and t only", what));
+  require_unique_element_name(name, "torsional spring");
+  torsional_springs_.push_back(TorsionalSpring{name, angle, stiffness, rest_angle});
+}
+
+void MechanicalSystem::add_damper(const std::string& name, PointId a, PointId b, const ex& damping) {
+  const std::string what = fmt::format("damper '{}'", name);
+  require_point(a, what);
+  require_point(b, what);
+  if (a == b) throw ModelError(fmt::format("{}: the two points must differ", what));
+  variables_.require_known_symbols(damping, what);
+  require_unique_element_name(name, "damper");
+  dampers_.push_back(LinearDamper{name, a, b, damping});
+}
+
+void MechanicalSystem::add_coordinate_damper(const std::string& name, const ex& coordinate_expression,
+                                             const ex& damping) {
+  const std::string what = fmt::format("damper '{}'", name);
+  variables_.require_known_symbols(coordinate_expression, what);
+  variables_.require_known_symbols(damping, what);
+  if (contains_kind(variables_, coordinate_expression, SymbolKind::rate))
+    throw ModelError(fmt::format("{}: give the coordinate expression, not its rate", what));
+  require_unique_element_name(name, "damper");
+  coordinate_dampers_.push_back(CoordinateDamper{name, coordinate_expression, damping});
+}
+
+void MechanicalSystem::add_generalized_force(std::size_t coordinate, const ex& value) {
+  if (coordinate >= variables_.coordinate_count())
+    throw ModelError(fmt::format("generalized force: coordinate #{} does not exist (the model has {})",
+                                 coordinate, variables_.coordinate_count()));
+  variables_.require_known_symbols(value, "generalized force");
+  generalized_forces_.push_back(GeneralizedForce{coordinate, value});
+}
+
+void MechanicalSystem::add_potential(const std::string& name, const ex& value) {
+  const std::string what = fmt::format("potential '{}'", name);
+  variables_.require_known_symbols(value, what);
+  if (contains_kind(variables_, value, SymbolKind::rate) || contains_kind(variables_, value, SymbolKind::input))
+    throw ModelError(fmt::format("{}: a potential depends on coordinates, parameters and t only", what));
+  require_unique_element_name(name, "potential");
+  potentials_.push_back(Potential{name, value});
+}
+
+void MechanicalSystem::add_holonomic_constraint(const std::string& name, const ex& phi) {
+  const std::string what = fmt::format("holonomic constraint '{}'", name);
+  variables_.require_known_symbols(phi, what);
+  if (contains_kind(variables_, phi, SymbolKind::rate) ||
+      contains_kind(variables_, phi, SymbolKind::acceleration) ||
+      contains_kind(variables_, phi, SymbolKind::input))
+    throw ModelError(fmt::format("{}: phi(q, t) may not contain rates, accelerations or inputs; "
+                                 "write a rate constraint as a nonholonomic constraint", what));
+  bool depends_on_coordinates = false;
+  for (const auto& c : variables_.coordinates())
+    if (!phi.diff(c.q).normal().is_zero()) depends_on_coordinates = true;
+  if (!depends_on_coordinates)
+    throw ModelError(fmt::format("{}: the constraint does not depend on any coordinate (its Jacobian "
+                                 "is identically zero)", what));
+  require_unique_element_name(name, "constraint");
+  constraints_.push_back(Constraint{name, Constraint::Kind::holonomic, phi});
+}
+
+void MechanicalSystem::add_nonholonomic_constraint(const std::string& name, const ex& expression) {
+  const std::string what = fmt::format("nonholonomic constraint '{}'", name);
+  variables_.require_known_symbols(expression, what);
+  if (contains_kind(variables_, expression, SymbolKind::acceleration) ||
+      contains_kind(variables_, expression, SymbolKind::input))
+    throw ModelError(fmt::format("{}: the constraint may not contain accelerations or inputs", what));
+  bool has_rate = false;
+  for (const auto& c : variables_.coordinates()) {
+    const ex coefficient = expression.diff(c.qd);
+    if (!coefficient.normal().is_zero()) has_rate = true;
+    for (const auto& c2 : variables_.coordinates())
+      if (!coefficient.diff(c2.qd).normal().is_zero())
+        throw ModelError(fmt::format("{}: the constraint must be linear in the rates, but it is not "
+                                     "linear in '{}'", what, c.qd.get_name()));
+  }
+  if (!has_rate)
+    throw ModelError(fmt::format("{}: the constraint contains no rate with a non-zero coefficient", what));
+  require_unique_element_name(name, "constraint");
+  constraints_.push_back(Constraint{name, Constraint::Kind::nonholonomic, expression});
+}
+
+std::optional<FrameId> MechanicalSystem::find_frame(const std::string& name) const {
+  for (std::size_t i = 0; i < frames_.size(); ++i)
+    if (frames_[i].name == name) return FrameId{i};
+  return std::nullopt;
+}
+
+std::optional<PointId> MechanicalSystem::find_point(const std::string& name) const {
+  for (std::size_t i = 0; i < points_.size(); ++i)
+    if (points_[i].name == name) return PointId{i};
+  return std::nullopt;
+}
+
+GiNaC::matrix parallel_axis(const GiNaC::matrix& inertia_about_centre, const ex& mass,
+                            const GiNaC::matrix& r) {
+  const GiNaC::matrix rx = cross_matrix(r);
+  return inertia_about_centre.sub(rx.mul(rx).mul_scalar(mass));
+}
+
+}  // namespace eomgen

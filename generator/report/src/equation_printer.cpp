@@ -1,0 +1,417 @@
+#include "eomgen/report/equation_printer.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <map>
+#include <optional>
+#include <sstream>
+#include <vector>
+
+#include "eomgen/base/error.hpp"
+#include "eomgen/report/expression_printer.hpp"
+#include "eomgen/symbolic/simplify.hpp"
+
+namespace eomgen {
+namespace {
+
+using GiNaC::ex;
+
+// one printed equation, "label = value"
+struct Entry {
+  std::string label;      // text and Markdown: "M[1,2]"
+  std::string tex_label;  // LaTeX (math mode): "M_{1,2}"
+  ex value;
+};
+
+// one part of the equations under a heading
+struct Section {
+  std::string title;      // text and Markdown
+  std::string tex_title;  // LaTeX (text mode)
+  std::string note;       // plain text, e.g. which constraint each row is
+  std::vector<Entry> entries;
+};
+
+struct PartKey {
+  const char* key;
+  bool EquationParts::*flag;
+};
+
+// the keys of --only, in printing order
+constexpr PartKey part_keys[] = {
+    {"M", &EquationParts::mass_matrix},          {"F", &EquationParts::forcing},
+    {"Xi", &EquationParts::constraint_jacobian}, {"Xi_t", &EquationParts::constraint_rate_term},
+    {"constraint_bias", &EquationParts::constraint_bias}, {"phi", &EquationParts::holonomic_residuals},
+    {"T", &EquationParts::kinetic_energy},       {"V", &EquationParts::potential_energy},
+    {"outputs", &EquationParts::outputs},
+};
+
+std::string join(const std::vector<std::string>& items, const std::string& separator) {
+  std::string out;
+  for (std::size_t i = 0; i < items.size(); ++i) out += (i ? separator : "") + items[i];
+  return out;
+}
+
+// escapes text for LaTeX text mode (names with '_', units such as m/s^2)
+std::string tex_escape(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    switch (c) {
+      // accents on nothing rather than \textasciicircum, which needs the TS1 fonts
+      case '\\': out += "$\\backslash$"; break;
+      case '^': out += "\\^{}"; break;
+      case '~': out += "\\~{}"; break;
+      case '_': case '{': case '}': case '$': case '&': case '#': case '%': out += std::string("\\") + c; break;
+      default: out += c;
+    }
+  }
+  return out;
+}
+
+std::vector<std::string> output_labels(const Output& o) {
+  if (o.labels.size() == o.components.size()) return o.labels;
+  if (o.components.size() == 1) return {o.name};
+  std::vector<std::string> labels;
+  for (std::size_t i = 0; i < o.components.size(); ++i) labels.push_back(fmt::format("{}_{}", o.name, i + 1));
+  return labels;
+}
+
+std::vector<std::string> constraint_names(const MechanicalSystem& s, bool holonomic_only) {
+  std::vector<std::string> names;
+  for (const Constraint& c : s.constraints())
+    if (!holonomic_only || c.kind == Constraint::Kind::holonomic) names.push_back(c.name);
+  return names;
+}
+
+std::string row_note(const std::vector<std::string>& names) {
+  std::vector<std::string> rows;
+  for (std::size_t i = 0; i < names.size(); ++i) rows.push_back(fmt::format("{} = {}", i + 1, names[i]));
+  return "rows: " + join(rows, ", ");
+}
+
+// entries of a column (or of each row of a matrix), labelled name[i] or name[i,j] (1-based)
+std::vector<Entry> matrix_entries(const GiNaC::matrix& m, const std::string& name, const std::string& tex,
+                                  bool column, bool upper_only = false) {
+  std::vector<Entry> out;
+  for (unsigned i = 0; i < m.rows(); ++i)
+    for (unsigned j = upper_only ? i : 0; j < m.cols(); ++j)
+      out.push_back(column ? Entry{fmt::format("{}[{}]", name, i + 1), fmt::format("{}_{{{}}}", tex, i + 1), m(i, j)}
+                           : Entry{fmt::format("{}[{},{}]", name, i + 1, j + 1),
+                                   fmt::format("{}_{{{},{}}}", tex, i + 1, j + 1), m(i, j)});
+  return out;
+}
+
+// the selected parts as given by the derivation (possibly referring to intermediates)
+std::vector<Section> raw_sections(const Model& model, const ModelEquations& eom, const EquationParts& parts) {
+  const std::size_t n = eom.coordinate_count, m = eom.constraint_count;
+  const std::string rows = row_note(constraint_names(model.system, false));
+  std::vector<Section> out;
+  if (parts.mass_matrix)
+    out.push_back({fmt::format("Mass matrix M ({0} x {0}, symmetric: upper triangle shown)", n),
+                   fmt::format("Mass matrix $M$ (${0} \\times {0}$, symmetric: upper triangle shown)", n), "",
+                   matrix_entries(eom.mass_matrix, "M", "M", false, true)});
+  if (parts.forcing)
+    out.push_back({fmt::format("Forcing F ({} x 1)", n), fmt::format("Forcing $F$ (${} \\times 1$)", n), "",
+                   matrix_entries(eom.forcing, "F", "F", true)});
+  if (m > 0 && parts.constraint_jacobian)
+    out.push_back({fmt::format("Constraint Jacobian Xi ({} x {})", m, n),
+                   fmt::format("Constraint Jacobian $\\Xi$ (${} \\times {}$)", m, n), rows,
+                   matrix_entries(eom.constraint_jacobian, "Xi", "\\Xi", false)});
+  if (m > 0 && parts.constraint_rate_term)
+    out.push_back({fmt::format("Constraint rate term Xi_t ({} x 1), with Xi qd + Xi_t = 0", m),
+                   fmt::format("Constraint rate term $\\Xi_t$ (${} \\times 1$), with $\\Xi \\dot{{q}} + \\Xi_t = 0$", m),
+                   rows, matrix_entries(eom.constraint_rate_term, "Xi_t", "(\\Xi_t)", true)});
+  if (m > 0 && parts.constraint_bias)
+    out.push_back({fmt::format("Constraint acceleration term dXi/dt qd + dXi_t/dt ({} x 1), "
+                               "with Xi qdd + (dXi/dt qd + dXi_t/dt) = 0", m),
+                   fmt::format("Constraint acceleration term $\\dot{{\\Xi}} \\dot{{q}} + \\dot{{\\Xi}}_t$ "
+                               "(${} \\times 1$), with $\\Xi \\ddot{{q}} + \\dot{{\\Xi}} \\dot{{q}} + "
+                               "\\dot{{\\Xi}}_t = 0$", m),
+                   rows, matrix_entries(eom.constraint_acceleration_term, "constraint_bias",
+                                        "(\\dot{\\Xi} \\dot{q} + \\dot{\\Xi}_t)", true)});
+  if (eom.holonomic_residuals.rows() > 0 && parts.holonomic_residuals)
+    out.push_back({fmt::format("Holonomic constraints phi(q, t) = 0 ({} x 1)", eom.holonomic_residuals.rows()),
+                   fmt::format("Holonomic constraints $\\phi(q, t) = 0$ (${} \\times 1$)",
+                               eom.holonomic_residuals.rows()),
+                   row_note(constraint_names(model.system, true)),
+                   matrix_entries(eom.holonomic_residuals, "phi", "\\phi", true)});
+  if (parts.kinetic_energy) out.push_back({"Kinetic energy", "Kinetic energy", "", {{"T", "T", eom.kinetic_energy}}});
+  if (parts.potential_energy)
+    out.push_back({"Potential energy", "Potential energy", "", {{"V", "V", eom.potential_energy}}});
+  if (parts.outputs && !model.outputs.empty()) {
+    Section s{"Outputs", "Outputs", "", {}};
+    std::size_t k = 0;
+    for (const Output& o : model.outputs) {
+      const std::vector<std::string> labels = output_labels(o);
+      for (std::size_t i = 0; i < o.components.size(); ++i, ++k)
+        s.entries.push_back({labels[i], "\\text{" + tex_escape(labels[i]) + "}", eom.output_component(k)});
+    }
+    out.push_back(std::move(s));
+  }
+  return out;
+}
+
+// Index of each intermediate's symbol (lookups only: never iterated, so no order leaks out).
+class IntermediateIndex {
+ public:
+  explicit IntermediateIndex(const Subexpressions& z) {
+    for (std::size_t i = 0; i < z.size(); ++i) index_.emplace(z.definitions()[i].symbol, i);
+  }
+  // the position of e among the definitions, if e is an intermediate
+  std::optional<std::size_t> find(const ex& e) const {
+    if (!GiNaC::is_a<GiNaC::symbol>(e)) return std::nullopt;
+    const auto it = index_.find(e);
+    if (it == index_.end()) return std::nullopt;
+    return it->second;
+  }
+  // calls f(i) for every occurrence of intermediate i in e
+  template <class F>
+  void visit(const ex& e, F&& f) const {
+    if (const auto i = find(e)) return f(*i);
+    for (std::size_t k = 0; k < e.nops(); ++k) visit(e.op(k), f);
+  }
+
+ private:
+  std::map<ex, std::size_t, GiNaC::ex_is_less> index_;
+};
+
+// tree size of e with each intermediate counted at its written-out size
+double tree_size(const ex& e, const IntermediateIndex& index, const std::vector<double>& sizes) {
+  if (const auto i = index.find(e)) return sizes[*i];
+  double nodes = 1;
+  for (std::size_t k = 0; k < e.nops(); ++k) nodes += tree_size(e.op(k), index, sizes);
+  return nodes;
+}
+
+std::vector<double> written_out_sizes(const Subexpressions& z, const IntermediateIndex& index) {
+  std::vector<double> sizes;
+  for (const auto& d : z.definitions()) sizes.push_back(tree_size(d.value, index, sizes));
+  return sizes;
+}
+
+double sections_size(const std::vector<Section>& sections, const EquationsOfMotion& eom) {
+  const IntermediateIndex index(eom.subexpressions);
+  const std::vector<double> sizes = written_out_sizes(eom.subexpressions, index);
+  double total = 0;
+  for (const Section& s : sections)
+    for (const Entry& e : s.entries) total += tree_size(e.value, index, sizes);
+  return total;
+}
+
+// the definitions the printed entries depend on, directly or through other definitions
+Section where_section(const std::vector<Section>& sections, const Subexpressions& z) {
+  const IntermediateIndex index(z);
+  std::vector<bool> needed(z.size(), false);
+  for (const Section& s : sections)
+    for (const Entry& e : s.entries) index.visit(e.value, [&](std::size_t i) { needed[i] = true; });
+  // a definition only refers to earlier ones, so one backward pass closes the set
+  for (std::size_t i = z.size(); i-- > 0;)
+    if (needed[i]) index.visit(z.definitions()[i].value, [&](std::size_t j) { needed[j] = true; });
+  Section where{"", "", "", {}};
+  for (std::size_t i = 0; i < z.size(); ++i)
+    if (needed[i]) {
+      const std::string name = z.definitions()[i].symbol.get_name();
+      where.entries.push_back({name, tex_name(name), z.definitions()[i].value});
+    }
+  where.title = fmt::format("where ({} intermediates, each defined from earlier ones)", where.entries.size());
+  where.tex_title = fmt::format("where ({} intermediates, each defined from earlier ones)", where.entries.size());
+  return where;
+}
+
+// the order of factors: parameters first, then inputs, time, coordinates, rates, and the
+// intermediates by number, as one writes m*l^2*theta_dot^2 by hand
+ExpressionPrinter make_printer(const Model& model, const ModelEquations& eom) {
+  const Variables& v = model.system.variables();
+  std::vector<ex> order;
+  for (const Parameter& p : v.parameters()) order.push_back(p.symbol);
+  for (const Input& u : v.inputs()) order.push_back(u.symbol);
+  order.push_back(v.time());
+  for (const Coordinate& c : v.coordinates()) order.push_back(c.q);
+  for (const Coordinate& c : v.coordinates()) order.push_back(c.qd);
+  for (const Coordinate& c : v.coordinates()) order.push_back(c.qdd);
+  for (const auto& d : eom.subexpressions.definitions()) order.push_back(d.symbol);
+  return ExpressionPrinter(order);
+}
+
+// ---- text and Markdown ----
+
+std::string parameter_text(const Parameter& p) {
+  return fmt::format("{} = {}", p.name, p.default_value) + (p.unit.empty() ? "" : " [" + p.unit + "]");
+}
+
+std::vector<std::string> constraint_texts(const MechanicalSystem& s) {
+  std::vector<std::string> out;
+  for (std::size_t i = 0; i < s.constraints().size(); ++i) {
+    const Constraint& c = s.constraints()[i];
+    out.push_back(fmt::format("{}. {} ({})", i + 1, c.name,
+                              c.kind == Constraint::Kind::holonomic ? "holonomic" : "nonholonomic"));
+  }
+  return out;
+}
+
+std::vector<std::string> coordinate_names(const Variables& v) {
+  std::vector<std::string> names;
+  for (const Coordinate& c : v.coordinates()) names.push_back(c.name);
+  return names;
+}
+
+std::vector<std::string> input_names(const Variables& v) {
+  std::vector<std::string> names;
+  for (const Input& u : v.inputs()) names.push_back(u.name);
+  return names;
+}
+
+const char* const equation_text = "M(q) qdd = F(q, qd, t, u) + Xi^T lambda";
+
+void print_text(std::ostream& out, const Model& model, const ModelEquations& eom,
+                const std::vector<Section>& sections, const ExpressionPrinter& printer) {
+  const Variables& v = model.system.variables();
+  out << "Model " << model.name << (model.description.empty() ? "" : ": " + model.description) << "\n\n";
+  out << fmt::format("Coordinates (n = {}): {}\n", v.coordinate_count(), join(coordinate_names(v), ", "));
+  out << "Parameters:" << (v.parameters().empty() ? " none" : "") << "\n";
+  for (const Parameter& p : v.parameters()) out << "  " << parameter_text(p) << "\n";
+  out << "Inputs: " << (v.inputs().empty() ? "none" : join(input_names(v), ", ")) << "\n";
+  out << fmt::format("Constraints (m = {}):", eom.constraint_count) << (eom.constraint_count ? "" : " none") << "\n";
+  for (const std::string& c : constraint_texts(model.system)) out << "  " << c << "\n";
+  out << "\n" << equation_text << (eom.constraint_count ? ", Xi qd + Xi_t = 0" : "") << "\n";
+  for (const Section& s : sections) {
+    out << "\n" << s.title << "\n";
+    if (!s.note.empty()) out << "  (" << s.note << ")\n";
+    for (const Entry& e : s.entries) out << "  " << e.label << " = " << printer.text(e.value) << "\n";
+  }
+}
+
+void print_markdown(std::ostream& out, const Model& model, const ModelEquations& eom,
+                    const std::vector<Section>& sections, const ExpressionPrinter& printer) {
+  const Variables& v = model.system.variables();
+  auto code = [](std::vector<std::string> names) {
+    for (auto& n : names) n = "`" + n + "`";
+    return names.empty() ? std::string("none") : join(names, ", ");
+  };
+  out << "# Equations of motion: " << model.name << "\n\n";
+  if (!model.description.empty()) out << model.description << "\n\n";
+  out << fmt::format("- Coordinates (n = {}): {}\n", v.coordinate_count(), code(coordinate_names(v)));
+  out << "- Inputs: " << code(input_names(v)) << "\n";
+  out << fmt::format("- Constraints (m = {}): {}\n", eom.constraint_count,
+                     eom.constraint_count ? join(constraint_texts(model.system), "; ") : "none");
+  if (!v.parameters().empty()) {
+    out << "\n| Parameter | Default | Unit |\n| --- | --- | --- |\n";
+    for (const Parameter& p : v.parameters()) out << fmt::format("| `{}` | {} | {} |\n", p.name, p.default_value, p.unit);
+  }
+  out << "\n`" << equation_text << "`" << (eom.constraint_count ? ", `Xi qd + Xi_t = 0`" : "") << "\n";
+  for (const Section& s : sections) {
+    out << "\n## " << s.title << "\n\n";
+    if (!s.note.empty()) out << s.note << "\n\n";
+    out << "```text\n";
+    for (const Entry& e : s.entries) out << e.label << " = " << printer.text(e.value) << "\n";
+    out << "```\n";
+  }
+}
+
+// ---- LaTeX ----
+
+// printed characters per row of an align* (ExpressionPrinter::latex_width, an estimate): the
+// widened article page holds about 75 beside a short label
+constexpr double latex_line_width = 65;
+
+void print_latex(std::ostream& out, const Model& model, const ModelEquations& eom,
+                 const std::vector<Section>& sections, const ExpressionPrinter& printer) {
+  const Variables& v = model.system.variables();
+  out << "\\documentclass[10pt]{article}\n\\usepackage{amsmath}\n\\allowdisplaybreaks\n"
+         "\\addtolength{\\textwidth}{4cm}\n\\addtolength{\\oddsidemargin}{-2cm}\n"
+         "\\addtolength{\\evensidemargin}{-2cm}\n\\begin{document}\n\n";
+  out << "\\section*{Equations of motion: " << tex_escape(model.name) << "}\n\n";
+  if (!model.description.empty()) out << tex_escape(model.description) << "\n\n";
+  // one $...$ per name, so a long list can break between names
+  std::vector<std::string> coordinates, parameters;
+  for (const Coordinate& c : v.coordinates()) coordinates.push_back("$" + printer.latex(c.q) + "$");
+  for (const Parameter& p : v.parameters())
+    parameters.push_back(fmt::format("${} = {}$", printer.latex(p.symbol), p.default_value) +
+                         (p.unit.empty() ? "" : "~" + tex_escape(p.unit)));
+  std::vector<std::string> inputs;
+  for (const Input& u : v.inputs()) inputs.push_back("$" + printer.latex(u.symbol) + "$");
+  out << "\\begin{itemize}\n";
+  out << fmt::format("\\item Coordinates ($n = {}$): {}\n", v.coordinate_count(), join(coordinates, ", "));
+  out << "\\item Parameters: " << (parameters.empty() ? "none" : join(parameters, "; ")) << "\n";
+  out << "\\item Inputs: " << (inputs.empty() ? "none" : join(inputs, ", ")) << "\n";
+  out << fmt::format("\\item Constraints ($m = {}$): ", eom.constraint_count)
+      << (eom.constraint_count ? tex_escape(join(constraint_texts(model.system), "; ")) : "none") << "\n";
+  out << "\\end{itemize}\n\n\\[ M(q)\\,\\ddot{q} = F(q, \\dot{q}, t, u) + \\Xi^{T} \\lambda"
+      << (eom.constraint_count ? ", \\qquad \\Xi \\dot{q} + \\Xi_t = 0" : "") << " \\]\n";
+  for (const Section& s : sections) {
+    out << "\n\\section*{" << s.tex_title << "}\n";
+    if (!s.note.empty()) out << tex_escape(s.note) << "\n";
+    out << "\\begin{align*}\n";
+    for (std::size_t k = 0; k < s.entries.size(); ++k) {
+      // long entries continue on further rows of the alignment, each led by its + or -
+      const std::vector<std::string> lines = printer.latex_lines(s.entries[k].value, latex_line_width);
+      out << "  " << s.entries[k].tex_label << " &= " << join(lines, " \\\\\n  &\\quad ")
+          << (k + 1 < s.entries.size() ? " \\\\\n" : "\n");
+    }
+    out << "\\end{align*}\n";
+  }
+  out << "\n\\end{document}\n";
+}
+
+}  // namespace
+
+EquationParts parse_equation_parts(const std::string& list) {
+  EquationParts parts;
+  for (const PartKey& p : part_keys) parts.*(p.flag) = false;
+  std::vector<std::string> accepted;
+  for (const PartKey& p : part_keys) accepted.push_back(p.key);
+  std::istringstream in(list);
+  std::string key;
+  bool any = false;
+  while (std::getline(in, key, ',')) {
+    const auto it = std::find_if(std::begin(part_keys), std::end(part_keys),
+                                 [&](const PartKey& p) { return key == p.key; });
+    if (it == std::end(part_keys))
+      throw Error(fmt::format("selecting parts to print: unknown part '{}'; accepted: {}", key, join(accepted, ", ")));
+    parts.*(it->flag) = true;
+    any = true;
+  }
+  if (!any) throw Error(fmt::format("selecting parts to print: the list is empty; accepted: {}", join(accepted, ", ")));
+  return parts;
+}
+
+double written_out_size(const Model& model, const ModelEquations& eom, const EquationParts& parts) {
+  return sections_size(raw_sections(model, eom, parts), eom);
+}
+
+bool uses_shared_form(const Model& model, const ModelEquations& eom, const PrintOptions& options) {
+  switch (options.intermediates) {
+    case IntermediateForm::written_out: return false;
+    case IntermediateForm::shared: return true;
+    case IntermediateForm::automatic:
+      return eom.subexpressions.size() > options.max_intermediates ||
+             written_out_size(model, eom, options.parts) > options.max_written_out_size;
+  }
+  return true;
+}
+
+void print_equations(std::ostream& out, const Model& model, const ModelEquations& eom,
+                     const PrintOptions& options) {
+  std::vector<Section> sections = raw_sections(model, eom, options.parts);
+  if (uses_shared_form(model, eom, options)) {
+    Section where = where_section(sections, eom.subexpressions);
+    if (!where.entries.empty()) sections.push_back(std::move(where));
+  } else {
+    for (Section& s : sections)
+      for (Entry& e : s.entries) e.value = simplify_for_display(eom.subexpressions.expand(e.value));
+  }
+  const ExpressionPrinter printer = make_printer(model, eom);
+  switch (options.format) {
+    case EquationFormat::text: print_text(out, model, eom, sections, printer); break;
+    case EquationFormat::latex: print_latex(out, model, eom, sections, printer); break;
+    case EquationFormat::markdown: print_markdown(out, model, eom, sections, printer); break;
+  }
+}
+
+std::string format_equations(const Model& model, const ModelEquations& eom, const PrintOptions& options) {
+  std::ostringstream out;
+  print_equations(out, model, eom, options);
+  return out.str();
+}
+
+}  // namespace eomgen
