@@ -70,5 +70,15 @@ TEST(CppPrinter, CallsPrintTheirArgumentsWithoutExtraParentheses) {
   EXPECT_EQ(print_cpp(p), "    r = atan2(y + x, x);\n");
 }
 
+TEST(CppPrinter, EveryCallPrintsAsItsCmathFunction) {
+  for (const ir::CallOp& call : ir::call_ops) {
+    ir::Program p{{var("x"), var("y")}, {}};
+    p.instructions.push_back(op(call.op, call.arity == 1 ? std::vector<std::size_t>{0} : std::vector<std::size_t>{0, 1}));
+    p.outputs.push_back({"r", 2});
+    const std::string arguments = call.arity == 1 ? "x" : "x, y";
+    EXPECT_EQ(print_cpp(p), "    r = " + std::string(call.cpp_name) + "(" + arguments + ");\n");
+  }
+}
+
 }  // namespace
 }  // namespace eomgen

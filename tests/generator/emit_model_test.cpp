@@ -43,6 +43,7 @@ TEST(CppIdentifier, KeywordsReservedNamesAndOwnLocalsGetATrailingUnderscore) {
   EXPECT_EQ(cpp_identifier("_hidden"), "v_hidden");
   EXPECT_EQ(cpp_identifier("a__b"), "a_b");
   EXPECT_EQ(cpp_identifier("x_"), "x__");  // never ends in a single '_' of ours: no clash with mangled names
+  for (const ir::CallOp& call : ir::call_ops) EXPECT_EQ(cpp_identifier(call.cpp_name), std::string(call.cpp_name) + "_");
 }
 
 TEST(CppStringContents, EscapesQuotesBackslashesAndControlCharacters) {
@@ -68,6 +69,22 @@ TEST(EmitModel, SameModelGivesByteIdenticalHeaders) {
   for (int i = 0; i < 500; ++i) dummies.emplace_back("dummy" + std::to_string(i));
   const std::string second = generate(pendulum_on_cart);
   EXPECT_EQ(first, second);
+}
+
+TEST(EmitModel, EveryFunctionDeclaresEveryCallsCmathFunction) {
+  const std::string h = generate(pendulum_on_cart);
+  const std::string declarations =
+      "    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;\n"
+      "    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;\n"
+      "    using std::log; using std::abs; using std::pow;\n";
+  std::size_t functions = 0;
+  for (std::size_t at = h.find("noexcept {\n"); at != std::string::npos; at = h.find("noexcept {\n", at + 1)) {
+    ++functions;
+    EXPECT_EQ(h.compare(at + 11, declarations.size(), declarations), 0) << h.substr(at, 400);
+  }
+  EXPECT_EQ(functions, 10u);
+  for (const ir::CallOp& call : ir::call_ops)
+    EXPECT_NE(declarations.find("using std::" + std::string(call.cpp_name) + ";"), std::string::npos) << call.cpp_name;
 }
 
 TEST(EmitModel, MetadataAndSizes) {

@@ -86,5 +86,34 @@ TEST(Lower, UnprintableFunctionIsAnEmitError) {
   EXPECT_THROW(lower({{"a", GiNaC::zeta(s.x)}}, none, s.names()), EmitError);
 }
 
+TEST(Lower, EveryGiNaCFunctionOfACallsNameLowersToThatCall) {
+  Symbols s;
+  Subexpressions none;
+  std::size_t found = 0;
+  for (const ir::CallOp& call : ir::call_ops) {
+    unsigned serial = 0;
+    try {
+      serial = GiNaC::function::find_function(call.cpp_name, static_cast<unsigned>(call.arity));
+    } catch (const std::runtime_error&) {
+      continue;  // sqrt and pow come from powers: GiNaC has no functions of those names
+    }
+    ++found;
+    GiNaC::exvector args{s.x + 2};
+    if (call.arity == 2) args.push_back(s.y + 3);
+    const ir::Program p = lower({{"a", GiNaC::function(serial, args)}}, none, s.names());
+    ASSERT_EQ(p.outputs.size(), 1u) << call.cpp_name;
+    EXPECT_EQ(p.instructions[p.outputs[0].value].op, call.op) << call.cpp_name;
+  }
+  EXPECT_EQ(found, std::size(ir::call_ops) - 2);
+}
+
+TEST(Lower, OddCallsTakeTheSignOutsideAndEvenCallsDropIt) {
+  Symbols s;
+  Subexpressions none;
+  EXPECT_EQ(print_cpp(lower({{"a", GiNaC::sin(-s.x)}}, none, s.names())), "    a = -sin(x);\n");
+  EXPECT_EQ(print_cpp(lower({{"a", GiNaC::cosh(-s.x)}}, none, s.names())), "    a = cosh(x);\n");
+  EXPECT_EQ(print_cpp(lower({{"a", GiNaC::exp(-s.x)}}, none, s.names())), "    a = exp(-x);\n");
+}
+
 }  // namespace
 }  // namespace eomgen

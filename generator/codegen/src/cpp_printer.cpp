@@ -20,21 +20,7 @@ int precedence(Op op) {
     case Op::negate: return 3;
     case Op::number:
     case Op::variable:
-    case Op::power:
-    case Op::sqrt:
-    case Op::sin:
-    case Op::cos:
-    case Op::tan:
-    case Op::asin:
-    case Op::acos:
-    case Op::atan:
-    case Op::atan2:
-    case Op::sinh:
-    case Op::cosh:
-    case Op::tanh:
-    case Op::exp:
-    case Op::log:
-    case Op::abs: return 4;
+    EOMGEN_IR_CALL_OPS(EOMGEN_IR_CALL_CASE) return 4;
   }
   return 4;
 }
@@ -110,22 +96,8 @@ class Printer {
         return operand(in.args[0], 2) + " / " + operand(in.args[1], 3);
       case Op::negate:
         return "-" + operand(in.args[0], 3);
-      case Op::power:
-      case Op::sqrt:
-      case Op::sin:
-      case Op::cos:
-      case Op::tan:
-      case Op::asin:
-      case Op::acos:
-      case Op::atan:
-      case Op::atan2:
-      case Op::sinh:
-      case Op::cosh:
-      case Op::tanh:
-      case Op::exp:
-      case Op::log:
-      case Op::abs: {
-        std::string s = std::string(ir::call_name(in.op)) + "(";
+      EOMGEN_IR_CALL_OPS(EOMGEN_IR_CALL_CASE) {
+        std::string s = std::string(ir::call_op(in.op).cpp_name) + "(";
         for (std::size_t k = 0; k < in.args.size(); ++k) s += (k ? ", " : "") + operand(in.args[k], 0);
         return s + ")";
       }

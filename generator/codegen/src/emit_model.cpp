@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <iterator>
 #include <optional>
 #include <set>
 
@@ -19,7 +20,9 @@ namespace {
 
 using GiNaC::ex;
 
-const std::set<std::string> reserved_words = {
+// keywords, the generated code's own names and every call's <cmath> function
+std::set<std::string> reserved_words() {
+  std::set<std::string> words = {
     "alignas", "alignof", "and", "and_eq", "asm", "auto", "bitand", "bitor", "bool", "break", "case", "catch",
     "char", "char8_t", "char16_t", "char32_t", "class", "compl", "concept", "const", "consteval", "constexpr",
     "constinit", "const_cast", "continue", "co_await", "co_return", "co_yield", "decltype", "default", "delete",
@@ -31,7 +34,21 @@ const std::set<std::string> reserved_words = {
     "union", "unsigned", "using", "virtual", "void", "volatile", "wchar_t", "while", "xor", "xor_eq",
     // names the generated code itself uses
     "Scalar", "Model", "Parameters", "Eigen", "std", "M", "F", "Xi", "Xi_t", "b", "phi", "y", "p", "q", "qd",
-    "u", "t", "NDEBUG", "assert", "errno", "sin", "cos", "tan", "sqrt", "pow", "exp", "log", "abs"};
+    "u", "t", "NDEBUG", "assert", "errno"};
+  for (const ir::CallOp& call : ir::call_ops) words.insert(call.cpp_name);
+  return words;
+}
+
+// `using std::sin; ...` for every call op, six to a line, so unqualified calls find the
+// overloads of any scalar type (ADL finds those outside std)
+std::string math_using_declarations() {
+  std::string s;
+  const std::size_t count = std::size(ir::call_ops);
+  for (std::size_t i = 0; i < count; ++i)
+    s += fmt::format("{}using std::{};{}", i % 6 == 0 ? "    " : " ", ir::call_ops[i].cpp_name,
+                     i % 6 == 5 || i + 1 == count ? "\n" : "");
+  return s;
+}
 
 // one generated function: its signature pieces and its lowered body
 struct FunctionSpec {
@@ -66,7 +83,8 @@ std::string cpp_identifier(const std::string& name) {
   // leading underscores and double underscores are reserved for the implementation
   if (id[0] == '_') id = "v" + id;
   while (id.find("__") != std::string::npos) id.replace(id.find("__"), 2, "_");
-  if (reserved_words.count(id) || id.back() == '_') id += "_";
+  static const std::set<std::string> reserved = reserved_words();
+  if (reserved.count(id) || id.back() == '_') id += "_";
   return id;
 }
 
@@ -265,9 +283,7 @@ EmittedModel emit_model(const Model& model, const ModelEquations& eom, const Emi
       start = comma + 2;
     }
     body += fmt::format("\n  /// {}\n  template <class Scalar>\n  static {} {}({}) noexcept {{\n", f.doc, f.returns, f.name, marked);
-    body += "    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;\n"
-            "    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;\n"
-            "    using std::log; using std::abs; using std::pow;\n";
+    body += math_using_declarations();
     body += code + "  }\n";
   }
   if (linearization) body += linearization_source(m > 0);

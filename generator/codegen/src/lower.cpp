@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <iterator>
 #include <tuple>
 
 #include "eomgen/base/error.hpp"
@@ -41,6 +42,21 @@ std::uint64_t mix(std::uint64_t h, const std::string& s) {
 }
 
 bool commutative(Op op) { return op == Op::add || op == Op::multiply; }
+
+// the op's number in content signatures: fixed per op, so reordering or extending Op leaves
+// the order of operands, and so every generated header, as it is
+std::uint64_t signature_code(Op op) {
+  switch (op) {
+    case Op::number: return 0;
+    case Op::variable: return 1;
+    case Op::add: return 2;
+    case Op::multiply: return 3;
+    case Op::divide: return 4;
+    case Op::negate: return 5;
+    EOMGEN_IR_CALL_OPS(EOMGEN_IR_CALL_CASE) return ir::call_op(op).code;
+  }
+  return SIZE_MAX;  // not an enumerator of Op
+}
 
 class Lowering {
  public:
@@ -92,7 +108,7 @@ class Lowering {
       std::sort(n.args.begin(), n.args.end(), [&](std::size_t a, std::size_t b) {
         return std::tie(nodes_[a].signature, a) < std::tie(nodes_[b].signature, b);
       });
-    std::uint64_t h = mix(14695981039346656037ull, static_cast<std::uint64_t>(n.op));
+    std::uint64_t h = mix(14695981039346656037ull, signature_code(n.op));
     std::uint64_t bits = 0;
     std::memcpy(&bits, &n.number, sizeof bits);
     h = mix(h, bits);
@@ -195,28 +211,22 @@ class Lowering {
     return with_sign(negative, value);
   }
 
+  // a GiNaC function lowers to the call of the same name (GiNaC has no function named sqrt or
+  // pow: those come from powers)
   std::size_t function(const ex& e) {
     const std::string name = GiNaC::ex_to<GiNaC::function>(e).get_name();
-    static const std::map<std::string, Op> ops = {
-        {"sin", Op::sin},   {"cos", Op::cos},   {"tan", Op::tan},   {"asin", Op::asin}, {"acos", Op::acos},
-        {"atan", Op::atan}, {"sinh", Op::sinh}, {"cosh", Op::cosh}, {"tanh", Op::tanh}, {"exp", Op::exp},
-        {"log", Op::log},   {"abs", Op::abs},   {"atan2", Op::atan2}};
-    auto it = ops.find(name);
-    if (it == ops.end()) throw EmitError(fmt::format("code emission: the function '{}' has no C++ form", name));
-    Node n{it->second, {}, 0.0, {}};
+    const auto call = std::find_if(std::begin(ir::call_ops), std::end(ir::call_ops),
+                                   [&](const ir::CallOp& c) { return name == c.cpp_name; });
+    if (call == std::end(ir::call_ops))
+      throw EmitError(fmt::format("code emission: the function '{}' has no C++ form", name));
+    Node n{call->op, {}, 0.0, {}};
     for (std::size_t i = 0; i < e.nops(); ++i) n.args.push_back(node(e.op(i)));
-    if ((it->second == Op::atan2) != (n.args.size() == 2))
+    if (n.args.size() != call->arity)
       throw EmitError(fmt::format("code emission: '{}' called with {} arguments", name, n.args.size()));
     // odd functions take the argument's sign outside, even ones drop it
-    const Op op = it->second;
-    if (n.args.size() == 1 && negated(n.args[0])) {
-      const bool odd = op == Op::sin || op == Op::tan || op == Op::asin || op == Op::atan || op == Op::sinh ||
-                       op == Op::tanh;
-      const bool even = op == Op::cos || op == Op::cosh || op == Op::abs;
-      if (odd || even) {
-        n.args[0] = magnitude(n.args[0]);
-        return with_sign(odd, intern(std::move(n)));
-      }
+    if (n.args.size() == 1 && negated(n.args[0]) && call->symmetry != ir::Symmetry::none) {
+      n.args[0] = magnitude(n.args[0]);
+      return with_sign(call->symmetry == ir::Symmetry::odd, intern(std::move(n)));
     }
     return intern(std::move(n));
   }
