@@ -38,7 +38,7 @@ TEST(IrCallOps, EveryCallCountsAsOneCall) {
     ir::Program p;
     p.instructions.push_back({Op::number, {}, 2.0, {}});
     p.instructions.push_back({call.op, std::vector<std::size_t>(call.arity, 0), 0.0, {}});
-    p.outputs.push_back({"y", 1});
+    p.outputs.push_back({{ir::Array::outputs, 0, 0}, 1});
     const ir::OperationCounts c = ir::count_operations(p);
     EXPECT_EQ(c.calls, 1u) << call.cpp_name;
     EXPECT_EQ(c.total(), 1u) << call.cpp_name;

@@ -3,8 +3,11 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <vector>
+
+#include "eomgen/codegen/cpp_identifier.hpp"
 
 namespace eomgen {
 namespace {
@@ -32,6 +35,9 @@ class Printer {
     for (const auto& in : p.instructions)
       for (std::size_t a : in.args) ++uses_[a];
     for (const auto& out : p.outputs) ++uses_[out.value];
+    // a variable reads the same way at every use
+    for (std::size_t i = 0; i < p.instructions.size(); ++i)
+      if (p.instructions[i].op == Op::variable) names_[i] = cpp_variable(p.instructions[i].variable, o);
   }
 
   std::string run() {
@@ -44,7 +50,7 @@ class Printer {
       body += fmt::format("{}const {} {} = {};\n", options_.indent, options_.scalar, names_[i], expression(i));
     }
     for (const ir::Assignment& out : program_.outputs)
-      body += fmt::format("{}{} = {};\n", options_.indent, out.target, operand(out.value, 0));
+      body += fmt::format("{}{} = {};\n", options_.indent, cpp_target(out.target), operand(out.value, 0));
     return body;
   }
 
@@ -63,7 +69,7 @@ class Printer {
       case Op::number:
         return cpp_number(in.number, options_.scalar);
       case Op::variable:
-        return in.variable;
+        return names_[i];
       case Op::add: {
         // a non-negated term first, then " - x" for negated terms
         std::vector<std::size_t> terms = in.args;
@@ -117,6 +123,65 @@ std::string cpp_number(double value, const std::string& scalar) {
   if (value == std::floor(value) && std::fabs(value) < 1e15) return fmt::format("{}({})", scalar, static_cast<long long>(value));
   // shortest text that reads back to the same double
   return fmt::format("{}({})", scalar, value);
+}
+
+const char* cpp_argument_name(ir::VariableKind kind) {
+  switch (kind) {
+    case ir::VariableKind::time: return "t";
+    case ir::VariableKind::coordinate: return "q";
+    case ir::VariableKind::rate: return "qd";
+    case ir::VariableKind::input: return "u";
+    case ir::VariableKind::parameter: return "p";
+    case ir::VariableKind::acceleration: return "qdd";
+    case ir::VariableKind::multiplier: return "lambda";
+  }
+  return "?";  // not an enumerator of VariableKind
+}
+
+const char* cpp_array_name(ir::Array array) {
+  switch (array) {
+    case ir::Array::mass_matrix: return "M";
+    case ir::Array::forcing: return "F";
+    case ir::Array::constraint_jacobian: return "Xi";
+    case ir::Array::constraint_rate_term: return "Xi_t";
+    case ir::Array::constraint_acceleration_term: return "b";
+    case ir::Array::holonomic_residuals: return "phi";
+    case ir::Array::outputs: return "y";
+    case ir::Array::kinetic_energy: return "T";
+    case ir::Array::potential_energy: return "V";
+    case ir::Array::stiffness: return "K";
+    case ir::Array::damping: return "D";
+    case ir::Array::input_matrix: return "B_u";
+    case ir::Array::acceleration_constraint_by_q: return "S_q";
+    case ir::Array::acceleration_constraint_by_qd: return "S_qd";
+  }
+  return "?";  // not an enumerator of Array
+}
+
+std::string cpp_variable(const ir::Variable& variable, const CppPrintOptions& options) {
+  const char* name = cpp_argument_name(variable.kind);
+  switch (variable.kind) {
+    case ir::VariableKind::time:
+      return name;
+    case ir::VariableKind::parameter:
+      assert(variable.index < options.parameter_names.size());
+      return fmt::format("{}.{}", name, cpp_identifier(options.parameter_names.at(variable.index)));
+    case ir::VariableKind::coordinate:
+    case ir::VariableKind::rate:
+    case ir::VariableKind::input:
+    case ir::VariableKind::acceleration:
+    case ir::VariableKind::multiplier:
+      return fmt::format("{}({})", name, variable.index);
+  }
+  return name;  // not an enumerator of VariableKind
+}
+
+std::string cpp_target(const ir::Target& target) {
+  const char* name = cpp_array_name(target.array);
+  const std::size_t rank = ir::rank(target.array);
+  if (rank == 0) return name;
+  if (rank == 1) return fmt::format("{}({})", name, target.row);
+  return fmt::format("{}({}, {})", name, target.row, target.column);
 }
 
 std::string print_cpp(const ir::Program& program, const CppPrintOptions& options) {

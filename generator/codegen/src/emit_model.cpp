@@ -20,25 +20,6 @@ namespace {
 
 using GiNaC::ex;
 
-// keywords, the generated code's own names and every call's <cmath> function
-std::set<std::string> reserved_words() {
-  std::set<std::string> words = {
-    "alignas", "alignof", "and", "and_eq", "asm", "auto", "bitand", "bitor", "bool", "break", "case", "catch",
-    "char", "char8_t", "char16_t", "char32_t", "class", "compl", "concept", "const", "consteval", "constexpr",
-    "constinit", "const_cast", "continue", "co_await", "co_return", "co_yield", "decltype", "default", "delete",
-    "do", "double", "dynamic_cast", "else", "enum", "explicit", "export", "extern", "false", "float", "for",
-    "friend", "goto", "if", "inline", "int", "long", "mutable", "namespace", "new", "noexcept", "not", "not_eq",
-    "nullptr", "operator", "or", "or_eq", "private", "protected", "public", "register", "reinterpret_cast",
-    "requires", "return", "short", "signed", "sizeof", "static", "static_assert", "static_cast", "struct",
-    "switch", "template", "this", "thread_local", "throw", "true", "try", "typedef", "typeid", "typename",
-    "union", "unsigned", "using", "virtual", "void", "volatile", "wchar_t", "while", "xor", "xor_eq",
-    // names the generated code itself uses
-    "Scalar", "Model", "Parameters", "Eigen", "std", "M", "F", "Xi", "Xi_t", "b", "phi", "y", "p", "q", "qd",
-    "u", "t", "NDEBUG", "assert", "errno"};
-  for (const ir::CallOp& call : ir::call_ops) words.insert(call.cpp_name);
-  return words;
-}
-
 // `using std::sin; ...` for every call op, six to a line, so unqualified calls find the
 // overloads of any scalar type (ADL finds those outside std)
 std::string math_using_declarations() {
@@ -61,47 +42,11 @@ struct FunctionSpec {
   bool needs_qd = false;
   bool needs_u = false;
   std::vector<LoweringTarget> targets;
-  std::vector<std::pair<std::string, std::string>> mirrors;  // target = source after the body
+  std::vector<std::pair<ir::Target, ir::Target>> mirrors;  // target = source after the body
   std::string scalar_result;  // name of the scalar result variable, if returns Scalar
 };
 
-std::string sanitize_comment(const std::string& text) {
-  // printable ASCII without backslashes: nothing can continue or close the comment
-  std::string out;
-  for (char c : text)
-    if (c >= 32 && c < 127 && c != '\\') out += c;
-  return out;
-}
-
-
 }  // namespace
-
-std::string cpp_identifier(const std::string& name) {
-  std::string id;
-  for (char c : name) id += (std::isalnum(static_cast<unsigned char>(c)) || c == '_') ? c : '_';
-  if (id.empty() || std::isdigit(static_cast<unsigned char>(id[0]))) id = "_" + id;
-  // leading underscores and double underscores are reserved for the implementation
-  if (id[0] == '_') id = "v" + id;
-  while (id.find("__") != std::string::npos) id.replace(id.find("__"), 2, "_");
-  static const std::set<std::string> reserved = reserved_words();
-  if (reserved.count(id) || id.back() == '_') id += "_";
-  return id;
-}
-
-std::string cpp_string_contents(const std::string& text) {
-  std::string out;
-  for (unsigned char c : text) {
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += static_cast<char>(c);
-    } else if (c >= 32 && c < 127 && c != '?') {  // '?' avoids trigraph surprises in old compilers
-      out += static_cast<char>(c);
-    } else {
-      out += fmt::format("\\{:03o}", c);
-    }
-  }
-  return out;
-}
 
 EmittedModel emit_model(const Model& model, const ModelEquations& eom, const EmitOptions& options) {
   const Variables& vars = model.system.variables();
@@ -122,35 +67,44 @@ EmittedModel emit_model(const Model& model, const ModelEquations& eom, const Emi
                                     "indices below nq = {}", model.name, i, independent[i], n));
   }
 
-  // how each model symbol is read inside a generated function
+  CppPrintOptions print_options;
+  print_options.share_subexpressions = options.share_subexpressions;
+  for (const Parameter& p : vars.parameters()) print_options.parameter_names.push_back(p.name);
+  // which input each model symbol is; named by its spelling, which has fixed the order of
+  // operands since the first version
   VariableNames names;
-  names[vars.time()] = "t";
+  auto bind = [&](const ex& symbol, ir::VariableKind kind, std::size_t index) {
+    const ir::Variable variable{kind, index};
+    names[symbol] = NamedVariable{variable, cpp_variable(variable, print_options)};
+  };
+  bind(vars.time(), ir::VariableKind::time, 0);
   for (std::size_t k = 0; k < n; ++k) {
-    names[vars.coordinates()[k].q] = fmt::format("q({})", k);
-    names[vars.coordinates()[k].qd] = fmt::format("qd({})", k);
+    bind(vars.coordinates()[k].q, ir::VariableKind::coordinate, k);
+    bind(vars.coordinates()[k].qd, ir::VariableKind::rate, k);
   }
-  for (std::size_t k = 0; k < vars.inputs().size(); ++k) names[vars.inputs()[k].symbol] = fmt::format("u({})", k);
-  for (const Parameter& p : vars.parameters()) names[p.symbol] = "p." + cpp_identifier(p.name);
+  for (std::size_t k = 0; k < vars.inputs().size(); ++k) bind(vars.inputs()[k].symbol, ir::VariableKind::input, k);
+  for (std::size_t k = 0; k < vars.parameters().size(); ++k)
+    bind(vars.parameters()[k].symbol, ir::VariableKind::parameter, k);
   // the linearization's derivatives are taken at given accelerations and multipliers
   std::optional<SymbolicLinearization> linearization;
   if (options.linearization) {
     linearization = linearize_symbolic(model, eom);
-    for (std::size_t k = 0; k < n; ++k) names[vars.coordinates()[k].qdd] = fmt::format("qdd({})", k);
-    for (std::size_t r = 0; r < m; ++r) names[linearization->lambda[r]] = fmt::format("lambda({})", r);
+    for (std::size_t k = 0; k < n; ++k) bind(vars.coordinates()[k].qdd, ir::VariableKind::acceleration, k);
+    for (std::size_t r = 0; r < m; ++r) bind(linearization->lambda[r], ir::VariableKind::multiplier, r);
   }
 
   std::vector<FunctionSpec> functions;
   auto mass_targets = [&](FunctionSpec& f) {
     for (std::size_t i = 0; i < n; ++i)
-      for (std::size_t j = i; j < n; ++j) f.targets.push_back({fmt::format("M({}, {})", i, j), eom.mass_matrix(i, j)});
+      for (std::size_t j = i; j < n; ++j) f.targets.push_back({{ir::Array::mass_matrix, i, j}, eom.mass_matrix(i, j)});
   };
   auto mirror_mass = [&](FunctionSpec& f) {
     for (std::size_t i = 0; i < n; ++i)
       for (std::size_t j = i + 1; j < n; ++j)
-        f.mirrors.push_back({fmt::format("M({}, {})", j, i), fmt::format("M({}, {})", i, j)});
+        f.mirrors.push_back({{ir::Array::mass_matrix, j, i}, {ir::Array::mass_matrix, i, j}});
   };
-  auto vector_targets = [&](FunctionSpec& f, const std::string& name, const GiNaC::matrix& v) {
-    for (unsigned i = 0; i < v.rows(); ++i) f.targets.push_back({fmt::format("{}({})", name, i), v(i, 0)});
+  auto vector_targets = [&](FunctionSpec& f, ir::Array array, const GiNaC::matrix& v) {
+    for (unsigned i = 0; i < v.rows(); ++i) f.targets.push_back({{array, i, 0}, v(i, 0)});
   };
   {
     FunctionSpec f{"mass_matrix", "M(q, t), symmetric positive (semi)definite", "void", "MassMatrix<Scalar>& M"};
@@ -161,7 +115,7 @@ EmittedModel emit_model(const Model& model, const ModelEquations& eom, const Emi
   {
     FunctionSpec f{"forcing", "F(q, qd, t, u): everything of Lagrange's equations except M qdd", "void", "Vector<Scalar>& F"};
     f.needs_qd = f.needs_u = true;
-    vector_targets(f, "F", eom.forcing);
+    vector_targets(f, ir::Array::forcing, eom.forcing);
     functions.push_back(f);
   }
   {
@@ -169,7 +123,7 @@ EmittedModel emit_model(const Model& model, const ModelEquations& eom, const Emi
                    "MassMatrix<Scalar>& M, Vector<Scalar>& F"};
     f.needs_qd = f.needs_u = true;
     mass_targets(f);
-    vector_targets(f, "F", eom.forcing);
+    vector_targets(f, ir::Array::forcing, eom.forcing);
     mirror_mass(f);
     functions.push_back(f);
   }
@@ -177,43 +131,43 @@ EmittedModel emit_model(const Model& model, const ModelEquations& eom, const Emi
     FunctionSpec f{"constraint_jacobian", "Xi(q, t) of the Pfaffian constraints Xi qd + Xi_t = 0", "void",
                    "ConstraintJacobian<Scalar>& Xi"};
     for (std::size_t i = 0; i < m; ++i)
-      for (std::size_t j = 0; j < n; ++j) f.targets.push_back({fmt::format("Xi({}, {})", i, j), eom.constraint_jacobian(i, j)});
+      for (std::size_t j = 0; j < n; ++j) f.targets.push_back({{ir::Array::constraint_jacobian, i, j}, eom.constraint_jacobian(i, j)});
     functions.push_back(f);
   }
   {
     FunctionSpec f{"constraint_rate_term", "Xi_t(q, t)", "void", "ConstraintVector<Scalar>& Xi_t"};
-    vector_targets(f, "Xi_t", eom.constraint_rate_term);
+    vector_targets(f, ir::Array::constraint_rate_term, eom.constraint_rate_term);
     functions.push_back(f);
   }
   {
     FunctionSpec f{"constraint_acceleration_term", "dXi/dt qd + dXi_t/dt, so that Xi qdd + b = 0", "void",
                    "ConstraintVector<Scalar>& b"};
     f.needs_qd = true;
-    vector_targets(f, "b", eom.constraint_acceleration_term);
+    vector_targets(f, ir::Array::constraint_acceleration_term, eom.constraint_acceleration_term);
     functions.push_back(f);
   }
   {
     FunctionSpec f{"holonomic_residuals", "phi(q, t) of the holonomic constraints", "void", "HolonomicVector<Scalar>& phi"};
-    vector_targets(f, "phi", eom.holonomic_residuals);
+    vector_targets(f, ir::Array::holonomic_residuals, eom.holonomic_residuals);
     functions.push_back(f);
   }
   {
     FunctionSpec f{"kinetic_energy", "T(q, qd, t)", "Scalar", ""};
     f.needs_qd = true;
     f.scalar_result = "T";
-    f.targets.push_back({"T", eom.kinetic_energy});
+    f.targets.push_back({{ir::Array::kinetic_energy, 0, 0}, eom.kinetic_energy});
     functions.push_back(f);
   }
   {
     FunctionSpec f{"potential_energy", "V(q, t)", "Scalar", ""};
     f.scalar_result = "V";
-    f.targets.push_back({"V", eom.potential_energy});
+    f.targets.push_back({{ir::Array::potential_energy, 0, 0}, eom.potential_energy});
     functions.push_back(f);
   }
   {
     FunctionSpec f{"outputs", "the model's named outputs, in the order of output_names", "void", "OutputVector<Scalar>& y"};
     f.needs_qd = f.needs_u = true;
-    for (std::size_t k = 0; k < ny; ++k) f.targets.push_back({fmt::format("y({})", k), eom.output_component(k)});
+    for (std::size_t k = 0; k < ny; ++k) f.targets.push_back({{ir::Array::outputs, k, 0}, eom.output_component(k)});
     functions.push_back(f);
   }
   if (linearization) {
@@ -229,16 +183,16 @@ EmittedModel emit_model(const Model& model, const ModelEquations& eom, const Emi
                                : "const Vector<Scalar>& qdd, MassMatrix<Scalar>& K, MassMatrix<Scalar>& D, "
                                  "InputMatrix<Scalar>& B_u"};
     f.needs_qd = f.needs_u = true;
-    auto matrix_targets = [&](const std::string& name, const GiNaC::matrix& a) {
+    auto matrix_targets = [&](ir::Array array, const GiNaC::matrix& a) {
       for (unsigned i = 0; i < a.rows(); ++i)
-        for (unsigned j = 0; j < a.cols(); ++j) f.targets.push_back({fmt::format("{}({}, {})", name, i, j), a(i, j)});
+        for (unsigned j = 0; j < a.cols(); ++j) f.targets.push_back({{array, i, j}, a(i, j)});
     };
-    matrix_targets("K", linearization->K);
-    matrix_targets("D", linearization->D);
-    matrix_targets("B_u", linearization->B_u);
+    matrix_targets(ir::Array::stiffness, linearization->K);
+    matrix_targets(ir::Array::damping, linearization->D);
+    matrix_targets(ir::Array::input_matrix, linearization->B_u);
     if (constrained) {
-      matrix_targets("S_q", linearization->S_q);
-      matrix_targets("S_qd", linearization->S_qd);
+      matrix_targets(ir::Array::acceleration_constraint_by_q, linearization->S_q);
+      matrix_targets(ir::Array::acceleration_constraint_by_qd, linearization->S_qd);
     }
     functions.push_back(f);
   }
@@ -256,17 +210,15 @@ EmittedModel emit_model(const Model& model, const ModelEquations& eom, const Emi
     result.statistics.push_back({f.name, ir::count_operations_without_sharing(program), ir::count_operations(program)});
     std::string code;
     if (!f.scalar_result.empty()) code += fmt::format("    Scalar {} = Scalar(0);\n", f.scalar_result);
-    CppPrintOptions print_options;
-    print_options.share_subexpressions = options.share_subexpressions;
     code += print_cpp(program, print_options);
     // structural zeros are written as zeros, not computed
-    std::set<std::string> computed;
+    std::set<ir::Target> computed;
     for (const ir::Assignment& a : program.outputs) computed.insert(a.target);
     for (const LoweringTarget& target : f.targets)
       if (!computed.count(target.target) && f.scalar_result.empty())
-        code += fmt::format("    {} = Scalar(0);\n", target.target);
+        code += fmt::format("    {} = Scalar(0);\n", cpp_target(target.target));
     for (const auto& [target, source] : f.mirrors)
-      code += fmt::format("    {} = {};\n", target, computed.count(source) ? source : "Scalar(0)");
+      code += fmt::format("    {} = {};\n", cpp_target(target), computed.count(source) ? cpp_target(source) : "Scalar(0)");
     if (!f.scalar_result.empty()) code += fmt::format("    return {};\n", f.scalar_result);
     std::string signature = "const Scalar& t, const Vector<Scalar>& q";
     if (f.needs_qd) signature += ", const Vector<Scalar>& qd";
@@ -303,7 +255,7 @@ EmittedModel emit_model(const Model& model, const ModelEquations& eom, const Emi
     parameter_defaults += fmt::format("{}{}", parameter_defaults.empty() ? "" : ", ", cpp_number(p.default_value, "double"));
     field_pointers += fmt::format("{}&{}", field_pointers.empty() ? "" : ", ", cpp_identifier(p.name));
     parameter_fields += fmt::format("    Scalar {} = {};{}\n", cpp_identifier(p.name), cpp_number(p.default_value, "Scalar"),
-                                    p.unit.empty() ? "" : " // [" + sanitize_comment(p.unit) + "]");
+                                    p.unit.empty() ? "" : " // [" + cpp_comment_text(p.unit) + "]");
   }
   for (const Constraint& c : model.system.constraints()) constraint_names.push_back(c.name);
   // phi holds the holonomic rows of Xi in model order; the runtime stabilizes and projects them
@@ -317,7 +269,7 @@ EmittedModel emit_model(const Model& model, const ModelEquations& eom, const Emi
 
   std::string fingerprint;  // content of the equations, printed: a stable hash of the model
   for (const auto& t : functions)
-    for (const auto& target : t.targets) fingerprint += target.target;
+    for (const auto& target : t.targets) fingerprint += cpp_target(target.target);
   fingerprint += body;
   // the declared split changes how the runtime solves the model, not the equations; appended only
   // when there is one, so models without it keep their hash
@@ -325,7 +277,7 @@ EmittedModel emit_model(const Model& model, const ModelEquations& eom, const Emi
   const std::string model_name = cpp_identifier(model.name);
   std::string h;
   h += fmt::format("// Generated by eomgen {} from {}. Do not edit: regenerate from the model.\n",
-                   version, sanitize_comment(options.source_name.empty() ? model.name : options.source_name));
+                   version, cpp_comment_text(options.source_name.empty() ? model.name : options.source_name));
   h += "// Needs only Eigen. Every function is templated on the scalar type, allocates nothing and\n"
        "// does not throw: safe to call from a real-time loop.\n";
   // linearization() factors M (Cholesky) and the KKT matrix (LU)

@@ -56,6 +56,29 @@ OperationCounts plus(OperationCounts a, const OperationCounts& b) {
 
 }  // namespace
 
+std::size_t rank(Array array) {
+  switch (array) {
+    case Array::kinetic_energy:
+    case Array::potential_energy:
+      return 0;
+    case Array::forcing:
+    case Array::constraint_rate_term:
+    case Array::constraint_acceleration_term:
+    case Array::holonomic_residuals:
+    case Array::outputs:
+      return 1;
+    case Array::mass_matrix:
+    case Array::constraint_jacobian:
+    case Array::stiffness:
+    case Array::damping:
+    case Array::input_matrix:
+    case Array::acceleration_constraint_by_q:
+    case Array::acceleration_constraint_by_qd:
+      return 2;
+  }
+  return 2;  // not an enumerator of Array
+}
+
 bool is_call(Op op) {
   switch (op) {
     case Op::number:

@@ -20,7 +20,8 @@ struct Node {
   Op op;
   std::vector<std::size_t> args;
   double number = 0.0;
-  std::string variable;
+  ir::Variable variable;        // Op::variable
+  std::string name;             // Op::variable: its name in the signature
   std::uint64_t signature = 0;  // from content only: names, values, structure
 };
 
@@ -73,7 +74,7 @@ class Lowering {
     return id;
   }
 
-  ir::Program finish(const std::vector<std::pair<std::string, std::size_t>>& outputs) {
+  ir::Program finish(const std::vector<std::pair<ir::Target, std::size_t>>& outputs) {
     // emission order: depth-first from the outputs in their order, arguments in canonical order
     std::vector<std::size_t> order(nodes_.size(), SIZE_MAX);
     ir::Program program;
@@ -112,7 +113,7 @@ class Lowering {
     std::uint64_t bits = 0;
     std::memcpy(&bits, &n.number, sizeof bits);
     h = mix(h, bits);
-    h = mix(h, n.variable);
+    h = mix(h, n.name);
     for (std::size_t a : n.args) h = mix(h, nodes_[a].signature);
     n.signature = h;
     const auto key = std::make_tuple(n.op, n.args, bits, n.variable);
@@ -123,8 +124,8 @@ class Lowering {
     return nodes_.size() - 1;
   }
 
-  std::size_t number(double v) { return intern(Node{Op::number, {}, v, {}}); }
-  std::size_t unary(Op op, std::size_t a) { return intern(Node{op, {a}, 0.0, {}}); }
+  std::size_t number(double v) { return intern(Node{Op::number, {}, v, {}, {}}); }
+  std::size_t unary(Op op, std::size_t a) { return intern(Node{op, {a}, 0.0, {}, {}}); }
 
   // Signs are canonical: GiNaC writes the same value as l*(a - b) in one run and -l*(b - a)
   // in another (its term order follows address-seeded hashes), so every negation is moved
@@ -142,7 +143,7 @@ class Lowering {
         negative ^= negated(a);
         a = magnitude(a);
       }
-      return with_sign(negative, intern(Node{op, std::move(args), 0.0, {}}));
+      return with_sign(negative, intern(Node{op, std::move(args), 0.0, {}, {}}));
     }
     if (op == Op::add) {
       // the term whose magnitude sorts first decides the orientation of the sum
@@ -152,13 +153,13 @@ class Lowering {
       const bool flip = negated(*first);
       if (flip)
         for (std::size_t& a : args) a = negate(a);
-      return with_sign(flip, intern(Node{op, std::move(args), 0.0, {}}));
+      return with_sign(flip, intern(Node{op, std::move(args), 0.0, {}, {}}));
     }
-    return intern(Node{op, std::move(args), 0.0, {}});
+    return intern(Node{op, std::move(args), 0.0, {}, {}});
   }
 
   std::size_t quotient(std::size_t a, std::size_t b) {
-    return with_sign(negated(a) != negated(b), intern(Node{Op::divide, {magnitude(a), magnitude(b)}, 0.0, {}}));
+    return with_sign(negated(a) != negated(b), intern(Node{Op::divide, {magnitude(a), magnitude(b)}, 0.0, {}, {}}));
   }
 
   // x^n for a positive integer n by repeated squaring, so x^4 = (x*x)*(x*x) shares x*x;
@@ -186,7 +187,7 @@ class Lowering {
         return k > 0 ? integer_power(root, k) : quotient(number(1.0), integer_power(root, -k));
       }
     }
-    return intern(Node{Op::power, {b, node(exponent)}, 0.0, {}});
+    return intern(Node{Op::power, {b, node(exponent)}, 0.0, {}, {}});
   }
 
   std::size_t product(const ex& e) {
@@ -219,7 +220,7 @@ class Lowering {
                                    [&](const ir::CallOp& c) { return name == c.cpp_name; });
     if (call == std::end(ir::call_ops))
       throw EmitError(fmt::format("code emission: the function '{}' has no C++ form", name));
-    Node n{call->op, {}, 0.0, {}};
+    Node n{call->op, {}, 0.0, {}, {}};
     for (std::size_t i = 0; i < e.nops(); ++i) n.args.push_back(node(e.op(i)));
     if (n.args.size() != call->arity)
       throw EmitError(fmt::format("code emission: '{}' called with {} arguments", name, n.args.size()));
@@ -245,7 +246,7 @@ class Lowering {
       if (var == variables_.end())
         throw EmitError(fmt::format("code emission: the symbol '{}' is not an input of this function",
                                     GiNaC::ex_to<GiNaC::symbol>(e).get_name()));
-      return intern(Node{Op::variable, {}, 0.0, var->second});
+      return intern(Node{Op::variable, {}, 0.0, var->second.variable, var->second.name});
     }
     if (GiNaC::is_a<GiNaC::constant>(e)) return number(GiNaC::ex_to<GiNaC::numeric>(e.evalf()).to_double());
     if (GiNaC::is_a<GiNaC::add>(e)) {
@@ -269,7 +270,7 @@ class Lowering {
   std::map<ex, ex, GiNaC::ex_is_less> definitions_;
   std::map<ex, std::size_t, GiNaC::ex_is_less> memo_;
   std::vector<Node> nodes_;
-  std::map<std::tuple<Op, std::vector<std::size_t>, std::uint64_t, std::string>, std::size_t> interned_;
+  std::map<std::tuple<Op, std::vector<std::size_t>, std::uint64_t, ir::Variable>, std::size_t> interned_;
 };
 
 }  // namespace
@@ -285,7 +286,7 @@ std::vector<ir::Program> lower_functions(const std::vector<std::vector<LoweringT
   Lowering lowering(subexpressions, variables);
   std::vector<ir::Program> programs;
   for (const std::vector<LoweringTarget>& targets : functions) {
-    std::vector<std::pair<std::string, std::size_t>> outputs;
+    std::vector<std::pair<ir::Target, std::size_t>> outputs;
     for (const LoweringTarget& t : targets) {
       const std::size_t n = lowering.node(t.value);
       if (!lowering.is_zero(n)) outputs.emplace_back(t.target, n);

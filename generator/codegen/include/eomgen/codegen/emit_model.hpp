@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "eomgen/derivation/equations_of_motion.hpp"
+#include "eomgen/codegen/cpp_identifier.hpp"  // the spelling of the model's names in the header
 #include "eomgen/codegen/ir.hpp"
 #include "eomgen/derivation/model_equations.hpp"
 
@@ -34,12 +35,5 @@ struct EmittedModel {
 /// \throws EmitError if an expression cannot be printed, or if model.independent_speeds is neither
 ///         empty nor nq - nc distinct coordinate indices.
 EmittedModel emit_model(const Model& model, const ModelEquations& equations, const EmitOptions& options = {});
-
-/// `name` as a C++ identifier that cannot clash with keywords, reserved names or the
-/// generated code's own locals: a trailing '_' is added where needed.
-std::string cpp_identifier(const std::string& name);
-
-/// `text` as the contents of a C++ string literal (quotes not included).
-std::string cpp_string_contents(const std::string& text);
 
 }  // namespace eomgen

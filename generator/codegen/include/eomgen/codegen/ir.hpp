@@ -74,16 +74,75 @@ inline constexpr CallOp call_ops[] = {
 /// Number of enumerators of Op (the calls come last).
 inline constexpr std::size_t op_count = static_cast<std::size_t>(Op::negate) + 1 + std::size(call_ops);
 
+/// Which input of a generated function a variable reads, in the order of the function's
+/// arguments.
+enum class VariableKind {
+  time,          // t
+  coordinate,    // q(index)
+  rate,          // qd(index)
+  input,         // u(index)
+  parameter,     // the model's parameter number `index`
+  acceleration,  // qdd(index), given to the linearization's terms
+  multiplier,    // lambda(index), given to the linearization's terms
+};
+
+/// One input value of a generated function, named symbolically (the printer spells it).
+struct Variable {
+  VariableKind kind = VariableKind::time;
+  std::size_t index = 0;  ///< of the coordinate, input, parameter or constraint; 0 for time
+
+  friend bool operator==(const Variable& a, const Variable& b) { return a.kind == b.kind && a.index == b.index; }
+  friend bool operator<(const Variable& a, const Variable& b) {
+    return a.kind != b.kind ? a.kind < b.kind : a.index < b.index;
+  }
+};
+
+/// What a generated function writes: a matrix, a vector or a scalar of the equations.
+enum class Array {
+  mass_matrix,                    // M
+  forcing,                        // F
+  constraint_jacobian,            // Xi
+  constraint_rate_term,           // Xi_t
+  constraint_acceleration_term,   // b
+  holonomic_residuals,            // phi
+  outputs,                        // y
+  kinetic_energy,                 // T, a scalar
+  potential_energy,               // V, a scalar
+  stiffness,                      // K = dR/dq of R = M qdd - F (- Xi^T lambda)
+  damping,                        // D = dR/dqd
+  input_matrix,                   // B_u = dF/du
+  acceleration_constraint_by_q,   // S_q = dS/dq of S = Xi qdd + b
+  acceleration_constraint_by_qd,  // S_qd = dS/dqd
+};
+
+/// 0 for a scalar, 1 for a vector, 2 for a matrix.
+std::size_t rank(Array array);
+
+/// One entry of an array a generated function writes.
+struct Target {
+  Array array = Array::mass_matrix;
+  std::size_t row = 0;     ///< 0 for a scalar
+  std::size_t column = 0;  ///< 0 for a vector or a scalar
+
+  friend bool operator==(const Target& a, const Target& b) {
+    return a.array == b.array && a.row == b.row && a.column == b.column;
+  }
+  friend bool operator<(const Target& a, const Target& b) {
+    if (a.array != b.array) return a.array < b.array;
+    return a.row != b.row ? a.row < b.row : a.column < b.column;
+  }
+};
+
 struct Instruction {
   Op op;
   std::vector<std::size_t> args;  // indices of earlier instructions
   double number = 0.0;            // Op::number
-  std::string variable;           // Op::variable: the C++ text that reads it
+  Variable variable;              // Op::variable: which input it reads
 };
 
-/// Where a computed value goes: `target` is the C++ lvalue text, e.g. "M(0, 1)".
+/// Where a computed value goes.
 struct Assignment {
-  std::string target;
+  Target target;
   std::size_t value;
 };
 
