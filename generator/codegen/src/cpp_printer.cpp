@@ -114,7 +114,7 @@ class Printer {
   const ir::Program& program_;
   const CppPrintOptions& options_;
   std::vector<std::size_t> uses_;
-  std::vector<std::string> names_;
+  std::vector<std::string> names_;  // of a variable or a temporary: the text that stands for it
 };
 
 }  // namespace

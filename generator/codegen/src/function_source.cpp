@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cassert>
 #include <iterator>
 #include <set>
 
@@ -54,6 +56,7 @@ std::string input_declaration(VariableKind kind) {
 
 // every argument may go unused in a particular model (M of a pendulum ignores t)
 std::string signature(const FunctionSpec& f) {
+  assert(std::is_sorted(f.reads.begin(), f.reads.end()));  // t, q, qd, u, p, qdd, lambda
   std::vector<std::string> declarations;
   for (VariableKind kind : f.reads) declarations.push_back(input_declaration(kind));
   if (!returns_scalar(f))

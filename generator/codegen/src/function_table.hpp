@@ -17,7 +17,7 @@ struct SymbolicLinearization;
 struct FunctionSpec {
   std::string name;  ///< of the member function, e.g. "mass_matrix"
   std::string doc;   ///< one line of documentation
-  /// its inputs, as arguments in the order of VariableKind (t, q and p always)
+  /// its inputs, as arguments, sorted in the order of VariableKind (t, q and p always)
   std::vector<ir::VariableKind> reads;
   /// its outputs, as arguments after the inputs; a single scalar (T, V) is returned instead
   std::vector<ir::Array> writes;
