@@ -8,51 +8,60 @@ namespace {
 
 using ir::Instruction;
 using ir::Op;
+using ir::VariableKind;
 
-Instruction var(const char* name) { return Instruction{Op::variable, {}, 0.0, name}; }
+Instruction var(VariableKind kind, std::size_t index) { return Instruction{Op::variable, {}, 0.0, {kind, index}}; }
+Instruction q(std::size_t index) { return var(VariableKind::coordinate, index); }
+Instruction p(std::size_t index) { return var(VariableKind::parameter, index); }
 Instruction num(double v) { return Instruction{Op::number, {}, v, {}}; }
 Instruction op(Op o, std::vector<std::size_t> args) { return Instruction{o, std::move(args), 0.0, {}}; }
+ir::Target y(std::size_t row) { return {ir::Array::outputs, row, 0}; }
+ir::Target M(std::size_t row, std::size_t column) { return {ir::Array::mass_matrix, row, column}; }
+
+CppPrintOptions with_parameters() {
+  CppPrintOptions options;
+  options.parameter_names = {"x", "m"};
+  return options;
+}
 
 TEST(CppPrinter, SumOfProductNeedsNoParentheses) {
-  ir::Program p{{var("a"), var("b"), var("c"), op(Op::multiply, {1, 2}), op(Op::add, {0, 3})}, {{"y", 4}}};
-  EXPECT_EQ(print_cpp(p), "    y = a + b * c;\n");
+  ir::Program p{{q(0), q(1), q(2), op(Op::multiply, {1, 2}), op(Op::add, {0, 3})}, {{y(0), 4}}};
+  EXPECT_EQ(print_cpp(p), "    y(0) = q(0) + q(1) * q(2);\n");
 }
 
 TEST(CppPrinter, ProductOfSumIsParenthesized) {
-  ir::Program p{{var("a"), var("b"), var("c"), op(Op::add, {0, 1}), op(Op::multiply, {3, 2})}, {{"y", 4}}};
-  EXPECT_EQ(print_cpp(p), "    y = (a + b) * c;\n");
+  ir::Program p{{q(0), q(1), q(2), op(Op::add, {0, 1}), op(Op::multiply, {3, 2})}, {{y(0), 4}}};
+  EXPECT_EQ(print_cpp(p), "    y(0) = (q(0) + q(1)) * q(2);\n");
 }
 
 TEST(CppPrinter, NegatedTermsBecomeSubtractionsAndNegatedFactorsAreParenthesized) {
-  ir::Program p{{var("a"), var("b"), op(Op::negate, {0}), op(Op::add, {2, 1}), op(Op::multiply, {1, 2})},
-                {{"y", 3}, {"z", 4}}};
-  EXPECT_EQ(print_cpp(p), "    const Scalar w0 = -a;\n    y = w0 + b;\n    z = b * w0;\n");
-  ir::Program q{{var("a"), var("b"), op(Op::negate, {0}), op(Op::add, {2, 1})}, {{"y", 3}}};
-  EXPECT_EQ(print_cpp(q), "    y = b - a;\n");
+  ir::Program p{{q(0), q(1), op(Op::negate, {0}), op(Op::add, {2, 1}), op(Op::multiply, {1, 2})},
+                {{y(0), 3}, {y(1), 4}}};
+  EXPECT_EQ(print_cpp(p), "    const Scalar w0 = -q(0);\n    y(0) = w0 + q(1);\n    y(1) = q(1) * w0;\n");
+  ir::Program r{{q(0), q(1), op(Op::negate, {0}), op(Op::add, {2, 1})}, {{y(0), 3}}};
+  EXPECT_EQ(print_cpp(r), "    y(0) = q(1) - q(0);\n");
 }
 
 TEST(CppPrinter, NumberOperandsUseTheScalarType) {
-  ir::Program p{{var("x"), num(0.5), op(Op::multiply, {1, 0})}, {{"y", 2}}};
-  EXPECT_EQ(print_cpp(p), "    y = Scalar(0.5) * x;\n");
-  CppPrintOptions options;
+  ir::Program r{{p(0), num(0.5), op(Op::multiply, {1, 0})}, {{y(0), 2}}};
+  CppPrintOptions options = with_parameters();
+  EXPECT_EQ(print_cpp(r, options), "    y(0) = Scalar(0.5) * p.x;\n");
   options.scalar = "float";
-  EXPECT_EQ(print_cpp(p, options), "    y = float(0.5) * x;\n");
+  EXPECT_EQ(print_cpp(r, options), "    y(0) = float(0.5) * p.x;\n");
 }
 
 TEST(CppPrinter, DivisorThatIsAProductIsParenthesized) {
-  ir::Program p{{var("a"), var("b"), var("c"), op(Op::multiply, {1, 2}), op(Op::divide, {0, 3})}, {{"y", 4}}};
-  EXPECT_EQ(print_cpp(p), "    y = a / (b * c);\n");
+  ir::Program p{{q(0), q(1), q(2), op(Op::multiply, {1, 2}), op(Op::divide, {0, 3})}, {{y(0), 4}}};
+  EXPECT_EQ(print_cpp(p), "    y(0) = q(0) / (q(1) * q(2));\n");
 }
 
 TEST(CppPrinter, SharedValuesBecomeTemporariesInOrder) {
-  ir::Program p{{var("q(0)"), op(Op::sin, {0}), op(Op::cos, {0}), op(Op::multiply, {1, 2})},
-                {{"M(0, 0)", 3}, {"M(1, 1)", 1}}};
+  ir::Program p{{q(0), op(Op::sin, {0}), op(Op::cos, {0}), op(Op::multiply, {1, 2})}, {{M(0, 0), 3}, {M(1, 1), 1}}};
   EXPECT_EQ(print_cpp(p), "    const Scalar w0 = sin(q(0));\n    M(0, 0) = w0 * cos(q(0));\n    M(1, 1) = w0;\n");
 }
 
 TEST(CppPrinter, WithoutSharingEveryUseIsWrittenOut) {
-  ir::Program p{{var("q(0)"), op(Op::sin, {0}), op(Op::cos, {0}), op(Op::multiply, {1, 2})},
-                {{"M(0, 0)", 3}, {"M(1, 1)", 1}}};
+  ir::Program p{{q(0), op(Op::sin, {0}), op(Op::cos, {0}), op(Op::multiply, {1, 2})}, {{M(0, 0), 3}, {M(1, 1), 1}}};
   CppPrintOptions options;
   options.share_subexpressions = false;
   EXPECT_EQ(print_cpp(p, options), "    M(0, 0) = sin(q(0)) * cos(q(0));\n    M(1, 1) = sin(q(0));\n");
@@ -66,8 +75,55 @@ TEST(CppPrinter, NumbersAreWrappedInTheScalarTypeAndRoundTrip) {
 }
 
 TEST(CppPrinter, CallsPrintTheirArgumentsWithoutExtraParentheses) {
-  ir::Program p{{var("y"), var("x"), op(Op::add, {0, 1}), op(Op::atan2, {2, 1})}, {{"r", 3}}};
-  EXPECT_EQ(print_cpp(p), "    r = atan2(y + x, x);\n");
+  ir::Program r{{p(1), p(0), op(Op::add, {0, 1}), op(Op::atan2, {2, 1})}, {{y(0), 3}}};
+  EXPECT_EQ(print_cpp(r, with_parameters()), "    y(0) = atan2(p.m + p.x, p.x);\n");
+}
+
+TEST(CppPrinter, EveryCallPrintsAsItsCmathFunction) {
+  for (const ir::CallOp& call : ir::call_ops) {
+    ir::Program p{{q(0), q(1)}, {}};
+    p.instructions.push_back(op(call.op, call.arity == 1 ? std::vector<std::size_t>{0} : std::vector<std::size_t>{0, 1}));
+    p.outputs.push_back({y(0), 2});
+    const std::string arguments = call.arity == 1 ? "q(0)" : "q(0), q(1)";
+    EXPECT_EQ(print_cpp(p), "    y(0) = " + std::string(call.cpp_name) + "(" + arguments + ");\n");
+  }
+}
+
+// the spelling the generated headers have always had (and their model hashes depend on)
+TEST(CppPrinter, VariablesAreTheArgumentsOfTheGeneratedFunctions) {
+  const CppPrintOptions options = with_parameters();
+  EXPECT_EQ(cpp_variable({VariableKind::time, 0}, options), "t");
+  EXPECT_EQ(cpp_variable({VariableKind::coordinate, 2}, options), "q(2)");
+  EXPECT_EQ(cpp_variable({VariableKind::rate, 0}, options), "qd(0)");
+  EXPECT_EQ(cpp_variable({VariableKind::input, 1}, options), "u(1)");
+  EXPECT_EQ(cpp_variable({VariableKind::acceleration, 3}, options), "qdd(3)");
+  EXPECT_EQ(cpp_variable({VariableKind::multiplier, 0}, options), "lambda(0)");
+  EXPECT_EQ(cpp_variable({VariableKind::parameter, 1}, options), "p.m");
+}
+
+TEST(CppPrinter, ParametersAreReadThroughTheirIdentifiers) {
+  CppPrintOptions options;
+  options.parameter_names = {"int", "_hidden"};
+  EXPECT_EQ(cpp_variable({VariableKind::parameter, 0}, options), "p.int_");
+  EXPECT_EQ(cpp_variable({VariableKind::parameter, 1}, options), "p.v_hidden");
+}
+
+TEST(CppPrinter, TargetsAreEntriesOfTheOutputArguments) {
+  using ir::Array;
+  EXPECT_EQ(cpp_target({Array::mass_matrix, 0, 1}), "M(0, 1)");
+  EXPECT_EQ(cpp_target({Array::forcing, 2, 0}), "F(2)");
+  EXPECT_EQ(cpp_target({Array::constraint_jacobian, 1, 0}), "Xi(1, 0)");
+  EXPECT_EQ(cpp_target({Array::constraint_rate_term, 0, 0}), "Xi_t(0)");
+  EXPECT_EQ(cpp_target({Array::constraint_acceleration_term, 1, 0}), "b(1)");
+  EXPECT_EQ(cpp_target({Array::holonomic_residuals, 0, 0}), "phi(0)");
+  EXPECT_EQ(cpp_target({Array::outputs, 4, 0}), "y(4)");
+  EXPECT_EQ(cpp_target({Array::kinetic_energy, 0, 0}), "T");
+  EXPECT_EQ(cpp_target({Array::potential_energy, 0, 0}), "V");
+  EXPECT_EQ(cpp_target({Array::stiffness, 1, 2}), "K(1, 2)");
+  EXPECT_EQ(cpp_target({Array::damping, 0, 0}), "D(0, 0)");
+  EXPECT_EQ(cpp_target({Array::input_matrix, 1, 0}), "B_u(1, 0)");
+  EXPECT_EQ(cpp_target({Array::acceleration_constraint_by_q, 0, 3}), "S_q(0, 3)");
+  EXPECT_EQ(cpp_target({Array::acceleration_constraint_by_qd, 1, 1}), "S_qd(1, 1)");
 }
 
 }  // namespace

@@ -5,8 +5,11 @@
 
 #include <vector>
 
+#include "eomgen/base/content_hash.hpp"
 #include "eomgen/base/error.hpp"
+#include "eomgen/derivation/linearization.hpp"
 #include "eomgen/language/model_file.hpp"
+#include "support/source_dir.hpp"
 
 namespace eomgen {
 namespace {
@@ -43,6 +46,7 @@ TEST(CppIdentifier, KeywordsReservedNamesAndOwnLocalsGetATrailingUnderscore) {
   EXPECT_EQ(cpp_identifier("_hidden"), "v_hidden");
   EXPECT_EQ(cpp_identifier("a__b"), "a_b");
   EXPECT_EQ(cpp_identifier("x_"), "x__");  // never ends in a single '_' of ours: no clash with mangled names
+  for (const ir::CallOp& call : ir::call_ops) EXPECT_EQ(cpp_identifier(call.cpp_name), std::string(call.cpp_name) + "_");
 }
 
 TEST(CppStringContents, EscapesQuotesBackslashesAndControlCharacters) {
@@ -68,6 +72,22 @@ TEST(EmitModel, SameModelGivesByteIdenticalHeaders) {
   for (int i = 0; i < 500; ++i) dummies.emplace_back("dummy" + std::to_string(i));
   const std::string second = generate(pendulum_on_cart);
   EXPECT_EQ(first, second);
+}
+
+TEST(EmitModel, EveryFunctionDeclaresEveryCallsCmathFunction) {
+  const std::string h = generate(pendulum_on_cart);
+  const std::string declarations =
+      "    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;\n"
+      "    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;\n"
+      "    using std::log; using std::abs; using std::pow;\n";
+  std::size_t functions = 0;
+  for (std::size_t at = h.find("noexcept {\n"); at != std::string::npos; at = h.find("noexcept {\n", at + 1)) {
+    ++functions;
+    EXPECT_EQ(h.compare(at + 11, declarations.size(), declarations), 0) << h.substr(at, 400);
+  }
+  EXPECT_EQ(functions, 10u);
+  for (const ir::CallOp& call : ir::call_ops)
+    EXPECT_NE(declarations.find("using std::" + std::string(call.cpp_name) + ";"), std::string::npos) << call.cpp_name;
 }
 
 TEST(EmitModel, MetadataAndSizes) {
@@ -154,6 +174,49 @@ TEST(EmitModel, StatisticsShowSharingReducesOperations) {
       EXPECT_GT(s.optimized.total(), 0u);
     }
   EXPECT_TRUE(found);
+}
+
+// the text of each generated function ("\n  /// doc ... \n  }\n"), in order
+std::vector<std::string> functions_of(const std::string& header) {
+  const std::string opening = "\n  template <class Scalar>\n  static ";
+  std::vector<std::string> functions;
+  for (std::size_t at = header.find(opening); at != std::string::npos; at = header.find(opening, at + 1)) {
+    const std::size_t start = header.rfind("\n  /// ", at), end = header.find("\n  }\n", at);
+    functions.push_back(header.substr(start, end + 5 - start));
+  }
+  return functions;
+}
+
+TEST(EmitModel, AGivenLinearizationAddsItsFunctionsAndChangesNoOther) {
+  for (const char* name : {"double_pendulum", "rolling_coin"}) {
+    const Model model = load_model(testing::shipped_model_path(name));
+    const ModelEquations eom = derive_equations(model);
+    const std::string plain = emit_model(model, eom).header;
+    const std::string linearized = emit_model(model, eom, linearize_symbolic(model, eom)).header;
+    const std::vector<std::string> functions = functions_of(plain);
+    ASSERT_EQ(functions.size(), 10u) << name;
+    for (const std::string& f : functions) EXPECT_NE(linearized.find(f), std::string::npos) << name << f;
+    EXPECT_EQ(plain.find("linearization"), std::string::npos) << name;
+    EXPECT_NE(linearized.find("static void linearization_terms("), std::string::npos) << name;
+    EXPECT_NE(linearized.find("#include <Eigen/LU>\n"), std::string::npos) << name;
+  }
+}
+
+// linearization_terms() as eomgen emitted it when it computed the linearization itself
+// (f09668f); the lowering or the printer changed on purpose: take the new hashes
+TEST(EmitModel, LinearizationTermsAreThoseEmittedWhenEmissionLinearizedItself) {
+  const std::pair<const char*, std::uint64_t> expected[] = {{"double_pendulum", 0x5a79b5d6d702037full},
+                                                            {"rolling_coin", 0x123b70d016fdc62full}};
+  for (const auto& [name, hash] : expected) {
+    const Model model = load_model(testing::shipped_model_path(name));
+    const ModelEquations eom = derive_equations(model);
+    const EmittedModel emitted = emit_model(model, eom, linearize_symbolic(model, eom), {"eomgen_models", name});
+    std::string terms;
+    for (const std::string& f : functions_of(emitted.header))
+      if (f.find("static void linearization_terms(") != std::string::npos) terms = f;
+    EXPECT_EQ(content_hash(terms), hash) << name << terms;
+    EXPECT_EQ(emitted.statistics.back().function, "linearization_terms") << name;
+  }
 }
 
 }  // namespace

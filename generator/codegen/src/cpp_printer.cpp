@@ -3,8 +3,11 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <vector>
+
+#include "eomgen/codegen/cpp_identifier.hpp"
 
 namespace eomgen {
 namespace {
@@ -20,21 +23,7 @@ int precedence(Op op) {
     case Op::negate: return 3;
     case Op::number:
     case Op::variable:
-    case Op::power:
-    case Op::sqrt:
-    case Op::sin:
-    case Op::cos:
-    case Op::tan:
-    case Op::asin:
-    case Op::acos:
-    case Op::atan:
-    case Op::atan2:
-    case Op::sinh:
-    case Op::cosh:
-    case Op::tanh:
-    case Op::exp:
-    case Op::log:
-    case Op::abs: return 4;
+    EOMGEN_IR_CALL_OPS(EOMGEN_IR_CALL_CASE) return 4;
   }
   return 4;
 }
@@ -46,6 +35,9 @@ class Printer {
     for (const auto& in : p.instructions)
       for (std::size_t a : in.args) ++uses_[a];
     for (const auto& out : p.outputs) ++uses_[out.value];
+    // a variable reads the same way at every use
+    for (std::size_t i = 0; i < p.instructions.size(); ++i)
+      if (p.instructions[i].op == Op::variable) names_[i] = cpp_variable(p.instructions[i].variable, o);
   }
 
   std::string run() {
@@ -58,7 +50,7 @@ class Printer {
       body += fmt::format("{}const {} {} = {};\n", options_.indent, options_.scalar, names_[i], expression(i));
     }
     for (const ir::Assignment& out : program_.outputs)
-      body += fmt::format("{}{} = {};\n", options_.indent, out.target, operand(out.value, 0));
+      body += fmt::format("{}{} = {};\n", options_.indent, cpp_target(out.target), operand(out.value, 0));
     return body;
   }
 
@@ -77,7 +69,7 @@ class Printer {
       case Op::number:
         return cpp_number(in.number, options_.scalar);
       case Op::variable:
-        return in.variable;
+        return names_[i];
       case Op::add: {
         // a non-negated term first, then " - x" for negated terms
         std::vector<std::size_t> terms = in.args;
@@ -110,22 +102,8 @@ class Printer {
         return operand(in.args[0], 2) + " / " + operand(in.args[1], 3);
       case Op::negate:
         return "-" + operand(in.args[0], 3);
-      case Op::power:
-      case Op::sqrt:
-      case Op::sin:
-      case Op::cos:
-      case Op::tan:
-      case Op::asin:
-      case Op::acos:
-      case Op::atan:
-      case Op::atan2:
-      case Op::sinh:
-      case Op::cosh:
-      case Op::tanh:
-      case Op::exp:
-      case Op::log:
-      case Op::abs: {
-        std::string s = std::string(ir::call_name(in.op)) + "(";
+      EOMGEN_IR_CALL_OPS(EOMGEN_IR_CALL_CASE) {
+        std::string s = std::string(ir::call_op(in.op).cpp_name) + "(";
         for (std::size_t k = 0; k < in.args.size(); ++k) s += (k ? ", " : "") + operand(in.args[k], 0);
         return s + ")";
       }
@@ -136,7 +114,7 @@ class Printer {
   const ir::Program& program_;
   const CppPrintOptions& options_;
   std::vector<std::size_t> uses_;
-  std::vector<std::string> names_;
+  std::vector<std::string> names_;  // of a variable or a temporary: the text that stands for it
 };
 
 }  // namespace
@@ -145,6 +123,65 @@ std::string cpp_number(double value, const std::string& scalar) {
   if (value == std::floor(value) && std::fabs(value) < 1e15) return fmt::format("{}({})", scalar, static_cast<long long>(value));
   // shortest text that reads back to the same double
   return fmt::format("{}({})", scalar, value);
+}
+
+const char* cpp_argument_name(ir::VariableKind kind) {
+  switch (kind) {
+    case ir::VariableKind::time: return "t";
+    case ir::VariableKind::coordinate: return "q";
+    case ir::VariableKind::rate: return "qd";
+    case ir::VariableKind::input: return "u";
+    case ir::VariableKind::parameter: return "p";
+    case ir::VariableKind::acceleration: return "qdd";
+    case ir::VariableKind::multiplier: return "lambda";
+  }
+  return "?";  // not an enumerator of VariableKind
+}
+
+const char* cpp_array_name(ir::Array array) {
+  switch (array) {
+    case ir::Array::mass_matrix: return "M";
+    case ir::Array::forcing: return "F";
+    case ir::Array::constraint_jacobian: return "Xi";
+    case ir::Array::constraint_rate_term: return "Xi_t";
+    case ir::Array::constraint_acceleration_term: return "b";
+    case ir::Array::holonomic_residuals: return "phi";
+    case ir::Array::outputs: return "y";
+    case ir::Array::kinetic_energy: return "T";
+    case ir::Array::potential_energy: return "V";
+    case ir::Array::stiffness: return "K";
+    case ir::Array::damping: return "D";
+    case ir::Array::input_matrix: return "B_u";
+    case ir::Array::acceleration_constraint_by_q: return "S_q";
+    case ir::Array::acceleration_constraint_by_qd: return "S_qd";
+  }
+  return "?";  // not an enumerator of Array
+}
+
+std::string cpp_variable(const ir::Variable& variable, const CppPrintOptions& options) {
+  const char* name = cpp_argument_name(variable.kind);
+  switch (variable.kind) {
+    case ir::VariableKind::time:
+      return name;
+    case ir::VariableKind::parameter:
+      assert(variable.index < options.parameter_names.size());
+      return fmt::format("{}.{}", name, cpp_identifier(options.parameter_names.at(variable.index)));
+    case ir::VariableKind::coordinate:
+    case ir::VariableKind::rate:
+    case ir::VariableKind::input:
+    case ir::VariableKind::acceleration:
+    case ir::VariableKind::multiplier:
+      return fmt::format("{}({})", name, variable.index);
+  }
+  return name;  // not an enumerator of VariableKind
+}
+
+std::string cpp_target(const ir::Target& target) {
+  const char* name = cpp_array_name(target.array);
+  const std::size_t rank = ir::rank(target.array);
+  if (rank == 0) return name;
+  if (rank == 1) return fmt::format("{}({})", name, target.row);
+  return fmt::format("{}({}, {})", name, target.row, target.column);
 }
 
 std::string print_cpp(const ir::Program& program, const CppPrintOptions& options) {

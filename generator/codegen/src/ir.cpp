@@ -1,7 +1,27 @@
 #include "eomgen/codegen/ir.hpp"
 
+#include <cassert>
+
 namespace eomgen::ir {
 namespace {
+
+constexpr bool codes_are_distinct_and_above_the_other_ops() {
+  for (std::size_t i = 0; i < std::size(call_ops); ++i) {
+    if (call_ops[i].code <= static_cast<std::uint64_t>(Op::negate)) return false;
+    for (std::size_t j = 0; j < i; ++j)
+      if (call_ops[i].code == call_ops[j].code) return false;
+  }
+  return true;
+}
+static_assert(codes_are_distinct_and_above_the_other_ops(),
+              "each call op needs a signature code of its own, above those of number ... negate");
+
+constexpr bool rows_are_in_enum_order() {
+  for (std::size_t i = 0; i < std::size(call_ops); ++i)
+    if (static_cast<std::size_t>(call_ops[i].op) != static_cast<std::size_t>(Op::negate) + 1 + i) return false;
+  return true;
+}
+static_assert(rows_are_in_enum_order(), "call_ops[i] describes the i-th call enumerator");
 
 void add_own(const Instruction& in, OperationCounts& c) {
   switch (in.op) {
@@ -20,21 +40,7 @@ void add_own(const Instruction& in, OperationCounts& c) {
     case Op::negate:
       ++c.additions;
       break;
-    case Op::power:
-    case Op::sqrt:
-    case Op::sin:
-    case Op::cos:
-    case Op::tan:
-    case Op::asin:
-    case Op::acos:
-    case Op::atan:
-    case Op::atan2:
-    case Op::sinh:
-    case Op::cosh:
-    case Op::tanh:
-    case Op::exp:
-    case Op::log:
-    case Op::abs:
+    EOMGEN_IR_CALL_OPS(EOMGEN_IR_CALL_CASE)
       ++c.calls;
       break;
   }
@@ -50,6 +56,29 @@ OperationCounts plus(OperationCounts a, const OperationCounts& b) {
 
 }  // namespace
 
+std::size_t rank(Array array) {
+  switch (array) {
+    case Array::kinetic_energy:
+    case Array::potential_energy:
+      return 0;
+    case Array::forcing:
+    case Array::constraint_rate_term:
+    case Array::constraint_acceleration_term:
+    case Array::holonomic_residuals:
+    case Array::outputs:
+      return 1;
+    case Array::mass_matrix:
+    case Array::constraint_jacobian:
+    case Array::stiffness:
+    case Array::damping:
+    case Array::input_matrix:
+    case Array::acceleration_constraint_by_q:
+    case Array::acceleration_constraint_by_qd:
+      return 2;
+  }
+  return 2;  // not an enumerator of Array
+}
+
 bool is_call(Op op) {
   switch (op) {
     case Op::number:
@@ -59,52 +88,15 @@ bool is_call(Op op) {
     case Op::divide:
     case Op::negate:
       return false;
-    case Op::power:
-    case Op::sqrt:
-    case Op::sin:
-    case Op::cos:
-    case Op::tan:
-    case Op::asin:
-    case Op::acos:
-    case Op::atan:
-    case Op::atan2:
-    case Op::sinh:
-    case Op::cosh:
-    case Op::tanh:
-    case Op::exp:
-    case Op::log:
-    case Op::abs:
+    EOMGEN_IR_CALL_OPS(EOMGEN_IR_CALL_CASE)
       return true;
   }
-  return false;
+  return false;  // not an enumerator of Op
 }
 
-const char* call_name(Op op) {
-  switch (op) {
-    case Op::power: return "pow";
-    case Op::sqrt: return "sqrt";
-    case Op::sin: return "sin";
-    case Op::cos: return "cos";
-    case Op::tan: return "tan";
-    case Op::asin: return "asin";
-    case Op::acos: return "acos";
-    case Op::atan: return "atan";
-    case Op::atan2: return "atan2";
-    case Op::sinh: return "sinh";
-    case Op::cosh: return "cosh";
-    case Op::tanh: return "tanh";
-    case Op::exp: return "exp";
-    case Op::log: return "log";
-    case Op::abs: return "abs";
-    case Op::number:
-    case Op::variable:
-    case Op::add:
-    case Op::multiply:
-    case Op::divide:
-    case Op::negate:
-      break;
-  }
-  return "";
+const CallOp& call_op(Op op) {
+  assert(is_call(op));
+  return call_ops[static_cast<std::size_t>(op) - static_cast<std::size_t>(Op::negate) - 1];
 }
 
 OperationCounts count_operations(const Program& program) {

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <iterator>
 #include <tuple>
 
 #include "eomgen/base/error.hpp"
@@ -19,7 +20,8 @@ struct Node {
   Op op;
   std::vector<std::size_t> args;
   double number = 0.0;
-  std::string variable;
+  ir::Variable variable;        // Op::variable
+  std::string name;             // Op::variable: its name in the signature
   std::uint64_t signature = 0;  // from content only: names, values, structure
 };
 
@@ -42,6 +44,21 @@ std::uint64_t mix(std::uint64_t h, const std::string& s) {
 
 bool commutative(Op op) { return op == Op::add || op == Op::multiply; }
 
+// the op's number in content signatures: fixed per op, so reordering or extending Op leaves
+// the order of operands, and so every generated header, as it is
+std::uint64_t signature_code(Op op) {
+  switch (op) {
+    case Op::number: return 0;
+    case Op::variable: return 1;
+    case Op::add: return 2;
+    case Op::multiply: return 3;
+    case Op::divide: return 4;
+    case Op::negate: return 5;
+    EOMGEN_IR_CALL_OPS(EOMGEN_IR_CALL_CASE) return ir::call_op(op).code;
+  }
+  return SIZE_MAX;  // not an enumerator of Op
+}
+
 class Lowering {
  public:
   Lowering(const std::vector<const Subexpressions*>& sets, const VariableNames& variables) : variables_(variables) {
@@ -57,7 +74,7 @@ class Lowering {
     return id;
   }
 
-  ir::Program finish(const std::vector<std::pair<std::string, std::size_t>>& outputs) {
+  ir::Program finish(const std::vector<std::pair<ir::Target, std::size_t>>& outputs) {
     // emission order: depth-first from the outputs in their order, arguments in canonical order
     std::vector<std::size_t> order(nodes_.size(), SIZE_MAX);
     ir::Program program;
@@ -92,11 +109,11 @@ class Lowering {
       std::sort(n.args.begin(), n.args.end(), [&](std::size_t a, std::size_t b) {
         return std::tie(nodes_[a].signature, a) < std::tie(nodes_[b].signature, b);
       });
-    std::uint64_t h = mix(14695981039346656037ull, static_cast<std::uint64_t>(n.op));
+    std::uint64_t h = mix(14695981039346656037ull, signature_code(n.op));
     std::uint64_t bits = 0;
     std::memcpy(&bits, &n.number, sizeof bits);
     h = mix(h, bits);
-    h = mix(h, n.variable);
+    h = mix(h, n.name);
     for (std::size_t a : n.args) h = mix(h, nodes_[a].signature);
     n.signature = h;
     const auto key = std::make_tuple(n.op, n.args, bits, n.variable);
@@ -107,8 +124,8 @@ class Lowering {
     return nodes_.size() - 1;
   }
 
-  std::size_t number(double v) { return intern(Node{Op::number, {}, v, {}}); }
-  std::size_t unary(Op op, std::size_t a) { return intern(Node{op, {a}, 0.0, {}}); }
+  std::size_t number(double v) { return intern(Node{Op::number, {}, v, {}, {}}); }
+  std::size_t unary(Op op, std::size_t a) { return intern(Node{op, {a}, 0.0, {}, {}}); }
 
   // Signs are canonical: GiNaC writes the same value as l*(a - b) in one run and -l*(b - a)
   // in another (its term order follows address-seeded hashes), so every negation is moved
@@ -126,7 +143,7 @@ class Lowering {
         negative ^= negated(a);
         a = magnitude(a);
       }
-      return with_sign(negative, intern(Node{op, std::move(args), 0.0, {}}));
+      return with_sign(negative, intern(Node{op, std::move(args), 0.0, {}, {}}));
     }
     if (op == Op::add) {
       // the term whose magnitude sorts first decides the orientation of the sum
@@ -136,13 +153,13 @@ class Lowering {
       const bool flip = negated(*first);
       if (flip)
         for (std::size_t& a : args) a = negate(a);
-      return with_sign(flip, intern(Node{op, std::move(args), 0.0, {}}));
+      return with_sign(flip, intern(Node{op, std::move(args), 0.0, {}, {}}));
     }
-    return intern(Node{op, std::move(args), 0.0, {}});
+    return intern(Node{op, std::move(args), 0.0, {}, {}});
   }
 
   std::size_t quotient(std::size_t a, std::size_t b) {
-    return with_sign(negated(a) != negated(b), intern(Node{Op::divide, {magnitude(a), magnitude(b)}, 0.0, {}}));
+    return with_sign(negated(a) != negated(b), intern(Node{Op::divide, {magnitude(a), magnitude(b)}, 0.0, {}, {}}));
   }
 
   // x^n for a positive integer n by repeated squaring, so x^4 = (x*x)*(x*x) shares x*x;
@@ -170,7 +187,7 @@ class Lowering {
         return k > 0 ? integer_power(root, k) : quotient(number(1.0), integer_power(root, -k));
       }
     }
-    return intern(Node{Op::power, {b, node(exponent)}, 0.0, {}});
+    return intern(Node{Op::power, {b, node(exponent)}, 0.0, {}, {}});
   }
 
   std::size_t product(const ex& e) {
@@ -195,28 +212,22 @@ class Lowering {
     return with_sign(negative, value);
   }
 
+  // a GiNaC function lowers to the call of the same name (GiNaC has no function named sqrt or
+  // pow: those come from powers)
   std::size_t function(const ex& e) {
     const std::string name = GiNaC::ex_to<GiNaC::function>(e).get_name();
-    static const std::map<std::string, Op> ops = {
-        {"sin", Op::sin},   {"cos", Op::cos},   {"tan", Op::tan},   {"asin", Op::asin}, {"acos", Op::acos},
-        {"atan", Op::atan}, {"sinh", Op::sinh}, {"cosh", Op::cosh}, {"tanh", Op::tanh}, {"exp", Op::exp},
-        {"log", Op::log},   {"abs", Op::abs},   {"atan2", Op::atan2}};
-    auto it = ops.find(name);
-    if (it == ops.end()) throw EmitError(fmt::format("code emission: the function '{}' has no C++ form", name));
-    Node n{it->second, {}, 0.0, {}};
+    const auto call = std::find_if(std::begin(ir::call_ops), std::end(ir::call_ops),
+                                   [&](const ir::CallOp& c) { return name == c.cpp_name; });
+    if (call == std::end(ir::call_ops))
+      throw EmitError(fmt::format("code emission: the function '{}' has no C++ form", name));
+    Node n{call->op, {}, 0.0, {}, {}};
     for (std::size_t i = 0; i < e.nops(); ++i) n.args.push_back(node(e.op(i)));
-    if ((it->second == Op::atan2) != (n.args.size() == 2))
+    if (n.args.size() != call->arity)
       throw EmitError(fmt::format("code emission: '{}' called with {} arguments", name, n.args.size()));
     // odd functions take the argument's sign outside, even ones drop it
-    const Op op = it->second;
-    if (n.args.size() == 1 && negated(n.args[0])) {
-      const bool odd = op == Op::sin || op == Op::tan || op == Op::asin || op == Op::atan || op == Op::sinh ||
-                       op == Op::tanh;
-      const bool even = op == Op::cos || op == Op::cosh || op == Op::abs;
-      if (odd || even) {
-        n.args[0] = magnitude(n.args[0]);
-        return with_sign(odd, intern(std::move(n)));
-      }
+    if (n.args.size() == 1 && negated(n.args[0]) && call->symmetry != ir::Symmetry::none) {
+      n.args[0] = magnitude(n.args[0]);
+      return with_sign(call->symmetry == ir::Symmetry::odd, intern(std::move(n)));
     }
     return intern(std::move(n));
   }
@@ -235,7 +246,7 @@ class Lowering {
       if (var == variables_.end())
         throw EmitError(fmt::format("code emission: the symbol '{}' is not an input of this function",
                                     GiNaC::ex_to<GiNaC::symbol>(e).get_name()));
-      return intern(Node{Op::variable, {}, 0.0, var->second});
+      return intern(Node{Op::variable, {}, 0.0, var->second.variable, var->second.name});
     }
     if (GiNaC::is_a<GiNaC::constant>(e)) return number(GiNaC::ex_to<GiNaC::numeric>(e.evalf()).to_double());
     if (GiNaC::is_a<GiNaC::add>(e)) {
@@ -259,7 +270,7 @@ class Lowering {
   std::map<ex, ex, GiNaC::ex_is_less> definitions_;
   std::map<ex, std::size_t, GiNaC::ex_is_less> memo_;
   std::vector<Node> nodes_;
-  std::map<std::tuple<Op, std::vector<std::size_t>, std::uint64_t, std::string>, std::size_t> interned_;
+  std::map<std::tuple<Op, std::vector<std::size_t>, std::uint64_t, ir::Variable>, std::size_t> interned_;
 };
 
 }  // namespace
@@ -275,7 +286,7 @@ std::vector<ir::Program> lower_functions(const std::vector<std::vector<LoweringT
   Lowering lowering(subexpressions, variables);
   std::vector<ir::Program> programs;
   for (const std::vector<LoweringTarget>& targets : functions) {
-    std::vector<std::pair<std::string, std::size_t>> outputs;
+    std::vector<std::pair<ir::Target, std::size_t>> outputs;
     for (const LoweringTarget& t : targets) {
       const std::size_t n = lowering.node(t.value);
       if (!lowering.is_zero(n)) outputs.emplace_back(t.target, n);

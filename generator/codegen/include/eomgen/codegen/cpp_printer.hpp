@@ -1,7 +1,8 @@
 #pragma once
-// Prints a straight-line program as C++ statements. The printer owns precedence and number
-// formatting; it knows nothing of GiNaC.
+// Prints a straight-line program as C++ statements. The printer owns the C++ spelling of the
+// IR (variables, targets, calls), precedence and number formatting; it knows nothing of GiNaC.
 #include <string>
+#include <vector>
 
 #include "eomgen/codegen/ir.hpp"
 
@@ -14,6 +15,8 @@ struct CppPrintOptions {
   /// false: no temporaries, every output written as its own expression tree (the
   /// unoptimized baseline of the benchmarks; exponentially long for deep chains)
   bool share_subexpressions = true;
+  /// the model's parameter names, in order: parameter k is read as p.<cpp_identifier(name k)>
+  std::vector<std::string> parameter_names;
 };
 
 /// Statements computing every output of the program: shared values become
@@ -22,5 +25,16 @@ std::string print_cpp(const ir::Program& program, const CppPrintOptions& options
 
 /// A double as a C++ literal wrapped in the scalar type: "Scalar(0.5)", "Scalar(2)".
 std::string cpp_number(double value, const std::string& scalar);
+
+/// The argument of a generated function that holds variables of this kind: "q", "qd", "p", ...
+const char* cpp_argument_name(ir::VariableKind kind);
+/// The argument (or, for a scalar, the local) that holds an array: "M", "F", "T", "S_q", ...
+const char* cpp_array_name(ir::Array array);
+
+/// How a generated function reads a variable: "t", "q(0)", "lambda(1)", "p.m".
+/// \pre a parameter's index is below options.parameter_names.size()
+std::string cpp_variable(const ir::Variable& variable, const CppPrintOptions& options);
+/// The lvalue of a target: "M(0, 1)", "F(2)", "T".
+std::string cpp_target(const ir::Target& target);
 
 }  // namespace eomgen

@@ -3,20 +3,20 @@
 #include <string>
 #include <vector>
 
-#include "eomgen/derivation/equations_of_motion.hpp"
+#include "eomgen/codegen/cpp_identifier.hpp"  // the spelling of the model's names in the header
 #include "eomgen/codegen/ir.hpp"
+#include "eomgen/derivation/equations_of_motion.hpp"
 #include "eomgen/derivation/model_equations.hpp"
 
 namespace eomgen {
+
+struct SymbolicLinearization;  // eomgen/derivation/linearization.hpp
 
 struct EmitOptions {
   std::string outer_namespace = "eomgen_models";
   std::string source_name;  // file name shown in the banner (sanitized)
   /// false: print every output as its own tree, without shared temporaries (for comparison)
   bool share_subexpressions = true;
-  /// also emit linearization_terms() and linearization(): A and B about any operating point,
-  /// from exact derivatives (for gain scheduling)
-  bool linearization = false;
 };
 
 /// Operation counts of one generated function.
@@ -31,15 +31,17 @@ struct EmittedModel {
   std::vector<FunctionStatistics> statistics;
 };
 
+/// The header of a model: its metadata and the functions of its equations (M, F, Xi, Xi_t, b,
+/// phi, T, V and the outputs).
 /// \throws EmitError if an expression cannot be printed, or if model.independent_speeds is neither
 ///         empty nor nq - nc distinct coordinate indices.
 EmittedModel emit_model(const Model& model, const ModelEquations& equations, const EmitOptions& options = {});
 
-/// `name` as a C++ identifier that cannot clash with keywords, reserved names or the
-/// generated code's own locals: a trailing '_' is added where needed.
-std::string cpp_identifier(const std::string& name);
-
-/// `text` as the contents of a C++ string literal (quotes not included).
-std::string cpp_string_contents(const std::string& text);
+/// The same header with linearization_terms() and linearization() besides: A and B about any
+/// operating point, from exact derivatives (for gain scheduling). `linearization` is
+/// linearize_symbolic(model, equations).
+/// \throws EmitError as the overload without a linearization.
+EmittedModel emit_model(const Model& model, const ModelEquations& equations,
+                        const SymbolicLinearization& linearization, const EmitOptions& options = {});
 
 }  // namespace eomgen

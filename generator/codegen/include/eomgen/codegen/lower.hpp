@@ -15,14 +15,22 @@
 
 namespace eomgen {
 
-/// A value to compute and where it goes (C++ lvalue text).
+/// A value to compute and where it goes.
 struct LoweringTarget {
-  std::string target;
+  ir::Target target;
   GiNaC::ex value;
 };
 
-/// Maps each model symbol to the C++ text that reads it ("q[0]", "p.m").
-using VariableNames = std::map<GiNaC::ex, std::string, GiNaC::ex_is_less>;
+/// An input of the generated functions as the lowering sees it: the IR variable, and a name
+/// unique to it that places it among the operands of sums and products (the canonical order
+/// comes from names, values and structure only).
+struct NamedVariable {
+  ir::Variable variable;
+  std::string name;
+};
+
+/// Maps each model symbol to the input it reads.
+using VariableNames = std::map<GiNaC::ex, NamedVariable, GiNaC::ex_is_less>;
 
 /// Lowers the targets jointly. Intermediates of `subexpressions` are followed to their
 /// definitions. Targets whose value is exactly zero are dropped (the caller zeroes the output).

@@ -1,0 +1,118 @@
+#include "function_source.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cassert>
+#include <iterator>
+#include <set>
+
+namespace eomgen {
+namespace {
+
+using ir::Array;
+using ir::VariableKind;
+
+// the type alias of the generated Model that holds an array
+const char* array_type(Array array) {
+  switch (array) {
+    case Array::mass_matrix:
+    case Array::stiffness:
+    case Array::damping:
+      return "MassMatrix";
+    case Array::forcing: return "Vector";
+    case Array::constraint_jacobian:
+    case Array::acceleration_constraint_by_q:
+    case Array::acceleration_constraint_by_qd:
+      return "ConstraintJacobian";
+    case Array::constraint_rate_term:
+    case Array::constraint_acceleration_term:
+      return "ConstraintVector";
+    case Array::holonomic_residuals: return "HolonomicVector";
+    case Array::outputs: return "OutputVector";
+    case Array::input_matrix: return "InputMatrix";
+    case Array::kinetic_energy:
+    case Array::potential_energy:
+      return "Scalar";
+  }
+  return "Scalar";  // not an enumerator of Array
+}
+
+// the declaration of the argument holding the variables of a kind
+std::string input_declaration(VariableKind kind) {
+  const char* name = cpp_argument_name(kind);
+  switch (kind) {
+    case VariableKind::time: return fmt::format("const Scalar& {}", name);
+    case VariableKind::parameter: return fmt::format("const Parameters<Scalar>& {}", name);
+    case VariableKind::input: return fmt::format("const Inputs<Scalar>& {}", name);
+    case VariableKind::multiplier: return fmt::format("const ConstraintVector<Scalar>& {}", name);
+    case VariableKind::coordinate:
+    case VariableKind::rate:
+    case VariableKind::acceleration:
+      return fmt::format("const Vector<Scalar>& {}", name);
+  }
+  return name;  // not an enumerator of VariableKind
+}
+
+// every argument may go unused in a particular model (M of a pendulum ignores t)
+std::string signature(const FunctionSpec& f) {
+  assert(std::is_sorted(f.reads.begin(), f.reads.end()));  // t, q, qd, u, p, qdd, lambda
+  std::vector<std::string> declarations;
+  for (VariableKind kind : f.reads) declarations.push_back(input_declaration(kind));
+  if (!returns_scalar(f))
+    for (Array array : f.writes) declarations.push_back(fmt::format("{}<Scalar>& {}", array_type(array), cpp_array_name(array)));
+  std::string s;
+  for (std::size_t k = 0; k < declarations.size(); ++k) s += (k ? ", " : "") + std::string("[[maybe_unused]] ") + declarations[k];
+  return s;
+}
+
+// `using std::sin; ...` for every call op, six to a line, so that unqualified calls find the
+// <cmath> overloads, and argument-dependent lookup those of a user's scalar type
+std::string math_using_declarations(const std::string& indent) {
+  std::string s;
+  const std::size_t count = std::size(ir::call_ops);
+  for (std::size_t i = 0; i < count; ++i)
+    s += fmt::format("{}using std::{};{}", i % 6 == 0 ? indent : " ", ir::call_ops[i].cpp_name,
+                     i % 6 == 5 || i + 1 == count ? "\n" : "");
+  return s;
+}
+
+}  // namespace
+
+std::string function_source(const FunctionSpec& f, const ir::Program& program, const CppPrintOptions& print) {
+  const bool scalar = returns_scalar(f);
+  const std::string result = scalar ? cpp_target(f.targets.front().target) : std::string();
+  std::string code = fmt::format("\n  /// {}\n  template <class Scalar>\n  static {} {}({}) noexcept {{\n", f.doc,
+                                 scalar ? "Scalar" : "void", f.name, signature(f));
+  code += math_using_declarations(print.indent);
+  if (scalar) code += fmt::format("{}Scalar {} = Scalar(0);\n", print.indent, result);
+  code += print_cpp(program, print);
+  // structural zeros are written as zeros, not computed
+  std::set<ir::Target> computed;
+  for (const ir::Assignment& a : program.outputs) computed.insert(a.target);
+  for (const LoweringTarget& target : f.targets)
+    if (!computed.count(target.target) && !scalar)
+      code += fmt::format("{}{} = Scalar(0);\n", print.indent, cpp_target(target.target));
+  for (const auto& [target, source] : f.mirrors)
+    code += fmt::format("{}{} = {};\n", print.indent, cpp_target(target),
+                        computed.count(source) ? cpp_target(source) : "Scalar(0)");
+  if (scalar) code += fmt::format("{}return {};\n", print.indent, result);
+  return code + "  }\n";
+}
+
+EmittedFunctions emit_functions(const std::vector<FunctionSpec>& table,
+                                const std::vector<const Subexpressions*>& intermediates,
+                                const VariableNames& variables, const CppPrintOptions& print) {
+  std::vector<std::vector<LoweringTarget>> targets;
+  for (const FunctionSpec& f : table) targets.push_back(f.targets);
+  const std::vector<ir::Program> programs = lower_functions(targets, intermediates, variables);
+  EmittedFunctions emitted;
+  for (std::size_t k = 0; k < table.size(); ++k) {
+    emitted.statistics.push_back(
+        {table[k].name, ir::count_operations_without_sharing(programs[k]), ir::count_operations(programs[k])});
+    emitted.source += function_source(table[k], programs[k], print);
+  }
+  return emitted;
+}
+
+}  // namespace eomgen

@@ -1,0 +1,37 @@
+#pragma once
+// The function table: which functions a generated model has, what each reads and writes, and
+// the value of every entry it writes. Everything here is symbolic; function_source.hpp spells it.
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "eomgen/codegen/ir.hpp"
+#include "eomgen/codegen/lower.hpp"
+#include "eomgen/derivation/model_equations.hpp"
+
+namespace eomgen {
+
+struct SymbolicLinearization;
+
+/// One generated function (a static member of the generated Model).
+struct FunctionSpec {
+  std::string name;  ///< of the member function, e.g. "mass_matrix"
+  std::string doc;   ///< one line of documentation
+  /// its inputs, as arguments, sorted in the order of VariableKind (t, q and p always)
+  std::vector<ir::VariableKind> reads;
+  /// its outputs, as arguments after the inputs; a single scalar (T, V) is returned instead
+  std::vector<ir::Array> writes;
+  /// every entry it writes, structural zeros included, in the order they are computed
+  std::vector<LoweringTarget> targets;
+  /// entries copied after the body (first = second): the lower triangle of M
+  std::vector<std::pair<ir::Target, ir::Target>> mirrors;
+};
+
+/// The functions of every model, then, if `linearization` is given (linearize_symbolic of the
+/// same model and equations), linearization_terms.
+std::vector<FunctionSpec> function_table(const ModelEquations& equations, const SymbolicLinearization* linearization);
+
+/// True if the function returns its single scalar output instead of writing arguments.
+bool returns_scalar(const FunctionSpec& function);
+
+}  // namespace eomgen

@@ -1,0 +1,22 @@
+#pragma once
+// The assembly of a generated header around its functions, and the hash that identifies it.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "eomgen/codegen/emit_model.hpp"
+#include "function_table.hpp"
+
+namespace eomgen {
+
+/// The model's hash: of every target and the functions' source (the equations as printed),
+/// and of the declared independent speeds, which change how the runtime solves the model.
+std::uint64_t model_fingerprint(const Model& model, const std::vector<FunctionSpec>& table,
+                                const std::string& functions);
+
+/// The header: banner, includes, namespaces, and the Model struct with its metadata, type
+/// aliases, Parameters and `functions` (the member functions' source).
+std::string assemble_header(const Model& model, const ModelEquations& equations, const std::string& functions,
+                            std::uint64_t model_hash, bool linearized, const EmitOptions& options);
+
+}  // namespace eomgen
