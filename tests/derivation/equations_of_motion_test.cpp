@@ -8,7 +8,7 @@
 
 #include "eomgen/derivation/literal_lagrange.hpp"
 #include "eomgen/symbolic/simplify.hpp"
-#include "test_utils.hpp"
+#include "support/symbolic_checks.hpp"
 
 namespace eomgen {
 namespace {

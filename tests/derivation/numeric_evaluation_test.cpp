@@ -7,7 +7,7 @@
 #include <string>
 
 #include "eomgen/base/error.hpp"
-#include "test_models.hpp"
+#include "support/test_models.hpp"
 
 namespace eomgen {
 namespace {

@@ -18,7 +18,7 @@
 #include "eomgen/derivation/literal_lagrange.hpp"
 #include "eomgen/mechanics/mechanical_system.hpp"
 #include "eomgen/mechanics/rotation.hpp"
-#include "test_utils.hpp"
+#include "support/symbolic_checks.hpp"
 
 namespace {
 

@@ -24,7 +24,7 @@
 #include "eomgen/language/model_file.hpp"
 #include "eomgen/mechanics/rotation.hpp"
 #include "eomgen/symbolic/simplify.hpp"
-#include "test_utils.hpp"
+#include "support/symbolic_checks.hpp"
 #include "support/source_dir.hpp"
 
 namespace {
@@ -46,7 +46,7 @@ using GiNaC::matrix;
 using GiNaC::pow;
 using GiNaC::sin;
 
-// The models sit two directories above this file: tests/generator/ -> models/.
+// The repository's models/ folder.
 fs::path models_dir() { return eomgen::testing::source_dir() / "models"; }
 
 fs::path model_path(const std::string& name) { return models_dir() / (name + ".eom"); }

@@ -7,7 +7,7 @@
 
 #include "eomgen/base/error.hpp"
 #include "eomgen/symbolic/simplify.hpp"
-#include "test_utils.hpp"
+#include "support/symbolic_checks.hpp"
 
 namespace eomgen {
 namespace {
