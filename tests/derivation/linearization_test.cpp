@@ -12,11 +12,13 @@
 #include "eomgen/derivation/model_equations.hpp"
 #include "eomgen/language/model_file.hpp"
 #include "eomgen/derivation/numeric_evaluation.hpp"
+#include "support/numeric_checks.hpp"
 #include "support/source_dir.hpp"
 
 namespace eomgen {
 namespace {
 
+using testing::matrices_near;
 
 Model shipped(const std::string& name) {
   return load_model(eomgen::testing::shipped_model_path(name));
@@ -27,15 +29,6 @@ LinearModel linearize_at(const Model& model, const NamedValues& point, bool drop
   LinearizeOptions options;
   options.drop_cyclic = drop_cyclic;
   return linearize(model, eom, linearize_symbolic(model, eom), point, options);
-}
-
-::testing::AssertionResult matrices_near(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b, double tol) {
-  if (a.rows() != b.rows() || a.cols() != b.cols())
-    return ::testing::AssertionFailure() << "shapes " << a.rows() << "x" << a.cols() << " vs " << b.rows() << "x"
-                                         << b.cols();
-  const double gap = (a - b).cwiseAbs().maxCoeff();
-  if (gap <= tol) return ::testing::AssertionSuccess();
-  return ::testing::AssertionFailure() << "differ by " << gap << "\n" << a << "\nvs\n" << b;
 }
 
 TEST(Linearization, HangingPendulumOscillatesAtSqrtGOverLAndTheIndirectMethodCannotConclude) {

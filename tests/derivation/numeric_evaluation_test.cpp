@@ -33,19 +33,7 @@ Model simple_pendulum() {
 
 Model double_pendulum() { return testing::double_pendulum_model(); }
 
-// the simple pendulum in Cartesian coordinates with the rod as a constraint x^2 + y^2 - l^2 = 0
-Model cartesian_pendulum() {
-  Model model;
-  model.name = "cartesian_pendulum";
-  MechanicalSystem& s = model.system;
-  const Coordinate x = s.add_coordinate("x"), y = s.add_coordinate("y");
-  const ex m = s.add_parameter("m", 2.0, "kg"), l = s.add_parameter("l", 1.5, "m");
-  const ex g = s.add_parameter("g", 9.81, "m/s^2");
-  s.add_particle("bob", m, s.add_point("p", s.origin(), Vector(s.inertial_frame(), x.q, y.q, 0)));
-  s.set_gravity(Vector(s.inertial_frame(), g, 0, 0));
-  s.add_holonomic_constraint("rod", x.q * x.q + y.q * y.q - l * l);
-  return model;
-}
+Model cartesian_pendulum() { return testing::cartesian_pendulum_model(); }
 
 // free rigid body with a scalar-last quaternion and its norm constraint; M is singular
 // (qd along q does not change the attitude) but the KKT matrix is regular
