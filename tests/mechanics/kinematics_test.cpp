@@ -7,6 +7,7 @@
 
 #include "eomgen/base/error.hpp"
 #include "eomgen/symbolic/simplify.hpp"
+#include "support/expect_throw.hpp"
 #include "support/symbolic_checks.hpp"
 
 namespace eomgen {
@@ -187,7 +188,9 @@ TEST(Kinematics, DotAndCrossAreFrameIndependent) {
 TEST(Kinematics, PartialDerivativeRejectsNonCoordinates) {
   ThreeDimensionalTree t;
   const Vector r = position(t.s, t.e, t.s.origin());
-  EXPECT_THROW(partial_derivative(t.s, r, GiNaC::ex_to<GiNaC::symbol>(t.L), t.s.inertial_frame()), DerivationError);
+  EXPECT_THROW_MESSAGE(partial_derivative(t.s, r, GiNaC::ex_to<GiNaC::symbol>(t.L), t.s.inertial_frame()),
+                       DerivationError,
+                       "partial derivative of a vector: 'L' is not a coordinate or a rate of the model");
 }
 
 }  // namespace
