@@ -306,7 +306,7 @@ void run_eval(const Options& o) {
     j["F"] = column(eq.forcing);
     j["Xi"] = rows(eq.constraint_jacobian);
     j["Xi_t"] = column(eq.constraint_rate_term);
-    j["constraint_bias"] = column(eq.constraint_acceleration_term);
+    j["b"] = column(eq.constraint_acceleration_term);
     j["phi"] = column(eq.holonomic_residuals);
     j["T"] = eq.kinetic_energy;
     j["V"] = eq.potential_energy;
@@ -330,7 +330,7 @@ void run_eval(const Options& o) {
     std::cout << "Constraints: " << join(constraints) << "\n";
     print_matrix("Xi", eq.constraint_jacobian);
     print_matrix("Xi_t", eq.constraint_rate_term);
-    print_matrix("constraint_bias = dXi/dt qd + dXi_t/dt", eq.constraint_acceleration_term);
+    print_matrix("b = dXi/dt qd + dXi_t/dt", eq.constraint_acceleration_term);
     print_matrix("phi", eq.holonomic_residuals);
   }
   std::cout << "T = " << number(eq.kinetic_energy) << "\nV = " << number(eq.potential_energy) << "\n";
@@ -465,7 +465,7 @@ int main(int argc, char** argv) {
   derive->add_option("-f,--format", o.format, "Output format")
       ->check(CLI::IsMember({"text", "latex", "markdown"}))
       ->capture_default_str();
-  derive->add_option("--only", o.only, "Parts to print, comma-separated: M,F,Xi,Xi_t,constraint_bias,phi,T,V,outputs")
+  derive->add_option("--only", o.only, "Parts to print, comma-separated: M,F,Xi,Xi_t,b,phi,T,V,outputs")
       ->type_name("PARTS");
   CLI::Option* shared = derive->add_flag("--intermediates", o.shared,
                                          "Print in terms of shared intermediates, then their definitions");

@@ -243,7 +243,7 @@ TEST_F(Cli, EvalJsonIsParseableAndSolvesTheKktSystem) {
   const nlohmann::json j = nlohmann::json::parse(run.out);
   EXPECT_EQ(j["coordinates"], nlohmann::json({"x", "y"}));
   EXPECT_EQ(j["constraints"], nlohmann::json({"rod"}));
-  for (const char* key : {"M", "F", "Xi", "Xi_t", "constraint_bias", "T", "V", "qdd", "lambda", "outputs"})
+  for (const char* key : {"M", "F", "Xi", "Xi_t", "b", "T", "V", "qdd", "lambda", "outputs"})
     EXPECT_TRUE(j.contains(key)) << key;
   EXPECT_EQ(j["M"], nlohmann::json({{m, 0.0}, {0.0, m}}));
   EXPECT_EQ(j["F"], nlohmann::json({m * g, 0.0}));

@@ -141,7 +141,7 @@ TEST(TextOutput, HolonomicConstraintGivesJacobianBiasAndResidual) {
   EXPECT_THAT(text, HasSubstr("  Xi[1,1] = 2*x\n  Xi[1,2] = 2*y\n"));
   EXPECT_THAT(text, HasSubstr("  Xi_t[1] = 0\n"));
   // d/dt (2 x xd + 2 y yd) at qdd = 0
-  EXPECT_THAT(text, HasSubstr("  constraint_bias[1] = 2*x_dot^2 + 2*y_dot^2\n"));
+  EXPECT_THAT(text, HasSubstr("  b[1] = 2*x_dot^2 + 2*y_dot^2\n"));
   EXPECT_THAT(text, HasSubstr("  phi[1] = -l^2 + x^2 + y^2\n"));
   EXPECT_THAT(text, HasSubstr("(rows: 1 = rod)"));
 }
@@ -150,7 +150,7 @@ TEST(TextOutput, NonholonomicConstraintHasNoResidualSection) {
   const std::string text = print(knife_edge());
   EXPECT_THAT(text, HasSubstr("  1. no_slip (nonholonomic)\n"));
   EXPECT_THAT(text, HasSubstr("  Xi[1,1] = -sin(psi)\n  Xi[1,2] = cos(psi)\n  Xi[1,3] = 0\n"));
-  EXPECT_THAT(text, HasSubstr("  constraint_bias[1] = -x_dot*psi_dot*cos(psi) - y_dot*psi_dot*sin(psi)\n"));
+  EXPECT_THAT(text, HasSubstr("  b[1] = -x_dot*psi_dot*cos(psi) - y_dot*psi_dot*sin(psi)\n"));
   EXPECT_THAT(text, Not(HasSubstr("phi[")));
 }
 
@@ -160,22 +160,19 @@ TEST(PartSelection, PrintsOnlyTheNamedParts) {
   const std::string text = print(cartesian_pendulum(), options);
   EXPECT_THAT(text, HasSubstr("M[1,1] = m"));
   EXPECT_THAT(text, HasSubstr("T = "));
-  for (const char* absent : {"F[1]", "Xi[", "Xi_t[", "constraint_bias[", "phi[", "V = "})
+  for (const char* absent : {"F[1]", "Xi[", "Xi_t[", "b[", "phi[", "V = "})
     EXPECT_THAT(text, Not(HasSubstr(absent)));
-  options.parts = parse_equation_parts("constraint_bias,outputs");
+  options.parts = parse_equation_parts("b,outputs");
   EXPECT_THAT(print(simple_pendulum(), options), HasSubstr("height = l*cos(theta)"));
 }
 
 TEST(PartSelection, UnknownOrEmptyListIsAnErrorListingTheKeys) {
-  EXPECT_THROW_MESSAGE(
-      parse_equation_parts("M,Q"), Error,
-      "selecting parts to print: unknown part 'Q'; accepted: M, F, Xi, Xi_t, constraint_bias, phi, T, V, outputs");
-  EXPECT_THROW_MESSAGE(
-      parse_equation_parts(""), Error,
-      "selecting parts to print: the list is empty; accepted: M, F, Xi, Xi_t, constraint_bias, phi, T, V, outputs");
-  EXPECT_THROW_MESSAGE(
-      parse_equation_parts("M,,F"), Error,
-      "selecting parts to print: unknown part ''; accepted: M, F, Xi, Xi_t, constraint_bias, phi, T, V, outputs");
+  EXPECT_THROW_MESSAGE(parse_equation_parts("M,Q"), Error,
+                       "selecting parts to print: unknown part 'Q'; accepted: M, F, Xi, Xi_t, b, phi, T, V, outputs");
+  EXPECT_THROW_MESSAGE(parse_equation_parts(""), Error,
+                       "selecting parts to print: the list is empty; accepted: M, F, Xi, Xi_t, b, phi, T, V, outputs");
+  EXPECT_THROW_MESSAGE(parse_equation_parts("M,,F"), Error,
+                       "selecting parts to print: unknown part ''; accepted: M, F, Xi, Xi_t, b, phi, T, V, outputs");
 }
 
 TEST(SharedForm, ListsEveryUsedIntermediateOnceInOrder) {

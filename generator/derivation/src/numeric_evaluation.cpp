@@ -86,7 +86,7 @@ NumericEquations evaluate_equations(const Model& model, const ModelEquations& eo
   out.forcing = evaluate_column(eom.forcing, eval, "F");
   out.constraint_jacobian = evaluate_matrix(eom.constraint_jacobian, eval, "Xi");
   out.constraint_rate_term = evaluate_column(eom.constraint_rate_term, eval, "Xi_t");
-  out.constraint_acceleration_term = evaluate_column(eom.constraint_acceleration_term, eval, "constraint_bias");
+  out.constraint_acceleration_term = evaluate_column(eom.constraint_acceleration_term, eval, "b");
   out.holonomic_residuals = evaluate_column(eom.holonomic_residuals, eval, "phi");
   out.kinetic_energy = eval.finite(eom.kinetic_energy, "T");
   out.potential_energy = eval.finite(eom.potential_energy, "V");

@@ -41,7 +41,7 @@ struct PartKey {
 constexpr PartKey part_keys[] = {
     {"M", &EquationParts::mass_matrix},          {"F", &EquationParts::forcing},
     {"Xi", &EquationParts::constraint_jacobian}, {"Xi_t", &EquationParts::constraint_rate_term},
-    {"constraint_bias", &EquationParts::constraint_bias}, {"phi", &EquationParts::holonomic_residuals},
+    {"b", &EquationParts::constraint_acceleration_term}, {"phi", &EquationParts::holonomic_residuals},
     {"T", &EquationParts::kinetic_energy},       {"V", &EquationParts::potential_energy},
     {"outputs", &EquationParts::outputs},
 };
@@ -121,14 +121,12 @@ std::vector<Section> raw_sections(const Model& model, const ModelEquations& eom,
     out.push_back({fmt::format("Constraint rate term Xi_t ({} x 1), with Xi qd + Xi_t = 0", m),
                    fmt::format("Constraint rate term $\\Xi_t$ (${} \\times 1$), with $\\Xi \\dot{{q}} + \\Xi_t = 0$", m),
                    rows, matrix_entries(eom.constraint_rate_term, "Xi_t", "(\\Xi_t)", true)});
-  if (m > 0 && parts.constraint_bias)
-    out.push_back({fmt::format("Constraint acceleration term dXi/dt qd + dXi_t/dt ({} x 1), "
-                               "with Xi qdd + (dXi/dt qd + dXi_t/dt) = 0", m),
-                   fmt::format("Constraint acceleration term $\\dot{{\\Xi}} \\dot{{q}} + \\dot{{\\Xi}}_t$ "
-                               "(${} \\times 1$), with $\\Xi \\ddot{{q}} + \\dot{{\\Xi}} \\dot{{q}} + "
-                               "\\dot{{\\Xi}}_t = 0$", m),
-                   rows, matrix_entries(eom.constraint_acceleration_term, "constraint_bias",
-                                        "(\\dot{\\Xi} \\dot{q} + \\dot{\\Xi}_t)", true)});
+  if (m > 0 && parts.constraint_acceleration_term)
+    out.push_back({fmt::format("Constraint acceleration term b = dXi/dt qd + dXi_t/dt ({} x 1), "
+                               "with Xi qdd + b = 0", m),
+                   fmt::format("Constraint acceleration term $b = \\dot{{\\Xi}} \\dot{{q}} + \\dot{{\\Xi}}_t$ "
+                               "(${} \\times 1$), with $\\Xi \\ddot{{q}} + b = 0$", m),
+                   rows, matrix_entries(eom.constraint_acceleration_term, "b", "b", true)});
   if (eom.holonomic_residuals.rows() > 0 && parts.holonomic_residuals)
     out.push_back({fmt::format("Holonomic constraints phi(q, t) = 0 ({} x 1)", eom.holonomic_residuals.rows()),
                    fmt::format("Holonomic constraints $\\phi(q, t) = 0$ (${} \\times 1$)",

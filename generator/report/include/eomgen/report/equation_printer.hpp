@@ -21,14 +21,14 @@ struct EquationParts {
   bool forcing = true;               ///< "F"
   bool constraint_jacobian = true;   ///< "Xi"
   bool constraint_rate_term = true;  ///< "Xi_t"
-  bool constraint_bias = true;       ///< "constraint_bias": dXi/dt qd + dXi_t/dt
+  bool constraint_acceleration_term = true;  ///< "b" = dXi/dt qd + dXi_t/dt
   bool holonomic_residuals = true;   ///< "phi"
   bool kinetic_energy = true;        ///< "T"
   bool potential_energy = true;      ///< "V"
   bool outputs = true;               ///< "outputs"
 };
 
-/// Parses a comma-separated selection such as "M,F,constraint_bias"; only the named parts are set.
+/// Parses a comma-separated selection such as "M,F,b"; only the named parts are set.
 /// \throws Error for an empty list or an unknown key; the message lists the accepted keys.
 EquationParts parse_equation_parts(const std::string& list);
 
