@@ -22,11 +22,13 @@
 #include "heavy_top.hpp"
 #include "rolling_coin.hpp"
 #include "spacecraft_panel.hpp"
+#include "support/numeric_checks.hpp"
 #include "support/source_dir.hpp"
 
 namespace {
 
 using eomgen::NamedValues;
+using eomgen::testing::matrices_near_relative;
 
 template <class Model>
 struct OperatingPoint {
@@ -72,16 +74,6 @@ eomgen::LinearModel generator_linearization(const std::string& name, const Named
   return eomgen::linearize(model, eom, eomgen::linearize_symbolic(model, eom), point);
 }
 
-void expect_near(const Eigen::MatrixXd& actual, const Eigen::MatrixXd& expected, double relative, const char* what) {
-  ASSERT_EQ(actual.rows(), expected.rows()) << what;
-  ASSERT_EQ(actual.cols(), expected.cols()) << what;
-  if (expected.size() == 0) return;
-  const double tolerance = relative * std::max(1.0, expected.cwiseAbs().maxCoeff());
-  for (Eigen::Index i = 0; i < actual.rows(); ++i)
-    for (Eigen::Index j = 0; j < actual.cols(); ++j)
-      EXPECT_NEAR(actual(i, j), expected(i, j), tolerance) << what << "(" << i << ", " << j << ")";
-}
-
 // [A B] of the runtime's accelerations by central differences: KKT for constrained models
 // (defined on and off the constraint manifold), Cholesky otherwise
 template <class Model>
@@ -119,12 +111,12 @@ void expect_matches_references(const std::string& name, const NamedValues& point
   const OperatingPoint<Model> x = at<Model>(point);
   const Generated generated = generated_linearization(x);
   const Generated differences = central_differences(x);
-  expect_near(generated.A, differences.A, 1e-6, "A against central differences");
-  expect_near(generated.B, differences.B, 1e-6, "B against central differences");
+  EXPECT_TRUE(matrices_near_relative(generated.A, differences.A, 1e-6)) << "A against central differences";
+  EXPECT_TRUE(matrices_near_relative(generated.B, differences.B, 1e-6)) << "B against central differences";
   if (Model::nc == 0) {
     const eomgen::LinearModel lin = generator_linearization(name, point);
-    expect_near(generated.A, lin.A, 1e-12, "A against linearize()");
-    expect_near(generated.B, lin.B, 1e-12, "B against linearize()");
+    EXPECT_TRUE(matrices_near_relative(generated.A, lin.A, 1e-12)) << "A against linearize()";
+    EXPECT_TRUE(matrices_near_relative(generated.B, lin.B, 1e-12)) << "B against linearize()";
   }
 }
 
@@ -193,10 +185,10 @@ TEST(GeneratedLinearization, SecondOrderFormOfTheCartPoleUprightIsTheClosedForm)
   Model::InputMatrix<double> B_u;
   ASSERT_TRUE(Model::second_order_linearization(0.0, x.q, x.qd, x.u, p, M, D, K, B_u));
   const eomgen::LinearModel lin = generator_linearization("cart_pole", {});
-  expect_near(M, lin.M, 1e-14, "M");
-  expect_near(D, lin.D, 1e-14, "D");
-  expect_near(K, lin.K, 1e-14, "K");
-  expect_near(B_u, lin.B_u, 1e-14, "B_u");
+  EXPECT_TRUE(matrices_near_relative(M, lin.M, 1e-14)) << "M";
+  EXPECT_TRUE(matrices_near_relative(D, lin.D, 1e-14)) << "D";
+  EXPECT_TRUE(matrices_near_relative(K, lin.K, 1e-14)) << "K";
+  EXPECT_TRUE(matrices_near_relative(B_u, lin.B_u, 1e-14)) << "B_u";
   EXPECT_NEAR(K(1, 1), -p.mp * p.g * p.l / 2, 1e-14);  // gravity destabilizes the pole
   EXPECT_EQ(K(0, 0), 0.0);
   EXPECT_EQ(D.cwiseAbs().maxCoeff(), 0.0);  // no damping, and at rest no gyroscopic terms
@@ -237,8 +229,8 @@ TEST(GeneratedLinearization, FloatInstantiationAgreesWithDouble) {
   ASSERT_TRUE(Model::linearization(0.0f, x.q.cast<float>().eval(), x.qd.cast<float>().eval(), x.u.cast<float>().eval(),
                                    Model::Parameters<float>{}, A, B));
   const Generated reference = generated_linearization(x);
-  expect_near(A.cast<double>(), reference.A, 1e-5, "A in float");
-  expect_near(B.cast<double>(), reference.B, 1e-5, "B in float");
+  EXPECT_TRUE(matrices_near_relative(A.cast<double>(), reference.A, 1e-5)) << "A in float";
+  EXPECT_TRUE(matrices_near_relative(B.cast<double>(), reference.B, 1e-5)) << "B in float";
 }
 
 }  // namespace

@@ -12,6 +12,7 @@
 
 #include "eomrt/eomrt.hpp"
 #include "runtime/scalar_types.hpp"
+#include "support/expect_throw.hpp"
 #include "runtime/handwritten_models.hpp"
 
 namespace eomrt {
@@ -189,9 +190,12 @@ TEST(ForwardDynamics, NonFiniteStateIsReported) {
 
 TEST(SpeedPartition, RejectsRepeatedAndOutOfRangeIndices) {
   using Model = RedundantMass<false>;  // nq = 2, nc = 0: two independent speeds
-  EXPECT_THROW(independent_speeds<Model>({{0, 0}}), std::invalid_argument);
-  EXPECT_THROW(independent_speeds<Model>({{0, 2}}), std::invalid_argument);
-  EXPECT_THROW(independent_speeds<Model>({{-1, 1}}), std::invalid_argument);
+  EXPECT_THROW_MESSAGE(independent_speeds<Model>({{0, 0}}), std::invalid_argument,
+                       "SpeedPartition: independent speeds expected distinct indices in [0, 2), got 0 twice");
+  EXPECT_THROW_MESSAGE(independent_speeds<Model>({{0, 2}}), std::invalid_argument,
+                       "SpeedPartition: independent speeds expected distinct indices in [0, 2), got 2");
+  EXPECT_THROW_MESSAGE(independent_speeds<Model>({{-1, 1}}), std::invalid_argument,
+                       "SpeedPartition: independent speeds expected distinct indices in [0, 2), got -1");
   const SpeedPartition<CartesianPendulum> ok = independent_speeds<CartesianPendulum>({{1}});
   EXPECT_EQ(ok.dependent[0], 0);
 }

@@ -15,6 +15,7 @@
 
 #include "eomrt/eomrt.hpp"
 #include "runtime/scalar_types.hpp"
+#include "support/expect_throw.hpp"
 
 namespace eomrt {
 namespace {
@@ -144,8 +145,10 @@ TEST(RkStep, DoesNotAllocateWithPreallocatedDynamicWorkspace) {
 }
 
 TEST(RkWorkspace, RejectsDimensionDifferentFromFixedSize) {
-  EXPECT_THROW((RkWorkspace<Eigen::Vector3d, 4>(2)), std::invalid_argument);
-  EXPECT_THROW((RkWorkspace<Eigen::VectorXd, 4>(-1)), std::invalid_argument);
+  EXPECT_THROW_MESSAGE((RkWorkspace<Eigen::Vector3d, 4>(2)), std::invalid_argument,
+                       "RkWorkspace: state dimension expected 3, got 2");
+  EXPECT_THROW_MESSAGE((RkWorkspace<Eigen::VectorXd, 4>(-1)), std::invalid_argument,
+                       "RkWorkspace: state dimension expected >= 0, got -1");
 }
 
 // the same tests over double and long double (practice 12)
@@ -237,14 +240,12 @@ TEST(IntegrateFixed, StopsWithRhsFailedAtTheLastObservedStateWhenRhsCannotEvalua
 TEST(IntegrateFixed, RejectsNonPositiveStepAndReversedSpanBeforeStepping) {
   const auto f = [](double, const Eigen::Vector2d& x, Eigen::Vector2d& dxdt) { dxdt = x; };
   const Eigen::Vector2d x0(1, 0);
-  EXPECT_THROW(integrate_fixed(rk4, f, 0.0, x0, 1.0, 0.0), std::invalid_argument);
-  EXPECT_THROW(integrate_fixed(rk4, f, 0.0, x0, 1.0, -0.1), std::invalid_argument);
-  EXPECT_THROW(integrate_fixed(rk4, f, 1.0, x0, 0.0, 0.1), std::invalid_argument);
-  try {
-    integrate_fixed(rk4, f, 0.0, x0, 1.0, -0.1);
-  } catch (const std::invalid_argument& e) {  // the message names the operation and the value
-    EXPECT_STREQ(e.what(), "integrate_fixed: step h expected positive and finite, got -0.1");
-  }
+  EXPECT_THROW_MESSAGE(integrate_fixed(rk4, f, 0.0, x0, 1.0, 0.0), std::invalid_argument,
+                       "integrate_fixed: step h expected positive and finite, got 0");
+  EXPECT_THROW_MESSAGE(integrate_fixed(rk4, f, 0.0, x0, 1.0, -0.1), std::invalid_argument,
+                       "integrate_fixed: step h expected positive and finite, got -0.1");
+  EXPECT_THROW_MESSAGE(integrate_fixed(rk4, f, 1.0, x0, 0.0, 0.1), std::invalid_argument,
+                       "integrate_fixed: time span expected finite with t_end >= t0, got [1, 0]");
 }
 
 }  // namespace

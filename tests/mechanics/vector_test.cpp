@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "eomgen/base/error.hpp"
+#include "support/expect_throw.hpp"
 
 namespace eomgen {
 namespace {
@@ -31,7 +32,8 @@ TEST(Vector, ScalarProductAndNegation) {
 }
 
 TEST(Vector, ComponentsMustBeAColumnOfThree) {
-  EXPECT_THROW(Vector(FrameId{0}, GiNaC::matrix(2, 1)), ModelError);
+  EXPECT_THROW_MESSAGE(Vector(FrameId{0}, GiNaC::matrix(2, 1)), ModelError,
+                       "physical vector: expected 3x1 components, got 2x1");
 }
 
 TEST(Vector, MapComponentsAppliesToEveryComponent) {

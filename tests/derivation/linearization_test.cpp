@@ -12,11 +12,14 @@
 #include "eomgen/derivation/model_equations.hpp"
 #include "eomgen/language/model_file.hpp"
 #include "eomgen/derivation/numeric_evaluation.hpp"
+#include "support/expect_throw.hpp"
+#include "support/numeric_checks.hpp"
 #include "support/source_dir.hpp"
 
 namespace eomgen {
 namespace {
 
+using testing::matrices_near;
 
 Model shipped(const std::string& name) {
   return load_model(eomgen::testing::shipped_model_path(name));
@@ -27,15 +30,6 @@ LinearModel linearize_at(const Model& model, const NamedValues& point, bool drop
   LinearizeOptions options;
   options.drop_cyclic = drop_cyclic;
   return linearize(model, eom, linearize_symbolic(model, eom), point, options);
-}
-
-::testing::AssertionResult matrices_near(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b, double tol) {
-  if (a.rows() != b.rows() || a.cols() != b.cols())
-    return ::testing::AssertionFailure() << "shapes " << a.rows() << "x" << a.cols() << " vs " << b.rows() << "x"
-                                         << b.cols();
-  const double gap = (a - b).cwiseAbs().maxCoeff();
-  if (gap <= tol) return ::testing::AssertionSuccess();
-  return ::testing::AssertionFailure() << "differ by " << gap << "\n" << a << "\nvs\n" << b;
 }
 
 TEST(Linearization, HangingPendulumOscillatesAtSqrtGOverLAndTheIndirectMethodCannotConclude) {
@@ -206,7 +200,9 @@ TEST(Linearization, CartesianPendulumReducesToTheAnglePendulum) {
   EXPECT_TRUE(matrices_near(lin.A, A, 1e-12));
   const StabilityReport report = assess_stability(lin.A);
   EXPECT_NEAR(report.eigenvalues(0).imag(), std::sqrt(9.81 / 0.5), 1e-12);
-  EXPECT_THROW(linearize_at(model, {}), Error);  // (0, 0) is off the constraint
+  EXPECT_THROW_MESSAGE(linearize_at(model, {}), Error,
+                       "linearizing cartesian_pendulum: the operating point violates the constraints (largest residual "
+                       "0.25); give coordinates and rates that satisfy them");  // (0, 0) is off the constraint
 }
 
 // Rolling upright and straight at speed v = r w, a thin disk's lean obeys (Euler's equations
@@ -246,7 +242,8 @@ TEST(Linearization, SingularMassMatrixAtThePointIsAnError) {
   // the 3-1-3 angles of the shipped top are singular upright
   const Model model = shipped("heavy_top");
   const ModelEquations eom = derive_equations(model);
-  EXPECT_THROW(linearize(model, eom, linearize_symbolic(model, eom), {{"phi_dot", 50.0}}), Error);
+  EXPECT_THROW_MESSAGE(linearize(model, eom, linearize_symbolic(model, eom), {{"phi_dot", 50.0}}), Error,
+                       "linearizing heavy_top: the mass matrix is singular at the operating point");
 }
 
 TEST(Equilibrium, NewtonFindsTheEquilibriaOfTheShippedModelsFromNearbyGuesses) {
@@ -270,7 +267,9 @@ TEST(Equilibrium, NewtonFindsTheEquilibriaOfTheShippedModelsFromNearbyGuesses) {
   EXPECT_NEAR(hanging.point.at("x"), 0.0, 1e-12);
   EXPECT_NEAR(hanging.point.at("y"), -0.5, 1e-12);
   EXPECT_NEAR(hanging.lambda(0), -1.0 * 9.81 / (2 * 0.5), 1e-10);
-  EXPECT_THROW(solve("knife_edge", {{"x_dot", 1.0}, {"tau", 1.0}}), Error);  // a steady torque: no equilibrium
+  EXPECT_THROW_MESSAGE(solve("knife_edge", {{"x_dot", 1.0}, {"tau", 1.0}}), Error,
+                       "finding an equilibrium of knife_edge: Newton's method stopped after 0 iterations with residual "
+                       "1; try another guess");  // a steady torque: no equilibrium
 }
 
 TEST(Stability, RepeatedEigenvalueWithoutEnoughEigenvectorsIsUnstableForTheLinearSystem) {

@@ -5,6 +5,7 @@
 
 #include "eomgen/codegen/cpp_printer.hpp"
 #include "eomgen/base/error.hpp"
+#include "support/expect_throw.hpp"
 
 namespace eomgen {
 namespace {
@@ -95,13 +96,15 @@ TEST(Lower, UnknownSymbolIsAnEmitError) {
   Symbols s;
   Subexpressions none;
   GiNaC::realsymbol stranger("stranger");
-  EXPECT_THROW(lower({{a, stranger * s.x}}, none, s.names()), EmitError);
+  EXPECT_THROW_MESSAGE(lower({{a, stranger * s.x}}, none, s.names()), EmitError,
+                       "code emission: the symbol 'stranger' is not an input of this function");
 }
 
 TEST(Lower, UnprintableFunctionIsAnEmitError) {
   Symbols s;
   Subexpressions none;
-  EXPECT_THROW(lower({{a, GiNaC::zeta(s.x)}}, none, s.names()), EmitError);
+  EXPECT_THROW_MESSAGE(lower({{a, GiNaC::zeta(s.x)}}, none, s.names()), EmitError,
+                       "code emission: the function 'zeta' has no C++ form");
 }
 
 TEST(Lower, EveryGiNaCFunctionOfACallsNameLowersToThatCall) {

@@ -18,7 +18,7 @@
 #include "eomgen/derivation/literal_lagrange.hpp"
 #include "eomgen/mechanics/mechanical_system.hpp"
 #include "eomgen/mechanics/rotation.hpp"
-#include "test_utils.hpp"
+#include "support/symbolic_checks.hpp"
 
 namespace {
 
@@ -31,7 +31,7 @@ using eomgen::Vector;
 using eomgen::testing::matrices_agree_at;
 using eomgen::testing::near_relative;
 using eomgen::testing::random_state;
-using eomgen::testing::to_double;
+using eomgen::testing::value_at;
 using GiNaC::cos;
 using GiNaC::ex;
 using GiNaC::exmap;
@@ -51,15 +51,6 @@ struct Model {
   ex V;                ///< potential energy
   ex input_power = 0;  ///< dE/dt = power of the non-conservative loads
 };
-
-ex value(const ex& e, const exmap& values) { return e.subs(values, GiNaC::subs_options::no_pattern); }
-
-Eigen::MatrixXd to_eigen(const matrix& m, const exmap& values) {
-  Eigen::MatrixXd out(m.rows(), m.cols());
-  for (unsigned i = 0; i < m.rows(); ++i)
-    for (unsigned j = 0; j < m.cols(); ++j) out(i, j) = to_double(value(m(i, j), values));
-  return out;
-}
 
 ex sq(const ex& e) { return pow(e, 2); }
 
@@ -283,7 +274,7 @@ void expect_symmetric_positive_definite_mass_matrix(const Model& md) {
   const EquationsOfMotion eom = eomgen::derive_equations(md.system);
   for (unsigned seed : kSeeds) {
     const exmap all = eom.subexpressions.evaluate_all(random_state(md.system, seed));
-    const Eigen::MatrixXd M = to_eigen(eom.mass_matrix, all);
+    const Eigen::MatrixXd M = value_at(eom.mass_matrix, all);
     EXPECT_LE((M - M.transpose()).norm(), 1e-14 * M.norm()) << "seed " << seed;
     EXPECT_EQ(M.llt().info(), Eigen::Success) << "seed " << seed << "\n" << M;
     const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(M);
@@ -305,7 +296,7 @@ void expect_literal_agreement(const Model& md) {
 // Accelerations from M qdd = F, solved numerically.
 Eigen::VectorXd solve_accelerations(const EquationsOfMotion& eom, const exmap& point) {
   const exmap all = eom.subexpressions.evaluate_all(point);
-  return to_eigen(eom.mass_matrix, all).llt().solve(to_eigen(eom.forcing, all));
+  return value_at(eom.mass_matrix, all).llt().solve(value_at(eom.forcing, all));
 }
 
 // 4(i). Energy balance: with qdd from M qdd = F, dE/dt = grad_q E . qd + grad_qd E . qdd + dE/dt
@@ -323,14 +314,14 @@ void expect_energy_rate_equals_input_power(const Model& md) {
   for (unsigned seed : kSeeds) {
     const exmap p = random_state(md.system, seed);
     const Eigen::VectorXd qdd = solve_accelerations(eom, p);
-    double rate = to_double(value(dE_dt, p)), scale = std::fabs(rate);
+    double rate = value_at(dE_dt, p), scale = std::fabs(rate);
     for (std::size_t k = 0; k < vars.coordinate_count(); ++k) {
-      const double a = to_double(value(dE_dq[k], p)) * to_double(value(vars.coordinates()[k].qd, p));
-      const double b = to_double(value(dE_dqd[k], p)) * qdd(static_cast<Eigen::Index>(k));
+      const double a = value_at(dE_dq[k], p) * value_at(vars.coordinates()[k].qd, p);
+      const double b = value_at(dE_dqd[k], p) * qdd(static_cast<Eigen::Index>(k));
       rate += a + b;
       scale += std::fabs(a) + std::fabs(b);
     }
-    const double power = to_double(value(md.input_power, p));
+    const double power = value_at(md.input_power, p);
     // relative to the size of the terms that cancel
     EXPECT_LE(std::fabs(rate - power), kTol * std::max(1.0, scale))
         << "seed " << seed << ": dE/dt = " << rate << ", input power = " << power;
@@ -438,9 +429,9 @@ TEST(HeavySymmetricTop, SolvedAccelerationsSatisfyEulerEquationsAboutThePivot) {
     EXPECT_TRUE(matrices_agree_at(w, eomgen::Subexpressions(), w_hand, p, kTol)) << "omega_b, seed " << seed;
     const Eigen::VectorXd qdd = solve_accelerations(eom, p);
     for (std::size_t k = 0; k < 3; ++k) p[vars.coordinates()[k].qdd] = qdd(static_cast<Eigen::Index>(k));
-    const Eigen::Vector3d omega = to_eigen(w, p), alpha = to_eigen(w_dot, p);
-    const Eigen::Matrix3d J = to_eigen(J_o, p);
-    const Eigen::Vector3d r = to_eigen(r_co, p), weight = to_double(value(top.m, p)) * to_eigen(g_b, p);
+    const Eigen::Vector3d omega = value_at(w, p), alpha = value_at(w_dot, p);
+    const Eigen::Matrix3d J = value_at(J_o, p);
+    const Eigen::Vector3d r = value_at(r_co, p), weight = value_at(top.m, p) * value_at(g_b, p);
     const Eigen::Vector3d lhs = J * alpha + omega.cross(J * omega);
     const Eigen::Vector3d rhs = r.cross(weight);
     for (int i = 0; i < 3; ++i)

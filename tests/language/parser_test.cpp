@@ -14,6 +14,8 @@
 #include "eomgen/derivation/model_equations.hpp"
 #include "eomgen/language/model_file.hpp"
 #include "eomgen/symbolic/simplify.hpp"
+#include "support/model_lookup.hpp"
+#include "support/symbolic_checks.hpp"
 
 namespace eomgen {
 namespace {
@@ -21,15 +23,11 @@ namespace {
 using GiNaC::ex;
 using GiNaC::matrix;
 using GiNaC::numeric;
+using testing::equal_after_simplification;
+using testing::symbol_named;
 
 Model parse(const std::string& text, const std::map<std::string, double>& overrides = {}) {
   return parse_model(text, "test.eom", overrides);
-}
-
-ex symbol(const Model& m, const std::string& name) {
-  const auto s = m.system.variables().find(name);
-  if (!s) ADD_FAILURE() << "no symbol '" << name << "'";
-  return s ? ex(*s) : ex(0);
 }
 
 FrameId frame(const Model& m, const std::string& name) {
@@ -45,30 +43,19 @@ PointId point(const Model& m, const std::string& name) {
 }
 
 const Output& output(const Model& m, const std::string& name) {
-  for (const Output& o : m.outputs)
-    if (o.name == name) return o;
-  ADD_FAILURE() << "no output '" << name << "'";
-  return m.outputs.at(0);
+  const Output* o = testing::find_output(m, name);
+  if (!o) ADD_FAILURE() << "no output '" << name << "'";
+  return o ? *o : m.outputs.at(0);
 }
 
 matrix column(const ex& x, const ex& y, const ex& z) { return matrix(3, 1, GiNaC::lst{x, y, z}); }
-
-// zero after expansion and sin^2 + cos^2 = 1
-void expect_same(const matrix& actual, const matrix& expected) {
-  ASSERT_EQ(actual.rows(), expected.rows());
-  ASSERT_EQ(actual.cols(), expected.cols());
-  for (unsigned i = 0; i < actual.rows(); ++i)
-    for (unsigned j = 0; j < actual.cols(); ++j)
-      EXPECT_TRUE(simplify_for_display(actual(i, j) - expected(i, j)).is_zero())
-          << "entry (" << i << "," << j << "): " << actual(i, j) << " vs " << expected(i, j);
-}
 
 void expect_output(const Model& m, const std::string& name, const matrix& expected) {
   const Output& o = output(m, name);
   ASSERT_EQ(o.components.size(), expected.rows()) << name;
   matrix actual(expected.rows(), 1);
   for (unsigned i = 0; i < actual.rows(); ++i) actual(i, 0) = o.components[i];
-  expect_same(actual, expected);
+  EXPECT_TRUE(equal_after_simplification(actual, expected));
 }
 
 TEST(Parser, ModelNameDescriptionAndParametersWithUnits) {
@@ -121,7 +108,7 @@ output o = 0.1 + 2.5E+2 + 1e-3
 output h = 0.1*q
 )");
   EXPECT_TRUE(output(m, "o").components.at(0).is_equal(numeric(250101, 1000))) << output(m, "o").components.at(0);
-  EXPECT_TRUE(output(m, "h").components.at(0).is_equal(numeric(1, 10) * symbol(m, "q")));
+  EXPECT_TRUE(output(m, "h").components.at(0).is_equal(numeric(1, 10) * symbol_named(m.system, "q")));
 }
 
 TEST(Parser, FramesAndPointsMayBeUsedBeforeTheirDefinition) {
@@ -135,8 +122,9 @@ frame b = rotate(a, 3, q1)
   const MechanicalSystem& s = m.system;
   EXPECT_EQ(*s.frame(frame(m, "c")).parent, frame(m, "b"));
   EXPECT_EQ(*s.point(point(m, "p2")).parent, point(m, "p1"));
-  expect_same(resolve(s, position(s, point(m, "p2"), s.origin()), s.inertial_frame()),
-              resolve(s, Vector(frame(m, "b"), 1, 0, 0) + Vector(frame(m, "c"), 1, 0, 0), s.inertial_frame()));
+  EXPECT_TRUE(equal_after_simplification(
+      resolve(s, position(s, point(m, "p2"), s.origin()), s.inertial_frame()),
+      resolve(s, Vector(frame(m, "b"), 1, 0, 0) + Vector(frame(m, "c"), 1, 0, 0), s.inertial_frame())));
 }
 
 TEST(Parser, AliasesOfFramesAndPoints) {
@@ -219,7 +207,7 @@ frame mr = mrp(a, [q1, q2, q3])
 frame dc = dcm(a, [[cos(q1), sin(q1), 0], [-sin(q1), cos(q1), 0], [0, 0, 1]])
 particle bob(mass = 1, at = w)
 )");
-  const ex q1 = symbol(m, "q1"), q2 = symbol(m, "q2"), q3 = symbol(m, "q3");
+  const ex q1 = symbol_named(m.system, "q1"), q2 = symbol_named(m.system, "q2"), q3 = symbol_named(m.system, "q3");
   const matrix p = column(q1, q2, q3);
   const std::map<std::string, Rotation> expected = {
       {"r2", Rotation::principal(2, q1)},
@@ -234,8 +222,8 @@ particle bob(mass = 1, at = w)
     SCOPED_TRACE(name);
     const Frame& f = m.system.frame(frame(m, name));
     EXPECT_EQ(f.rotation.kind(), rotation.kind());
-    expect_same(f.rotation.dcm(), rotation.dcm());
-    expect_same(dcm(m.system, frame(m, name), m.system.inertial_frame()), rotation.dcm());
+    EXPECT_TRUE(equal_after_simplification(f.rotation.dcm(), rotation.dcm()));
+    EXPECT_TRUE(equal_after_simplification(dcm(m.system, frame(m, name), m.system.inertial_frame()), rotation.dcm()));
   }
 }
 
@@ -288,10 +276,10 @@ output va = velocity(p)
   EXPECT_EQ(m.outputs[0].location.line, 5);
   EXPECT_EQ(m.outputs[0].location.column, 8);
   EXPECT_EQ(m.outputs[1].labels, (std::vector<std::string>{"vb_1", "vb_2", "vb_3"}));
-  const ex qd = symbol(m, "q_dot");
+  const ex qd = symbol_named(m.system, "q_dot");
   expect_output(m, "vb", column(0, 2 * qd, 0));  // resolved in b
   expect_output(m, "va", resolve(m.system, velocity(m.system, point(m, "p")), m.system.inertial_frame()));
-  expect_output(m, "height", matrix(1, 1, GiNaC::lst{2 * GiNaC::sin(symbol(m, "q"))}));
+  expect_output(m, "height", matrix(1, 1, GiNaC::lst{2 * GiNaC::sin(symbol_named(m.system, "q"))}));
 }
 
 TEST(Parser, ConstraintsAreHolonomicWithoutRatesAndNonholonomicWithThem) {
@@ -305,10 +293,12 @@ constraint nh: x_dot = y*z_dot
   ASSERT_EQ(constraints.size(), 2u);
   EXPECT_EQ(constraints[0].name, "h");
   EXPECT_EQ(constraints[0].kind, Constraint::Kind::holonomic);
-  const ex x = symbol(m, "x"), y = symbol(m, "y");
+  const ex x = symbol_named(m.system, "x"), y = symbol_named(m.system, "y");
   EXPECT_TRUE((constraints[0].expression - (x * x + y * y - 1)).expand().is_zero());
   EXPECT_EQ(constraints[1].kind, Constraint::Kind::nonholonomic);
-  EXPECT_TRUE((constraints[1].expression - (symbol(m, "x_dot") - y * symbol(m, "z_dot"))).expand().is_zero());
+  EXPECT_TRUE((constraints[1].expression - (symbol_named(m.system, "x_dot") - y * symbol_named(m.system, "z_dot")))
+                  .expand()
+                  .is_zero());
   ASSERT_EQ(m.constraint_locations.size(), 2u);
   EXPECT_EQ(m.constraint_locations[1].line, 5);
   EXPECT_EQ(m.constraint_locations[1].column, 12);

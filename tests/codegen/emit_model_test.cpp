@@ -9,6 +9,7 @@
 #include "eomgen/base/error.hpp"
 #include "eomgen/derivation/linearization.hpp"
 #include "eomgen/language/model_file.hpp"
+#include "support/expect_throw.hpp"
 #include "support/source_dir.hpp"
 
 namespace eomgen {
@@ -150,9 +151,12 @@ TEST(EmitModel, IndependentSpeedsSetThroughTheApiAreChecked) {
   Model model = parse_model(mixed_constraints, "mixed.eom");
   const ModelEquations eom = derive_equations(model);
   model.independent_speeds = {4};
-  EXPECT_THROW(emit_model(model, eom), EmitError);
+  EXPECT_THROW_MESSAGE(
+      emit_model(model, eom), EmitError,
+      "emitting 'mixed': independent speed 0 is coordinate index 4: expected distinct indices below nq = 4");
   model.independent_speeds = {0, 1};
-  EXPECT_THROW(emit_model(model, eom), EmitError);
+  EXPECT_THROW_MESSAGE(emit_model(model, eom), EmitError,
+                       "emitting 'mixed': expected nq - nc = 1 independent speeds, got 2");
   model.independent_speeds = {3};
   EXPECT_NO_THROW(emit_model(model, eom));
 }

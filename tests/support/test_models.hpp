@@ -1,7 +1,6 @@
 #pragma once
 // Small models built through the C++ API, shared by tests that need the same system.
-#include "eomgen/derivation/model_equations.hpp"
-#include "eomgen/language/model_file.hpp"
+#include "eomgen/mechanics/model.hpp"
 
 namespace eomgen::testing {
 
@@ -21,6 +20,21 @@ inline Model double_pendulum_model() {
   s.add_particle("bob1", m1, p1);
   s.add_particle("bob2", m2, s.add_point("p2", p1, Vector(c, l2, 0, 0)));
   s.set_gravity(Vector(s.inertial_frame(), g, 0, 0));
+  return model;
+}
+
+/// The simple pendulum in Cartesian coordinates: a particle at (x, y) in frame a, the rod a
+/// holonomic constraint x^2 + y^2 - l^2 = 0; m = 2, l = 1.5, gravity g = 9.81 along a1.
+inline Model cartesian_pendulum_model() {
+  Model model;
+  model.name = "cartesian_pendulum";
+  MechanicalSystem& s = model.system;
+  const Coordinate x = s.add_coordinate("x"), y = s.add_coordinate("y");
+  const GiNaC::ex m = s.add_parameter("m", 2.0, "kg"), l = s.add_parameter("l", 1.5, "m");
+  const GiNaC::ex g = s.add_parameter("g", 9.81, "m/s^2");
+  s.add_particle("bob", m, s.add_point("p", s.origin(), Vector(s.inertial_frame(), x.q, y.q, 0)));
+  s.set_gravity(Vector(s.inertial_frame(), g, 0, 0));
+  s.add_holonomic_constraint("rod", x.q * x.q + y.q * y.q - l * l);
   return model;
 }
 

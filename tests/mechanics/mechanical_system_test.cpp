@@ -1,0 +1,139 @@
+// Validation when building a MechanicalSystem: every bad input is a ModelError that names it.
+#include "eomgen/mechanics/mechanical_system.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "eomgen/base/error.hpp"
+#include "eomgen/symbolic/simplify.hpp"
+#include "support/expect_throw.hpp"
+
+namespace eomgen {
+namespace {
+
+using GiNaC::ex;
+using GiNaC::matrix;
+
+matrix diag(const ex& a, const ex& b, const ex& c) { return matrix(3, 3, GiNaC::lst{a, 0, 0, 0, b, 0, 0, 0, c}); }
+
+struct Fixture {
+  MechanicalSystem s{"a", "w"};
+  Coordinate q = s.add_coordinate("q");
+  ex m = s.add_parameter("m", 1.0);
+  FrameId b = s.add_frame("b", s.inertial_frame(), Rotation::principal(3, q.q));
+  PointId p = s.add_point("p", s.origin(), Vector(b, 1, 0, 0));
+};
+
+TEST(MechanicalSystem, InertialFrameAndOriginExist) {
+  Fixture f;
+  EXPECT_EQ(f.s.frame(f.s.inertial_frame()).name, "a");
+  EXPECT_EQ(f.s.point(f.s.origin()).name, "w");
+  EXPECT_EQ(f.s.find_frame("b")->index, f.b.index);
+  EXPECT_EQ(f.s.find_point("p")->index, f.p.index);
+  EXPECT_FALSE(f.s.find_frame("nope").has_value());
+  EXPECT_EQ(f.s.frame(f.b).depth, 1u);
+}
+
+TEST(MechanicalSystem, DuplicateNamesAreRejected) {
+  Fixture f;
+  EXPECT_THROW_MESSAGE(f.s.add_frame("b", f.s.inertial_frame(), Rotation::identity()), ModelError,
+                       "frame 'b': the name is already used");
+  EXPECT_THROW_MESSAGE(f.s.add_point("b", f.s.origin(), Vector()), ModelError, "point 'b': the name is already used");
+}
+
+TEST(MechanicalSystem, ForeignSymbolInRotationIsRejected) {
+  Fixture f;
+  GiNaC::realsymbol stranger("stranger");
+  EXPECT_THROW_MESSAGE(f.s.add_frame("c", f.b, Rotation::principal(1, stranger)), ModelError,
+                       "frame 'c': 'stranger' is not a time, coordinate, rate, parameter or input of this model");
+}
+
+TEST(MechanicalSystem, RotationDependingOnRateIsRejected) {
+  Fixture f;
+  EXPECT_THROW_MESSAGE(
+      f.s.add_frame("c", f.b, Rotation::principal(1, f.q.qd)), ModelError,
+      "frame 'c': a rotation may depend on coordinates, parameters and t only, not on rates, accelerations or inputs");
+}
+
+TEST(MechanicalSystem, NonPositiveMassIsRejected) {
+  Fixture f;
+  EXPECT_THROW_MESSAGE(f.s.add_particle("bad", -f.m, f.p), ModelError,
+                       "particle 'bad': the mass must be positive, got -1");
+  EXPECT_THROW_MESSAGE(f.s.add_particle("bad", f.q.q, f.p), ModelError,
+                       "particle 'bad': the mass must be a constant (parameters and numbers)");
+}
+
+TEST(MechanicalSystem, InertiaMustBeSymmetricPositiveDefinite) {
+  Fixture f;
+  matrix J = diag(1, 1, 1);
+  J(0, 1) = 0.1;
+  EXPECT_THROW_MESSAGE(f.s.add_rigid_body("body", f.m, f.p, f.b, J), ModelError,
+                       "rigid body 'body': the inertia matrix must be symmetric, but entry (1,2) differs from (2,1)");
+  EXPECT_THROW_MESSAGE(f.s.add_rigid_body("body", f.m, f.p, f.b, diag(1, -1, 1)), ModelError,
+                       "rigid body 'body': the inertia matrix must be positive definite; its leading minors at the "
+                       "default parameters are 1, -1, -1");
+  // positive diagonal but indefinite
+  matrix K = diag(1, 1, 1);
+  K(0, 1) = K(1, 0) = 2;
+  EXPECT_THROW_MESSAGE(f.s.add_rigid_body("body", f.m, f.p, f.b, K), ModelError,
+                       "rigid body 'body': the inertia matrix must be positive definite; its leading minors at the "
+                       "default parameters are 1, -3, -3");
+  EXPECT_THROW_MESSAGE(f.s.add_rigid_body("body", f.m, f.p, f.b, matrix(2, 2)), ModelError,
+                       "rigid body 'body': expected a 3x3 inertia matrix, got 2x2");
+}
+
+TEST(MechanicalSystem, NonholonomicConstraintMustBeLinearInRates) {
+  Fixture f;
+  EXPECT_THROW_MESSAGE(
+      f.s.add_nonholonomic_constraint("c", f.q.qd * f.q.qd), ModelError,
+      "nonholonomic constraint 'c': the constraint must be linear in the rates, but it is not linear in 'q_dot'");
+  EXPECT_THROW_MESSAGE(f.s.add_nonholonomic_constraint("c", f.q.q), ModelError,
+                       "nonholonomic constraint 'c': the constraint contains no rate with a non-zero coefficient");
+}
+
+TEST(MechanicalSystem, HolonomicConstraintMustDependOnCoordinatesOnly) {
+  Fixture f;
+  EXPECT_THROW_MESSAGE(f.s.add_holonomic_constraint("c", f.q.qd), ModelError,
+                       "holonomic constraint 'c': phi(q, t) may not contain rates, accelerations or inputs; write a "
+                       "rate constraint as a nonholonomic constraint");
+  EXPECT_THROW_MESSAGE(
+      f.s.add_holonomic_constraint("c", f.s.variables().time()), ModelError,
+      "holonomic constraint 'c': the constraint does not depend on any coordinate (its Jacobian is identically zero)");
+  // identically zero once simplified
+  EXPECT_THROW_MESSAGE(
+      f.s.add_holonomic_constraint("c", GiNaC::pow(GiNaC::sin(f.q.q), 2) + GiNaC::pow(GiNaC::cos(f.q.q), 2) - 1),
+      ModelError,
+      "holonomic constraint 'c': the constraint does not depend on any coordinate (its Jacobian is identically zero)");
+}
+
+TEST(MechanicalSystem, SpringNeedsTwoDistinctPoints) {
+  Fixture f;
+  EXPECT_THROW_MESSAGE(f.s.add_spring("k", f.p, f.p, 1, 0), ModelError, "spring 'k': the two points must differ");
+}
+
+TEST(MechanicalSystem, GeneralizedForceOnMissingCoordinateIsRejected) {
+  Fixture f;
+  EXPECT_THROW_MESSAGE(f.s.add_generalized_force(3, 1), ModelError,
+                       "generalized force: coordinate #3 does not exist (the model has 1)");
+}
+
+TEST(ParallelAxis, UniformRodAboutItsEndIsOneThirdMlSquared) {
+  const GiNaC::realsymbol m("m"), l("l");
+  const matrix Jc = diag(0, m * l * l / 12, m * l * l / 12);
+  const matrix Jo = parallel_axis(Jc, m, matrix(3, 1, GiNaC::lst{l / 2, 0, 0}));
+  EXPECT_TRUE((Jo(1, 1) - m * l * l / 3).expand().is_zero());
+  EXPECT_TRUE((Jo(2, 2) - m * l * l / 3).expand().is_zero());
+  EXPECT_TRUE(Jo(0, 0).expand().is_zero());
+  EXPECT_TRUE(Jo(0, 1).expand().is_zero());
+}
+
+TEST(ParallelAxis, OffDiagonalProductsOfInertia) {
+  // J_o = J_c + m (r^T r 1 - r r^T): off-diagonal -m x y
+  const GiNaC::realsymbol m("m"), x("x"), y("y"), z("z");
+  const matrix Jo = parallel_axis(matrix(3, 3), m, matrix(3, 1, GiNaC::lst{x, y, z}));
+  EXPECT_TRUE((Jo(0, 1) + m * x * y).expand().is_zero());
+  EXPECT_TRUE((Jo(0, 0) - m * (y * y + z * z)).expand().is_zero());
+}
+
+}  // namespace
+}  // namespace eomgen
