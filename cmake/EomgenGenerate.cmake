@@ -2,8 +2,9 @@
 #
 # Generates a C++ header from a model file at build time and makes `name` an INTERFACE
 # library that carries its include directory (and Eigen). The header is regenerated when
-# the model file or the eomgen generator changes. LINEARIZATION also emits linearization()
-# (eomgen generate --linearization).
+# the model file or the eomgen generator changes. LINEARIZATION also emits linearization_terms
+# (eomgen generate --linearization) and links the runtime, whose eomrt::linearization turns
+# them into A and B.
 function(eomgen_add_model)
   cmake_parse_arguments(ARG "LINEARIZATION" "TARGET;MODEL;OUTPUT" "DEFINE" ${ARGN})
   if(NOT ARG_TARGET OR NOT ARG_MODEL)
@@ -35,4 +36,7 @@ function(eomgen_add_model)
   add_dependencies(${ARG_TARGET} ${ARG_TARGET}_generate)
   target_include_directories(${ARG_TARGET} INTERFACE ${output_dir})
   target_link_libraries(${ARG_TARGET} INTERFACE Eigen3::Eigen)
+  if(ARG_LINEARIZATION)
+    target_link_libraries(${ARG_TARGET} INTERFACE eomgen::runtime)
+  endif()
 endfunction()

@@ -496,8 +496,8 @@ int main(int argc, char** argv) {
   generate->add_flag("--stats", o.stats,
                      "Print operation counts per function, without and with shared subexpressions");
   generate->add_flag("--linearization", o.emit_linearization,
-                     "Also emit linearization(t, q, qd, u, p, A, B) and its terms: A and B about any operating "
-                     "point, from exact derivatives (for gain scheduling)");
+                     "Also emit linearization_terms, the exact derivatives from which eomrt::linearization "
+                     "gives A and B about any operating point (for gain scheduling)");
 
   CLI::App* linearize = app.add_subcommand(
       "linearize", "Linearize about an operating point: A, B, the second-order form, eigenvalues, stability");

@@ -1,8 +1,9 @@
-// The generated linearization() (eomgen generate --linearization) against two independent
-// references: the generator's own linearize(), which evaluates the same derivatives through
-// GiNaC in doubles, and central differences of the runtime's forward dynamics, which know
-// nothing of derivatives. Constrained models are also checked against the reduced linear
-// model: its eigenvalues must be eigenvalues of the full-state A the header gives.
+// The runtime's linearization (eomrt/linearization.hpp) of generated linearization_terms
+// (eomgen generate --linearization) against two independent references: the generator's own
+// linearize(), which evaluates the same derivatives through GiNaC in doubles, and central
+// differences of the runtime's forward dynamics, which know nothing of derivatives.
+// Constrained models are also checked against the reduced linear model: its eigenvalues must
+// be eigenvalues of the full-state A the runtime gives.
 #include "runtime/no_malloc.hpp"  // before Eigen
 
 #include <gtest/gtest.h>
@@ -19,6 +20,7 @@
 #include "eomgen/derivation/model_equations.hpp"
 #include "eomgen/language/model_file.hpp"
 #include "eomrt/dynamics_kkt.hpp"
+#include "eomrt/linearization.hpp"
 #include "heavy_top.hpp"
 #include "rolling_coin.hpp"
 #include "spacecraft_panel.hpp"
@@ -58,10 +60,9 @@ struct Generated {
 
 template <class Model>
 Generated generated_linearization(const OperatingPoint<Model>& x) {
-  typename Model::template StateMatrix<double> A;
-  typename Model::template StateInputMatrix<double> B;
-  EXPECT_TRUE(Model::linearization(0.0, x.q, x.qd, x.u, typename Model::template Parameters<double>{}, A, B));
-  return {A, B};
+  eomrt::LinearizationWorkspace<Model, double> ws;
+  EXPECT_EQ(eomrt::linearization<Model>({}, ws, 0.0, x.q, x.qd, x.u), eomrt::DynamicsStatus::ok);
+  return {ws.A, ws.B};
 }
 
 eomgen::Model shipped(const std::string& name) {
@@ -120,6 +121,18 @@ void expect_matches_references(const std::string& name, const NamedValues& point
   }
 }
 
+// the generator's full-state A and B come from the same numerics (eomrt::first_order_form and
+// the one KKT solve) applied to its own evaluation of the terms; it takes points on the
+// constraints only
+template <class Model>
+void expect_matches_generator_full_state(const std::string& name, const NamedValues& point) {
+  SCOPED_TRACE(name);
+  const Generated generated = generated_linearization(at<Model>(point));
+  const eomgen::LinearModel lin = generator_linearization(name, point);
+  EXPECT_TRUE(matrices_near_relative(generated.A, lin.A_full, 1e-12)) << "A against linearize()";
+  EXPECT_TRUE(matrices_near_relative(generated.B, lin.B_full, 1e-12)) << "B against linearize()";
+}
+
 TEST(GeneratedLinearization, MatchesTheGeneratorAndFiniteDifferencesAwayFromEquilibrium) {
   expect_matches_references<eomgen_models::cart_pole::Model>(
       "cart_pole", {{"x", 0.3}, {"theta", 0.7}, {"x_dot", -0.4}, {"theta_dot", 1.3}, {"u", 0.8}});
@@ -141,6 +154,21 @@ TEST(GeneratedLinearization, ConstrainedModelsMatchFiniteDifferencesOfTheKktAcce
   expect_matches_references<eomgen_models::rolling_coin::Model>(
       "rolling_coin", {{"psi", 0.3}, {"theta", 0.2}, {"phi", 0.5}, {"psi_dot", 0.7}, {"theta_dot", -0.4},
                        {"phi_dot", 30.0}, {"x_dot", 0.1}, {"y_dot", 0.2}});
+}
+
+TEST(GeneratedLinearization, ConstrainedModelsMatchTheGeneratorsFullStateLinearization) {
+  const double angle = 0.4, rate = 1.2, l = 0.5;
+  expect_matches_generator_full_state<eomgen_models::cartesian_pendulum::Model>(
+      "cartesian_pendulum", {{"x", l * std::sin(angle)}, {"y", -l * std::cos(angle)},
+                             {"x_dot", l * std::cos(angle) * rate}, {"y_dot", l * std::sin(angle) * rate}});
+  // the coin rolling upright (radius r), below and above its critical speed sqrt(g r / 3) / r
+  const double r = 12.9e-3;
+  for (const double w : {10.0, 30.0})
+    expect_matches_generator_full_state<eomgen_models::rolling_coin::Model>("rolling_coin",
+                                                                            {{"phi_dot", w}, {"y_dot", -r * w}});
+  // an unconstrained model's full state is linearize()'s when nothing is dropped
+  expect_matches_generator_full_state<eomgen_models::heavy_top::Model>(
+      "heavy_top", {{"theta", 0.6}, {"psi_dot", 1.0}, {"phi_dot", 40.0}});
 }
 
 // every eigenvalue of the reduced model (independent coordinates and speeds) is one of the
@@ -181,9 +209,12 @@ TEST(GeneratedLinearization, SecondOrderFormOfTheCartPoleUprightIsTheClosedForm)
   using Model = eomgen_models::cart_pole::Model;
   const Model::Parameters<double> p{};
   const OperatingPoint<Model> x = at<Model>({});
-  Model::MassMatrix<double> M, D, K;
-  Model::InputMatrix<double> B_u;
-  ASSERT_TRUE(Model::second_order_linearization(0.0, x.q, x.qd, x.u, p, M, D, K, B_u));
+  eomrt::LinearizationWorkspace<Model, double> ws;
+  ASSERT_EQ(eomrt::second_order_linearization<Model>(p, ws, 0.0, x.q, x.qd, x.u), eomrt::DynamicsStatus::ok);
+  const Model::MassMatrix<double>& M = ws.dynamics.M;
+  const Model::MassMatrix<double>& D = ws.terms.D;
+  const Model::MassMatrix<double>& K = ws.terms.K;
+  const Model::InputMatrix<double>& B_u = ws.terms.B_u;
   const eomgen::LinearModel lin = generator_linearization("cart_pole", {});
   EXPECT_TRUE(matrices_near_relative(M, lin.M, 1e-14)) << "M";
   EXPECT_TRUE(matrices_near_relative(D, lin.D, 1e-14)) << "D";
@@ -198,39 +229,36 @@ TEST(GeneratedLinearization, SecondOrderFormOfTheCartPoleUprightIsTheClosedForm)
 TEST(GeneratedLinearization, AllocatesNothing) {
   const auto x = at<eomgen_models::rolling_coin::Model>({{"theta", 0.2}, {"phi_dot", 30.0}});
   const auto y = at<eomgen_models::heavy_top::Model>({{"theta", 0.6}, {"phi_dot", 40.0}});
-  eomgen_models::rolling_coin::Model::StateMatrix<double> A;
-  eomgen_models::rolling_coin::Model::StateInputMatrix<double> B;
-  eomgen_models::heavy_top::Model::StateMatrix<double> A_top;
-  eomgen_models::heavy_top::Model::StateInputMatrix<double> B_top;
+  eomrt::LinearizationWorkspace<eomgen_models::rolling_coin::Model, double> coin_ws;
+  eomrt::LinearizationWorkspace<eomgen_models::heavy_top::Model, double> top_ws;
   eigen_assert_failures = 0;
   Eigen::internal::set_is_malloc_allowed(false);
-  const bool coin = eomgen_models::rolling_coin::Model::linearization(0.0, x.q, x.qd, x.u, {}, A, B);
-  const bool top = eomgen_models::heavy_top::Model::linearization(0.0, y.q, y.qd, y.u, {}, A_top, B_top);
+  const auto coin = eomrt::linearization<eomgen_models::rolling_coin::Model>({}, coin_ws, 0.0, x.q, x.qd, x.u);
+  const auto top = eomrt::linearization<eomgen_models::heavy_top::Model>({}, top_ws, 0.0, y.q, y.qd, y.u);
   Eigen::internal::set_is_malloc_allowed(true);
-  EXPECT_TRUE(coin);
-  EXPECT_TRUE(top);
+  EXPECT_EQ(coin, eomrt::DynamicsStatus::ok);
+  EXPECT_EQ(top, eomrt::DynamicsStatus::ok);
   EXPECT_EQ(eigen_assert_failures, 0);
 }
 
-TEST(GeneratedLinearization, SingularMassMatrixReturnsFalse) {
+TEST(GeneratedLinearization, SingularMassMatrixIsReported) {
   // 3-1-3 angles are singular with the top upright (theta = 0)
   using Model = eomgen_models::heavy_top::Model;
   const OperatingPoint<Model> x = at<Model>({{"phi_dot", 40.0}});
-  Model::StateMatrix<double> A;
-  Model::StateInputMatrix<double> B;
-  EXPECT_FALSE(Model::linearization(0.0, x.q, x.qd, x.u, Model::Parameters<double>{}, A, B));
+  eomrt::LinearizationWorkspace<Model, double> ws;
+  EXPECT_EQ(eomrt::linearization<Model>({}, ws, 0.0, x.q, x.qd, x.u), eomrt::DynamicsStatus::singular_mass_matrix);
 }
 
 TEST(GeneratedLinearization, FloatInstantiationAgreesWithDouble) {
   using Model = eomgen_models::cart_pole::Model;
   const OperatingPoint<Model> x = at<Model>({{"theta", 0.7}, {"theta_dot", 1.3}, {"u", 0.8}});
-  Model::StateMatrix<float> A;
-  Model::StateInputMatrix<float> B;
-  ASSERT_TRUE(Model::linearization(0.0f, x.q.cast<float>().eval(), x.qd.cast<float>().eval(), x.u.cast<float>().eval(),
-                                   Model::Parameters<float>{}, A, B));
+  eomrt::LinearizationWorkspace<Model, float> ws;
+  ASSERT_EQ(eomrt::linearization<Model>({}, ws, 0.0f, x.q.cast<float>().eval(), x.qd.cast<float>().eval(),
+                                        x.u.cast<float>().eval()),
+            eomrt::DynamicsStatus::ok);
   const Generated reference = generated_linearization(x);
-  EXPECT_TRUE(matrices_near_relative(A.cast<double>(), reference.A, 1e-5)) << "A in float";
-  EXPECT_TRUE(matrices_near_relative(B.cast<double>(), reference.B, 1e-5)) << "B in float";
+  EXPECT_TRUE(matrices_near_relative(ws.A.cast<double>(), reference.A, 1e-5)) << "A in float";
+  EXPECT_TRUE(matrices_near_relative(ws.B.cast<double>(), reference.B, 1e-5)) << "B in float";
 }
 
 }  // namespace

@@ -1,13 +1,15 @@
 #pragma once
-// The C++ text of the generated linearization(): the small dense solves that turn the
-// emitted derivative terms (linearization_terms) into A and B. The terms are model-specific
-// and lowered from the expression graph; this part is the same for every model of a kind.
+// What the generated header says about its linearization. The model-specific derivative
+// terms (linearization_terms) are lowered from the expression graph like every other
+// function; the solves that turn them into A and B are the runtime's, generic over models
+// (eomrt/linearization.hpp), so no numerics are emitted as text.
 #include <string>
 
 namespace eomgen {
 
-/// Member functions of the generated Model (unconstrained: second_order_linearization and
-/// linearization; constrained: linearization through the KKT system).
+/// Text for the body of the generated Model after linearization_terms: a comment naming the
+/// runtime algorithms that use it (unconstrained: second_order_linearization and linearization;
+/// constrained: linearization through the KKT system).
 std::string linearization_source(bool constrained);
 
 }  // namespace eomgen

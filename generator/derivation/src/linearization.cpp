@@ -4,11 +4,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <initializer_list>
 #include <map>
 #include <random>
 
 #include "eomgen/base/error.hpp"
 #include "eomgen/mechanics/variables.hpp"
+#include "eomrt/linearization.hpp"
 
 namespace eomgen {
 
@@ -199,189 +201,203 @@ Eigen::MatrixXd columns_of(const Eigen::MatrixXd& a, const std::vector<Eigen::In
   return out;
 }
 
-/// The reduced linear model of a constrained system (see the header).
-void linearize_constrained(const Model& model, const ModelEquations& eom, const SymbolicLinearization& symbolic,
-                           const NamedValues& point, const LinearizeOptions& options, LinearModel& lin) {
-  const Variables& vars = model.system.variables();
-  const Eigen::Index n = static_cast<Eigen::Index>(vars.coordinates().size());
-  const Eigen::Index nu = static_cast<Eigen::Index>(vars.inputs().size());
-  const Eigen::Index m = static_cast<Eigen::Index>(eom.constraint_count);
-  const NumericEquations at = evaluate_equations(model, eom, point);
-  const Eigen::MatrixXd& Xi = at.constraint_jacobian;
-  const Eigen::VectorXd velocity_residual = [&] {
-    Eigen::VectorXd qd(n);
-    for (Eigen::Index j = 0; j < n; ++j) {
-      const auto it = point.find(vars.coordinates()[static_cast<std::size_t>(j)].name + "_dot");
-      qd(j) = it == point.end() ? 0.0 : it->second;
-    }
-    return Eigen::VectorXd(Xi * qd + at.constraint_rate_term);
-  }();
+/// K, D, B_u, S_q and S_qd of `symbolic` in numbers (S_q, S_qd empty without constraints).
+eomrt::LinearizationTerms<double> terms_in_numbers(const SymbolicLinearization& symbolic, const DoubleEvaluator& eval) {
+  eomrt::LinearizationTerms<double> terms;
+  terms.K = evaluate_matrix(symbolic.K, eval, "K");
+  terms.D = evaluate_matrix(symbolic.D, eval, "D");
+  terms.B_u = evaluate_matrix(symbolic.B_u, eval, "B_u");
+  terms.S_q = evaluate_matrix(symbolic.S_q, eval, "S_q");
+  terms.S_qd = evaluate_matrix(symbolic.S_qd, eval, "S_qd");
+  return terms;
+}
+
+/// -0 from negating a zero would print as "-0"
+void clear_negative_zeros(std::initializer_list<Eigen::MatrixXd*> matrices) {
+  for (Eigen::MatrixXd* m : matrices) *m = m->unaryExpr([](double v) { return v == 0 ? 0.0 : v; });
+}
+
+/// Throws unless the point satisfies the constraints, at position and at velocity level.
+void require_on_constraints(const Model& model, const NumericEquations& at, const NamedValues& point) {
+  const auto& coordinates = model.system.variables().coordinates();
+  Eigen::VectorXd qd(static_cast<Eigen::Index>(coordinates.size()));
+  for (Eigen::Index j = 0; j < qd.size(); ++j) {
+    const auto it = point.find(coordinates[static_cast<std::size_t>(j)].name + "_dot");
+    qd(j) = it == point.end() ? 0.0 : it->second;
+  }
+  const Eigen::VectorXd velocity_residual = at.constraint_jacobian * qd + at.constraint_rate_term;
   const double violation = std::max(at.holonomic_residuals.size() ? at.holonomic_residuals.cwiseAbs().maxCoeff() : 0.0,
                                     velocity_residual.cwiseAbs().maxCoeff());
   if (violation > 1e-9)
     throw Error(fmt::format("linearizing {}: the operating point violates the constraints (largest residual "
                             "{:.3g}); give coordinates and rates that satisfy them",
                             model.name, violation));
-  const AccelerationSolution solution = solve_accelerations(at);
-  lin.qdd0 = solution.qdd;
+}
 
-  const DoubleEvaluator eval = terms_at(model, eom, symbolic, point, lin.qdd0, solution.lambda);
-  const Eigen::MatrixXd K = evaluate_matrix(symbolic.K, eval, "K"), D = evaluate_matrix(symbolic.D, eval, "D");
-  const Eigen::MatrixXd B_u = evaluate_matrix(symbolic.B_u, eval, "B_u");
-  const Eigen::MatrixXd S_q = evaluate_matrix(symbolic.S_q, eval, "S_q");
-  const Eigen::MatrixXd S_qd = evaluate_matrix(symbolic.S_qd, eval, "S_qd");
-  const Eigen::MatrixXd C_q = evaluate_matrix(symbolic.C_q, eval, "C_q");
+/// Independent coordinates and speeds at a point on the constraints: the full state's
+/// perturbations on the tangent space are dx = T dz, and P picks z out of x (P T = 1).
+struct TangentSpace {
+  std::vector<Eigen::Index> q_dependent, q_kept;       ///< one dependent coordinate per holonomic constraint
+  std::vector<Eigen::Index> v_dependent, v_independent;  ///< one dependent rate per constraint
+  Eigen::MatrixXd T, P;
+};
 
-  // d[qdd; lambda]/dv = -J^{-1} d[R; S]/dv with J = [[M, -Xi^T], [Xi, 0]]
-  Eigen::MatrixXd J = Eigen::MatrixXd::Zero(n + m, n + m);
-  J.topLeftCorner(n, n) = at.mass_matrix;
-  J.topRightCorner(n, m) = -Xi.transpose();
-  J.bottomLeftCorner(m, n) = Xi;
-  const Eigen::FullPivLU<Eigen::MatrixXd> lu(J);
-  if (!lu.isInvertible())
-    throw Error(fmt::format("linearizing {}: the KKT matrix is singular at the operating point", model.name));
-  Eigen::MatrixXd rhs(n + m, 2 * n + nu);
-  rhs << K, D, -B_u, S_q, S_qd, Eigen::MatrixXd::Zero(m, nu);
-  const Eigen::MatrixXd dqdd = (-lu.solve(rhs)).topRows(n);  // [d/dq, d/dqd, d/du]
-  Eigen::MatrixXd A_full = Eigen::MatrixXd::Zero(2 * n, 2 * n), B_full = Eigen::MatrixXd::Zero(2 * n, nu);
-  A_full.topRightCorner(n, n).setIdentity();
-  A_full.bottomRows(n) = dqdd.leftCols(2 * n);
-  B_full.bottomRows(n) = dqdd.rightCols(nu);
-
-  // dependent coordinates: one per holonomic constraint, where its gradient is best conditioned
+/// dq = Tq dq_kept: each holonomic constraint's dependent coordinate where its gradient is best
+/// conditioned
+Eigen::MatrixXd dependent_coordinates(const Model& model, const Eigen::MatrixXd& Xi, TangentSpace& space) {
+  const Eigen::Index n = Xi.cols();
   const std::vector<Eigen::Index> holonomic_rows = holonomic_rows_of(model);
   const Eigen::Index nh = static_cast<Eigen::Index>(holonomic_rows.size());
   Eigen::MatrixXd Phi(nh, n);
   for (Eigen::Index r = 0; r < nh; ++r) Phi.row(r) = Xi.row(holonomic_rows[static_cast<std::size_t>(r)]);
-  const std::vector<Eigen::Index> q_dependent = nh > 0 ? pivot_columns(Phi, nh) : std::vector<Eigen::Index>{};
-  const std::vector<Eigen::Index> q_kept = complement(n, q_dependent);
-  // dependent rates: the complement of the declared independent speeds, else pivoted QR of Xi
-  std::vector<Eigen::Index> v_independent;
-  for (std::size_t k : model.independent_speeds) v_independent.push_back(static_cast<Eigen::Index>(k));
-  std::sort(v_independent.begin(), v_independent.end());
-  std::vector<Eigen::Index> v_dependent =
-      v_independent.empty() ? pivot_columns(Xi, m) : complement(n, v_independent);
-  if (v_independent.empty()) v_independent = complement(n, v_dependent);
-
-  // tangent space: dq = Tq dq_kept; dqd = Gq dq + Gv dnu (dnu the independent rates)
-  const Eigen::Index nk = static_cast<Eigen::Index>(q_kept.size()), ni = static_cast<Eigen::Index>(v_independent.size());
+  space.q_dependent = nh > 0 ? pivot_columns(Phi, nh) : std::vector<Eigen::Index>{};
+  space.q_kept = complement(n, space.q_dependent);
+  const Eigen::Index nk = static_cast<Eigen::Index>(space.q_kept.size());
   Eigen::MatrixXd Tq = Eigen::MatrixXd::Zero(n, nk);
-  for (Eigen::Index j = 0; j < nk; ++j) Tq(q_kept[static_cast<std::size_t>(j)], j) = 1;
+  for (Eigen::Index j = 0; j < nk; ++j) Tq(space.q_kept[static_cast<std::size_t>(j)], j) = 1;
   if (nh > 0) {
-    const Eigen::PartialPivLU<Eigen::MatrixXd> phi_d(columns_of(Phi, q_dependent));
-    const Eigen::MatrixXd solved = -phi_d.solve(columns_of(Phi, q_kept));
-    for (Eigen::Index i = 0; i < nh; ++i) Tq.row(q_dependent[static_cast<std::size_t>(i)]) = solved.row(i);
+    const Eigen::PartialPivLU<Eigen::MatrixXd> phi_d(columns_of(Phi, space.q_dependent));
+    const Eigen::MatrixXd solved = -phi_d.solve(columns_of(Phi, space.q_kept));
+    for (Eigen::Index i = 0; i < nh; ++i) Tq.row(space.q_dependent[static_cast<std::size_t>(i)]) = solved.row(i);
   }
-  const Eigen::MatrixXd Xi_d = columns_of(Xi, v_dependent);
+  return Tq;
+}
+
+/// The tangent space at the point: dqd = Gq dq + Gv dnu (dnu the independent rates), with the
+/// dependent rates the complement of the declared independent speeds, else pivoted QR of Xi.
+TangentSpace tangent_space(const Model& model, const Eigen::MatrixXd& Xi, const Eigen::MatrixXd& C_q) {
+  const Eigen::Index n = Xi.cols(), m = Xi.rows();
+  TangentSpace space;
+  const Eigen::MatrixXd Tq = dependent_coordinates(model, Xi, space);
+  for (std::size_t k : model.independent_speeds) space.v_independent.push_back(static_cast<Eigen::Index>(k));
+  std::sort(space.v_independent.begin(), space.v_independent.end());
+  space.v_dependent = space.v_independent.empty() ? pivot_columns(Xi, m) : complement(n, space.v_independent);
+  if (space.v_independent.empty()) space.v_independent = complement(n, space.v_dependent);
+  const Eigen::MatrixXd Xi_d = columns_of(Xi, space.v_dependent);
   const Eigen::PartialPivLU<Eigen::MatrixXd> xi_d(Xi_d);
   if (!(std::abs(Xi_d.determinant()) > 1e-12 * std::max(1.0, Xi.cwiseAbs().maxCoeff())))
     throw Error(fmt::format("linearizing {}: the declared independent speeds leave a singular block of Xi at the "
                             "operating point",
                             model.name));
+  const Eigen::Index nk = Tq.cols(), ni = static_cast<Eigen::Index>(space.v_independent.size());
   Eigen::MatrixXd Gq = Eigen::MatrixXd::Zero(n, n), Gv = Eigen::MatrixXd::Zero(n, ni);
-  for (Eigen::Index j = 0; j < ni; ++j) Gv(v_independent[static_cast<std::size_t>(j)], j) = 1;
-  const Eigen::MatrixXd dep_v = -xi_d.solve(columns_of(Xi, v_independent));
+  for (Eigen::Index j = 0; j < ni; ++j) Gv(space.v_independent[static_cast<std::size_t>(j)], j) = 1;
+  const Eigen::MatrixXd dep_v = -xi_d.solve(columns_of(Xi, space.v_independent));
   const Eigen::MatrixXd dep_q = -xi_d.solve(C_q);
   for (Eigen::Index i = 0; i < m; ++i) {
-    Gv.row(v_dependent[static_cast<std::size_t>(i)]) = dep_v.row(i);
-    Gq.row(v_dependent[static_cast<std::size_t>(i)]) = dep_q.row(i);
+    Gv.row(space.v_dependent[static_cast<std::size_t>(i)]) = dep_v.row(i);
+    Gq.row(space.v_dependent[static_cast<std::size_t>(i)]) = dep_q.row(i);
   }
-  Eigen::MatrixXd T = Eigen::MatrixXd::Zero(2 * n, nk + ni);
-  T.topLeftCorner(n, nk) = Tq;
-  T.bottomLeftCorner(n, nk) = Gq * Tq;
-  T.bottomRightCorner(n, ni) = Gv;
-  Eigen::MatrixXd P = Eigen::MatrixXd::Zero(nk + ni, 2 * n);
-  for (Eigen::Index j = 0; j < nk; ++j) P(j, q_kept[static_cast<std::size_t>(j)]) = 1;
-  for (Eigen::Index j = 0; j < ni; ++j) P(nk + j, n + v_independent[static_cast<std::size_t>(j)]) = 1;
-  Eigen::MatrixXd A = P * A_full * T, B = P * B_full;
+  space.T = Eigen::MatrixXd::Zero(2 * n, nk + ni);
+  space.T.topLeftCorner(n, nk) = Tq;
+  space.T.bottomLeftCorner(n, nk) = Gq * Tq;
+  space.T.bottomRightCorner(n, ni) = Gv;
+  space.P = Eigen::MatrixXd::Zero(nk + ni, 2 * n);
+  for (Eigen::Index j = 0; j < nk; ++j) space.P(j, space.q_kept[static_cast<std::size_t>(j)]) = 1;
+  for (Eigen::Index j = 0; j < ni; ++j) space.P(nk + j, n + space.v_independent[static_cast<std::size_t>(j)]) = 1;
+  return space;
+}
 
+/// The reduced A and B in the tangent space's states, without the kept coordinates nothing
+/// depends on when asked to drop them, and the names of what was kept, dropped and determined.
+void reduce(const Model& model, const TangentSpace& space, const LinearizeOptions& options, LinearModel& lin) {
+  const auto& coordinates = model.system.variables().coordinates();
+  const auto name = [&](Eigen::Index i) { return coordinates[static_cast<std::size_t>(i)].name; };
+  const Eigen::MatrixXd A = space.P * lin.A_full * space.T, B = space.P * lin.B_full;
+  const Eigen::Index nk = static_cast<Eigen::Index>(space.q_kept.size()), ns = A.rows();
   // cyclic: a kept coordinate nothing else in the reduced model depends on. Dropping one can
   // free another (the rolling coin's heading moves only x and y), so this runs to a fixed point
-  std::vector<bool> keep(static_cast<std::size_t>(nk + ni), true);
+  std::vector<bool> keep(static_cast<std::size_t>(ns), true);
   const double scale = std::max(1.0, A.cwiseAbs().maxCoeff());
   for (bool changed = options.drop_cyclic; changed;) {
     changed = false;
     for (Eigen::Index j = 0; j < nk; ++j) {
       if (!keep[static_cast<std::size_t>(j)]) continue;
       double largest = 0;
-      for (Eigen::Index i = 0; i < nk + ni; ++i)
+      for (Eigen::Index i = 0; i < ns; ++i)
         if (keep[static_cast<std::size_t>(i)]) largest = std::max(largest, std::abs(A(i, j)));
       if (largest <= 1e-12 * scale) keep[static_cast<std::size_t>(j)] = false, changed = true;
     }
   }
   std::vector<Eigen::Index> rows;
-  for (Eigen::Index j = 0; j < nk; ++j) {
-    const std::string& name = vars.coordinates()[static_cast<std::size_t>(q_kept[static_cast<std::size_t>(j)])].name;
+  for (Eigen::Index j = 0; j < ns; ++j) {
+    const Eigen::Index variable = j < nk ? space.q_kept[static_cast<std::size_t>(j)]
+                                         : space.v_independent[static_cast<std::size_t>(j - nk)];
+    const std::string state = j < nk ? name(variable) : name(variable) + "_dot";
     if (keep[static_cast<std::size_t>(j)]) {
       rows.push_back(j);
-      lin.state_names.push_back(name);
+      lin.state_names.push_back(state);
     } else {
-      lin.dropped.push_back(name);
+      lin.dropped.push_back(state);
     }
   }
-  for (Eigen::Index j = 0; j < ni; ++j) {
-    rows.push_back(nk + j);
-    lin.state_names.push_back(vars.coordinates()[static_cast<std::size_t>(v_independent[static_cast<std::size_t>(j)])].name + "_dot");
+  for (Eigen::Index i : space.q_dependent) lin.dependent.push_back(name(i));
+  for (Eigen::Index i : space.v_dependent) lin.dependent.push_back(name(i) + "_dot");
+  lin.A = A(rows, rows);
+  lin.B = B(rows, Eigen::all);
+}
+
+/// The reduced linear model of a constrained system (see the header).
+void linearize_constrained(const Model& model, const ModelEquations& eom, const SymbolicLinearization& symbolic,
+                           const NamedValues& point, const LinearizeOptions& options, LinearModel& lin) {
+  const NumericEquations at = evaluate_equations(model, eom, point);
+  require_on_constraints(model, at, point);
+  const eomrt::KktSystem<double> kkt = factorize_kkt(at);
+  const AccelerationSolution solution = solve_accelerations(at, kkt);
+  lin.qdd0 = solution.qdd;
+  const DoubleEvaluator eval = terms_at(model, eom, symbolic, point, lin.qdd0, solution.lambda);
+  const eomrt::LinearizationTerms<double> terms = terms_in_numbers(symbolic, eval);
+  const Eigen::MatrixXd C_q = evaluate_matrix(symbolic.C_q, eval, "C_q");
+  Eigen::MatrixXd derivatives;
+  eomrt::first_order_form(kkt, terms, derivatives, lin.A_full, lin.B_full);
+  reduce(model, tangent_space(model, at.constraint_jacobian, C_q), options, lin);
+}
+
+/// The linear model of an unconstrained system (see the header).
+void linearize_unconstrained(const Model& model, const ModelEquations& eom, const SymbolicLinearization& symbolic,
+                             const NamedValues& point, const LinearizeOptions& options, LinearModel& lin) {
+  const auto& coordinates = model.system.variables().coordinates();
+  const Eigen::Index n = static_cast<Eigen::Index>(coordinates.size());
+  const NumericEquations at = evaluate_equations(model, eom, point);
+  lin.M = at.mass_matrix;
+  const Eigen::LLT<Eigen::MatrixXd> llt(lin.M);
+  if (!eomrt::cholesky_is_regular(llt, eomrt::default_singular_rcond<double>()))
+    throw Error(fmt::format("linearizing {}: the mass matrix is singular at the operating point", model.name));
+  lin.qdd0 = llt.solve(at.forcing);
+  const eomrt::LinearizationTerms<double> terms =
+      terms_in_numbers(symbolic, terms_at(model, eom, symbolic, point, lin.qdd0, Eigen::VectorXd()));
+  lin.K = terms.K;
+  lin.D = terms.D;
+  lin.B_u = terms.B_u;
+  eomrt::first_order_form(llt, terms, lin.A_full, lin.B_full);
+  // the state: the kept coordinates, then every rate
+  std::vector<Eigen::Index> states;
+  for (Eigen::Index k = 0; k < n; ++k) {
+    if (options.drop_cyclic && symbolic.cyclic[static_cast<std::size_t>(k)])
+      lin.dropped.push_back(coordinates[static_cast<std::size_t>(k)].name);
+    else
+      states.push_back(k);
   }
-  for (Eigen::Index i : q_dependent) lin.dependent.push_back(vars.coordinates()[static_cast<std::size_t>(i)].name);
-  for (Eigen::Index i : v_dependent) lin.dependent.push_back(vars.coordinates()[static_cast<std::size_t>(i)].name + "_dot");
-  const Eigen::Index ns = static_cast<Eigen::Index>(rows.size());
-  lin.A.resize(ns, ns);
-  lin.B.resize(ns, nu);
-  for (Eigen::Index i = 0; i < ns; ++i) {
-    for (Eigen::Index j = 0; j < ns; ++j) lin.A(i, j) = A(rows[static_cast<std::size_t>(i)], rows[static_cast<std::size_t>(j)]);
-    lin.B.row(i) = B.row(rows[static_cast<std::size_t>(i)]);
+  for (Eigen::Index k : states) lin.state_names.push_back(coordinates[static_cast<std::size_t>(k)].name);
+  for (Eigen::Index k = 0; k < n; ++k) {
+    states.push_back(n + k);
+    lin.state_names.push_back(coordinates[static_cast<std::size_t>(k)].name + "_dot");
   }
+  lin.A = lin.A_full(states, states);
+  lin.B = lin.B_full(states, Eigen::all);
 }
 
 }  // namespace
 
 LinearModel linearize(const Model& model, const ModelEquations& eom, const SymbolicLinearization& symbolic,
                       const NamedValues& point, const LinearizeOptions& options) {
-  const Variables& vars = model.system.variables();
-  const std::size_t n = vars.coordinates().size(), nu = vars.inputs().size();
   LinearModel lin;
-  for (const Input& u : vars.inputs()) lin.input_names.push_back(u.name);
-  if (eom.constraint_count > 0) {
+  for (const Input& u : model.system.variables().inputs()) lin.input_names.push_back(u.name);
+  if (eom.constraint_count > 0)
     linearize_constrained(model, eom, symbolic, point, options, lin);
-    for (Eigen::MatrixXd* m : {&lin.A, &lin.B}) *m = m->unaryExpr([](double v) { return v == 0 ? 0.0 : v; });
-    return lin;
-  }
-  const NumericEquations at = evaluate_equations(model, eom, point);
-  lin.M = at.mass_matrix;
-  const Eigen::LLT<Eigen::MatrixXd> llt(lin.M);
-  if (llt.info() != Eigen::Success || !(llt.rcond() > 1e-13))
-    throw Error(fmt::format("linearizing {}: the mass matrix is singular at the operating point", model.name));
-  lin.qdd0 = llt.solve(at.forcing);
-
-  const DoubleEvaluator eval = terms_at(model, eom, symbolic, point, lin.qdd0, Eigen::VectorXd());
-  lin.K = evaluate_matrix(symbolic.K, eval, "K");
-  lin.D = evaluate_matrix(symbolic.D, eval, "D");
-  lin.B_u = evaluate_matrix(symbolic.B_u, eval, "B_u");
-
-  std::vector<std::size_t> kept;
-  for (std::size_t k = 0; k < n; ++k) {
-    if (options.drop_cyclic && symbolic.cyclic[k])
-      lin.dropped.push_back(vars.coordinates()[k].name);
-    else
-      kept.push_back(k);
-  }
-  for (std::size_t k : kept) lin.state_names.push_back(vars.coordinates()[k].name);
-  for (const Coordinate& c : vars.coordinates()) lin.state_names.push_back(c.name + "_dot");
-
-  // dq' = dqd for the kept coordinates; M dqdd = -K dq - D dqd + B_u du
-  const std::size_t nk = kept.size();
-  lin.A = Eigen::MatrixXd::Zero(nk + n, nk + n);
-  lin.B = Eigen::MatrixXd::Zero(nk + n, nu);
-  for (std::size_t r = 0; r < nk; ++r) lin.A(r, nk + kept[r]) = 1;
-  Eigen::MatrixXd K_kept(n, nk);
-  for (std::size_t c = 0; c < nk; ++c) K_kept.col(c) = lin.K.col(kept[c]);
-  lin.A.bottomLeftCorner(n, nk) = -llt.solve(K_kept);
-  lin.A.bottomRightCorner(n, n) = -llt.solve(lin.D);
-  if (nu > 0) lin.B.bottomRows(n) = llt.solve(lin.B_u);
-  // -0 from negating a zero would print as "-0"
-  for (Eigen::MatrixXd* m : {&lin.A, &lin.B, &lin.K, &lin.D, &lin.B_u})
-    *m = m->unaryExpr([](double v) { return v == 0 ? 0.0 : v; });
+  else
+    linearize_unconstrained(model, eom, symbolic, point, options, lin);
+  clear_negative_zeros({&lin.A, &lin.B, &lin.K, &lin.D, &lin.B_u, &lin.A_full, &lin.B_full});
   return lin;
 }
 

@@ -4,10 +4,8 @@
 
 #include <fmt/format.h>
 
-#include <cmath>
-#include <limits>
-
 #include "eomgen/base/error.hpp"
+#include "eomrt/regularity.hpp"
 
 namespace eomgen {
 namespace {
@@ -101,38 +99,36 @@ NumericEquations evaluate_equations(const Model& model, const ModelEquations& eo
   return out;
 }
 
-AccelerationSolution solve_accelerations(const NumericEquations& eq) {
+eomrt::KktSystem<double> factorize_kkt(const NumericEquations& eq) {
+  eomrt::KktSystem<double> kkt;
+  if (kkt.compute(eq.mass_matrix, eq.constraint_jacobian) == eomrt::DynamicsStatus::ok) return kkt;
+  // the rank, for the message only, counts the pivots above the same threshold
+  Eigen::FullPivLU<Eigen::MatrixXd> lu(kkt.matrix());
+  lu.setThreshold(eomrt::default_singular_rcond<double>());
+  throw Error(fmt::format("solving the KKT system [[M, -Xi^T], [-Xi, 0]]: the matrix is singular at this "
+                          "state (rank {} of {}): the constraints are dependent, or M is singular on "
+                          "the directions they allow",
+                          lu.rank(), kkt.matrix().rows()));
+}
+
+AccelerationSolution solve_accelerations(const NumericEquations& eq, const eomrt::KktSystem<double>& kkt) {
   const Eigen::Index n = eq.mass_matrix.rows(), m = eq.constraint_jacobian.rows();
-  AccelerationSolution out;
-  if (m == 0) {
-    // M is symmetric positive definite for a proper choice of coordinates; a singular or
-    // indefinite M means the coordinates are redundant and need a constraint
-    const Eigen::LLT<Eigen::MatrixXd> llt(eq.mass_matrix);
-    if (llt.info() != Eigen::Success || llt.rcond() < std::numeric_limits<double>::epsilon())
-      throw Error("solving M qdd = F: the mass matrix is not positive definite at this state "
-                  "(redundant coordinates need a constraint)");
-    out.qdd = llt.solve(eq.forcing);
-    out.lambda.resize(0);
-    return out;
-  }
   // [[M, -Xi^T], [-Xi, 0]] [qdd; lambda] = [F; dXi/dt qd + dXi_t/dt], docs/conventions.md (KKT)
-  Eigen::MatrixXd K = Eigen::MatrixXd::Zero(n + m, n + m);
-  K.topLeftCorner(n, n) = eq.mass_matrix;
-  K.topRightCorner(n, m) = -eq.constraint_jacobian.transpose();
-  K.bottomLeftCorner(m, n) = -eq.constraint_jacobian;
-  Eigen::VectorXd rhs(n + m);
-  rhs << eq.forcing, eq.constraint_acceleration_term;
-  // full pivoting: M alone may be singular (quaternions) while K is regular
-  const Eigen::FullPivLU<Eigen::MatrixXd> lu(K);
-  if (!lu.isInvertible())
-    throw Error(fmt::format("solving the KKT system [[M, -Xi^T], [-Xi, 0]]: the matrix is singular at this "
-                            "state (rank {} of {}): the constraints are dependent, or M is singular on "
-                            "the directions they allow",
-                            lu.rank(), n + m));
-  const Eigen::VectorXd x = lu.solve(rhs);
-  out.qdd = x.head(n);
-  out.lambda = x.tail(m);
-  return out;
+  Eigen::VectorXd x(n + m);
+  x << eq.forcing, eq.constraint_acceleration_term;
+  kkt.solve_in_place(x);
+  return {x.head(n), x.tail(m)};
+}
+
+AccelerationSolution solve_accelerations(const NumericEquations& eq) {
+  if (eq.constraint_jacobian.rows() > 0) return solve_accelerations(eq, factorize_kkt(eq));
+  // M is symmetric positive definite for a proper choice of coordinates; a singular or
+  // indefinite M means the coordinates are redundant and need a constraint
+  const Eigen::LLT<Eigen::MatrixXd> llt(eq.mass_matrix);
+  if (!eomrt::cholesky_is_regular(llt, eomrt::default_singular_rcond<double>()))
+    throw Error("solving M qdd = F: the mass matrix is not positive definite at this state "
+                "(redundant coordinates need a constraint)");
+  return {llt.solve(eq.forcing), Eigen::VectorXd(0)};
 }
 
 }  // namespace eomgen

@@ -3,10 +3,10 @@
 /// DynamicsWorkspace: all per-evaluation data of a model's forward dynamics (M, F, Xi, the
 /// factorizations, qdd, lambda), built once so that a solve never allocates.
 #include <Eigen/Dense>
-#include <cmath>
-#include <limits>
 
+#include "eomrt/kkt_system.hpp"
 #include "eomrt/model_traits.hpp"
+#include "eomrt/regularity.hpp"
 #include "eomrt/status.hpp"
 
 namespace eomrt {
@@ -20,20 +20,6 @@ struct Baumgarte {
   Scalar beta = 0;   ///< [1/s] natural frequency pulling phi back to zero
 };
 
-/// Whether a Cholesky factorization L L^T of a symmetric matrix is numerically positive
-/// definite: no failed pivot, and (min L_ii / max L_ii)^2 > threshold. That ratio of the
-/// smallest to the largest pivot bounds 1/cond from above and drops to 0 exactly where a
-/// configuration makes M singular (a gimbal lock); it costs O(n), where Eigen's rcond()
-/// estimate costs more than evaluating M and F of a small model.
-template <class Llt, class Scalar>
-bool cholesky_is_regular(const Llt& llt, const Scalar& threshold) {
-  if (llt.info() != Eigen::Success) return false;
-  const auto pivots = llt.matrixLLT().diagonal();
-  if (pivots.size() == 0) return true;
-  const Scalar smallest = pivots.minCoeff(), largest = pivots.maxCoeff();
-  return smallest * smallest > threshold * largest * largest;
-}
-
 namespace detail {
 
 /// Factorizations only a constrained model needs; empty for nc = 0, where Eigen's fixed-size
@@ -42,9 +28,8 @@ template <class Scalar, int nq, int nc>
 struct ConstraintSolvers {
   static constexpr int nk = nq + nc;
   static constexpr int nr = nq - nc;
-  Eigen::Matrix<Scalar, nk, nk> kkt;                             ///< [[M, -Xi^T], [-Xi, 0]]
-  Eigen::Matrix<Scalar, nk, 1> kkt_rhs;                          ///< [F; -r]
-  Eigen::PartialPivLU<Eigen::Matrix<Scalar, nk, nk>> kkt_lu;     ///< of kkt
+  KktSystem<Scalar, nq, nc> kkt;                                 ///< [[M, -Xi^T], [-Xi, 0]], factorized
+  Eigen::Matrix<Scalar, nk, 1> kkt_rhs;                          ///< [F; -r], then [qdd; lambda]
   Eigen::ColPivHouseholderQR<Eigen::Matrix<Scalar, nq, nc>> qr;  ///< of Xi^T = Q R P^T
   Eigen::Matrix<Scalar, nq, nq> q_full;                          ///< Q of the QR
   Eigen::Matrix<Scalar, nq, nr> upsilon;                         ///< Xi Upsilon = 0
@@ -92,11 +77,11 @@ struct DynamicsWorkspace {
   Eigen::LLT<typename Types::MassMatrix> mass_llt;  ///< Cholesky of M (unconstrained models)
   detail::ConstraintSolvers<Scalar, nq, nc> solvers;
 
-  /// Reciprocal condition number below which a factorization counts as singular. A solve with
-  /// a worse conditioned matrix would return digits of noise; failing loudly is the better
-  /// service. 1e3 eps: about 2e-13 in double. Cholesky factorizations of mass matrices compare
-  /// it with their pivot ratio (see cholesky_is_regular), the others with Eigen's rcond().
-  Scalar singular_rcond = Scalar(1000) * std::numeric_limits<Scalar>::epsilon();
+  /// Reciprocal condition number below which a factorization counts as singular (see
+  /// default_singular_rcond). Cholesky factorizations of mass matrices compare it with their
+  /// pivot ratio (cholesky_is_regular), the KKT matrix and the Gram matrix Xi Xi^T with
+  /// Eigen's rcond(), the QR of Xi^T with the ratio of its diagonal.
+  Scalar singular_rcond = default_singular_rcond<Scalar>();
 
   DynamicsWorkspace() {
     M.setZero();

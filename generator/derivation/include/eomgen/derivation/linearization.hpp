@@ -23,6 +23,10 @@
 // The derivatives are exact: every intermediate z_i of the derivation gets its derivatives
 // dz_i/dv as intermediates of their own (the chain rule through the shared graph), so nothing
 // is differenced and nothing is written out as a tree.
+//
+// The numbers from the derivatives to A and B go through the runtime's own code
+// (eomrt/linearization.hpp, eomrt/kkt_system.hpp: the same KKT solve and regularity tests),
+// which the generated code's linearization_terms feed as well.
 #include <Eigen/Dense>
 #include <ginac/ginac.h>
 
@@ -65,6 +69,9 @@ struct LinearModel {
   /// constrained models: the coordinates and rates the constraints determine (not states)
   std::vector<std::string> dependent;
   Eigen::MatrixXd A, B;                  ///< first-order form dx' = A dx + B du
+  /// the first-order form on the full state [q; qd] before any reduction (with constraints:
+  /// of the KKT accelerations), as eomrt::linearization gives it from the generated code
+  Eigen::MatrixXd A_full, B_full;
   /// second-order form M dqdd + D dqd + K dq = B_u du over all coordinates (it exists also
   /// when cyclic coordinates are dropped from A); empty for a constrained model, whose linear
   /// model lives in independent coordinates and speeds instead

@@ -12,6 +12,7 @@
 #include "eomgen/symbolic/double_evaluator.hpp"
 #include "eomgen/derivation/equations_of_motion.hpp"
 #include "eomgen/derivation/model_equations.hpp"
+#include "eomrt/kkt_system.hpp"
 
 namespace eomgen {
 
@@ -62,11 +63,21 @@ Eigen::MatrixXd evaluate_matrix(const GiNaC::matrix& m, const DoubleEvaluator& e
 NumericEquations evaluate_equations(const Model& model, const ModelEquations& eom,
                                     const NamedValues& values);
 
-/// Solves for qdd and lambda. Without constraints: M qdd = F by Cholesky (LLT). With them: the
-/// KKT system of docs/conventions.md, [[M, -Xi^T], [-Xi, 0]] [qdd; lambda] = [F; dXi/dt qd + dXi_t/dt],
-/// by full-pivoting LU, so that a singular M with a regular KKT matrix (quaternion attitude
-/// with its norm constraint) works.
+/// The KKT matrix [[M, -Xi^T], [-Xi, 0]] of docs/conventions.md at the state of `equations`,
+/// factorized by the runtime's KktSystem, so that the generator and the generated code's
+/// runtime find the same states singular.
+/// \throws Error if the KKT matrix is singular (its rank in the message): the constraints are
+///   dependent, or M is singular on the directions they allow.
+eomrt::KktSystem<double> factorize_kkt(const NumericEquations& equations);
+
+/// Solves for qdd and lambda. Without constraints: M qdd = F by Cholesky, M tested as the
+/// runtime does (eomrt::cholesky_is_regular). With them: the KKT system of docs/conventions.md,
+/// [[M, -Xi^T], [-Xi, 0]] [qdd; lambda] = [F; dXi/dt qd + dXi_t/dt] (factorize_kkt), so that a
+/// singular M with a regular KKT matrix (quaternion attitude with its norm constraint) works.
 /// \throws Error if M is not positive definite (no constraints) or the KKT matrix is singular.
 AccelerationSolution solve_accelerations(const NumericEquations& equations);
+
+/// The KKT solve of solve_accelerations with `kkt` = factorize_kkt(equations) already at hand.
+AccelerationSolution solve_accelerations(const NumericEquations& equations, const eomrt::KktSystem<double>& kkt);
 
 }  // namespace eomgen

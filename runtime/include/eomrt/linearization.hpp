@@ -1,0 +1,196 @@
+#pragma once
+/// \file
+/// Linear models about an operating point (t, q, qd, u), x = [q; qd]. The model-specific part
+/// is the generated linearization_terms (eomgen generate --linearization): the exact
+/// derivatives of the residuals
+///   R = M qdd - F - Xi^T lambda,   S = Xi qdd + b,
+/// K = dR/dq, D = dR/dqd, B_u = -dR/du (= dF/du), S_q = dS/dq, S_qd = dS/dqd, at given qdd and
+/// lambda. They are taken here at the point's own accelerations qdd0 and multipliers lambda0,
+/// from the forward dynamics, so a steady motion (a spinning top, a rolling coin), where qdd0
+/// is not zero and dM/dq qdd0 belongs to K, linearizes correctly.
+///
+/// Unconstrained: M dqdd + D dqd + K dq = B_u du, the second-order form, gives
+///   A = [[0, 1], [-M^-1 K, -M^-1 D]],   B = [[0], [M^-1 B_u]].
+/// Constrained: dR = 0 and dS = 0 are the KKT system of docs/conventions.md for the derivatives,
+///   [[M, -Xi^T], [-Xi, 0]] d[qdd; lambda] = [-K dq - D dqd + B_u du; S_q dq + S_qd dqd],
+/// (the implicit function theorem), and A, B are those of the KKT accelerations on the full
+/// state. At a point on the constraints the tangent space of the constraint manifold is
+/// invariant under A; restricted to it (independent coordinates and speeds) it is the reduced
+/// model `eomgen linearize` prints.
+///
+/// first_order_form works on any sizes (the generator uses it with dynamic ones);
+/// linearization and second_order_linearization evaluate a model and allocate nothing.
+#include <type_traits>
+#include <utility>
+
+#include "eomrt/dynamics_kkt.hpp"
+#include "eomrt/dynamics_unconstrained.hpp"
+#include "eomrt/kkt_system.hpp"
+
+namespace eomrt {
+
+/// The derivatives linearization_terms gives at one point (nc = 0: S_q and S_qd are empty).
+template <class Scalar, int nq = Eigen::Dynamic, int nu = Eigen::Dynamic, int nc = Eigen::Dynamic>
+struct LinearizationTerms {
+  Eigen::Matrix<Scalar, nq, nq> K;     ///< dR/dq (nq x nq)
+  Eigen::Matrix<Scalar, nq, nq> D;     ///< dR/dqd (nq x nq)
+  Eigen::Matrix<Scalar, nq, nu> B_u;   ///< dF/du (nq x nu)
+  Eigen::Matrix<Scalar, nc, nq> S_q;   ///< dS/dq (nc x nq)
+  Eigen::Matrix<Scalar, nc, nq> S_qd;  ///< dS/dqd (nc x nq)
+};
+
+/// A (2 nq x 2 nq) of dx' = A dx + B du.
+template <class Scalar, int nq = Eigen::Dynamic>
+using StateMatrix = Eigen::Matrix<Scalar, detail::size_times(2, nq), detail::size_times(2, nq)>;
+/// B (2 nq x nu) of dx' = A dx + B du.
+template <class Scalar, int nq = Eigen::Dynamic, int nu = Eigen::Dynamic>
+using StateInputMatrix = Eigen::Matrix<Scalar, detail::size_times(2, nq), nu>;
+/// d[qdd; lambda]/d[q, qd, u] ((nq + nc) x (2 nq + nu)), the constrained solve's scratch.
+template <class Scalar, int nq = Eigen::Dynamic, int nu = Eigen::Dynamic, int nc = Eigen::Dynamic>
+using KktDerivatives = Eigen::Matrix<Scalar, detail::size_sum(nq, nc), detail::size_sum(detail::size_times(2, nq), nu)>;
+
+/// A and B of an unconstrained model from its second-order form.
+/// \param[in]  mass_llt  Cholesky factorization of M at the point (regular)
+/// \param[in]  terms     K, D, B_u at the point
+/// \param[out] A, B      dx' = A dx + B du (resized if dynamic)
+template <class Llt, class Scalar, int nq, int nu, int nc>
+void first_order_form(const Llt& mass_llt, const LinearizationTerms<Scalar, nq, nu, nc>& terms,
+                      StateMatrix<Scalar, nq>& A, StateInputMatrix<Scalar, nq, nu>& B) {
+  const Eigen::Index n = terms.K.rows(), m = terms.B_u.cols();
+  A.setZero(2 * n, 2 * n);
+  A.topRightCorner(n, n).setIdentity();
+  A.bottomLeftCorner(n, n) = -mass_llt.solve(terms.K);
+  A.bottomRightCorner(n, n) = -mass_llt.solve(terms.D);
+  B.setZero(2 * n, m);
+  if constexpr (nu != 0) B.bottomRows(n) = mass_llt.solve(terms.B_u);
+}
+
+/// A and B of a constrained model: the derivatives of its KKT accelerations.
+/// \param[in]  kkt          the KKT system of M and Xi at the point, factorized (compute() ok)
+/// \param[in]  terms        K, D, B_u, S_q, S_qd at the point
+/// \param[out] derivatives  d[qdd; lambda]/d[q, qd, u] (scratch, resized if dynamic)
+/// \param[out] A, B         dx' = A dx + B du (resized if dynamic)
+template <class Scalar, int nq, int nu, int nc>
+void first_order_form(const KktSystem<Scalar, nq, nc>& kkt, const LinearizationTerms<Scalar, nq, nu, nc>& terms,
+                      KktDerivatives<Scalar, nq, nu, nc>& derivatives, StateMatrix<Scalar, nq>& A,
+                      StateInputMatrix<Scalar, nq, nu>& B) {
+  const Eigen::Index n = terms.K.rows(), m = terms.S_q.rows(), k = terms.B_u.cols();
+  derivatives.resize(n + m, 2 * n + k);
+  derivatives.topLeftCorner(n, n) = -terms.K;
+  derivatives.block(0, n, n, n) = -terms.D;
+  derivatives.topRightCorner(n, k) = terms.B_u;
+  derivatives.bottomLeftCorner(m, n) = terms.S_q;
+  derivatives.block(n, n, m, n) = terms.S_qd;
+  derivatives.bottomRightCorner(m, k).setZero();
+  kkt.solve_in_place(derivatives);
+  A.setZero(2 * n, 2 * n);
+  A.topRightCorner(n, n).setIdentity();
+  A.bottomRows(n) = derivatives.topLeftCorner(n, 2 * n);
+  B.setZero(2 * n, k);
+  B.bottomRows(n) = derivatives.topRightCorner(n, k);
+}
+
+namespace detail {
+
+template <class Model, class Scalar, class = void>
+struct has_linearization_terms : std::false_type {};
+template <class Model, class Scalar>
+struct has_linearization_terms<Model, Scalar, std::enable_if_t<Model::nc == 0, void_t<decltype(Model::linearization_terms(
+    std::declval<const Scalar&>(), std::declval<const typename ModelTypes<Model, Scalar>::Coordinates&>(),
+    std::declval<const typename ModelTypes<Model, Scalar>::Coordinates&>(),
+    std::declval<const typename ModelTypes<Model, Scalar>::Inputs&>(),
+    std::declval<const typename ModelTypes<Model, Scalar>::Parameters&>(),
+    std::declval<const typename ModelTypes<Model, Scalar>::Coordinates&>(),
+    std::declval<Eigen::Matrix<Scalar, Model::nq, Model::nq>&>(), std::declval<Eigen::Matrix<Scalar, Model::nq, Model::nq>&>(),
+    std::declval<Eigen::Matrix<Scalar, Model::nq, Model::nu>&>()))>>> : std::true_type {};
+template <class Model, class Scalar>
+struct has_linearization_terms<Model, Scalar, std::enable_if_t<(Model::nc > 0), void_t<decltype(Model::linearization_terms(
+    std::declval<const Scalar&>(), std::declval<const typename ModelTypes<Model, Scalar>::Coordinates&>(),
+    std::declval<const typename ModelTypes<Model, Scalar>::Coordinates&>(),
+    std::declval<const typename ModelTypes<Model, Scalar>::Inputs&>(),
+    std::declval<const typename ModelTypes<Model, Scalar>::Parameters&>(),
+    std::declval<const typename ModelTypes<Model, Scalar>::Coordinates&>(),
+    std::declval<const typename ModelTypes<Model, Scalar>::ConstraintVector&>(),
+    std::declval<Eigen::Matrix<Scalar, Model::nq, Model::nq>&>(), std::declval<Eigen::Matrix<Scalar, Model::nq, Model::nq>&>(),
+    std::declval<Eigen::Matrix<Scalar, Model::nq, Model::nu>&>(),
+    std::declval<typename ModelTypes<Model, Scalar>::ConstraintJacobian&>(),
+    std::declval<typename ModelTypes<Model, Scalar>::ConstraintJacobian&>()))>>> : std::true_type {};
+
+}  // namespace detail
+
+/// Scratch and results of the linearization of one model, for one scalar type; fixed-size, so
+/// the algorithms below allocate nothing.
+template <class Model, class Scalar = double>
+struct LinearizationWorkspace {
+  static constexpr int nq = Model::nq;
+  static constexpr int nu = Model::nu;
+  static constexpr int nc = Model::nc;
+  /// the operating point's forward dynamics: M, F, Xi, b, their factorizations, and qdd0 and
+  /// lambda0 in dynamics.qdd and dynamics.lambda
+  DynamicsWorkspace<Model, Scalar> dynamics;
+  LinearizationTerms<Scalar, nq, nu, nc> terms;      ///< K, D, B_u (S_q, S_qd) at qdd0, lambda0
+  KktDerivatives<Scalar, nq, nu, nc> derivatives;    ///< d[qdd; lambda]/d[q, qd, u] (nc > 0)
+  StateMatrix<Scalar, nq> A;                         ///< result (2 nq x 2 nq)
+  StateInputMatrix<Scalar, nq, nu> B;                ///< result (2 nq x nu)
+};
+
+/// The second-order form M dqdd + D dqd + K dq = B_u du of an unconstrained model about
+/// (t, q, qd, u), K taken at the point's accelerations qdd0 = M^-1 F (zero at an equilibrium).
+/// \param[in]  p      parameters
+/// \param[out] ws     ws.dynamics.M, ws.terms.K, ws.terms.D, ws.terms.B_u; qdd0 in
+///                    ws.dynamics.qdd and the Cholesky factor of M in ws.dynamics.mass_llt
+/// \param[in]  t      time
+/// \param[in]  q, qd  coordinates and rates (dim nq)
+/// \param[in]  u      inputs (dim nu)
+/// \return ok; singular_mass_matrix if M is not (numerically) positive definite; non_finite if
+///         M, F, qdd0 or a term is not finite
+template <class Model, class Scalar>
+DynamicsStatus second_order_linearization(const typename ModelTypes<Model, Scalar>::Parameters& p,
+                                          LinearizationWorkspace<Model, Scalar>& ws, const Scalar& t,
+                                          const typename ModelTypes<Model, Scalar>::Coordinates& q,
+                                          const typename ModelTypes<Model, Scalar>::Coordinates& qd,
+                                          const typename ModelTypes<Model, Scalar>::Inputs& u) noexcept {
+  static_assert(Model::nc == 0,
+                "second_order_linearization: the model has constraints; use linearization (the KKT form)");
+  static_assert(detail::has_linearization_terms<Model, Scalar>::value,
+                "eomrt model: linearization needs linearization_terms; generate with --linearization");
+  const DynamicsStatus status = forward_dynamics_unconstrained<Model>(p, ws.dynamics, t, q, qd, u);
+  if (status != DynamicsStatus::ok) return status;
+  Model::linearization_terms(t, q, qd, u, p, ws.dynamics.qdd, ws.terms.K, ws.terms.D, ws.terms.B_u);
+  return ws.terms.K.allFinite() && ws.terms.D.allFinite() && ws.terms.B_u.allFinite() ? DynamicsStatus::ok
+                                                                                        : DynamicsStatus::non_finite;
+}
+
+/// A and B of dx' = A dx + B du, x = [q; qd], about (t, q, qd, u), from exact derivatives; for
+/// a constrained model those of the KKT accelerations (without stabilization) on the full state.
+/// \param[in]  p      parameters
+/// \param[out] ws     ws.A (2 nq x 2 nq) and ws.B (2 nq x nu) receive the result; the terms and
+///                    the point's forward dynamics stay in ws.terms and ws.dynamics
+/// \param[in]  t      time
+/// \param[in]  q, qd  coordinates and rates (dim nq)
+/// \param[in]  u      inputs (dim nu)
+/// \return ok; singular_mass_matrix (unconstrained) or singular_kkt_matrix (constrained) where
+///         the point's dynamics are singular; non_finite if a term, A or B is not finite
+template <class Model, class Scalar>
+DynamicsStatus linearization(const typename ModelTypes<Model, Scalar>::Parameters& p,
+                             LinearizationWorkspace<Model, Scalar>& ws, const Scalar& t,
+                             const typename ModelTypes<Model, Scalar>::Coordinates& q,
+                             const typename ModelTypes<Model, Scalar>::Coordinates& qd,
+                             const typename ModelTypes<Model, Scalar>::Inputs& u) noexcept {
+  static_assert(detail::has_linearization_terms<Model, Scalar>::value,
+                "eomrt model: linearization needs linearization_terms; generate with --linearization");
+  if constexpr (Model::nc == 0) {
+    const DynamicsStatus status = second_order_linearization<Model>(p, ws, t, q, qd, u);
+    if (status != DynamicsStatus::ok) return status;
+    first_order_form(ws.dynamics.mass_llt, ws.terms, ws.A, ws.B);
+  } else {
+    const DynamicsStatus status = forward_dynamics_kkt<Model>(p, ws.dynamics, t, q, qd, u);
+    if (status != DynamicsStatus::ok) return status;
+    Model::linearization_terms(t, q, qd, u, p, ws.dynamics.qdd, ws.dynamics.lambda, ws.terms.K, ws.terms.D,
+                               ws.terms.B_u, ws.terms.S_q, ws.terms.S_qd);
+    first_order_form(ws.dynamics.solvers.kkt, ws.terms, ws.derivatives, ws.A, ws.B);
+  }
+  return ws.A.allFinite() && ws.B.allFinite() ? DynamicsStatus::ok : DynamicsStatus::non_finite;
+}
+
+}  // namespace eomrt
