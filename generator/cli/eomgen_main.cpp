@@ -573,6 +573,9 @@ int main(int argc, char** argv) {
   } catch (const eomgen::Error& e) {
     std::cerr << "eomgen: error: " << e.what() << "\n";
     return 1;
+  } catch (const eomgen::InternalError& e) {  // an invariant of the generator: says where the bug is
+    std::cerr << "eomgen: " << e.what() << "\n";
+    return 1;
   } catch (const std::exception& e) {  // GiNaC or the system: not the user's fault, but still fatal
     std::cerr << "eomgen: internal error: " << e.what() << "\n";
     return 1;

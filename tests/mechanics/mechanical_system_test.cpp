@@ -4,6 +4,9 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <string>
+#include <vector>
+
 #include "eomgen/base/error.hpp"
 #include "eomgen/symbolic/simplify.hpp"
 #include "support/expect_throw.hpp"
@@ -115,6 +118,31 @@ TEST(MechanicalSystem, GeneralizedForceOnMissingCoordinateIsRejected) {
   Fixture f;
   EXPECT_THROW_MESSAGE(f.s.add_generalized_force(3, 1), ModelError,
                        "generalized force: coordinate #3 does not exist (the model has 1)");
+}
+
+// the derivations add terms, and name shared subexpressions, in the order of loads()
+TEST(MechanicalSystem, LoadsAreGroupedByTypeInTheOrderTheyWereAdded) {
+  Fixture f;
+  const PointId p2 = f.s.add_point("p2", f.s.origin(), Vector(f.b, 0, 1, 0));
+  f.s.add_potential("magnet", f.q.q * f.q.q);
+  f.s.add_spring("k1", f.p, p2, 1, 0);
+  f.s.add_force(f.p, Vector(f.b, 1, 0, 0));
+  f.s.add_spring("k2", f.p, p2, 2, 0);
+  f.s.add_damper("c1", f.p, p2, 1);
+  f.s.add_force(p2, Vector(f.b, 0, 1, 0));
+  std::vector<std::string> visited;
+  for (const Load& load : f.s.loads())
+    visit_load(
+        load, [&](const PointForce& force) { visited.push_back(force.point == f.p ? "force at p" : "force at p2"); },
+        [&](const BodyMoment&) { visited.push_back("moment"); },
+        [&](const LinearDamper& d) { visited.push_back("damper " + d.name); },
+        [&](const CoordinateDamper& d) { visited.push_back("damper " + d.name); },
+        [&](const GeneralizedForce&) { visited.push_back("generalized force"); },
+        [&](const LinearSpring& k) { visited.push_back("spring " + k.name); },
+        [&](const TorsionalSpring& k) { visited.push_back("torsion " + k.name); },
+        [&](const Potential& v) { visited.push_back("potential " + v.name); });
+  EXPECT_EQ(visited, (std::vector<std::string>{"force at p", "force at p2", "damper c1", "spring k1", "spring k2",
+                                               "potential magnet"}));
 }
 
 TEST(ParallelAxis, UniformRodAboutItsEndIsOneThirdMlSquared) {

@@ -63,7 +63,6 @@ class Derivation {
     inertia_terms();
     gravity_terms();
     load_terms();
-    potential_terms();
     assemble();
     constraints();
     return std::move(eom_);
@@ -198,56 +197,65 @@ class Derivation {
     for (const RigidBody& b : s_.rigid_bodies()) add_weight(b.mass, points_[b.mass_centre.index]);
   }
 
+  // the generalized force of each load (and the potential energy of the conservative ones)
   void load_terms() {
-    for (const PointForce& f : s_.forces()) {
-      const matrix force = in_inertial(f.force);
-      const PointState& p = points_[f.point.index];
-      for (std::size_t k = 0; k < n_; ++k) add_f(k, dot3(force, p.V[k]));
-    }
-    for (const BodyMoment& m : s_.moments()) {
-      const FrameState& b = frames_[m.frame.index];
-      const matrix moment = z_.bind(b.C_0f.transpose().mul(in_inertial(m.moment)));
-      for (std::size_t k = 0; k < n_; ++k) add_f(k, dot3(moment, b.W[k]));
-    }
-    for (const LinearDamper& d : s_.dampers()) {
-      // f_a = -c ((v_a - v_b) . e) e along e = r^{ab} / |r^{ab}|
-      const PointState& a = points_[d.a.index];
-      const PointState& b = points_[d.b.index];
-      const matrix r = z_.bind(a.r.sub(b.r));
-      const ex length_sq = z_.bind(dot3(r, r));
-      const ex along = z_.bind(-d.damping * dot3(r, a.v.sub(b.v)) / length_sq);
-      for (std::size_t k = 0; k < n_; ++k) add_f(k, along * dot3(r, a.V[k].sub(b.V[k])));
-    }
-    for (const CoordinateDamper& d : s_.coordinate_dampers()) {
-      const ex rate = vars_.time_derivative(d.coordinate_expression);
-      for (std::size_t k = 0; k < n_; ++k)
-        add_f(k, -d.damping * rate * coordinate_partial(d.coordinate_expression, k));
-    }
-    for (const GeneralizedForce& g : s_.generalized_forces()) add_f(g.coordinate, g.value);
+    for (const Load& load : s_.loads())
+      visit_load(
+          load, [&](const PointForce& f) { force_terms(f); }, [&](const BodyMoment& m) { moment_terms(m); },
+          [&](const LinearDamper& d) { damper_terms(d); }, [&](const CoordinateDamper& d) { damper_terms(d); },
+          [&](const GeneralizedForce& g) { add_f(g.coordinate, g.value); },
+          [&](const LinearSpring& sp) { spring_terms(sp); }, [&](const TorsionalSpring& sp) { spring_terms(sp); },
+          [&](const Potential& p) { potential_terms(p); });
   }
 
-  void potential_terms() {
-    for (const LinearSpring& sp : s_.springs()) {
-      // V = k/2 (L - L0)^2; force on a: -k (L - L0) r^{ab} / L
-      const PointState& a = points_[sp.a.index];
-      const PointState& b = points_[sp.b.index];
-      const matrix r = z_.bind(a.r.sub(b.r));
-      const ex length = z_.bind(GiNaC::sqrt(dot3(r, r)));
-      const ex stretch = length - sp.rest_length;
-      v_terms_.push_back(sp.stiffness * GiNaC::pow(stretch, 2) / 2);
-      const ex tension = z_.bind(-sp.stiffness * stretch / length);
-      for (std::size_t k = 0; k < n_; ++k) add_f(k, tension * dot3(r, a.V[k].sub(b.V[k])));
-    }
-    for (const TorsionalSpring& sp : s_.torsional_springs()) {
-      const ex twist = sp.angle - sp.rest_angle;
-      v_terms_.push_back(sp.stiffness * GiNaC::pow(twist, 2) / 2);
-      for (std::size_t k = 0; k < n_; ++k)
-        add_f(k, -sp.stiffness * twist * coordinate_partial(sp.angle, k));
-    }
-    for (const Potential& p : s_.potentials()) {
-      v_terms_.push_back(p.value);
-      for (std::size_t k = 0; k < n_; ++k) add_f(k, -coordinate_partial(p.value, k));
-    }
+  void force_terms(const PointForce& f) {
+    const matrix force = in_inertial(f.force);
+    const PointState& p = points_[f.point.index];
+    for (std::size_t k = 0; k < n_; ++k) add_f(k, dot3(force, p.V[k]));
+  }
+
+  void moment_terms(const BodyMoment& m) {
+    const FrameState& b = frames_[m.frame.index];
+    const matrix moment = z_.bind(b.C_0f.transpose().mul(in_inertial(m.moment)));
+    for (std::size_t k = 0; k < n_; ++k) add_f(k, dot3(moment, b.W[k]));
+  }
+
+  void damper_terms(const LinearDamper& d) {
+    // f_a = -c ((v_a - v_b) . e) e along e = r^{ab} / |r^{ab}|
+    const PointState& a = points_[d.a.index];
+    const PointState& b = points_[d.b.index];
+    const matrix r = z_.bind(a.r.sub(b.r));
+    const ex length_sq = z_.bind(dot3(r, r));
+    const ex along = z_.bind(-d.damping * dot3(r, a.v.sub(b.v)) / length_sq);
+    for (std::size_t k = 0; k < n_; ++k) add_f(k, along * dot3(r, a.V[k].sub(b.V[k])));
+  }
+
+  void damper_terms(const CoordinateDamper& d) {
+    const ex rate = vars_.time_derivative(d.coordinate_expression);
+    for (std::size_t k = 0; k < n_; ++k) add_f(k, -d.damping * rate * coordinate_partial(d.coordinate_expression, k));
+  }
+
+  void spring_terms(const LinearSpring& sp) {
+    // V = k/2 (L - L0)^2; force on a: -k (L - L0) r^{ab} / L
+    const PointState& a = points_[sp.a.index];
+    const PointState& b = points_[sp.b.index];
+    const matrix r = z_.bind(a.r.sub(b.r));
+    const ex length = z_.bind(GiNaC::sqrt(dot3(r, r)));
+    const ex stretch = length - sp.rest_length;
+    v_terms_.push_back(sp.stiffness * GiNaC::pow(stretch, 2) / 2);
+    const ex tension = z_.bind(-sp.stiffness * stretch / length);
+    for (std::size_t k = 0; k < n_; ++k) add_f(k, tension * dot3(r, a.V[k].sub(b.V[k])));
+  }
+
+  void spring_terms(const TorsionalSpring& sp) {
+    const ex twist = sp.angle - sp.rest_angle;
+    v_terms_.push_back(sp.stiffness * GiNaC::pow(twist, 2) / 2);
+    for (std::size_t k = 0; k < n_; ++k) add_f(k, -sp.stiffness * twist * coordinate_partial(sp.angle, k));
+  }
+
+  void potential_terms(const Potential& p) {
+    v_terms_.push_back(p.value);
+    for (std::size_t k = 0; k < n_; ++k) add_f(k, -coordinate_partial(p.value, k));
   }
 
   void assemble() {

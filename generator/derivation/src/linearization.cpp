@@ -531,7 +531,7 @@ const char* to_string(LinearStability s) {
     case LinearStability::unstable:
       return "unstable";
   }
-  return "unknown";
+  EOMGEN_UNREACHABLE("to_string: a LinearStability outside its enumerators");
 }
 
 const char* to_string(LyapunovVerdict v) {
@@ -543,7 +543,7 @@ const char* to_string(LyapunovVerdict v) {
     case LyapunovVerdict::no_conclusion:
       return "no conclusion (eigenvalues on the imaginary axis)";
   }
-  return "unknown";
+  EOMGEN_UNREACHABLE("to_string: a LyapunovVerdict outside its enumerators");
 }
 
 }  // namespace eomgen

@@ -19,6 +19,44 @@ matrix partial(const matrix& m, const ex& variable) {
   return out;
 }
 
+// The potential energy V of the conservative loads, and the generalized forces Q of the others
+// by virtual work: Q_k = f . dv/dqd_k
+void load_terms(const MechanicalSystem& s, ex& V, GiNaC::exvector& Q) {
+  const Variables& vars = s.variables();
+  const auto& coords = vars.coordinates();
+  const FrameId inertial = s.inertial_frame();
+  auto rate_partials = [&](const matrix& v, const matrix& f) {
+    for (std::size_t k = 0; k < coords.size(); ++k) Q[k] += dot3(f, partial(v, coords[k].qd));
+  };
+  for (const Load& load : s.loads())
+    visit_load(
+        load,
+        [&](const PointForce& f) {
+          rate_partials(resolve(s, velocity(s, f.point), inertial), resolve(s, f.force, inertial));
+        },
+        [&](const BodyMoment& m) {
+          rate_partials(resolve(s, angular_velocity(s, m.frame, inertial), inertial), resolve(s, m.moment, inertial));
+        },
+        [&](const LinearDamper& d) {
+          const matrix r = resolve(s, position(s, d.a, d.b), inertial);
+          const matrix rel = resolve(s, velocity(s, d.a), inertial).sub(resolve(s, velocity(s, d.b), inertial));
+          const ex rate = dot3(r, rel) / GiNaC::sqrt(dot3(r, r));  // dL/dt along the line
+          const ex L = GiNaC::sqrt(dot3(r, r));
+          for (std::size_t k = 0; k < coords.size(); ++k) Q[k] += -d.damping * rate * L.diff(sym(coords[k].q));
+        },
+        [&](const CoordinateDamper& d) {
+          const ex rate = vars.time_derivative(d.coordinate_expression);
+          for (std::size_t k = 0; k < coords.size(); ++k) Q[k] += -d.damping * rate * rate.diff(sym(coords[k].qd));
+        },
+        [&](const GeneralizedForce& g) { Q[g.coordinate] += g.value; },
+        [&](const LinearSpring& sp) {
+          const matrix r = resolve(s, position(s, sp.a, sp.b), inertial);
+          V += sp.stiffness * GiNaC::pow(GiNaC::sqrt(dot3(r, r)) - sp.rest_length, 2) / 2;
+        },
+        [&](const TorsionalSpring& sp) { V += sp.stiffness * GiNaC::pow(sp.angle - sp.rest_angle, 2) / 2; },
+        [&](const Potential& p) { V += p.value; });
+}
+
 }  // namespace
 
 LiteralLagrangeEquations derive_equations_literally(const MechanicalSystem& s) {
@@ -44,38 +82,8 @@ LiteralLagrangeEquations derive_equations_literally(const MechanicalSystem& s) {
     const matrix w = resolve(s, angular_velocity(s, b.frame, inertial), b.frame);
     T += dot3(w, b.inertia.mul(w)) / 2;
   }
-  for (const LinearSpring& sp : s.springs()) {
-    const matrix r = resolve(s, position(s, sp.a, sp.b), inertial);
-    V += sp.stiffness * GiNaC::pow(GiNaC::sqrt(dot3(r, r)) - sp.rest_length, 2) / 2;
-  }
-  for (const TorsionalSpring& sp : s.torsional_springs())
-    V += sp.stiffness * GiNaC::pow(sp.angle - sp.rest_angle, 2) / 2;
-  for (const Potential& p : s.potentials()) V += p.value;
-
-  // non-conservative generalized forces by virtual work: Q_k = f . dv/dqd_k
   GiNaC::exvector Q(n, ex(0));
-  for (const PointForce& f : s.forces()) {
-    const matrix force = resolve(s, f.force, inertial);
-    const matrix v = v_inertial(f.point);
-    for (std::size_t k = 0; k < n; ++k) Q[k] += dot3(force, partial(v, coords[k].qd));
-  }
-  for (const BodyMoment& m : s.moments()) {
-    const matrix moment = resolve(s, m.moment, inertial);
-    const matrix w = resolve(s, angular_velocity(s, m.frame, inertial), inertial);
-    for (std::size_t k = 0; k < n; ++k) Q[k] += dot3(moment, partial(w, coords[k].qd));
-  }
-  for (const LinearDamper& d : s.dampers()) {
-    const matrix r = resolve(s, position(s, d.a, d.b), inertial);
-    const matrix rel = resolve(s, velocity(s, d.a), inertial).sub(resolve(s, velocity(s, d.b), inertial));
-    const ex rate = dot3(r, rel) / GiNaC::sqrt(dot3(r, r));  // dL/dt along the line
-    const ex L = GiNaC::sqrt(dot3(r, r));
-    for (std::size_t k = 0; k < n; ++k) Q[k] += -d.damping * rate * L.diff(sym(coords[k].q));
-  }
-  for (const CoordinateDamper& d : s.coordinate_dampers()) {
-    const ex rate = vars.time_derivative(d.coordinate_expression);
-    for (std::size_t k = 0; k < n; ++k) Q[k] += -d.damping * rate * rate.diff(sym(coords[k].qd));
-  }
-  for (const GeneralizedForce& g : s.generalized_forces()) Q[g.coordinate] += g.value;
+  load_terms(s, V, Q);
 
   LiteralLagrangeEquations out;
   out.kinetic_energy = T;

@@ -11,70 +11,67 @@
 #include "eomgen/symbolic/simplify.hpp"
 
 namespace eomgen::syntax {
-namespace {
 
 using GiNaC::ex;
 using Kind = Statement::Kind;
 
 const char* statement_word(Kind kind) {
   switch (kind) {
+    case Kind::model: return "model";
+    case Kind::description: return "description";
+    case Kind::constant: return "const";
+    case Kind::parameter: return "parameter";
+    case Kind::coordinate: return "coordinate";
+    case Kind::input: return "input";
+    case Kind::frame: return "frame";
+    case Kind::point: return "point";
     case Kind::particle: return "particle";
     case Kind::body: return "body";
+    case Kind::gravity: return "gravity";
     case Kind::force: return "force";
     case Kind::moment: return "moment";
     case Kind::spring: return "spring";
     case Kind::damper: return "damper";
     case Kind::torsion: return "torsion";
-    case Kind::roll: return "roll";
-    case Kind::generalized_force: return "generalized_force";
     case Kind::potential: return "potential";
+    case Kind::generalized_force: return "generalized_force";
     case Kind::constraint: return "constraint";
+    case Kind::roll: return "roll";
+    case Kind::independent: return "independent";
     case Kind::output: return "output";
-    case Kind::gravity: return "gravity";
-    default: return "statement";
+    case Kind::loop: return "for";
   }
+  EOMGEN_UNREACHABLE("statement_word: a Statement::Kind outside its enumerators");
 }
 
-// the key = value arguments of an element statement, checked against what the statement takes
-class Arguments {
- public:
-  Arguments(const Statement& s, std::string what, std::vector<std::string> allowed)
-      : s_(s), what_(std::move(what)), allowed_(std::move(allowed)) {
-    for (const Argument& a : s.arguments) {
-      if (std::find(allowed_.begin(), allowed_.end(), a.key) == allowed_.end())
-        throw SourceError(a.location, fmt::format("{}: unknown argument '{}'; expected {}", what_, a.key, list()));
-      for (const Argument& b : s.arguments)
-        if (&b != &a && b.key == a.key && &b > &a)
-          throw SourceError(b.location, fmt::format("{}: argument '{}' is given twice", what_, a.key));
-    }
+Pass pass_of(Kind kind) {
+  switch (kind) {
+    case Kind::model:
+    case Kind::description:
+    case Kind::constant:
+    case Kind::loop: return Pass::flatten;
+    case Kind::parameter:
+    case Kind::coordinate:
+    case Kind::input: return Pass::declarations;
+    case Kind::frame:
+    case Kind::point: return Pass::frames_and_points;
+    case Kind::particle:
+    case Kind::body:
+    case Kind::gravity:
+    case Kind::force:
+    case Kind::moment:
+    case Kind::spring:
+    case Kind::damper:
+    case Kind::torsion:
+    case Kind::potential:
+    case Kind::generalized_force:
+    case Kind::constraint:
+    case Kind::roll:
+    case Kind::output: return Pass::elements;
+    case Kind::independent: return Pass::independent_speeds;
   }
-  const Argument* find(const std::string& key) const {
-    for (const Argument& a : s_.arguments)
-      if (a.key == key) return &a;
-    return nullptr;
-  }
-  const Argument& require(const std::string& key, const std::string& hint) const {
-    if (const Argument* a = find(key)) return *a;
-    throw SourceError(s_.location, fmt::format("{}: missing argument '{}' ({})", what_, key, hint));
-  }
-  const Name& name_of(const Argument& a, const std::string& expected) const {
-    if (a.value->kind != Expr::Kind::name)
-      throw SourceError(a.value->location, fmt::format("{}: argument '{}' must name {}", what_, a.key, expected));
-    return a.value->name;
-  }
-
- private:
-  std::string list() const {
-    std::string out;
-    for (std::size_t i = 0; i < allowed_.size(); ++i) out += (i ? ", " : "") + allowed_[i];
-    return out;
-  }
-  const Statement& s_;
-  std::string what_;
-  std::vector<std::string> allowed_;
-};
-
-}  // namespace
+  EOMGEN_UNREACHABLE("pass_of: a Statement::Kind outside its enumerators");
+}
 
 Elaborator::Elaborator(std::string file, const std::map<std::string, double>& overrides)
     : file_(std::move(file)), overrides_(overrides) {
@@ -160,6 +157,7 @@ void Elaborator::flatten(const std::vector<Statement>& statements, const Environ
       }
       continue;
     }
+    EOMGEN_DEMAND(pass_of(s.kind) != Pass::flatten, fmt::format("flatten(): '{}' is not handled", statement_word(s.kind)));
     instances_.push_back(Instance{&s, env});
   }
 }
@@ -328,204 +326,6 @@ PointId Elaborator::build_point(const std::string& name, std::vector<std::string
   }
 }
 
-void Elaborator::element(const Instance& in) {
-  const Statement& s = *in.statement;
-  const Environment& env = in.environment;
-  MechanicalSystem& sys = model_.system;
-  const std::string name = s.kind == Kind::gravity ? std::string("gravity") : resolve(s.name, env);
-  const std::string what = fmt::format("{} '{}'", statement_word(s.kind), name);
-  if (s.kind != Kind::gravity && s.kind != Kind::output) declare(name, statement_word(s.kind), s.name.location);
-  auto point_arg = [&](const Arguments& args, const char* key) {
-    return point_named(args.name_of(args.require(key, "a point"), "a point"), env);
-  };
-  auto scalar_arg = [&](const Arguments& args, const char* key, const char* hint) {
-    const Argument& a = args.require(key, hint);
-    return scalar(a.value, env, fmt::format("{}: '{}'", what, key));
-  };
-  auto optional_scalar = [&](const Arguments& args, const char* key) {
-    const Argument* a = args.find(key);
-    return a ? scalar(a->value, env, fmt::format("{}: '{}'", what, key)) : ex(0);
-  };
-  try {
-    switch (s.kind) {
-      case Kind::particle: {
-        Arguments args(s, what, {"mass", "at"});
-        sys.add_particle(name, scalar_arg(args, "mass", "the particle's mass"), point_arg(args, "at"));
-        break;
-      }
-      case Kind::body: {
-        Arguments args(s, what, {"mass", "centre", "center", "frame", "inertia"});
-        const ex mass = scalar_arg(args, "mass", "the body's mass");
-        const Argument* centre = args.find("centre") ? args.find("centre") : args.find("center");
-        if (!centre) args.require("centre", "the mass centre, a point");
-        const PointId c = point_named(args.name_of(*centre, "a point"), env);
-        const FrameId f = frame_named(args.name_of(args.require("frame", "the body frame"), "a frame"), env);
-        const Argument& inertia = args.require("inertia", "the inertia matrix about the mass centre in the body "
-                                                          "frame, e.g. inertia = diag(J1, J2, J3)");
-        const Value J = evaluate(inertia.value, env);
-        if (J.kind != Value::Kind::matrix || J.matrix.rows() != 3 || J.matrix.cols() != 3)
-          throw SourceError(inertia.value->location, fmt::format("{}: 'inertia' must be a 3x3 matrix, e.g. diag(J1, J2, J3)", what));
-        sys.add_rigid_body(name, mass, c, f, J.matrix);
-        break;
-      }
-      case Kind::gravity:
-        if (!sys.gravity().is_zero()) throw SourceError(s.location, "gravity is given twice");
-        sys.set_gravity(vector(s.value, env, "gravity"));
-        break;
-      case Kind::force: {
-        Arguments args(s, what, {"at", "force"});
-        sys.add_force(point_arg(args, "at"), vector(args.require("force", "a vector").value, env, what));
-        break;
-      }
-      case Kind::moment: {
-        Arguments args(s, what, {"on", "moment"});
-        const FrameId f = frame_named(args.name_of(args.require("on", "the body frame"), "a frame"), env);
-        sys.add_moment(f, vector(args.require("moment", "a vector").value, env, what));
-        break;
-      }
-      case Kind::spring: {
-        Arguments args(s, what, {"from", "to", "stiffness", "length"});
-        sys.add_spring(name, point_arg(args, "from"), point_arg(args, "to"), scalar_arg(args, "stiffness", "k"),
-                       optional_scalar(args, "length"));
-        break;
-      }
-      case Kind::damper: {
-        Arguments args(s, what, {"from", "to", "on", "damping"});
-        const ex c = scalar_arg(args, "damping", "the damping coefficient");
-        if (const Argument* on = args.find("on")) {
-          if (args.find("from") || args.find("to"))
-            throw SourceError(s.location, fmt::format("{}: give either 'on' (a coordinate expression) or 'from' and 'to' (points)", what));
-          sys.add_coordinate_damper(name, scalar(on->value, env, what), c);
-        } else {
-          sys.add_damper(name, point_arg(args, "from"), point_arg(args, "to"), c);
-        }
-        break;
-      }
-      case Kind::torsion: {
-        Arguments args(s, what, {"angle", "stiffness", "rest"});
-        sys.add_torsional_spring(name, scalar_arg(args, "angle", "an angle expression"),
-                                 scalar_arg(args, "stiffness", "k"), optional_scalar(args, "rest"));
-        break;
-      }
-      case Kind::potential:
-        sys.add_potential(name, scalar(s.value, env, what));
-        break;
-      case Kind::generalized_force: {
-        Arguments args(s, what, {"on", "value"});
-        const Argument& on = args.require("on", "a coordinate");
-        const std::string coordinate = resolve(args.name_of(on, "a coordinate"), env);
-        const auto symbol = sys.variables().find(coordinate);
-        if (!symbol || sys.variables().kind_of(*symbol) != SymbolKind::coordinate)
-          throw SourceError(on.value->location, fmt::format("{}: '{}' is not a coordinate", what, coordinate));
-        used_coordinates_.insert(coordinate);
-        sys.add_generalized_force(*sys.variables().coordinate_index(*symbol), scalar_arg(args, "value", "the force"));
-        break;
-      }
-      case Kind::constraint: {
-        const ex expression = scalar(s.value, env, what) - scalar(s.value2, env, what);
-        bool has_rate = false;
-        for (const auto& c : sys.variables().coordinates()) has_rate = has_rate || expression.has(c.qd);
-        if (has_rate) {
-          sys.add_nonholonomic_constraint(name, expression);
-        } else {
-          sys.add_holonomic_constraint(name, expression);
-        }
-        model_.constraint_locations.push_back(s.name.location);
-        break;
-      }
-      case Kind::roll:
-        roll(in);
-        break;
-      case Kind::output:
-        output(in);
-        break;
-      default:
-        break;
-    }
-  } catch (const ModelError& e) {
-    throw SourceError(s.name.location.line ? s.name.location : s.location, e.what());
-  } catch (const DerivationError& e) {
-    throw SourceError(s.name.location.line ? s.name.location : s.location, e.what());
-  } catch (const GiNaC::pole_error&) {  // e.g. a mass 1/l with l = 0, evaluated at the defaults
-    throw SourceError(s.name.location.line ? s.name.location : s.location,
-                      fmt::format("{}: division by zero at the parameters' default values: expected finite values",
-                                  what));
-  }
-}
-
-void Elaborator::roll(const Instance& in) {
-  const Statement& s = *in.statement;
-  const Environment& env = in.environment;
-  MechanicalSystem& sys = model_.system;
-  const std::string name = resolve(s.name, env);
-  const std::string what = fmt::format("roll '{}'", name);
-  Arguments args(s, what, {"body", "contact", "normal"});
-  const Argument& body_arg = args.require("body", "the rolling rigid body");
-  const std::string body_name = resolve(args.name_of(body_arg, "a rigid body"), env);
-  const RigidBody* body = nullptr;
-  for (const RigidBody& b : sys.rigid_bodies())
-    if (b.name == body_name) body = &b;
-  if (!body) {
-    std::vector<std::string> bodies;
-    for (const RigidBody& b : sys.rigid_bodies()) bodies.push_back(b.name);
-    unknown_name(body_name, body_arg.value->location, bodies, "rigid body");
-  }
-  const PointId contact = point_named(args.name_of(args.require("contact", "the contact point"), "a point"), env);
-  // the material point of the body at the contact has zero velocity (fixed surface)
-  const eomgen::Vector slip = eomgen::velocity(sys, body->mass_centre) +
-                              eomgen::cross(sys, eomgen::angular_velocity(sys, body->frame, sys.inertial_frame()),
-                                            eomgen::position(sys, contact, body->mass_centre));
-  std::vector<ex> rows;
-  if (const Argument* normal = args.find("normal")) {
-    const GiNaC::matrix n = eomgen::resolve(sys, vector(normal->value, env, what), sys.inertial_frame());
-    for (unsigned i = 0; i < 3; ++i)
-      if (!GiNaC::is_a<GiNaC::numeric>(n(i, 0).evalf()))
-        throw SourceError(normal->value->location, fmt::format("{}: the plane's normal must be a constant vector", what));
-    // two tangent directions: n x e and n x (n x e), e the axis least aligned with n
-    unsigned least = 0;
-    for (unsigned i = 1; i < 3; ++i)
-      if (GiNaC::abs(n(i, 0)).evalf() < GiNaC::abs(n(least, 0)).evalf()) least = i;
-    const GiNaC::matrix t1 = cross_matrix(n).mul(unit_column(static_cast<int>(least) + 1));
-    const GiNaC::matrix t2 = cross_matrix(n).mul(t1);
-    const GiNaC::matrix v = eomgen::resolve(sys, slip, sys.inertial_frame());
-    for (const GiNaC::matrix& t : {t1, t2}) rows.push_back(t(0, 0) * v(0, 0) + t(1, 0) * v(1, 0) + t(2, 0) * v(2, 0));
-  } else {
-    const GiNaC::matrix v = eomgen::resolve(sys, slip, sys.inertial_frame());
-    for (unsigned i = 0; i < 3; ++i) rows.push_back(v(i, 0));
-  }
-  int index = 0;
-  for (const ex& row : rows) {
-    ++index;
-    if (simplify_for_display(row).is_zero()) continue;
-    sys.add_nonholonomic_constraint(fmt::format("{}_{}", name, index), row);
-    model_.constraint_locations.push_back(s.name.location);
-  }
-}
-
-void Elaborator::output(const Instance& in) {
-  const Statement& s = *in.statement;
-  const std::string name = resolve(s.name, in.environment);
-  declare(name, "output", s.name.location);
-  Output out{name, {}, {}, s.name.location};
-  const Value v = evaluate(s.value, in.environment);
-  if (v.kind == Value::Kind::scalar) {
-    if (s.has_frame) throw SourceError(s.frame.location, fmt::format("output '{}': 'in FRAME' applies to vectors only", name));
-    out.components.push_back(v.scalar);
-    out.labels.push_back(name);
-  } else if (v.kind == Value::Kind::vector) {
-    const FrameId f = s.has_frame ? frame_named(s.frame, in.environment) : model_.system.inertial_frame();
-    const GiNaC::matrix c = eomgen::resolve(model_.system, v.vector, f);
-    for (unsigned i = 0; i < 3; ++i) {
-      out.components.push_back(c(i, 0));
-      out.labels.push_back(fmt::format("{}_{}", name, i + 1));
-    }
-  } else {
-    throw SourceError(s.value->location, fmt::format("output '{}': expected a scalar or a vector, got {}", name, kind_name(v.kind)));
-  }
-  for (const ex& c : out.components) model_.system.variables().require_known_symbols(c, fmt::format("output '{}'", name));
-  model_.outputs.push_back(std::move(out));
-}
-
 Model Elaborator::run(const std::vector<Statement>& statements) {
   constants(statements);
   flatten(statements, {});
@@ -541,12 +341,8 @@ Model Elaborator::run(const std::vector<Statement>& statements) {
   // bodies first: a roll statement names its body, which may come later in the file
   for (const Instance& in : instances_)
     if (in.statement->kind == Kind::body) element(in);
-  for (const Instance& in : instances_) {
-    const Kind k = in.statement->kind;
-    if (k != Kind::parameter && k != Kind::coordinate && k != Kind::input && k != Kind::frame && k != Kind::point &&
-        k != Kind::body && k != Kind::independent)
-      element(in);
-  }
+  for (const Instance& in : instances_)
+    if (in.statement->kind != Kind::body && pass_of(in.statement->kind) == Pass::elements) element(in);
   checks();
   return std::move(model_);
 }

@@ -30,6 +30,15 @@ std::string kind_name(Value::Kind kind);
 /// Loop variables of the current iteration.
 using Environment = std::map<std::string, GiNaC::numeric>;
 
+/// The keyword of a statement ("spring", "for"), which messages about it start with.
+const char* statement_word(Statement::Kind kind);
+
+/// The pass of Elaborator::run that elaborates a kind of statement. pass_of and
+/// Elaborator::add_element list every kind, so that a kind the parser produces and no pass
+/// handles does not compile.
+enum class Pass { flatten, declarations, frames_and_points, elements, independent_speeds };
+Pass pass_of(Statement::Kind kind);
+
 /// One statement to elaborate, with the loop variables it was expanded under.
 struct Instance {
   const Statement* statement;
@@ -66,11 +75,21 @@ class Elaborator {
   void collect_frames_and_points();
   FrameId build_frame(const std::string& name, std::vector<std::string>& stack);
   PointId build_point(const std::string& name, std::vector<std::string>& stack);
-  void element(const Instance& instance);
-  void output(const Instance& instance);
-  void roll(const Instance& instance);
+
+  // whole-model checks (model_file.cpp)
   void independent_speeds();
   void checks();
+
+  // element statements (model_elements.cpp)
+  class Arguments;  // an element statement's key = value arguments
+  void element(const Instance& instance);
+  void add_element(const Instance& instance, const std::string& name, const std::string& what);
+  void body(const Instance& instance, const std::string& name, const std::string& what);
+  void damper(const Instance& instance, const std::string& name, const std::string& what);
+  void generalized_force(const Instance& instance, const std::string& what);
+  void constraint(const Instance& instance, const std::string& name, const std::string& what);
+  void output(const Instance& instance);
+  void roll(const Instance& instance);
 
   std::string file_;
   std::map<std::string, double> overrides_;

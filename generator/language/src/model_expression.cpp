@@ -63,7 +63,7 @@ std::string kind_name(Value::Kind kind) {
     case Value::Kind::column: return "a column [x, y, z]";
     case Value::Kind::matrix: return "a matrix";
   }
-  return "a value";
+  EOMGEN_UNREACHABLE("kind_name: a Value::Kind outside its enumerators");
 }
 
 void Elaborator::unknown_name(const std::string& name, const SourceLocation& at,
@@ -367,7 +367,7 @@ Value Elaborator::evaluate(const ExprPtr& ptr, const Environment& env) {
       return Value::of(eomgen::Vector(frame_named(e.name, env), unit));
     }
   }
-  throw SourceError(e.location, "unsupported expression");
+  EOMGEN_UNREACHABLE("evaluate: an Expr::Kind outside its enumerators");
 }
 
 }  // namespace eomgen::syntax

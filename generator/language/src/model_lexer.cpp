@@ -20,8 +20,11 @@ std::string describe(const Token& token) {
     case Token::Kind::newline: return "end of line";
     case Token::Kind::end: return "end of file";
     case Token::Kind::string: return fmt::format("string \"{}\"", token.text);
-    default: return fmt::format("'{}'", token.text);
+    case Token::Kind::identifier:
+    case Token::Kind::number:
+    case Token::Kind::symbol: return fmt::format("'{}'", token.text);
   }
+  EOMGEN_UNREACHABLE("describe: a Token::Kind outside its enumerators");
 }
 
 std::vector<Token> tokenize(const std::string& text, const std::string& file, int first_line, int first_column) {

@@ -337,8 +337,15 @@ const SourceLocation& start_of(const Expr& e) {
     case Expr::Kind::multiply:
     case Expr::Kind::divide:
     case Expr::Kind::power: return start_of(*e.args[0]);
-    default: return e.location;
+    case Expr::Kind::number:
+    case Expr::Kind::name:
+    case Expr::Kind::negate:  // a prefix operator starts where it stands
+    case Expr::Kind::call:
+    case Expr::Kind::list:
+    case Expr::Kind::in_frame:
+    case Expr::Kind::basis: return e.location;
   }
+  EOMGEN_UNREACHABLE("start_of: an Expr::Kind outside its enumerators");
 }
 
 std::vector<Statement> parse_statements(const std::string& text, const std::string& file) {

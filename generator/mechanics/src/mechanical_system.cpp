@@ -43,6 +43,12 @@ void MechanicalSystem::require_unique_element_name(const std::string& name, cons
   element_names_.push_back(name);
 }
 
+void MechanicalSystem::add_load(Load load) {
+  const auto after = std::find_if(loads_.begin(), loads_.end(),
+                                  [&](const Load& other) { return other.index() > load.index(); });
+  loads_.insert(after, std::move(load));
+}
+
 void MechanicalSystem::require_frame(FrameId id, const std::string& what) const {
   if (id.index >= frames_.size())
     throw ModelError(fmt::format("{}: frame #{} does not exist", what, id.index));
@@ -164,13 +170,13 @@ void MechanicalSystem::set_gravity(const Vector& g) {
 void MechanicalSystem::add_force(PointId point, const Vector& force) {
   require_point(point, "force");
   require_vector(force, "force");
-  forces_.push_back(PointForce{point, force});
+  add_load(PointForce{point, force});
 }
 
 void MechanicalSystem::add_moment(FrameId body_frame, const Vector& moment) {
   require_frame(body_frame, "moment");
   require_vector(moment, "moment");
-  moments_.push_back(BodyMoment{body_frame, moment});
+  add_load(BodyMoment{body_frame, moment});
 }
 
 void MechanicalSystem::add_spring(const std::string& name, PointId a, PointId b, const ex& stiffness,
@@ -182,7 +188,7 @@ void MechanicalSystem::add_spring(const std::string& name, PointId a, PointId b,
   variables_.require_known_symbols(stiffness, what);
   variables_.require_known_symbols(rest_length, what);
   require_unique_element_name(name, "spring");
-  springs_.push_back(LinearSpring{name, a, b, stiffness, rest_length});
+  add_load(LinearSpring{name, a, b, stiffness, rest_length});
 }
 
 void MechanicalSystem::add_torsional_spring(const std::string& name, const ex& angle,
@@ -192,7 +198,7 @@ void MechanicalSystem::add_torsional_spring(const std::string& name, const ex& a
   if (contains_kind(variables_, angle, SymbolKind::rate) || contains_kind(variables_, angle, SymbolKind::input))
     throw ModelError(fmt::format("{}: the angle must depend on coordinates, parameters and t only", what));
   require_unique_element_name(name, "torsional spring");
-  torsional_springs_.push_back(TorsionalSpring{name, angle, stiffness, rest_angle});
+  add_load(TorsionalSpring{name, angle, stiffness, rest_angle});
 }
 
 void MechanicalSystem::add_damper(const std::string& name, PointId a, PointId b, const ex& damping) {
@@ -202,7 +208,7 @@ void MechanicalSystem::add_damper(const std::string& name, PointId a, PointId b,
   if (a == b) throw ModelError(fmt::format("{}: the two points must differ", what));
   variables_.require_known_symbols(damping, what);
   require_unique_element_name(name, "damper");
-  dampers_.push_back(LinearDamper{name, a, b, damping});
+  add_load(LinearDamper{name, a, b, damping});
 }
 
 void MechanicalSystem::add_coordinate_damper(const std::string& name, const ex& coordinate_expression,
@@ -213,7 +219,7 @@ void MechanicalSystem::add_coordinate_damper(const std::string& name, const ex& 
   if (contains_kind(variables_, coordinate_expression, SymbolKind::rate))
     throw ModelError(fmt::format("{}: give the coordinate expression, not its rate", what));
   require_unique_element_name(name, "damper");
-  coordinate_dampers_.push_back(CoordinateDamper{name, coordinate_expression, damping});
+  add_load(CoordinateDamper{name, coordinate_expression, damping});
 }
 
 void MechanicalSystem::add_generalized_force(std::size_t coordinate, const ex& value) {
@@ -221,7 +227,7 @@ void MechanicalSystem::add_generalized_force(std::size_t coordinate, const ex& v
     throw ModelError(fmt::format("generalized force: coordinate #{} does not exist (the model has {})",
                                  coordinate, variables_.coordinate_count()));
   variables_.require_known_symbols(value, "generalized force");
-  generalized_forces_.push_back(GeneralizedForce{coordinate, value});
+  add_load(GeneralizedForce{coordinate, value});
 }
 
 void MechanicalSystem::add_potential(const std::string& name, const ex& value) {
@@ -230,7 +236,7 @@ void MechanicalSystem::add_potential(const std::string& name, const ex& value) {
   if (contains_kind(variables_, value, SymbolKind::rate) || contains_kind(variables_, value, SymbolKind::input))
     throw ModelError(fmt::format("{}: a potential depends on coordinates, parameters and t only", what));
   require_unique_element_name(name, "potential");
-  potentials_.push_back(Potential{name, value});
+  add_load(Potential{name, value});
 }
 
 void MechanicalSystem::add_holonomic_constraint(const std::string& name, const ex& phi) {

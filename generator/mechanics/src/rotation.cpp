@@ -44,8 +44,9 @@ matrix principal_rotation(int axis, const ex& angle) {
   switch (axis) {
     case 1: return matrix(3, 3, GiNaC::lst{1, 0, 0, 0, c, s, 0, -s, c});
     case 2: return matrix(3, 3, GiNaC::lst{c, 0, -s, 0, 1, 0, s, 0, c});
-    default: return matrix(3, 3, GiNaC::lst{c, s, 0, -s, c, 0, 0, 0, 1});
+    case 3: return matrix(3, 3, GiNaC::lst{c, s, 0, -s, c, 0, 0, 0, 1});
   }
+  EOMGEN_UNREACHABLE(fmt::format("principal_rotation: axis {} passed require_axis", axis));
 }
 
 matrix cross_matrix(const matrix& u) {
@@ -222,7 +223,7 @@ matrix Rotation::angular_velocity(const Variables& v) const {
     case Kind::matrix:
       return angular_velocity_from_poisson(dcm_, v);
   }
-  return matrix(3, 1);
+  EOMGEN_UNREACHABLE("Rotation::angular_velocity: a Rotation::Kind outside its enumerators");
 }
 
 }  // namespace eomgen

@@ -385,7 +385,7 @@ bool uses_shared_form(const Model& model, const ModelEquations& eom, const Print
       return eom.subexpressions.size() > options.max_intermediates ||
              written_out_size(model, eom, options.parts) > options.max_written_out_size;
   }
-  return true;
+  EOMGEN_UNREACHABLE("uses_shared_form: an IntermediateForm outside its enumerators");
 }
 
 void print_equations(std::ostream& out, const Model& model, const ModelEquations& eom,

@@ -7,8 +7,12 @@
 
 #include <optional>
 #include <string>
+#include <type_traits>
+#include <utility>
+#include <variant>
 #include <vector>
 
+#include "eomgen/base/overloaded.hpp"
 #include "eomgen/mechanics/rotation.hpp"
 #include "eomgen/mechanics/variables.hpp"
 #include "eomgen/mechanics/vector.hpp"
@@ -94,6 +98,40 @@ struct Potential {
   GiNaC::ex value;
 };
 
+/// Every load but gravity: what the derivations turn into generalized forces and potential
+/// energy. A new kind of load is a new alternative here, and each derivation visits loads with
+/// visit_load, which does not compile until it handles every alternative.
+using Load = std::variant<PointForce, BodyMoment, LinearDamper, CoordinateDamper, GeneralizedForce, LinearSpring,
+                          TorsionalSpring, Potential>;
+
+namespace detail {
+struct NotALoad {};
+
+template <class Visitor, class LoadType>
+constexpr bool handles_load() {
+  static_assert(std::is_invocable_v<const Visitor&, const LoadType&>,
+                "visit_load: no handler for a load type (named as LoadType in the instantiation above)");
+  return std::is_invocable_v<const Visitor&, const LoadType&>;
+}
+
+template <class Visitor, class... LoadTypes>
+constexpr bool handles_every_load(const std::variant<LoadTypes...>*) {
+  return (handles_load<Visitor, LoadTypes>() && ...);
+}
+}  // namespace detail
+
+/// Calls the one of `handlers` that takes the load's type, by const reference. There must be
+/// one for every load type and no generic one, so that a forgotten type is a compile error:
+///   visit_load(load, [&](const PointForce& f) { ... }, [&](const BodyMoment& m) { ... }, ...);
+template <class... Handlers>
+void visit_load(const Load& load, Handlers&&... handlers) {
+  const Overloaded<std::decay_t<Handlers>...> visitor{std::forward<Handlers>(handlers)...};
+  using Visitor = decltype(visitor);
+  static_assert(!std::is_invocable_v<Visitor, const detail::NotALoad&>,
+                "visit_load: a generic handler would hide the load types it does not name");
+  if constexpr (detail::handles_every_load<Visitor>(static_cast<const Load*>(nullptr))) std::visit(visitor, load);
+}
+
 /// Holonomic phi(q, t) = 0, or nonholonomic Xi(q,t) qd + Xi_t(q,t) = 0 given by its left side.
 struct Constraint {
   enum class Kind { holonomic, nonholonomic };
@@ -163,14 +201,10 @@ class MechanicalSystem {
   const std::vector<Particle>& particles() const { return particles_; }
   const std::vector<RigidBody>& rigid_bodies() const { return rigid_bodies_; }
   const Vector& gravity() const { return gravity_; }
-  const std::vector<PointForce>& forces() const { return forces_; }
-  const std::vector<BodyMoment>& moments() const { return moments_; }
-  const std::vector<LinearSpring>& springs() const { return springs_; }
-  const std::vector<TorsionalSpring>& torsional_springs() const { return torsional_springs_; }
-  const std::vector<LinearDamper>& dampers() const { return dampers_; }
-  const std::vector<CoordinateDamper>& coordinate_dampers() const { return coordinate_dampers_; }
-  const std::vector<GeneralizedForce>& generalized_forces() const { return generalized_forces_; }
-  const std::vector<Potential>& potentials() const { return potentials_; }
+  /// The loads, grouped by type in the order of Load's alternatives and in the order they were
+  /// added within a type. The derivations add their terms, and name shared subexpressions, in
+  /// this order, and the generated code follows it.
+  const std::vector<Load>& loads() const { return loads_; }
   const std::vector<Constraint>& constraints() const { return constraints_; }
 
   /// Numeric substitution of every parameter by its default value.
@@ -181,6 +215,7 @@ class MechanicalSystem {
   void require_point(PointId id, const std::string& what) const;
   void require_vector(const Vector& v, const std::string& what) const;
   void require_unique_element_name(const std::string& name, const std::string& what);
+  void add_load(Load load);
 
   Variables variables_;
   std::vector<Frame> frames_;
@@ -188,14 +223,7 @@ class MechanicalSystem {
   std::vector<Particle> particles_;
   std::vector<RigidBody> rigid_bodies_;
   Vector gravity_;
-  std::vector<PointForce> forces_;
-  std::vector<BodyMoment> moments_;
-  std::vector<LinearSpring> springs_;
-  std::vector<TorsionalSpring> torsional_springs_;
-  std::vector<LinearDamper> dampers_;
-  std::vector<CoordinateDamper> coordinate_dampers_;
-  std::vector<GeneralizedForce> generalized_forces_;
-  std::vector<Potential> potentials_;
+  std::vector<Load> loads_;
   std::vector<Constraint> constraints_;
   std::vector<std::string> element_names_;
 };
