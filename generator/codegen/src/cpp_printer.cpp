@@ -1,5 +1,7 @@
 #include "eomgen/codegen/cpp_printer.hpp"
 
+#include "eomgen/base/error.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -25,7 +27,7 @@ int precedence(Op op) {
     case Op::variable:
     EOMGEN_IR_CALL_OPS(EOMGEN_IR_CALL_CASE) return 4;
   }
-  return 4;
+  EOMGEN_UNREACHABLE("an ir::Op value that is not an enumerator");
 }
 
 class Printer {
@@ -108,7 +110,7 @@ class Printer {
         return s + ")";
       }
     }
-    return "";
+    EOMGEN_UNREACHABLE("an ir::Op value that is not an enumerator");
   }
 
   const ir::Program& program_;
@@ -135,7 +137,7 @@ const char* cpp_argument_name(ir::VariableKind kind) {
     case ir::VariableKind::acceleration: return "qdd";
     case ir::VariableKind::multiplier: return "lambda";
   }
-  return "?";  // not an enumerator of VariableKind
+  EOMGEN_UNREACHABLE("an ir::VariableKind value that is not an enumerator");
 }
 
 const char* cpp_array_name(ir::Array array) {
@@ -155,7 +157,7 @@ const char* cpp_array_name(ir::Array array) {
     case ir::Array::acceleration_constraint_by_q: return "S_q";
     case ir::Array::acceleration_constraint_by_qd: return "S_qd";
   }
-  return "?";  // not an enumerator of Array
+  EOMGEN_UNREACHABLE("an ir::Array value that is not an enumerator");
 }
 
 std::string cpp_variable(const ir::Variable& variable, const CppPrintOptions& options) {
@@ -173,7 +175,7 @@ std::string cpp_variable(const ir::Variable& variable, const CppPrintOptions& op
     case ir::VariableKind::multiplier:
       return fmt::format("{}({})", name, variable.index);
   }
-  return name;  // not an enumerator of VariableKind
+  EOMGEN_UNREACHABLE("an ir::VariableKind value that is not an enumerator");
 }
 
 std::string cpp_target(const ir::Target& target) {

@@ -1,5 +1,7 @@
 #include "function_source.hpp"
 
+#include "eomgen/base/error.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -35,7 +37,7 @@ const char* array_type(Array array) {
     case Array::potential_energy:
       return "Scalar";
   }
-  return "Scalar";  // not an enumerator of Array
+  EOMGEN_UNREACHABLE("an ir::Array value that is not an enumerator");
 }
 
 // the declaration of the argument holding the variables of a kind
@@ -51,7 +53,7 @@ std::string input_declaration(VariableKind kind) {
     case VariableKind::acceleration:
       return fmt::format("const Vector<Scalar>& {}", name);
   }
-  return name;  // not an enumerator of VariableKind
+  EOMGEN_UNREACHABLE("an ir::VariableKind value that is not an enumerator");
 }
 
 // every argument may go unused in a particular model (M of a pendulum ignores t)

@@ -1,5 +1,7 @@
 #include "eomgen/codegen/ir.hpp"
 
+#include "eomgen/base/error.hpp"
+
 #include <cassert>
 
 namespace eomgen::ir {
@@ -76,7 +78,7 @@ std::size_t rank(Array array) {
     case Array::acceleration_constraint_by_qd:
       return 2;
   }
-  return 2;  // not an enumerator of Array
+  EOMGEN_UNREACHABLE("an ir::Array value that is not an enumerator");
 }
 
 bool is_call(Op op) {
@@ -91,7 +93,7 @@ bool is_call(Op op) {
     EOMGEN_IR_CALL_OPS(EOMGEN_IR_CALL_CASE)
       return true;
   }
-  return false;  // not an enumerator of Op
+  EOMGEN_UNREACHABLE("an ir::Op value that is not an enumerator");
 }
 
 const CallOp& call_op(Op op) {

@@ -56,7 +56,7 @@ std::uint64_t signature_code(Op op) {
     case Op::negate: return 5;
     EOMGEN_IR_CALL_OPS(EOMGEN_IR_CALL_CASE) return ir::call_op(op).code;
   }
-  return SIZE_MAX;  // not an enumerator of Op
+  EOMGEN_UNREACHABLE("an ir::Op value that is not an enumerator");
 }
 
 class Lowering {
