@@ -21,12 +21,13 @@ void add_parameter_option(CLI::App* sub, std::vector<std::string>& set, const st
 
 // the integrator options take their names and help from the integrator registry
 void add_integrator_options(CLI::App* simulate, SimulateRequest& r) {
+  const std::string fixed_step = integrator_names(false, "/"), adaptive = integrator_names(true, "/");
   simulate->add_option("--method", r.method, method_help())->check(CLI::IsMember(integrator_names()));
-  simulate->add_option("--dt", r.step, fmt::format("Step of {} [s] (default 1e-3)", integrator_names(false, "/")))
+  simulate->add_option("--dt", r.step, fmt::format("Step of {} [s] (default 1e-3)", fixed_step))
       ->check(CLI::PositiveNumber);
-  simulate->add_option("--rtol", r.rtol, fmt::format("Relative tolerance of {} (default 1e-8)", integrator_names(true, "/")))
+  simulate->add_option("--rtol", r.rtol, fmt::format("Relative tolerance of {} (default 1e-8)", adaptive))
       ->check(CLI::PositiveNumber);
-  simulate->add_option("--atol", r.atol, fmt::format("Absolute tolerance of {} (default 1e-10)", integrator_names(true, "/")))
+  simulate->add_option("--atol", r.atol, fmt::format("Absolute tolerance of {} (default 1e-10)", adaptive))
       ->check(CLI::PositiveNumber);
 }
 

@@ -2,7 +2,6 @@
 // The eomgen command line: what each subcommand accepts (CLI11), parsed into Options. What the
 // subcommands do is in eomgen_main.cpp and simulate_command.cpp.
 #include <CLI/CLI.hpp>
-
 #include <string>
 #include <vector>
 

@@ -58,10 +58,10 @@ class SimulationProgram : public ::testing::Test {
 };
 
 TEST_F(SimulationProgram, WritesTheCsvAndTheSummaryForTheCommandLineEomgenWrites) {
-  const Outcome run = run_program({"--t-end", "1", "--method", "rk4", "--solver", "kkt", "--stabilization",
-                               "projection", "--dt", "0.01", "--set", "l=0.80000000000000004", "--init",
-                               "theta=0.20000000000000001", "--init", "theta_dot=0.10000000000000001", "--csv",
-                               csv_.string()});
+  const Outcome run =
+      run_program({"--t-end", "1", "--method", "rk4", "--solver", "kkt", "--stabilization", "projection", "--dt",
+                   "0.01", "--set", "l=0.80000000000000004", "--init", "theta=0.20000000000000001", "--init",
+                   "theta_dot=0.10000000000000001", "--csv", csv_.string()});
   ASSERT_EQ(run.status, 0) << run.err;
   EXPECT_EQ(run.err, "");
   EXPECT_THAT(run.out, StartsWith("simulated simple_pendulum from t = 0 to 1 s with rk4 (dt 0.01): 100 steps, "
@@ -78,7 +78,7 @@ TEST_F(SimulationProgram, WritesTheCsvAndTheSummaryForTheCommandLineEomgenWrites
 
 TEST_F(SimulationProgram, SamplesAboutAThousandRowsWhenNoIntervalIsGiven) {
   const Outcome run = run_program({"--t-end", "2", "--method", "dp5", "--solver", "null-space", "--stabilization",
-                               "none", "--init", "theta=1", "--csv", csv_.string()});
+                                   "none", "--init", "theta=1", "--csv", csv_.string()});
   ASSERT_EQ(run.status, 0) << run.err;
   EXPECT_THAT(run.out, HasSubstr("with dp5 (rtol 1e-08, atol 1e-10)"));
   EXPECT_THAT(run.out, HasSubstr("\nrows: 1001\n"));

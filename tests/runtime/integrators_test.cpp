@@ -70,7 +70,8 @@ TEST(Registry, RowsCarryTheirTableauAndItsKind) {
 
 TEST(Registry, VisitGivesTheRowOfTheMethodAndRejectsAnUnregisteredOne) {
   for (const IntegratorInfo& info : integrators) {
-    const std::string visited = visit_integrator(info.method, [](const auto& entry) { return std::string(entry.name); });
+    const std::string visited =
+        visit_integrator(info.method, [](const auto& entry) { return std::string(entry.name); });
     EXPECT_EQ(visited, info.name);
   }
   const auto unregistered = static_cast<Integrator>(99);
@@ -136,8 +137,7 @@ struct Tree {
   }
   void sort() {
     for (Tree& c : children) c.sort();
-    std::sort(children.begin(), children.end(),
-              [](const Tree& a, const Tree& b) { return a.text() < b.text(); });
+    std::sort(children.begin(), children.end(), [](const Tree& a, const Tree& b) { return a.text() < b.text(); });
   }
 };
 
@@ -267,10 +267,9 @@ TEST(AnotherEmbeddedPair, IntegratesToItsToleranceWithThirdOrderSteps) {
     o.rtol = rtol;
     o.atol = rtol;
     double worst = 0;
-    const auto r = integrate_adaptive(bogacki_shampine32, oscillator, 0.0, Eigen::Vector2d(1, 0), grid, o,
-                                      [&](double t, const Eigen::Vector2d& x) {
-                                        worst = std::max(worst, std::abs(x(0) - std::cos(t)));
-                                      });
+    const auto r = integrate_adaptive(
+        bogacki_shampine32, oscillator, 0.0, Eigen::Vector2d(1, 0), grid, o,
+        [&](double t, const Eigen::Vector2d& x) { worst = std::max(worst, std::abs(x(0) - std::cos(t))); });
     ASSERT_EQ(r.status, AdaptiveStatus::ok);
     // FSAL: 3 evaluations per attempt, plus the first stage and the starting-step probe
     EXPECT_LE(r.evaluations, 3 * (r.accepted + r.rejected) + 2);

@@ -53,9 +53,7 @@ SimulationOptions<double> with(Integrator method, double t_end, double step) {
   return o;
 }
 
-State<m::double_pendulum::Model> swinging() {
-  return make_state<m::double_pendulum::Model>({1.8, -0.6}, {0.5, 2.0});
-}
+State<m::double_pendulum::Model> swinging() { return make_state<m::double_pendulum::Model>({1.8, -0.6}, {0.5, 2.0}); }
 
 // rolling and leaning, so the projection onto the constraints acts after every step
 State<m::rolling_coin::Model> rolling() {
@@ -90,7 +88,10 @@ TEST(IntegratorTrajectory, RollingCoinUnderDormandPrinceWithProjection) {
       rolling(), with(Integrator::dormand_prince, 2.0, 0),
       {{0.022643861602314155, -0.056906050019167535, 63.487555065764511, 0.40709565327201741, 70.295854955430997,
         -0.024944402544076334, -0.093756098597776588, 3.2339184504342042, -6.4948235227442428, 5.8621539312879092},
-       495, 157, 4409, 201});
+       495,
+       157,
+       4409,
+       201});
 }
 
 }  // namespace

@@ -144,20 +144,16 @@ RunSettings<Model> parse_arguments(int argc, char** argv) {
       run.progress = true;
       continue;
     }
-    if (i + 1 >= argc || !detail::apply_option(run, option, argv[i + 1]))
-      throw ArgumentError("'" + option + "'");
+    if (i + 1 >= argc || !detail::apply_option(run, option, argv[i + 1])) throw ArgumentError("'" + option + "'");
     ++i;
   }
-  if (std::isnan(run.options.t_end) || run.csv_path.empty())
-    throw ArgumentError("--t-end and --csv are required");
+  if (std::isnan(run.options.t_end) || run.csv_path.empty()) throw ArgumentError("--t-end and --csv are required");
 
   eomrt::SimulationOptions<double>& o = run.options;
   if (o.sample_interval == 0) {
     // about 1000 rows; a fixed step keeps its exact size by sampling every k-th step
     const double target = (o.t_end - o.t0) / 1000;
-    o.sample_interval = eomrt::is_adaptive(o.integrator)
-                            ? target
-                            : o.step * std::max(1.0, std::round(target / o.step));
+    o.sample_interval = eomrt::is_adaptive(o.integrator) ? target : o.step * std::max(1.0, std::round(target / o.step));
     if (!(o.sample_interval > 0)) o.sample_interval = 0;  // t_end == t0: one sample
   }
   return run;

@@ -23,8 +23,8 @@ class ProgressLine {
     drawn_ = true;
     const double fraction = t_end_ > t0_ ? (t - t0_) / (t_end_ - t0_) : 1.0;
     const int filled = static_cast<int>(fraction * 30);
-    std::fprintf(stderr, "\r  [%-30.*s] %3d%%  t = %.4g s", filled, "==============================",
-                 static_cast<int>(fraction * 100), t);
+    std::fprintf(stderr, "\r  [%-30.*s] %3d%%  t = %.4g s", filled,
+                 "==============================", static_cast<int>(fraction * 100), t);
     std::fflush(stderr);
   }
   void finish() {
@@ -47,8 +47,7 @@ void write_csv_header(std::FILE* csv) {
   for (const char* n : Model::constraint_names) std::fprintf(csv, ",lambda_%s", n);
   for (const char* n : Model::input_names) std::fprintf(csv, ",%s", n);
   std::fprintf(csv, ",T,V,T+V");
-  for (int i = 0; i < Model::nh; ++i)
-    std::fprintf(csv, ",phi_%s", Model::constraint_names[Model::holonomic_rows[i]]);
+  for (int i = 0; i < Model::nh; ++i) std::fprintf(csv, ",phi_%s", Model::constraint_names[Model::holonomic_rows[i]]);
   for (const char* n : Model::constraint_names) std::fprintf(csv, ",rate_residual_%s", n);
   if constexpr (eomrt::has_outputs_v<Model>)
     for (const char* n : Model::output_names) std::fprintf(csv, ",%s", n);

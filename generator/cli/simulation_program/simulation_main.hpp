@@ -36,8 +36,7 @@ namespace eomgen::simulation_program {
 template <class Model>
 void report_failure(const RunSettings<Model>& run, const eomrt::SimulationResult<Model, double>& r) {
   constexpr int nq = Model::nq;
-  std::fprintf(stderr, "error: the simulation stopped at t = %.17g s: %s\n", r.failure_time,
-               eomrt::describe(r.status));
+  std::fprintf(stderr, "error: the simulation stopped at t = %.17g s: %s\n", r.failure_time, eomrt::describe(r.status));
   std::fprintf(stderr, "  last good state, at t = %.17g s:\n", r.t);
   for (int i = 0; i < nq; ++i)
     std::fprintf(stderr, "    %s = %.17g, %s_dot = %.17g\n", Model::coordinate_names[i], r.x(i),
@@ -63,8 +62,7 @@ template <class Model>
 void report_summary(const RunSettings<Model>& run, const eomrt::SimulationResult<Model, double>& r,
                     const SampleWriter<Model>& samples, double seconds) {
   const eomrt::SimulationOptions<double>& o = run.options;
-  std::printf("simulated %s from t = %g to %g s with %s", Model::name, o.t0, o.t_end,
-              eomrt::to_string(o.integrator));
+  std::printf("simulated %s from t = %g to %g s with %s", Model::name, o.t0, o.t_end, eomrt::to_string(o.integrator));
   if (eomrt::is_adaptive(o.integrator))
     std::printf(" (rtol %g, atol %g): %lld steps, %lld rejected", o.adaptive.rtol, o.adaptive.atol, r.steps,
                 r.rejected_steps);

@@ -69,7 +69,9 @@ inline constexpr std::tuple integrator_registry{
 
 /// The rows of the registry without their tableaus, in the same order, for listing them.
 inline constexpr auto integrators = std::apply(
-    [](const auto&... entry) { return std::array<IntegratorInfo, sizeof...(entry)>{entry.info()...}; },
+    [](const auto&... entry) {
+      return std::array<IntegratorInfo, sizeof...(entry)>{entry.info()...};
+    },
     integrator_registry);
 
 /// The method simulate() takes by default; `eomgen simulate` takes it unless given a step.
@@ -133,7 +135,8 @@ constexpr bool registry_is_well_formed() {
   }
   return std::apply(
       [](const auto&... entry) {
-        return ((is_consistent(entry.tableau) && (!entry.adaptive || is_fsal(entry.tableau))) && ...);
+        return ((is_consistent(entry.tableau) && (!entry.adaptive || is_fsal(entry.tableau))) &&
+                ...);
       },
       integrator_registry);
 }

@@ -87,7 +87,8 @@ inline const char* to_string(AdaptiveStatus status) {
 /// \tparam S       number of stages of the embedded pair it serves
 template <typename Vector, std::size_t S>
 struct AdaptiveWorkspace {
-  static_assert(Vector::ColsAtCompileTime == 1, "AdaptiveWorkspace: the state must be a column vector");
+  static_assert(Vector::ColsAtCompileTime == 1,
+                "AdaptiveWorkspace: the state must be a column vector");
   static_assert(S >= 2, "AdaptiveWorkspace: an embedded pair has at least two stages");
   using Scalar = typename Vector::Scalar;
 
@@ -193,8 +194,9 @@ void check_adaptive_arguments(const char* operation, const EmbeddedTableau<S>& p
   };
   // the step reuses the last stage as the next first one and builds the dense output from it
   if (!is_consistent(pair) || !is_fsal(pair))
-    throw std::invalid_argument(std::string(operation) +
-                                ": embedded pair expected consistent and FSAL (last row of a = b, c = 1)");
+    throw std::invalid_argument(
+        std::string(operation) +
+        ": embedded pair expected consistent and FSAL (last row of a = b, c = 1)");
   if (!isfinite(options.rtol) || !(options.rtol > 0))
     fail("rtol", "positive and finite", options.rtol);
   if (!isfinite(options.atol) || !(options.atol >= 0))
@@ -399,8 +401,7 @@ AdaptiveStatus adaptive_start(const EmbeddedTableau<S>& pair, Rhs&& f, typename 
 ///         is not finite near ws.t. too_many_steps: options.max_steps attempts since
 ///         adaptive_start. rhs_failed: f reported failure at a stage.
 template <std::size_t S, typename Rhs, typename Vector>
-AdaptiveStatus adaptive_step(const EmbeddedTableau<S>& pair, Rhs&& f,
-                             typename Vector::Scalar t_end,
+AdaptiveStatus adaptive_step(const EmbeddedTableau<S>& pair, Rhs&& f, typename Vector::Scalar t_end,
                              const AdaptiveOptions<typename Vector::Scalar>& options,
                              AdaptiveWorkspace<Vector, S>& ws) {
   using Scalar = typename Vector::Scalar;
@@ -482,7 +483,8 @@ AdaptiveStatus adaptive_restart(Rhs&& f, AdaptiveWorkspace<Vector, S>& ws) {
 /// \param[out] x_out  state at t (dim n; sized by the caller so nothing is allocated); must
 ///                    not be a member of ws
 template <typename Vector, std::size_t S>
-void dense_output(const AdaptiveWorkspace<Vector, S>& ws, typename Vector::Scalar t, Vector& x_out) {
+void dense_output(const AdaptiveWorkspace<Vector, S>& ws, typename Vector::Scalar t,
+                  Vector& x_out) {
   using Scalar = typename Vector::Scalar;
   const Scalar h = ws.t - ws.t_previous;
   if (!(h > 0)) {
@@ -547,7 +549,8 @@ void check_grid(Scalar t0, const Grid& grid) {
 /// \return status, time and state reached, step statistics; see AdaptiveResult
 /// @throws std::invalid_argument if the grid is empty, not finite, not strictly increasing
 ///         or starts before t0, or on any misuse that adaptive_start rejects
-template <std::size_t S, typename Rhs, typename Vector, typename Grid, typename Observer = NoObserver>
+template <std::size_t S, typename Rhs, typename Vector, typename Grid,
+          typename Observer = NoObserver>
 AdaptiveResult<Vector> integrate_adaptive(const EmbeddedTableau<S>& pair, Rhs&& f,
                                           typename Vector::Scalar t0, const Vector& x0,
                                           const Grid& grid,

@@ -323,8 +323,9 @@ inline SimulationStatus simulation_status(AdaptiveStatus s, DynamicsStatus rhs_f
 /// no longer than options.step, so that the sample lands on a step.
 /// \return false if a step failed (recorded in result, which keeps the last good state)
 template <std::size_t S, class Model, class Scalar, class InputFn, class Rhs, class State>
-bool fixed_steps_to(const ButcherTableau<S>& tableau, SimulationContext<Model, Scalar, InputFn>& ctx,
-                    Rhs& rhs, RkWorkspace<State, S>& ws, const Scalar& t_target,
+bool fixed_steps_to(const ButcherTableau<S>& tableau,
+                    SimulationContext<Model, Scalar, InputFn>& ctx, Rhs& rhs,
+                    RkWorkspace<State, S>& ws, const Scalar& t_target,
                     SimulationResult<Model, Scalar>& result) {
   using std::abs;
   using std::ceil;
@@ -336,9 +337,10 @@ bool fixed_steps_to(const ButcherTableau<S>& tableau, SimulationContext<Model, S
   const long long n_steps = whole < 1 ? 1 : static_cast<long long>(whole);
   const Scalar t_start = result.t;
   for (long long k = 0; k < n_steps; ++k) {
-    const Scalar t_next = k + 1 == n_steps ? t_target
-                                           : t_start + (t_target - t_start) * static_cast<Scalar>(k + 1) /
-                                                           static_cast<Scalar>(n_steps);
+    const Scalar t_next = k + 1 == n_steps
+                              ? t_target
+                              : t_start + (t_target - t_start) * static_cast<Scalar>(k + 1) /
+                                              static_cast<Scalar>(n_steps);
     const State x_before = result.x;
     const bool ok = rk_step(tableau, rhs, result.t, result.x, t_next - result.t, ws);
     result.evaluations += static_cast<long long>(S);
@@ -371,7 +373,8 @@ void march_fixed(const ButcherTableau<S>& tableau, SimulationContext<Model, Scal
   auto rhs = [&ctx](const Scalar& t, const State& x, State& dxdt) { return ctx.rhs(t, x, dxdt); };
   RkWorkspace<State, S> ws(2 * Model::nq);
   for (long long next_sample = 1; result.t < ctx.options.t_end; ++next_sample) {
-    if (!fixed_steps_to(tableau, ctx, rhs, ws, sample_time(ctx.options, next_sample), result)) return;
+    if (!fixed_steps_to(tableau, ctx, rhs, ws, sample_time(ctx.options, next_sample), result))
+      return;
     const DynamicsStatus ds = ctx.emit(result.t, result.x, observer);
     if (ds != DynamicsStatus::ok) return fail(result, simulation_status(ds), result.t);
   }
@@ -425,7 +428,8 @@ void march_adaptive(const EmbeddedTableau<S>& pair, SimulationContext<Model, Sca
       result.x = ws.x;
       return fail(result, simulation_status(as, ctx.failure), ws.t);
     }
-    if (!every_step && !emit_dense_samples(ctx, ws, observer, next_sample, x_sample, result)) return;
+    if (!every_step && !emit_dense_samples(ctx, ws, observer, next_sample, x_sample, result))
+      return;
     const DynamicsStatus ds = ctx.stabilize(ws.t, ws.x);
     if (ds != DynamicsStatus::ok) return fail(result, simulation_status(ds), ws.t);
     if (restart) {
