@@ -1,5 +1,5 @@
-// The eomgen command line: parses arguments (CLI11), loads the model, calls the library and
-// prints. No algebra lives here.
+// The eomgen command: runs the subcommand the command line chose (its options are in
+// command_line.cpp), loads the model, calls the library and prints. No algebra lives here.
 //
 // Exit status: 0 success; 1 an error in the model or at the requested state (eomgen::Error;
 // a model file error reads "file:line:col: error: ..."); 2 a malformed command line.
@@ -33,37 +33,14 @@
 #include "eomgen/language/model_file.hpp"
 #include "eomgen/derivation/numeric_evaluation.hpp"
 #include "eomgen/base/version.hpp"
+#include "command_line.hpp"
 #include "file_output.hpp"
 #include "simulate_command.hpp"
 
 namespace {
 
+using eomgen::tools::Options;
 using eomgen::tools::UsageError;
-
-struct Options {
-  std::string model_path;
-  std::vector<std::string> defines;  // --define NAME=VALUE
-  // derive
-  std::string format = "text";
-  std::string only;
-  bool shared = false;
-  bool expand = false;
-  std::string output_path;
-  // eval
-  std::vector<std::string> at, set;
-  // generate
-  std::string outer_namespace = "eomgen_models";
-  bool stats = false;
-  bool no_cse = false;
-  bool emit_linearization = false;
-  // linearize
-  bool drop_cyclic = false;
-  bool find_equilibrium = false;
-  // simulate
-  eomgen::tools::SimulateRequest simulate;
-  std::vector<std::string> init, inputs;
-  bool no_plot = false;
-};
 
 std::string join(const std::vector<std::string>& items) {
   std::string out;
@@ -440,130 +417,11 @@ int run_simulate(Options& o) {
   return eomgen::tools::run_simulate(model, r);
 }
 
-// the options every subcommand has: the model file and --define
-void add_model_options(CLI::App* sub, Options& o) {
-  sub->add_option("MODEL", o.model_path, "Model file (.eom)")->required()->check(CLI::ExistingFile);
-  sub->add_option("-D,--define", o.defines, "Override a 'const' of the model: NAME=VALUE (repeatable)")
-      ->delimiter(',')
-      ->type_name("NAME=VALUE");
-}
-
-}  // namespace
-
-int main(int argc, char** argv) {
-  CLI::App app{"eomgen: equations of motion M(q) qdd = F(q, qd, t, u) + Xi^T lambda from a model file", "eomgen"};
-  app.set_version_flag("--version", std::string("eomgen ") + eomgen::version);
-  app.require_subcommand(1);
-  app.footer("Exit status: 0 success, 1 error in the model or at the state, 2 usage error.");
-  Options o;
-
-  CLI::App* check = app.add_subcommand("check", "Check a model and summarize it");
-  add_model_options(check, o);
-
-  CLI::App* derive = app.add_subcommand("derive", "Derive and print the equations of motion");
-  derive->alias("show");
-  add_model_options(derive, o);
-  derive->add_option("-f,--format", o.format, "Output format")
-      ->check(CLI::IsMember({"text", "latex", "markdown"}))
-      ->capture_default_str();
-  derive->add_option("--only", o.only, "Parts to print, comma-separated: M,F,Xi,Xi_t,b,phi,T,V,outputs")
-      ->type_name("PARTS");
-  CLI::Option* shared = derive->add_flag("--intermediates", o.shared,
-                                         "Print in terms of shared intermediates, then their definitions");
-  derive->add_flag("--expand", o.expand, "Write intermediates out even for a large system (may be slow)")
-      ->excludes(shared);
-  derive->add_option("-o,--output", o.output_path, "Write to FILE instead of standard output (atomically)")
-      ->type_name("FILE");
-
-  CLI::App* eval = app.add_subcommand("eval", "Evaluate the equations numerically and solve for qdd, lambda");
-  add_model_options(eval, o);
-  eval->add_option("--at", o.at, "State: q1=0.1,q1_dot=0.3,u=1,t=0 (others are 0)")
-      ->delimiter(',')
-      ->type_name("NAME=VALUE,...");
-  eval->add_option("--set", o.set, "Override a parameter's default: NAME=VALUE (repeatable)")
-      ->delimiter(',')
-      ->type_name("NAME=VALUE");
-  eval->add_option("-f,--format", o.format, "Output format")->check(CLI::IsMember({"text", "json"}))->capture_default_str();
-
-  CLI::App* generate = app.add_subcommand("generate", "Emit an optimized C++ header (Eigen only) for the model");
-  add_model_options(generate, o);
-  generate->add_option("-o,--output", o.output_path, "Write to FILE instead of standard output (atomically)")
-      ->type_name("FILE");
-  generate->add_option("--namespace", o.outer_namespace, "Outer namespace of the generated code")
-      ->capture_default_str();
-  generate->add_flag("--no-cse", o.no_cse,
-                     "Write every output as its own expression tree, without shared temporaries (for comparison)");
-  generate->add_flag("--stats", o.stats,
-                     "Print operation counts per function, without and with shared subexpressions");
-  generate->add_flag("--linearization", o.emit_linearization,
-                     "Also emit linearization_terms, the exact derivatives from which eomrt::linearization "
-                     "gives A and B about any operating point (for gain scheduling)");
-
-  CLI::App* linearize = app.add_subcommand(
-      "linearize", "Linearize about an operating point: A, B, the second-order form, eigenvalues, stability");
-  add_model_options(linearize, o);
-  linearize->add_option("--at", o.at, "Operating point: q1=0.1,q1_dot=0.3,u=1,t=0 (others are 0)")
-      ->delimiter(',')
-      ->type_name("NAME=VALUE,...");
-  linearize->add_option("--set", o.set, "Override a parameter's default: NAME=VALUE (repeatable)")
-      ->delimiter(',')
-      ->type_name("NAME=VALUE");
-  linearize->add_flag("--equilibrium", o.find_equilibrium,
-                      "Take --at as a guess: find the equilibrium (coordinates; rates held) by Newton's method first");
-  linearize->add_flag("--drop-cyclic", o.drop_cyclic, "Leave coordinates that appear nowhere in M and F out of the state");
-  linearize->add_option("-f,--format", o.format, "Output format")->check(CLI::IsMember({"text", "latex"}))->capture_default_str();
-
-  CLI::App* simulate = app.add_subcommand(
-      "simulate", "Generate, compile (cached) and run a simulation; write a CSV and plot it with gnuplot");
-  add_model_options(simulate, o);
-  eomgen::tools::SimulateRequest& r = o.simulate;
-  simulate->add_option("--t-end", r.t_end, "End time [s] (the run starts at t = 0)")
-      ->required()
-      ->check(CLI::PositiveNumber);
-  simulate->add_option("--method", r.method, "Integrator (default: dp5, or rk4 when --dt is given)")
-      ->check(CLI::IsMember({"euler", "rk4", "dp5"}));
-  simulate->add_option("--dt", r.step, "Step of euler/rk4 [s] (default 1e-3)")->check(CLI::PositiveNumber);
-  simulate->add_option("--rtol", r.rtol, "Relative tolerance of dp5 (default 1e-8)")->check(CLI::PositiveNumber);
-  simulate->add_option("--atol", r.atol, "Absolute tolerance of dp5 (default 1e-10)")->check(CLI::PositiveNumber);
-  simulate->add_option("--sample", r.sample, "Interval between CSV rows [s] (default: about 1000 rows)")
-      ->check(CLI::PositiveNumber);
-  simulate->add_option("--set", o.set, "Override a parameter: NAME=VALUE (repeatable)")
-      ->delimiter(',')
-      ->type_name("NAME=VALUE");
-  simulate->add_option("--init", o.init, "Initial coordinate or rate: q=VALUE, q_dot=VALUE (others 0)")
-      ->delimiter(',')
-      ->type_name("NAME=VALUE");
-  simulate->add_option("--input", o.inputs, "Constant input: NAME=VALUE (others 0)")
-      ->delimiter(',')
-      ->type_name("NAME=VALUE");
-  simulate->add_option("--solver", r.solver, "Constraint forces by the KKT system or the null-space method")
-      ->check(CLI::IsMember({"kkt", "null-space"}))
-      ->capture_default_str();
-  simulate->add_option("--stabilization", r.stabilization, "Constraint drift correction")
-      ->check(CLI::IsMember({"projection", "baumgarte", "none"}))
-      ->capture_default_str();
-  simulate->add_option("-o,--output", r.csv_path, "CSV file (default: MODELNAME.csv)")->type_name("FILE");
-  CLI::Option* plot = simulate->add_option("--plot", r.plot_path, "Plot file, .svg or .png (default: MODELNAME.svg)")
-                          ->type_name("FILE");
-  simulate->add_flag("--no-plot", o.no_plot, "Write the CSV only")->excludes(plot);
-  simulate->add_option("--cache-dir", r.cache_dir,
-                       "Where compiled simulations are kept (default: $EOMGEN_CACHE_DIR, else ~/.cache/eomgen)")
-      ->type_name("DIR");
-
+// runs the parsed subcommand and maps its errors to exit statuses (see the file comment)
+int run_command(const std::vector<std::pair<CLI::App*, int (*)(Options&)>>& commands, Options& o) {
   try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version: printed to stdout
-    std::cerr << "eomgen: error: " << e.what() << "\nRun with --help for more information.\n";
-    return 2;
-  }
-  try {
-    if (check->parsed()) run_check(o);
-    if (derive->parsed()) run_derive(o);
-    if (eval->parsed()) run_eval(o);
-    if (generate->parsed()) run_generate(o);
-    if (linearize->parsed()) run_linearize(o);
-    if (simulate->parsed()) return run_simulate(o);
+    for (const auto& [command, run] : commands)
+      if (command->parsed()) return run(o);
   } catch (const UsageError& e) {
     std::cerr << "eomgen: error: " << e.what() << "\n";
     return 2;
@@ -581,4 +439,38 @@ int main(int argc, char** argv) {
     return 1;
   }
   return 0;
+}
+
+// a subcommand that prints and succeeds, as a command of run_command
+template <void (*run)(const Options&)>
+int succeeds(Options& o) {
+  run(o);
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"eomgen: equations of motion M(q) qdd = F(q, qd, t, u) + Xi^T lambda from a model file", "eomgen"};
+  app.set_version_flag("--version", std::string("eomgen ") + eomgen::version);
+  app.require_subcommand(1);
+  app.footer("Exit status: 0 success, 1 error in the model or at the state, 2 usage error.");
+  Options o;
+  namespace tools = eomgen::tools;
+  const std::vector<std::pair<CLI::App*, int (*)(Options&)>> commands = {
+      {tools::add_check_command(app, o), succeeds<run_check>},
+      {tools::add_derive_command(app, o), succeeds<run_derive>},
+      {tools::add_eval_command(app, o), succeeds<run_eval>},
+      {tools::add_generate_command(app, o), succeeds<run_generate>},
+      {tools::add_linearize_command(app, o), succeeds<run_linearize>},
+      {tools::add_simulate_command(app, o), run_simulate},
+  };
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version: printed to stdout
+    std::cerr << "eomgen: error: " << e.what() << "\nRun with --help for more information.\n";
+    return 2;
+  }
+  return run_command(commands, o);
 }

@@ -5,10 +5,12 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstring>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -18,6 +20,7 @@
 #include "eomgen/base/error.hpp"
 #include "eomgen/base/version.hpp"
 #include "eomgen_build_config.hpp"
+#include "eomrt/integrators.hpp"
 #include "file_output.hpp"
 #include "process.hpp"
 
@@ -67,13 +70,34 @@ void check_names(const Model& model, const SimulateRequest& r) {
                                    join(inputs)));
 }
 
-std::string method_of(const SimulateRequest& r) {
-  const std::string method = !r.method.empty() ? r.method : (r.step > 0 ? "rk4" : "dp5");
-  if (method == "dp5" && r.step > 0)
-    throw UsageError("--dt: dp5 chooses its own steps; give --rtol, or a fixed-step --method (rk4, euler)");
-  if (method != "dp5" && (r.rtol > 0 || r.atol > 0))
-    throw UsageError(fmt::format("--rtol/--atol: {} takes fixed steps; give --dt, or --method dp5", method));
-  return method;
+/// The method taken when none is asked for: for a step (--dt) or for tolerances. The registry
+/// checks at compile time that both defaults are registered.
+const eomrt::IntegratorInfo& default_method(bool fixed_step) {
+  return *eomrt::find_integrator(fixed_step ? eomrt::default_fixed_step_integrator : eomrt::default_integrator);
+}
+
+/// The fixed-step methods as the --dt message suggests them, the default first: "rk4, euler".
+std::string fixed_step_suggestions() {
+  const eomrt::IntegratorInfo& preferred = default_method(true);
+  std::vector<std::string> names{preferred.name};
+  for (const eomrt::IntegratorInfo& info : eomrt::integrators)
+    if (!info.adaptive && info.method != preferred.method) names.push_back(info.name);
+  return join(names);
+}
+
+/// The method of the request: the one asked for, else the default for a step (--dt) or for
+/// tolerances; its step options must be those of its kind.
+const eomrt::IntegratorInfo& method_of(const SimulateRequest& r) {
+  const eomrt::IntegratorInfo* method = r.method.empty() ? &default_method(r.step > 0) : eomrt::find_integrator(r.method);
+  if (method == nullptr)
+    throw UsageError(fmt::format("--method: expected one of {}, got '{}'", join(integrator_names()), r.method));
+  if (method->adaptive && r.step > 0)
+    throw UsageError(fmt::format("--dt: {} chooses its own steps; give --rtol, or a fixed-step --method ({})",
+                                 method->name, fixed_step_suggestions()));
+  if (!method->adaptive && (r.rtol > 0 || r.atol > 0))
+    throw UsageError(fmt::format("--rtol/--atol: {} takes fixed steps; give --dt, or --method {}", method->name,
+                                 default_method(false).name));
+  return *method;
 }
 
 fs::path cache_root(const SimulateRequest& r) {
@@ -84,30 +108,57 @@ fs::path cache_root(const SimulateRequest& r) {
   throw Error("no cache directory: set EOMGEN_CACHE_DIR or HOME, or pass --cache-dir");
 }
 
+/// A directory of sources the simulation is compiled from: next to an installed eomgen (a
+/// path relative to its binary), else in the source tree; \p marker is a file it must hold.
+std::optional<fs::path> find_sources(const fs::path& installed, const fs::path& source, const fs::path& marker) {
+  std::error_code ec;
+  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  if (!ec && fs::exists(exe.parent_path() / installed / marker, ec)) return exe.parent_path() / installed;
+  if (fs::exists(source / marker, ec)) return source;
+  return std::nullopt;
+}
+
 /// The runtime headers: next to an installed eomgen (bin/../include), else the source tree.
 fs::path runtime_include_dir() {
   if (const char* dir = std::getenv("EOMGEN_RUNTIME_INCLUDE_DIR"); dir && *dir) return dir;
-  std::error_code ec;
-  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-  if (!ec) {
-    const fs::path installed = exe.parent_path() / build_config::installed_runtime_include_dir;
-    if (fs::exists(installed / "eomrt" / "simulation_program.hpp", ec)) return installed;
-  }
-  const fs::path source = build_config::source_runtime_include_dir;
-  if (fs::exists(source / "eomrt" / "simulation_program.hpp", ec)) return source;
+  const std::optional<fs::path> found = find_sources(build_config::installed_runtime_include_dir,
+                                                     build_config::source_runtime_include_dir, "eomrt/simulate.hpp");
+  if (found) return *found;
   throw Error(fmt::format("the eomrt runtime headers are neither next to eomgen nor in '{}'; set "
                           "EOMGEN_RUNTIME_INCLUDE_DIR to the directory that holds eomrt/",
-                          source.string()));
+                          build_config::source_runtime_include_dir));
+}
+
+/// The main() of the simulation program: next to an installed eomgen
+/// (bin/../share/eomgen/simulation_program), else the source tree.
+fs::path simulation_program_dir() {
+  const std::optional<fs::path> found = find_sources(
+      build_config::installed_simulation_program_dir, build_config::source_simulation_program_dir, "simulation_main.hpp");
+  if (found) return *found;
+  throw Error(fmt::format("the simulation program's sources are neither next to eomgen nor in '{}'; "
+                          "reinstall eomgen",
+                          build_config::source_simulation_program_dir));
+}
+
+/// The headers under \p dir (sorted, so the cache key does not depend on directory order).
+std::vector<fs::path> headers_in(const fs::path& dir) {
+  std::vector<fs::path> headers;
+  for (const auto& entry : fs::directory_iterator(dir))
+    if (entry.path().extension() == ".hpp") headers.push_back(entry.path());
+  std::sort(headers.begin(), headers.end());
+  return headers;
 }
 
 /// The compiler command: the configured compiler and flags, never fast math (it would break
 /// the NaN checks that make failures loud, and the reproducibility of the results).
-std::vector<std::string> compile_command(const fs::path& source, const fs::path& output, const fs::path& runtime) {
+std::vector<std::string> compile_command(const fs::path& source, const fs::path& output, const fs::path& runtime,
+                                         const fs::path& program) {
   std::vector<std::string> cmd{build_config::cxx_compiler};
   std::istringstream flags(build_config::cxx_flags);
   for (std::string flag; flags >> flag;) cmd.push_back(flag);
   for (const char* extra : {"-std=c++17", "-fno-fast-math"}) cmd.push_back(extra);
   cmd.push_back("-I" + source.parent_path().string());
+  cmd.push_back("-I" + program.string());
   cmd.push_back("-I" + runtime.string());
   cmd.push_back(std::string("-I") + build_config::eigen_include_dir);
   cmd.push_back(source.string());
@@ -116,26 +167,30 @@ std::vector<std::string> compile_command(const fs::path& source, const fs::path&
   return cmd;
 }
 
+/// The key of a build in the cache: a hash of everything the program is built from (the
+/// generated header, the driver, the program's and the runtime's headers, the command), so a
+/// stale build is never reused.
+std::string cache_key(const Model& model, const std::string& header, const std::string& driver,
+                      const fs::path& runtime, const fs::path& program) {
+  std::string key_material = fmt::format("eomgen {}\n", version);
+  key_material += header + driver;
+  for (const fs::path& dir : {program, runtime / "eomrt"})
+    for (const fs::path& h : headers_in(dir)) key_material += h.filename().string() + "\n" + read_file(h);
+  for (const std::string& part : compile_command("driver.cpp", "simulate", runtime, program))
+    key_material += part + "\n";
+  return fmt::format("{}-{:016x}", cpp_identifier(model.name), content_hash(key_material));
+}
+
 /// Builds the simulation program for `header` unless the cache has it; returns its path.
 fs::path simulation_program(const Model& model, const std::string& header, const fs::path& cache) {
   const std::string driver = fmt::format(
       "// The simulation program of model '{}', written by eomgen simulate.\n"
-      "#include \"model.hpp\"\n#include \"eomrt/simulation_program.hpp\"\n\n"
+      "#include \"model.hpp\"\n#include \"simulation_main.hpp\"\n\n"
       "int main(int argc, char** argv) {{\n"
-      "  return eomrt::simulation_main<eomgen_models::{}::Model>(argc, argv);\n}}\n",
+      "  return eomgen::simulation_program::simulation_main<eomgen_models::{}::Model>(argc, argv);\n}}\n",
       cpp_string_contents(model.name), cpp_identifier(model.name));
-  const fs::path runtime = runtime_include_dir();
-
-  // the key covers everything the program is built from, so a stale build is never reused
-  std::string key_material = fmt::format("eomgen {}\n", version);
-  key_material += header + driver;
-  std::vector<fs::path> runtime_headers;
-  for (const auto& entry : fs::directory_iterator(runtime / "eomrt"))
-    if (entry.path().extension() == ".hpp") runtime_headers.push_back(entry.path());
-  std::sort(runtime_headers.begin(), runtime_headers.end());
-  for (const fs::path& h : runtime_headers) key_material += h.filename().string() + "\n" + read_file(h);
-  for (const std::string& part : compile_command("driver.cpp", "simulate", runtime)) key_material += part + "\n";
-  const std::string key = fmt::format("{}-{:016x}", cpp_identifier(model.name), content_hash(key_material));
+  const fs::path runtime = runtime_include_dir(), program_dir = simulation_program_dir();
+  const std::string key = cache_key(model, header, driver, runtime, program_dir);
 
   const fs::path directory = cache / key;
   const fs::path program = directory / "simulate";
@@ -155,7 +210,8 @@ fs::path simulation_program(const Model& model, const std::string& header, const
   if (ec) throw Error(fmt::format("cannot create '{}': {}", building.string(), ec.message()));
   write_atomically((building / "model.hpp").string(), header);
   write_atomically((building / "driver.cpp").string(), driver);
-  const std::vector<std::string> cmd = compile_command(building / "driver.cpp", building / "simulate", runtime);
+  const std::vector<std::string> cmd =
+      compile_command(building / "driver.cpp", building / "simulate", runtime, program_dir);
   std::cerr << fmt::format("eomgen: compiling the simulation of {} with {} ...\n", model.name, cmd.front());
   const auto start = std::chrono::steady_clock::now();
   const fs::path log = building / "compile.log";
@@ -221,9 +277,32 @@ std::string plot_script(const Model& model, const std::string& csv, const std::s
 
 }  // namespace
 
+std::vector<std::string> integrator_names() {
+  std::vector<std::string> names;
+  for (const eomrt::IntegratorInfo& info : eomrt::integrators) names.push_back(info.name);
+  return names;
+}
+
+std::string integrator_names(bool adaptive, const std::string& separator) {
+  std::string out;
+  for (const eomrt::IntegratorInfo& info : eomrt::integrators)
+    if (info.adaptive == adaptive) out += (out.empty() ? "" : separator) + info.name;
+  return out;
+}
+
+std::string method_help() {
+  std::string help = fmt::format("Integrator (default: {}, or {} when --dt is given):", default_method(false).name,
+                                 default_method(true).name);
+  std::size_t width = 0;
+  for (const eomrt::IntegratorInfo& info : eomrt::integrators) width = std::max(width, std::strlen(info.name));
+  for (const eomrt::IntegratorInfo& info : eomrt::integrators)
+    help += fmt::format("\n  {:<{}}  {}", info.name, width, info.description);
+  return help;
+}
+
 int run_simulate(const Model& model, const SimulateRequest& r) {
   check_names(model, r);
-  const std::string method = method_of(r);
+  const std::string method = method_of(r).name;
   // default names from the model's name as an identifier: a name is free text in a model
   // file without a `model` line (the file's stem), and must not become a path or an option
   const std::string stem = cpp_identifier(model.name);

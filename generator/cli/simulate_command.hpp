@@ -1,6 +1,7 @@
 #pragma once
-// `eomgen simulate`: generate a model's code, compile it with the runtime's simulation program
-// into a cache keyed by content, run it, and plot the result with gnuplot.
+// `eomgen simulate`: generate a model's code, compile it with the simulation program
+// (simulation_program/) and the runtime into a cache keyed by content, run it, and plot the
+// result with gnuplot.
 #include <map>
 #include <string>
 #include <vector>
@@ -20,7 +21,7 @@ class UsageError : public std::runtime_error {
 struct SimulateRequest {
   std::string model_path;
   double t_end = 0;
-  std::string method;  ///< euler, rk4, dp5; empty: rk4 when a step is given, else dp5
+  std::string method;  ///< a name of the integrator registry; empty: its default for a step, or without one
   double step = 0;     ///< 0: not given
   double rtol = 0;     ///< 0: not given
   double atol = 0;     ///< 0: not given
@@ -35,6 +36,16 @@ struct SimulateRequest {
   bool plot = true;
   std::string cache_dir;  ///< empty: $EOMGEN_CACHE_DIR, else $XDG_CACHE_HOME/eomgen, else ~/.cache/eomgen
 };
+
+/// The names `--method` accepts: the integrator registry's (eomrt/integrators.hpp), in its order.
+std::vector<std::string> integrator_names();
+
+/// The names of the fixed-step (or of the adaptive) methods in the registry's order, joined by
+/// \p separator: "euler/rk4".
+std::string integrator_names(bool adaptive, const std::string& separator);
+
+/// The help of `--method`: the defaults, then one line per registered method.
+std::string method_help();
 
 /// Runs the request for an already loaded model.
 /// \return the exit status: 0, or 1 when the simulation failed (its message is on stderr)

@@ -7,6 +7,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -15,6 +16,7 @@
 #include <string>
 
 #include "cli/cli_runner.hpp"
+#include "eomrt/integrators.hpp"
 
 namespace {
 
@@ -99,6 +101,42 @@ TEST_F(Cli, VersionAndHelp) {
   for (const char* word : {"--at", "--set", "--format", "--define"}) EXPECT_THAT(eval.out, HasSubstr(word));
   EXPECT_EQ(eomgen("check --help").status, 0);
   EXPECT_TRUE(eomgen("--help").err.empty());
+}
+
+// `simulate --method` offers the integrator registry: every row, its description, and the
+// fixed-step and adaptive names in the help of the options that belong to each kind
+TEST_F(Cli, SimulateHelpListsTheRegisteredIntegrators) {
+  const Outcome help = eomgen("simulate --help");
+  ASSERT_EQ(help.status, 0) << help.err;
+  std::string names, fixed_step, adaptive;
+  for (const eomrt::IntegratorInfo& info : eomrt::integrators) {
+    SCOPED_TRACE(info.name);
+    // a line of its own: the name, then its description
+    const std::string name = info.name, description = info.description;
+    std::istringstream lines(help.out);
+    bool listed = false;
+    for (std::string line; std::getline(lines, line);) {
+      const std::string text = line.substr(std::min(line.find_first_not_of(' '), line.size()));
+      listed = listed || (text.rfind(name + " ", 0) == 0 && text.size() > description.size() &&
+                          text.compare(text.size() - description.size(), description.size(), description) == 0);
+    }
+    EXPECT_TRUE(listed);
+    names += (names.empty() ? "" : ",") + name;
+    std::string& kind = info.adaptive ? adaptive : fixed_step;
+    kind += (kind.empty() ? "" : "/") + name;
+  }
+  EXPECT_THAT(help.out, HasSubstr("--method TEXT:{" + names + "}"));
+  EXPECT_THAT(help.out, HasSubstr("Step of " + fixed_step + " [s]"));
+  EXPECT_THAT(help.out, HasSubstr("Relative tolerance of " + adaptive + " "));
+  EXPECT_THAT(help.out, HasSubstr(std::string("default: ") + eomrt::to_string(eomrt::default_integrator) + ", or " +
+                                  eomrt::to_string(eomrt::default_fixed_step_integrator) + " when --dt is given"));
+}
+
+// a name outside the registry is refused by the command line, with the choices
+TEST_F(Cli, SimulateRefusesAnUnregisteredMethod) {
+  const Outcome run = eomgen("simulate " + quote(model("dp.eom", double_pendulum)) + " --t-end 1 --method rk45");
+  EXPECT_EQ(run.status, 2);
+  EXPECT_EQ(run.err, "eomgen: error: --method: rk45 not in {euler,rk4,dp5}\nRun with --help for more information.\n");
 }
 
 TEST_F(Cli, CheckSummarizesTheModel) {

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "cli/cli_runner.hpp"
+#include "eomrt/integrators.hpp"
 
 namespace {
 
@@ -139,6 +140,23 @@ TEST_F(Simulate, SecondRunReusesTheCompiledSimulation) {
   const Csv table = read_csv(dir_ / "work" / "a.csv");
   EXPECT_EQ(table.rows.size(), 101u);  // 1 s at the default ~1000 rows, rounded to whole 10 ms steps
   EXPECT_NEAR(table.rows.back()[1], pendulum_angle(0.1, 0.0, 3.7 / 0.5, 1.0), 1e-8);  // rk4, h = 10 ms
+}
+
+// every method of the integrator registry is accepted by name, reaches the simulation program
+// and is named in its summary; the fixed-step ones take a step, the adaptive ones tolerances
+TEST_F(Simulate, EveryRegisteredMethodRunsByItsName) {
+  const std::string model = quote(models_dir + "simple_pendulum.eom") + " --t-end 0.5 --init theta=0.3 --no-plot -o " +
+                            quote((dir_ / "work" / "m.csv").string());
+  for (const eomrt::IntegratorInfo& info : eomrt::integrators) {
+    SCOPED_TRACE(info.name);
+    const Outcome run = simulate(model + " --method " + info.name + (info.adaptive ? " --rtol 1e-9" : " --dt 0.001"));
+    ASSERT_EQ(run.status, 0) << run.err;
+    EXPECT_THAT(run.out, HasSubstr(std::string("with ") + info.name + (info.adaptive ? " (rtol 1e-09" : " (dt 0.001)")));
+    const Csv table = read_csv(dir_ / "work" / "m.csv");
+    EXPECT_EQ(table.rows.back()[0], 0.5);
+    // theta'' = -g/l sin(theta): every method near the reference, Euler within its O(h)
+    EXPECT_NEAR(table.rows.back()[1], pendulum_angle(0.3, 0.0, 9.81 / 0.5, 0.5), info.order == 1 ? 1e-2 : 1e-7);
+  }
 }
 
 // the same request writes the same bytes in every process (numbers included)

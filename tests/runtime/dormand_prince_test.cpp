@@ -1,5 +1,6 @@
-// Tests for dormand_prince.hpp: error control against exact solutions, measured orders,
-// rejections, dense output, landing on grid and end times, every status, no allocation.
+// Tests for rk_adaptive.hpp with the Dormand-Prince 5(4) pair: error control against exact
+// solutions, measured orders, rejections, dense output, landing on grid and end times, every
+// status, no allocation.
 
 #include "runtime/no_malloc.hpp"  // first: it configures Eigen
 
@@ -28,6 +29,8 @@ template <typename Scalar>
 using Vector2 = Eigen::Matrix<Scalar, 2, 1>;
 template <typename Scalar>
 using Vector4 = Eigen::Matrix<Scalar, 4, 1>;
+template <typename Vector>
+using Workspace = AdaptiveWorkspace<Vector, dormand_prince54.stages>;
 
 // harmonic oscillator q'' = -q from q = 1, qd = 0: exact x(t) = [cos t; -sin t]
 const auto oscillator = [](auto, const auto& x, auto& dxdt) { dxdt << x(1), -x(0); };
@@ -96,7 +99,7 @@ TEST(Convergence, GlobalErrorIsProportionalToToleranceAndFifthOrderInSteps) {
   const Vector4<double> x0 = kepler_exact(e, 0.0);
   std::vector<double> rtols, errors, steps;
   for (double rtol = 1e-4; rtol >= 1e-11; rtol /= 10) {
-    const auto r = integrate_adaptive(kepler, 0.0, x0, std::array<double, 1>{t_end},
+    const auto r = integrate_adaptive(dormand_prince54, kepler, 0.0, x0, std::array<double, 1>{t_end},
                                       tolerances(rtol, rtol * 1e-2));
     ASSERT_EQ(r.status, AdaptiveStatus::ok);
     const double error = (r.x - x0).norm();
@@ -118,11 +121,11 @@ TEST(ErrorControl, ErrorAtEndIsASmallMultipleOfToleranceOnOscillatorAndLogistic)
                            Eigen::Matrix<double, 1, 1>& dxdt) { dxdt(0) = x(0) * (1 - x(0)); };
   const double t_end = 20.0;
   for (double rtol : {1e-6, 1e-8, 1e-10}) {
-    const auto r = integrate_adaptive(oscillator, 0.0, Eigen::Vector2d(1, 0),
+    const auto r = integrate_adaptive(dormand_prince54, oscillator, 0.0, Eigen::Vector2d(1, 0),
                                       std::vector<double>{t_end}, tolerances(rtol, rtol * 1e-2));
     ASSERT_EQ(r.status, AdaptiveStatus::ok);
     const double error = (r.x - oscillator_exact(t_end)).norm();
-    const auto l = integrate_adaptive(logistic, 0.0, Eigen::Matrix<double, 1, 1>(0.1),
+    const auto l = integrate_adaptive(dormand_prince54, logistic, 0.0, Eigen::Matrix<double, 1, 1>(0.1),
                                       std::vector<double>{t_end}, tolerances(rtol, rtol * 1e-2));
     ASSERT_EQ(l.status, AdaptiveStatus::ok);
     const double logistic_error = std::abs(l.x(0) - 1 / (1 + 9 * std::exp(-t_end)));
@@ -154,7 +157,7 @@ TEST(ErrorControl, KeplerOrbitKeepsInvariantsAndApocenterStateNearTolerance) {
     momentum_drift = std::max(momentum_drift, std::abs(angular_momentum(x) - momentum));
     if (t == M_PI) apocenter_error = (x - kepler_exact(e, t)).norm();
   };
-  const auto r = integrate_adaptive(kepler, 0.0, x0, grid, tolerances(rtol, 1e-12), observer);
+  const auto r = integrate_adaptive(dormand_prince54, kepler, 0.0, x0, grid, tolerances(rtol, 1e-12), observer);
   ASSERT_EQ(r.status, AdaptiveStatus::ok);
   std::printf(
       "[ control  ] kepler e = 0.9, rtol %.0e: %lld accepted %lld rejected; drift of energy "
@@ -180,16 +183,16 @@ TEST(ErrorControl, StepChangeInForcingCausesCountedRejectionsAndIsResolved) {
     return t < 1 ? std::exp(-50 * t) : 1 + (std::exp(-50.0) - 1) * std::exp(-50 * (t - 1));
   };
   const double rtol = 1e-7;
-  DormandPrinceWorkspace<Eigen::Matrix<double, 1, 1>> ws(1);
+  Workspace<Eigen::Matrix<double, 1, 1>> ws(1);
   const AdaptiveOptions<double> options = tolerances(rtol, 1e-9);
-  ASSERT_EQ(dp_start(f, 0.0, Eigen::Matrix<double, 1, 1>(1.0), 2.0, options, ws),
+  ASSERT_EQ(adaptive_start(dormand_prince54, f, 0.0, Eigen::Matrix<double, 1, 1>(1.0), 2.0, options, ws),
             AdaptiveStatus::ok);
   // attempts across the jump fail until the steps are small enough to creep up to it
   long long rejected_near_jump = 0;
   double smallest_step_near_jump = 1;
   while (ws.t < 2.0) {
     const long long before = ws.rejected;
-    ASSERT_EQ(dp_step(f, 2.0, options, ws), AdaptiveStatus::ok);
+    ASSERT_EQ(adaptive_step(dormand_prince54, f, 2.0, options, ws), AdaptiveStatus::ok);
     // a step that succeeds right after a failure must not propose a longer one
     if (ws.rejected > before && ws.t < 2.0) {
       EXPECT_LE(ws.h, ws.t - ws.t_previous) << "after the step ending at t = " << ws.t;
@@ -216,17 +219,17 @@ TEST(DenseOutput, LocalErrorShrinksWithFifthPowerOfStep) {
   // one step of forced size h from an exact state: the interpolant's error is O(h^5)
   const double e = 0.5, t0 = 0.3;
   const auto interior_error = [&](double h) {
-    DormandPrinceWorkspace<Vector4<double>> ws(4);
+    Workspace<Vector4<double>> ws(4);
     AdaptiveOptions<double> options = tolerances(1.0, 1.0);  // accept whatever happens
     options.h_initial = h;
-    EXPECT_EQ(dp_start(kepler, t0, kepler_exact(e, t0), t0 + h, options, ws), AdaptiveStatus::ok);
-    EXPECT_EQ(dp_step(kepler, t0 + h, options, ws), AdaptiveStatus::ok);
+    EXPECT_EQ(adaptive_start(dormand_prince54, kepler, t0, kepler_exact(e, t0), t0 + h, options, ws), AdaptiveStatus::ok);
+    EXPECT_EQ(adaptive_step(dormand_prince54, kepler, t0 + h, options, ws), AdaptiveStatus::ok);
     EXPECT_EQ(ws.rejected, 0);
     double worst = 0;
     Vector4<double> x;
     for (int i = 1; i < 100; ++i) {
       const double t = t0 + h * i / 100;
-      dp_dense_output(ws, t, x);
+      dense_output(ws, t, x);
       worst = std::max(worst, (x - kepler_exact(e, t)).norm());
     }
     return worst;
@@ -245,9 +248,9 @@ TEST(DenseOutput, InteriorLocalErrorOfAnAdaptiveRunStaysWithinTolerance) {
   // the oscillator's flow is a rotation, so the exact solution through each step's start is
   // known and the interpolant's own (local) error can be measured in the controller's norm
   const double rtol = 1e-8, atol = 1e-11;
-  DormandPrinceWorkspace<Eigen::Vector2d> ws(2);
+  Workspace<Eigen::Vector2d> ws(2);
   const AdaptiveOptions<double> options = tolerances(rtol, atol);
-  ASSERT_EQ(dp_start(oscillator, 0.0, Eigen::Vector2d(1, 0), 20.0, options, ws),
+  ASSERT_EQ(adaptive_start(dormand_prince54, oscillator, 0.0, Eigen::Vector2d(1, 0), 20.0, options, ws),
             AdaptiveStatus::ok);
   const auto flow = [&](double t) {
     const double s = t - ws.t_previous;
@@ -263,11 +266,11 @@ TEST(DenseOutput, InteriorLocalErrorOfAnAdaptiveRunStaysWithinTolerance) {
   double worst_end = 0, worst_interior = 0;
   Eigen::Vector2d x;
   while (ws.t < 20.0) {
-    ASSERT_EQ(dp_step(oscillator, 20.0, options, ws), AdaptiveStatus::ok);
+    ASSERT_EQ(adaptive_step(dormand_prince54, oscillator, 20.0, options, ws), AdaptiveStatus::ok);
     worst_end = std::max(worst_end, scaled(ws.x - flow(ws.t)));
     for (int i = 1; i < 20; ++i) {
       const double t = ws.t_previous + (ws.t - ws.t_previous) * i / 20;
-      dp_dense_output(ws, t, x);
+      dense_output(ws, t, x);
       worst_interior = std::max(worst_interior, scaled(x - flow(t)));
     }
   }
@@ -282,17 +285,17 @@ TEST(DenseOutput, InteriorLocalErrorOfAnAdaptiveRunStaysWithinTolerance) {
 }
 
 TEST(DenseOutput, ReproducesBothEndsOfTheStepExactly) {
-  DormandPrinceWorkspace<Vector4<double>> ws(4);
+  Workspace<Vector4<double>> ws(4);
   const AdaptiveOptions<double> options = tolerances(1e-6, 1e-9);
-  ASSERT_EQ(dp_start(kepler, 0.0, kepler_exact(0.7, 0.0), 3.0, options, ws), AdaptiveStatus::ok);
+  ASSERT_EQ(adaptive_start(dormand_prince54, kepler, 0.0, kepler_exact(0.7, 0.0), 3.0, options, ws), AdaptiveStatus::ok);
   Vector4<double> x;
-  dp_dense_output(ws, 0.0, x);  // before the first step: the start state
+  dense_output(ws, 0.0, x);  // before the first step: the start state
   EXPECT_EQ(x, ws.x);
   while (ws.t < 3.0) {
-    ASSERT_EQ(dp_step(kepler, 3.0, options, ws), AdaptiveStatus::ok);
-    dp_dense_output(ws, ws.t_previous, x);
+    ASSERT_EQ(adaptive_step(dormand_prince54, kepler, 3.0, options, ws), AdaptiveStatus::ok);
+    dense_output(ws, ws.t_previous, x);
     EXPECT_EQ(x, ws.x_previous);
-    dp_dense_output(ws, ws.t, x);
+    dense_output(ws, ws.t, x);
     EXPECT_EQ(x, ws.x);
   }
 }
@@ -308,13 +311,13 @@ TEST(IntegrateAdaptive, ObservesEveryGridTimeExactlyWithoutChangingTheSteps) {
   };
   const auto options = tolerances(1e-9, 1e-12);
   const auto r =
-      integrate_adaptive(oscillator, 0.0, Eigen::Vector2d(1, 0), grid, options, observer);
+      integrate_adaptive(dormand_prince54, oscillator, 0.0, Eigen::Vector2d(1, 0), grid, options, observer);
   ASSERT_EQ(r.status, AdaptiveStatus::ok);
   EXPECT_EQ(times, grid);
   EXPECT_EQ(r.t, grid.back());
   EXPECT_LT(worst, 1e-8);
   // output comes from the dense output: the steps are those of a run without the grid
-  const auto plain = integrate_adaptive(oscillator, 0.0, Eigen::Vector2d(1, 0),
+  const auto plain = integrate_adaptive(dormand_prince54, oscillator, 0.0, Eigen::Vector2d(1, 0),
                                         std::vector<double>{grid.back()}, options);
   std::printf("[ grid     ] 101 grid times from %lld steps (%lld without grid), worst error %.3e\n",
               r.accepted, plain.accepted, worst);
@@ -323,36 +326,36 @@ TEST(IntegrateAdaptive, ObservesEveryGridTimeExactlyWithoutChangingTheSteps) {
   EXPECT_EQ(r.x, plain.x);
 }
 
-TEST(DpStep, LandsExactlyOnEndTimeAndNeverStepsPastIt) {
-  DormandPrinceWorkspace<Eigen::Vector2d> ws(2);
+TEST(AdaptiveStep, LandsExactlyOnEndTimeAndNeverStepsPastIt) {
+  Workspace<Eigen::Vector2d> ws(2);
   const AdaptiveOptions<double> options = tolerances(1e-6, 1e-9);
   const double t_end = 1.1;  // not representable: landing must copy it, not add up to it
-  ASSERT_EQ(dp_start(oscillator, 0.1, Eigen::Vector2d(1, 0), t_end, options, ws),
+  ASSERT_EQ(adaptive_start(dormand_prince54, oscillator, 0.1, Eigen::Vector2d(1, 0), t_end, options, ws),
             AdaptiveStatus::ok);
   while (ws.t < t_end) {
-    ASSERT_EQ(dp_step(oscillator, t_end, options, ws), AdaptiveStatus::ok);
+    ASSERT_EQ(adaptive_step(dormand_prince54, oscillator, t_end, options, ws), AdaptiveStatus::ok);
     EXPECT_LE(ws.t, t_end);
   }
   EXPECT_EQ(ws.t, t_end);
   // at the end there is nothing left to do
   const long long accepted = ws.accepted;
-  EXPECT_EQ(dp_step(oscillator, t_end, options, ws), AdaptiveStatus::ok);
+  EXPECT_EQ(adaptive_step(dormand_prince54, oscillator, t_end, options, ws), AdaptiveStatus::ok);
   EXPECT_EQ(ws.accepted, accepted);
 }
 
-TEST(DpStep, LandingOnACloseIntermediateEndDoesNotShrinkLaterSteps) {
+TEST(AdaptiveStep, LandingOnACloseIntermediateEndDoesNotShrinkLaterSteps) {
   const AdaptiveOptions<double> options = tolerances(1e-8, 1e-11);
   const auto steps_to = [&](double intermediate) {
-    DormandPrinceWorkspace<Eigen::Vector2d> ws(2);
-    EXPECT_EQ(dp_start(oscillator, 0.0, Eigen::Vector2d(1, 0), 10.0, options, ws),
+    Workspace<Eigen::Vector2d> ws(2);
+    EXPECT_EQ(adaptive_start(dormand_prince54, oscillator, 0.0, Eigen::Vector2d(1, 0), 10.0, options, ws),
               AdaptiveStatus::ok);
-    EXPECT_EQ(dp_step(oscillator, 10.0, options, ws), AdaptiveStatus::ok);
+    EXPECT_EQ(adaptive_step(dormand_prince54, oscillator, 10.0, options, ws), AdaptiveStatus::ok);
     // an output or control time a hair after the current one forces a tiny step
     if (intermediate > 0) {
-      EXPECT_EQ(dp_step(oscillator, ws.t + intermediate, options, ws), AdaptiveStatus::ok);
+      EXPECT_EQ(adaptive_step(dormand_prince54, oscillator, ws.t + intermediate, options, ws), AdaptiveStatus::ok);
     }
     while (ws.t < 10.0) {
-      EXPECT_EQ(dp_step(oscillator, 10.0, options, ws), AdaptiveStatus::ok);
+      EXPECT_EQ(adaptive_step(dormand_prince54, oscillator, 10.0, options, ws), AdaptiveStatus::ok);
     }
     return ws.accepted;
   };
@@ -363,12 +366,12 @@ TEST(DpStep, LandingOnACloseIntermediateEndDoesNotShrinkLaterSteps) {
   EXPECT_LE(interrupted, plain + 2);
 }
 
-TEST(DpStart, AutomaticFirstStepIsAcceptedAndNearTheControllersOwnChoice) {
+TEST(AdaptiveStart, AutomaticFirstStepIsAcceptedAndNearTheControllersOwnChoice) {
   const AdaptiveOptions<double> options = tolerances(1e-8, 1e-11);
-  DormandPrinceWorkspace<Vector4<double>> ws(4);
-  ASSERT_EQ(dp_start(kepler, 0.0, kepler_exact(0.5, 0.0), 10.0, options, ws), AdaptiveStatus::ok);
+  Workspace<Vector4<double>> ws(4);
+  ASSERT_EQ(adaptive_start(dormand_prince54, kepler, 0.0, kepler_exact(0.5, 0.0), 10.0, options, ws), AdaptiveStatus::ok);
   const double h0 = ws.h;
-  for (int i = 0; i < 5; ++i) ASSERT_EQ(dp_step(kepler, 10.0, options, ws), AdaptiveStatus::ok);
+  for (int i = 0; i < 5; ++i) ASSERT_EQ(adaptive_step(dormand_prince54, kepler, 10.0, options, ws), AdaptiveStatus::ok);
   std::printf(
       "[ start    ] kepler rtol 1e-8: first step %.3e, step proposed after 5 steps %.3e, "
       "%lld rejected\n",
@@ -380,17 +383,17 @@ TEST(DpStart, AutomaticFirstStepIsAcceptedAndNearTheControllersOwnChoice) {
   EXPECT_GT(h0, ws.h / 100);
 }
 
-TEST(DpStart, StepSizeOptionsAreHonoured) {
+TEST(AdaptiveStart, StepSizeOptionsAreHonoured) {
   AdaptiveOptions<double> options = tolerances(1e-6, 1e-9);
   options.h_initial = 1e-3;
   options.h_max = 0.05;
-  DormandPrinceWorkspace<Eigen::Vector2d> ws(2);
-  ASSERT_EQ(dp_start(oscillator, 0.0, Eigen::Vector2d(1, 0), 1.0, options, ws), AdaptiveStatus::ok);
+  Workspace<Eigen::Vector2d> ws(2);
+  ASSERT_EQ(adaptive_start(dormand_prince54, oscillator, 0.0, Eigen::Vector2d(1, 0), 1.0, options, ws), AdaptiveStatus::ok);
   EXPECT_EQ(ws.h, 1e-3);
   EXPECT_EQ(ws.evaluations, 1);  // no starting-step probe
   double longest = 0;
   while (ws.t < 1.0) {
-    ASSERT_EQ(dp_step(oscillator, 1.0, options, ws), AdaptiveStatus::ok);
+    ASSERT_EQ(adaptive_step(dormand_prince54, oscillator, 1.0, options, ws), AdaptiveStatus::ok);
     longest = std::max(longest, ws.t - ws.t_previous);
   }
   EXPECT_LE(longest, 0.05 * (1 + 1e-12));  // t + h rounds, so t_new - t may exceed h by an ulp
@@ -401,7 +404,7 @@ TEST(Status, BlowUpEndsInUnderflowAtTheSingularityWithFiniteState) {
   // x' = x^2, x(0) = 1: x = 1 / (1 - t) has a pole at t = 1, the integration is asked for t = 2
   const auto f = [](double, const Eigen::Matrix<double, 1, 1>& x,
                     Eigen::Matrix<double, 1, 1>& dxdt) { dxdt(0) = x(0) * x(0); };
-  const auto r = integrate_adaptive(f, 0.0, Eigen::Matrix<double, 1, 1>(1.0),
+  const auto r = integrate_adaptive(dormand_prince54, f, 0.0, Eigen::Matrix<double, 1, 1>(1.0),
                                     std::vector<double>{2.0}, tolerances(1e-8, 1e-10));
   std::printf(
       "[ status   ] blow-up: %s at t - 1 = %.3e, x = %.3e, %lld accepted "
@@ -418,7 +421,7 @@ TEST(Status, NanFromRhsPastATimeEndsAsNonFiniteAtThatTime) {
   const auto f = [](double t, const Eigen::Vector2d& x, Eigen::Vector2d& dxdt) {
     dxdt << x(1), t > 1.0 ? std::numeric_limits<double>::quiet_NaN() : -x(0);
   };
-  const auto r = integrate_adaptive(f, 0.0, Eigen::Vector2d(1, 0), std::vector<double>{3.0},
+  const auto r = integrate_adaptive(dormand_prince54, f, 0.0, Eigen::Vector2d(1, 0), std::vector<double>{3.0},
                                     tolerances(1e-8, 1e-10));
   EXPECT_EQ(r.status, AdaptiveStatus::non_finite);
   EXPECT_STREQ(to_string(r.status), "non_finite");
@@ -442,7 +445,7 @@ TEST(Status, NonFiniteTrialIsRejectedAndRetriedWithSmallerStep) {
   AdaptiveOptions<double> options = tolerances(1e-8, 1e-10);
   options.h_initial = 50;
   const auto r =
-      integrate_adaptive(f, 0.0, Eigen::Vector2d(1, 0), std::vector<double>{100.0}, options);
+      integrate_adaptive(dormand_prince54, f, 0.0, Eigen::Vector2d(1, 0), std::vector<double>{100.0}, options);
   std::printf("[ status   ] non-finite trials: %lld accepted %lld rejected\n", r.accepted,
               r.rejected);
   EXPECT_EQ(r.status, AdaptiveStatus::ok);
@@ -458,7 +461,7 @@ TEST(Status, RhsFailureStopsAtTheLastAcceptedState) {
     dxdt << x(1), -x(0);
     return true;
   };
-  const auto r = integrate_adaptive(f, 0.0, Eigen::Vector2d(1, 0), std::vector<double>{3.0},
+  const auto r = integrate_adaptive(dormand_prince54, f, 0.0, Eigen::Vector2d(1, 0), std::vector<double>{3.0},
                                     tolerances(1e-8, 1e-10));
   EXPECT_EQ(r.status, AdaptiveStatus::rhs_failed);
   EXPECT_STREQ(to_string(r.status), "rhs_failed");
@@ -466,15 +469,15 @@ TEST(Status, RhsFailureStopsAtTheLastAcceptedState) {
   EXPECT_LT((r.x - oscillator_exact(r.t)).norm(), 1e-8);
 
   // and at the very first evaluation
-  DormandPrinceWorkspace<Eigen::Vector2d> ws(2);
-  EXPECT_EQ(dp_start(f, 0.75, Eigen::Vector2d(1, 0), 1.0, AdaptiveOptions<double>(), ws),
+  Workspace<Eigen::Vector2d> ws(2);
+  EXPECT_EQ(adaptive_start(dormand_prince54, f, 0.75, Eigen::Vector2d(1, 0), 1.0, AdaptiveOptions<double>(), ws),
             AdaptiveStatus::rhs_failed);
 }
 
 TEST(Status, TooManyStepsCountsAcceptedAndRejectedAttempts) {
   AdaptiveOptions<double> options = tolerances(1e-10, 1e-12);
   options.max_steps = 7;
-  const auto r = integrate_adaptive(oscillator, 0.0, Eigen::Vector2d(1, 0),
+  const auto r = integrate_adaptive(dormand_prince54, oscillator, 0.0, Eigen::Vector2d(1, 0),
                                     std::vector<double>{10.0}, options);
   EXPECT_EQ(r.status, AdaptiveStatus::too_many_steps);
   EXPECT_STREQ(to_string(r.status), "too_many_steps");
@@ -488,52 +491,52 @@ TEST(Status, NonFiniteInitialStateIsReportedWithoutCallingRhs) {
     ++calls;
     dxdt = x;
   };
-  DormandPrinceWorkspace<Eigen::Vector2d> ws(2);
-  EXPECT_EQ(dp_start(f, 0.0, Eigen::Vector2d(1, std::numeric_limits<double>::infinity()), 1.0,
+  Workspace<Eigen::Vector2d> ws(2);
+  EXPECT_EQ(adaptive_start(dormand_prince54, f, 0.0, Eigen::Vector2d(1, std::numeric_limits<double>::infinity()), 1.0,
                      AdaptiveOptions<double>(), ws),
             AdaptiveStatus::non_finite);
   EXPECT_EQ(calls, 0);
 }
 
-TEST(DpRestart, ContinuesFromTheChangedStateLikeAFreshStart) {
-  // a velocity reversal (an impact) between steps: with dp_restart the next step is the step
+TEST(AdaptiveRestart, ContinuesFromTheChangedStateLikeAFreshStart) {
+  // a velocity reversal (an impact) between steps: with adaptive_restart the next step is the step
   // a fresh start at the changed state takes, bit for bit
   const AdaptiveOptions<double> options = tolerances(1e-8, 1e-11);
-  DormandPrinceWorkspace<Vector4<double>> ws(4);
-  ASSERT_EQ(dp_start(kepler, 0.0, kepler_exact(0.5, 0.0), 5.0, options, ws), AdaptiveStatus::ok);
-  for (int i = 0; i < 3; ++i) ASSERT_EQ(dp_step(kepler, 5.0, options, ws), AdaptiveStatus::ok);
+  Workspace<Vector4<double>> ws(4);
+  ASSERT_EQ(adaptive_start(dormand_prince54, kepler, 0.0, kepler_exact(0.5, 0.0), 5.0, options, ws), AdaptiveStatus::ok);
+  for (int i = 0; i < 3; ++i) ASSERT_EQ(adaptive_step(dormand_prince54, kepler, 5.0, options, ws), AdaptiveStatus::ok);
   const Vector4<double> x_before = ws.x;
   const double t_previous = ws.t_previous;
   ws.x.tail<2>() *= -1;
-  ASSERT_EQ(dp_restart(kepler, ws), AdaptiveStatus::ok);
+  ASSERT_EQ(adaptive_restart(kepler, ws), AdaptiveStatus::ok);
 
   // the last step's dense output still describes the trajectory before the change
   Vector4<double> x;
-  dp_dense_output(ws, ws.t, x);
+  dense_output(ws, ws.t, x);
   EXPECT_EQ(x, x_before);
-  dp_dense_output(ws, (ws.t + t_previous) / 2, x);
+  dense_output(ws, (ws.t + t_previous) / 2, x);
   EXPECT_LT((x - kepler_exact(0.5, (ws.t + t_previous) / 2)).norm(), 1e-8);
 
-  DormandPrinceWorkspace<Vector4<double>> fresh(4);
+  Workspace<Vector4<double>> fresh(4);
   AdaptiveOptions<double> same_step = options;
   same_step.h_initial = ws.h;
-  ASSERT_EQ(dp_start(kepler, ws.t, ws.x, 5.0, same_step, fresh), AdaptiveStatus::ok);
+  ASSERT_EQ(adaptive_start(dormand_prince54, kepler, ws.t, ws.x, 5.0, same_step, fresh), AdaptiveStatus::ok);
   EXPECT_EQ(fresh.k[0], ws.k[0]);
-  ASSERT_EQ(dp_step(kepler, 5.0, options, ws), AdaptiveStatus::ok);
-  ASSERT_EQ(dp_step(kepler, 5.0, options, fresh), AdaptiveStatus::ok);
+  ASSERT_EQ(adaptive_step(dormand_prince54, kepler, 5.0, options, ws), AdaptiveStatus::ok);
+  ASSERT_EQ(adaptive_step(dormand_prince54, kepler, 5.0, options, fresh), AdaptiveStatus::ok);
   EXPECT_EQ(ws.t, fresh.t);
   EXPECT_EQ(ws.x, fresh.x);
 }
 
 TEST(DormandPrince, DoesNotAllocateInStepsOrDenseOutput) {
   // fixed size (the common case for a generated model) and dynamic size, preallocated
-  DormandPrinceWorkspace<Vector4<double>> fixed(4);
-  DormandPrinceWorkspace<Eigen::VectorXd> dynamic(4);
+  Workspace<Vector4<double>> fixed(4);
+  Workspace<Eigen::VectorXd> dynamic(4);
   const AdaptiveOptions<double> options = tolerances(1e-10, 1e-12);
   const double t_end = 1e3;
   const Vector4<double> x0 = kepler_exact(0.6, 0.0);
-  ASSERT_EQ(dp_start(kepler, 0.0, x0, t_end, options, fixed), AdaptiveStatus::ok);
-  ASSERT_EQ(dp_start(kepler, 0.0, Eigen::VectorXd(x0), t_end, options, dynamic),
+  ASSERT_EQ(adaptive_start(dormand_prince54, kepler, 0.0, x0, t_end, options, fixed), AdaptiveStatus::ok);
+  ASSERT_EQ(adaptive_start(dormand_prince54, kepler, 0.0, Eigen::VectorXd(x0), t_end, options, dynamic),
             AdaptiveStatus::ok);
   Vector4<double> x_fixed;
   Eigen::VectorXd x_dynamic(4);
@@ -547,11 +550,11 @@ TEST(DormandPrince, DoesNotAllocateInStepsOrDenseOutput) {
   eigen_assert_failures = 0;
   bool all_ok = true;
   for (int step = 0; step < 1000; ++step) {
-    all_ok = all_ok && dp_step(kepler, t_end, options, fixed) == AdaptiveStatus::ok &&
-             dp_step(kepler, t_end, options, dynamic) == AdaptiveStatus::ok;
-    dp_dense_output(fixed, (fixed.t + fixed.t_previous) / 2, x_fixed);
-    dp_dense_output(dynamic, (dynamic.t + dynamic.t_previous) / 2, x_dynamic);
-    all_ok = all_ok && dp_restart(kepler, dynamic) == AdaptiveStatus::ok;
+    all_ok = all_ok && adaptive_step(dormand_prince54, kepler, t_end, options, fixed) == AdaptiveStatus::ok &&
+             adaptive_step(dormand_prince54, kepler, t_end, options, dynamic) == AdaptiveStatus::ok;
+    dense_output(fixed, (fixed.t + fixed.t_previous) / 2, x_fixed);
+    dense_output(dynamic, (dynamic.t + dynamic.t_previous) / 2, x_dynamic);
+    all_ok = all_ok && adaptive_restart(kepler, dynamic) == AdaptiveStatus::ok;
   }
   Eigen::internal::set_is_malloc_allowed(true);
   EXPECT_EQ(eigen_assert_failures, 0);
@@ -567,30 +570,30 @@ TEST(DormandPrince, RejectsMisuseBeforeStepping) {
     change(o);
     return o;
   };
-  EXPECT_THROW_MESSAGE(integrate_adaptive(oscillator, 0.0, x0, grid, with([](auto& o) { o.rtol = 0; })),
+  EXPECT_THROW_MESSAGE(integrate_adaptive(dormand_prince54, oscillator, 0.0, x0, grid, with([](auto& o) { o.rtol = 0; })),
                        std::invalid_argument, "integrate_adaptive: rtol expected positive and finite, got 0");
-  EXPECT_THROW_MESSAGE(integrate_adaptive(oscillator, 0.0, x0, grid, with([](auto& o) { o.atol = -1; })),
+  EXPECT_THROW_MESSAGE(integrate_adaptive(dormand_prince54, oscillator, 0.0, x0, grid, with([](auto& o) { o.atol = -1; })),
                        std::invalid_argument, "integrate_adaptive: atol expected non-negative and finite, got -1");
-  EXPECT_THROW_MESSAGE(integrate_adaptive(oscillator, 0.0, x0, grid, with([](auto& o) { o.h_max = std::nan(""); })),
+  EXPECT_THROW_MESSAGE(integrate_adaptive(dormand_prince54, oscillator, 0.0, x0, grid, with([](auto& o) { o.h_max = std::nan(""); })),
                        std::invalid_argument, "integrate_adaptive: h_max expected non-negative and finite, got nan");
-  EXPECT_THROW_MESSAGE(integrate_adaptive(oscillator, 2.0, x0, grid), std::invalid_argument,
+  EXPECT_THROW_MESSAGE(integrate_adaptive(dormand_prince54, oscillator, 2.0, x0, grid), std::invalid_argument,
                        "integrate_adaptive: grid expected finite, strictly increasing and >= t0 = 2, got grid[0] = 1");
-  EXPECT_THROW_MESSAGE(integrate_adaptive(oscillator, 0.0, x0, std::vector<double>{}), std::invalid_argument,
+  EXPECT_THROW_MESSAGE(integrate_adaptive(dormand_prince54, oscillator, 0.0, x0, std::vector<double>{}), std::invalid_argument,
                        "integrate_adaptive: grid expected non-empty, got 0 times");
-  EXPECT_THROW_MESSAGE(integrate_adaptive(oscillator, 0.0, x0, std::vector<double>{0.5, 0.5, 1.0}),
+  EXPECT_THROW_MESSAGE(integrate_adaptive(dormand_prince54, oscillator, 0.0, x0, std::vector<double>{0.5, 0.5, 1.0}),
                        std::invalid_argument,
                        "integrate_adaptive: grid expected finite, strictly increasing and >= t0 = 0, got grid[1] = 0.5 "
                        "after grid[0] = 0.5");
-  DormandPrinceWorkspace<Eigen::VectorXd> ws(3);
-  EXPECT_THROW_MESSAGE(dp_start(oscillator, 0.0, Eigen::VectorXd::Zero(2), 1.0, AdaptiveOptions<double>(), ws),
-                       std::invalid_argument, "dp_start: initial state x0 of dim 3 expected, got 2");
-  EXPECT_THROW_MESSAGE(dp_start(oscillator, std::numeric_limits<double>::infinity(), Eigen::VectorXd::Zero(3), 1.0,
+  Workspace<Eigen::VectorXd> ws(3);
+  EXPECT_THROW_MESSAGE(adaptive_start(dormand_prince54, oscillator, 0.0, Eigen::VectorXd::Zero(2), 1.0, AdaptiveOptions<double>(), ws),
+                       std::invalid_argument, "adaptive_start: initial state x0 of dim 3 expected, got 2");
+  EXPECT_THROW_MESSAGE(adaptive_start(dormand_prince54, oscillator, std::numeric_limits<double>::infinity(), Eigen::VectorXd::Zero(3), 1.0,
                                 AdaptiveOptions<double>(), ws),
-                       std::invalid_argument, "dp_start: time span expected finite with t_end >= t0, got [inf, 1]");
-  EXPECT_THROW_MESSAGE((DormandPrinceWorkspace<Eigen::Vector3d>(2)), std::invalid_argument,
-                       "DormandPrinceWorkspace: state dimension expected 3, got 2");
+                       std::invalid_argument, "adaptive_start: time span expected finite with t_end >= t0, got [inf, 1]");
+  EXPECT_THROW_MESSAGE((Workspace<Eigen::Vector3d>(2)), std::invalid_argument,
+                       "AdaptiveWorkspace: state dimension expected 3, got 2");
   // the message names the operation, the parameter and the value
-  EXPECT_THROW_MESSAGE(integrate_adaptive(oscillator, 0.0, x0, grid, with([](auto& o) { o.rtol = -1e-6; })),
+  EXPECT_THROW_MESSAGE(integrate_adaptive(dormand_prince54, oscillator, 0.0, x0, grid, with([](auto& o) { o.rtol = -1e-6; })),
                        std::invalid_argument, "integrate_adaptive: rtol expected positive and finite, got -1e-06");
 }
 
@@ -607,7 +610,7 @@ TYPED_TEST(ScalarTypes, ReachesToleranceNearTheScalarsOwnPrecision) {
   options.rtol = rtol;
   options.atol = rtol / 100;
   const Scalar t_end = 5;
-  const auto r = integrate_adaptive(oscillator, Scalar(0), Vector2<Scalar>(1, 0),
+  const auto r = integrate_adaptive(dormand_prince54, oscillator, Scalar(0), Vector2<Scalar>(1, 0),
                                     std::vector<Scalar>{t_end}, options);
   ASSERT_EQ(r.status, AdaptiveStatus::ok);
   const Scalar error = (r.x - oscillator_exact(t_end)).norm();
@@ -625,19 +628,19 @@ TYPED_TEST(ScalarTypes, DenseOutputEndsAreExactAndMidpointIsAccurate) {
   AdaptiveOptions<Scalar> options;
   options.rtol = Scalar(1e-12L);
   options.atol = Scalar(1e-15L);
-  DormandPrinceWorkspace<Vector> ws(4);
+  Workspace<Vector> ws(4);
   const Scalar e = Scalar(0.5L);
-  ASSERT_EQ(dp_start(kepler, Scalar(0), kepler_exact(e, Scalar(0)), Scalar(1), options, ws),
+  ASSERT_EQ(adaptive_start(dormand_prince54, kepler, Scalar(0), kepler_exact(e, Scalar(0)), Scalar(1), options, ws),
             AdaptiveStatus::ok);
   Vector x;
   while (ws.t < 1) {
-    ASSERT_EQ(dp_step(kepler, Scalar(1), options, ws), AdaptiveStatus::ok);
-    dp_dense_output(ws, ws.t_previous, x);
+    ASSERT_EQ(adaptive_step(dormand_prince54, kepler, Scalar(1), options, ws), AdaptiveStatus::ok);
+    dense_output(ws, ws.t_previous, x);
     EXPECT_EQ(x, ws.x_previous);
-    dp_dense_output(ws, ws.t, x);
+    dense_output(ws, ws.t, x);
     EXPECT_EQ(x, ws.x);
     const Scalar mid = (ws.t + ws.t_previous) / 2;
-    dp_dense_output(ws, mid, x);
+    dense_output(ws, mid, x);
     EXPECT_LT((x - kepler_exact(e, mid)).norm(), Scalar(1e-10L));
   }
 }

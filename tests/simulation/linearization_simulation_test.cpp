@@ -36,7 +36,7 @@ std::vector<Eigen::VectorXd> simulate_linear(const eomgen::LinearModel& lin, con
   const auto f = [&](double t, const Eigen::VectorXd& x, Eigen::VectorXd& dxdt) {
     dxdt = lin.A * x + lin.B * du(t);
   };
-  const auto result = integrate_adaptive(f, 0.0, dx0, grid, o, [&](double, const Eigen::VectorXd& x) { out.push_back(x); });
+  const auto result = integrate_adaptive(dormand_prince54, f, 0.0, dx0, grid, o, [&](double, const Eigen::VectorXd& x) { out.push_back(x); });
   EXPECT_EQ(result.status, AdaptiveStatus::ok);
   return out;
 }

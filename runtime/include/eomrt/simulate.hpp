@@ -1,7 +1,8 @@
 #pragma once
 /// \file
 /// simulate(): integrates a model's first-order form x = [q; qd], x' = [qd; qdd(t, q, qd, u)],
-/// with a fixed-step (Euler, RK4) or adaptive (Dormand-Prince 5(4)) method, the constraints
+/// with a method of the registry (integrators.hpp: fixed-step Euler and RK4, adaptive
+/// Dormand-Prince 5(4)), the constraints
 /// handled by Lagrange multipliers (KKT) or the null-space method, drift corrected by Baumgarte
 /// terms or by projection, inputs from a callback u(t, x), and samples on a uniform time grid.
 ///
@@ -16,40 +17,27 @@
 #include <stdexcept>
 #include <string>
 
-#include "eomrt/dormand_prince.hpp"
 #include "eomrt/dynamics_kkt.hpp"
 #include "eomrt/dynamics_null_space.hpp"
+#include "eomrt/integrators.hpp"
+#include "eomrt/rk_adaptive.hpp"
 #include "eomrt/rk_fixed.hpp"
 #include "eomrt/stabilization.hpp"
 #include "eomrt/tableau.hpp"
 
 namespace eomrt {
 
-enum class Integrator { euler, rk4, dormand_prince };
 enum class ConstraintSolver { kkt, null_space };
 enum class Stabilization { none, baumgarte, projection };
-
-/// \return the enumerator's name (as the eomgen command spells it)
-inline const char* to_string(Integrator m) {
-  switch (m) {
-    case Integrator::euler:
-      return "euler";
-    case Integrator::rk4:
-      return "rk4";
-    case Integrator::dormand_prince:
-      return "dp5";
-  }
-  return "unknown";
-}
 
 /// How a simulation is run. Defaults suit a first look at most models.
 template <class Scalar>
 struct SimulationOptions {
-  Integrator integrator = Integrator::dormand_prince;
+  Integrator integrator = default_integrator;  ///< a method of the registry (integrators.hpp)
   Scalar t0 = 0;                    ///< [s] start time
   Scalar t_end = 1;                 ///< [s] end time, t_end >= t0
   Scalar step = Scalar(1e-3);       ///< [s] step of the fixed-step methods
-  AdaptiveOptions<Scalar> adaptive;  ///< tolerances of dormand_prince
+  AdaptiveOptions<Scalar> adaptive;  ///< tolerances of the adaptive methods
   /// [s] observer called at t0 + k sample_interval and at t_end; 0: after every step
   Scalar sample_interval = 0;
   ConstraintSolver solver = ConstraintSolver::kkt;
@@ -260,18 +248,21 @@ template <class Scalar>
 void check_options(const SimulationOptions<Scalar>& o) {
   using std::isfinite;
   std::ostringstream msg;
-  if (!isfinite(o.t0) || !isfinite(o.t_end) || o.t_end < o.t0)
+  const bool adaptive = is_adaptive(o.integrator);
+  if (find_integrator(o.integrator) == nullptr)
+    msg << "simulate: integrator expected a registered method, got " << static_cast<int>(o.integrator);
+  else if (!isfinite(o.t0) || !isfinite(o.t_end) || o.t_end < o.t0)
     msg << "simulate: time span expected finite with t_end >= t0, got [" << o.t0 << ", " << o.t_end
         << "]";
-  else if (o.integrator != Integrator::dormand_prince && !(isfinite(o.step) && o.step > 0))
+  else if (!adaptive && !(isfinite(o.step) && o.step > 0))
     msg << "simulate: step expected positive and finite, got " << o.step;
-  else if (o.integrator != Integrator::dormand_prince && !((o.t_end - o.t0) / o.step <= Scalar(1e15)))
+  else if (!adaptive && !((o.t_end - o.t0) / o.step <= Scalar(1e15)))
     msg << "simulate: (t_end - t0) / step expected at most 1e15 steps, got " << (o.t_end - o.t0) / o.step;
   else if (!(isfinite(o.sample_interval) && o.sample_interval >= 0))
     msg << "simulate: sample interval expected >= 0 and finite, got " << o.sample_interval;
   else if (o.sample_interval > 0 && !((o.t_end - o.t0) / o.sample_interval <= Scalar(1e15)))
     msg << "simulate: (t_end - t0) / sample_interval expected at most 1e15 samples";
-  else if (o.integrator == Integrator::dormand_prince &&
+  else if (adaptive &&
            !(o.adaptive.rtol > 0 && o.adaptive.atol >= 0 && isfinite(o.adaptive.rtol) &&
              isfinite(o.adaptive.atol)))
     msg << "simulate: tolerances expected rtol > 0 and atol >= 0, got rtol " << o.adaptive.rtol
@@ -289,7 +280,7 @@ void check_options(const SimulationOptions<Scalar>& o) {
 template <class Scalar>
 Scalar sample_interval(const SimulationOptions<Scalar>& o) {
   if (o.sample_interval > 0) return o.sample_interval;
-  return o.integrator == Integrator::dormand_prince ? Scalar(0) : o.step;
+  return is_adaptive(o.integrator) ? Scalar(0) : o.step;
 }
 
 /// Sample time number k, computed rather than accumulated so that the grid does not drift; a
@@ -299,6 +290,163 @@ Scalar sample_time(const SimulationOptions<Scalar>& o, long long k) {
   const Scalar interval = sample_interval(o);
   const Scalar t = o.t0 + static_cast<Scalar>(k) * interval;
   return o.t_end - t <= Scalar(1e-9) * interval ? o.t_end : t;
+}
+
+}  // namespace detail
+
+namespace detail {
+
+/// Records a failure detected at time \p when; the result keeps the last good state.
+template <class Model, class Scalar>
+void fail(SimulationResult<Model, Scalar>& result, SimulationStatus status, const Scalar& when) {
+  result.status = status;
+  result.failure_time = when;
+}
+
+inline SimulationStatus simulation_status(AdaptiveStatus s, DynamicsStatus rhs_failure) {
+  switch (s) {
+    case AdaptiveStatus::ok:
+      return SimulationStatus::ok;
+    case AdaptiveStatus::non_finite:
+      return SimulationStatus::non_finite_state;
+    case AdaptiveStatus::step_size_underflow:
+      return SimulationStatus::step_size_underflow;
+    case AdaptiveStatus::too_many_steps:
+      return SimulationStatus::too_many_steps;
+    case AdaptiveStatus::rhs_failed:
+      return simulation_status(rhs_failure);
+  }
+  return SimulationStatus::non_finite_state;
+}
+
+/// Fixed steps from result.t to the sample time t_target: the interval is cut into equal steps
+/// no longer than options.step, so that the sample lands on a step.
+/// \return false if a step failed (recorded in result, which keeps the last good state)
+template <std::size_t S, class Model, class Scalar, class InputFn, class Rhs, class State>
+bool fixed_steps_to(const ButcherTableau<S>& tableau,
+                    SimulationContext<Model, Scalar, InputFn>& ctx, Rhs& rhs,
+                    RkWorkspace<State, S>& ws, const Scalar& t_target,
+                    SimulationResult<Model, Scalar>& result) {
+  using std::abs;
+  using std::ceil;
+  using std::round;
+  const Scalar ratio = (t_target - result.t) / ctx.options.step;
+  // a ratio within rounding of an integer takes that many steps, not one more sliver
+  const Scalar whole =
+      abs(ratio - round(ratio)) <= Scalar(1e-9) * (1 + ratio) ? round(ratio) : ceil(ratio);
+  const long long n_steps = whole < 1 ? 1 : static_cast<long long>(whole);
+  const Scalar t_start = result.t;
+  for (long long k = 0; k < n_steps; ++k) {
+    const Scalar t_next = k + 1 == n_steps
+                              ? t_target
+                              : t_start + (t_target - t_start) * static_cast<Scalar>(k + 1) /
+                                              static_cast<Scalar>(n_steps);
+    const State x_before = result.x;
+    const bool ok = rk_step(tableau, rhs, result.t, result.x, t_next - result.t, ws);
+    result.evaluations += static_cast<long long>(S);
+    SimulationStatus status = SimulationStatus::ok;
+    Scalar when = t_next;
+    if (!ok) {
+      status = simulation_status(ctx.failure);
+      when = result.t;
+    } else if (!result.x.allFinite()) {
+      status = SimulationStatus::non_finite_state;
+    } else {
+      status = simulation_status(ctx.stabilize(t_next, result.x));
+    }
+    if (status != SimulationStatus::ok) {
+      result.x = x_before;
+      fail(result, status, when);
+      return false;
+    }
+    result.t = t_next;
+    ++result.steps;
+  }
+  return true;
+}
+
+/// A fixed-step method from the first sample to t_end, marching from sample to sample.
+template <std::size_t S, class Model, class Scalar, class InputFn, class Observer>
+void march_fixed(const ButcherTableau<S>& tableau, SimulationContext<Model, Scalar, InputFn>& ctx,
+                 Observer& observer, SimulationResult<Model, Scalar>& result) {
+  using State = typename ModelTypes<Model, Scalar>::State;
+  auto rhs = [&ctx](const Scalar& t, const State& x, State& dxdt) { return ctx.rhs(t, x, dxdt); };
+  RkWorkspace<State, S> ws(2 * Model::nq);
+  for (long long next_sample = 1; result.t < ctx.options.t_end; ++next_sample) {
+    if (!fixed_steps_to(tableau, ctx, rhs, ws, sample_time(ctx.options, next_sample), result))
+      return;
+    const DynamicsStatus ds = ctx.emit(result.t, result.x, observer);
+    if (ds != DynamicsStatus::ok) return fail(result, simulation_status(ds), result.t);
+  }
+}
+
+/// The samples of the grid inside the step just accepted, from its dense output: before the
+/// end state is projected. \return false if one failed (recorded in result)
+template <class Model, class Scalar, class InputFn, class Observer, class Workspace, class State>
+bool emit_dense_samples(SimulationContext<Model, Scalar, InputFn>& ctx, const Workspace& ws,
+                        Observer& observer, long long& next_sample, State& x_sample,
+                        SimulationResult<Model, Scalar>& result) {
+  for (Scalar ts = sample_time(ctx.options, next_sample); ts < ws.t;
+       ts = sample_time(ctx.options, ++next_sample)) {
+    dense_output(ws, ts, x_sample);
+    const DynamicsStatus ds = ctx.emit(ts, x_sample, observer);
+    if (ds != DynamicsStatus::ok) {
+      fail(result, simulation_status(ds), ts);
+      return false;
+    }
+  }
+  return true;
+}
+
+/// An adaptive method from the first sample to t_end: steps as the error control chooses,
+/// samples from the dense output (or after every step when there is no grid), and the end of
+/// each step projected onto the constraints, the stepper then restarted from the projection.
+template <std::size_t S, class Model, class Scalar, class InputFn, class Observer>
+void march_adaptive(const EmbeddedTableau<S>& pair, SimulationContext<Model, Scalar, InputFn>& ctx,
+                    Observer& observer, SimulationResult<Model, Scalar>& result) {
+  using State = typename ModelTypes<Model, Scalar>::State;
+  const SimulationOptions<Scalar>& o = ctx.options;
+  auto rhs = [&ctx](const Scalar& t, const State& x, State& dxdt) { return ctx.rhs(t, x, dxdt); };
+  AdaptiveWorkspace<State, S> ws(2 * Model::nq);
+  const auto record_statistics = [&]() {
+    result.steps = ws.accepted;
+    result.rejected_steps = ws.rejected;
+    result.evaluations = ws.evaluations;
+  };
+  const bool every_step = sample_interval(o) == 0;
+  const bool restart = o.stabilization == Stabilization::projection && Model::nc > 0;
+  long long next_sample = 1;  // index of the next sample time on the grid
+  State x_sample = result.x;
+
+  AdaptiveStatus as = adaptive_start(pair, rhs, o.t0, result.x, o.t_end, o.adaptive, ws);
+  if (as != AdaptiveStatus::ok) return fail(result, simulation_status(as, ctx.failure), o.t0);
+  while (ws.t < o.t_end) {
+    as = adaptive_step(pair, rhs, o.t_end, o.adaptive, ws);
+    record_statistics();
+    if (as != AdaptiveStatus::ok) {
+      result.t = ws.t;
+      result.x = ws.x;
+      return fail(result, simulation_status(as, ctx.failure), ws.t);
+    }
+    if (!every_step && !emit_dense_samples(ctx, ws, observer, next_sample, x_sample, result))
+      return;
+    const DynamicsStatus ds = ctx.stabilize(ws.t, ws.x);
+    if (ds != DynamicsStatus::ok) return fail(result, simulation_status(ds), ws.t);
+    if (restart) {
+      as = adaptive_restart(rhs, ws);
+      if (as != AdaptiveStatus::ok) return fail(result, simulation_status(as, ctx.failure), ws.t);
+    }
+    result.t = ws.t;
+    result.x = ws.x;
+    if (every_step || ws.t == sample_time(o, next_sample)) {
+      // emitted from a copy: emit may project, and ws.x must stay what adaptive_restart saw
+      x_sample = ws.x;
+      const DynamicsStatus emitted = ctx.emit(ws.t, x_sample, observer);
+      if (emitted != DynamicsStatus::ok) return fail(result, simulation_status(emitted), ws.t);
+      ++next_sample;
+    }
+  }
+  record_statistics();
 }
 
 }  // namespace detail
@@ -322,8 +470,6 @@ SimulationResult<Model, Scalar> simulate(const typename ModelTypes<Model, Scalar
                                          InputFn&& input = InputFn{},
                                          Observer&& observer = Observer{}) {
   static_assert(check_model<Model, Scalar>());
-  using State = typename ModelTypes<Model, Scalar>::State;
-  using std::abs;
   detail::check_options(options);
 
   // the declared partition is built (and validated) here, before the loop
@@ -339,129 +485,25 @@ SimulationResult<Model, Scalar> simulate(const typename ModelTypes<Model, Scalar
   SimulationResult<Model, Scalar> result;
   result.t = options.t0;
   result.x = x0;
-
-  const auto fail = [&](SimulationStatus status, const Scalar& when) {
-    result.status = status;
-    result.failure_time = when;
+  if (!result.x.allFinite()) {
+    detail::fail(result, SimulationStatus::non_finite_state, options.t0);
     return result;
-  };
-  if (!result.x.allFinite()) return fail(SimulationStatus::non_finite_state, options.t0);
+  }
 
   // the first sample stabilizes x0 (projection) and proves the dynamics regular there
-  DynamicsStatus ds = ctx.emit(options.t0, result.x, observer);
-  if (ds != DynamicsStatus::ok) return fail(detail::simulation_status(ds), options.t0);
-  if (options.t_end == options.t0) return result;
-
-  auto rhs = [&ctx](const Scalar& t, const State& x, State& dxdt) { return ctx.rhs(t, x, dxdt); };
-  const bool every_step = detail::sample_interval(options) == 0;  // adaptive, no grid
-  long long next_sample = 1;  // index of the next sample time on the grid
-  State x_sample = result.x;
-
-  if (options.integrator != Integrator::dormand_prince) {
-    // fixed steps: march from sample time to sample time, each interval cut into equal steps
-    // no longer than options.step, so that every sample lands on a step
-    RkWorkspace<State, 4> ws4(2 * Model::nq);
-    RkWorkspace<State, 1> ws1(2 * Model::nq);
-    while (result.t < options.t_end) {
-      using std::ceil;
-      using std::round;
-      const Scalar t_target = detail::sample_time(options, next_sample);
-      const Scalar ratio = (t_target - result.t) / options.step;
-      // a ratio within rounding of an integer takes that many steps, not one more sliver
-      const Scalar whole = abs(ratio - round(ratio)) <= Scalar(1e-9) * (1 + ratio) ? round(ratio)
-                                                                                     : ceil(ratio);
-      const long long n_steps = whole < 1 ? 1 : static_cast<long long>(whole);
-      const Scalar t_start = result.t;
-      for (long long k = 0; k < n_steps; ++k) {
-        const Scalar t_next =
-            k + 1 == n_steps ? t_target
-                             : t_start + (t_target - t_start) * static_cast<Scalar>(k + 1) /
-                                             static_cast<Scalar>(n_steps);
-        const State x_before = result.x;
-        const bool ok = options.integrator == Integrator::rk4
-                            ? rk_step(rk4, rhs, result.t, result.x, t_next - result.t, ws4)
-                            : rk_step(euler, rhs, result.t, result.x, t_next - result.t, ws1);
-        result.evaluations += options.integrator == Integrator::rk4 ? 4 : 1;
-        if (!ok) {
-          result.x = x_before;
-          return fail(detail::simulation_status(ctx.failure), result.t);
-        }
-        if (!result.x.allFinite()) {
-          result.x = x_before;
-          return fail(SimulationStatus::non_finite_state, t_next);
-        }
-        ds = ctx.stabilize(t_next, result.x);
-        if (ds != DynamicsStatus::ok) {
-          result.x = x_before;
-          return fail(detail::simulation_status(ds), t_next);
-        }
-        result.t = t_next;
-        ++result.steps;
-      }
-      ds = ctx.emit(result.t, result.x, observer);
-      if (ds != DynamicsStatus::ok) return fail(detail::simulation_status(ds), result.t);
-      ++next_sample;
-    }
+  const DynamicsStatus ds = ctx.emit(options.t0, result.x, observer);
+  if (ds != DynamicsStatus::ok) {
+    detail::fail(result, detail::simulation_status(ds), options.t0);
     return result;
   }
+  if (options.t_end == options.t0) return result;
 
-  DormandPrinceWorkspace<State> dp(2 * Model::nq);
-  const auto adaptive_failure = [&](AdaptiveStatus s) {
-    switch (s) {
-      case AdaptiveStatus::ok:
-        return SimulationStatus::ok;
-      case AdaptiveStatus::non_finite:
-        return SimulationStatus::non_finite_state;
-      case AdaptiveStatus::step_size_underflow:
-        return SimulationStatus::step_size_underflow;
-      case AdaptiveStatus::too_many_steps:
-        return SimulationStatus::too_many_steps;
-      case AdaptiveStatus::rhs_failed:
-        return detail::simulation_status(ctx.failure);
-    }
-    return SimulationStatus::non_finite_state;
-  };
-  const auto record_statistics = [&]() {
-    result.steps = dp.accepted;
-    result.rejected_steps = dp.rejected;
-    result.evaluations = dp.evaluations;
-  };
-  AdaptiveStatus as = dp_start(rhs, options.t0, result.x, options.t_end, options.adaptive, dp);
-  if (as != AdaptiveStatus::ok) return fail(adaptive_failure(as), options.t0);
-  while (dp.t < options.t_end) {
-    as = dp_step(rhs, options.t_end, options.adaptive, dp);
-    record_statistics();
-    if (as != AdaptiveStatus::ok) {
-      result.t = dp.t;
-      result.x = dp.x;
-      return fail(adaptive_failure(as), dp.t);
-    }
-    // samples inside the step come from the dense output, before the end state is projected
-    if (!every_step) {
-      for (Scalar ts = detail::sample_time(options, next_sample); ts < dp.t;
-           ts = detail::sample_time(options, ++next_sample)) {
-        dp_dense_output(dp, ts, x_sample);
-        ds = ctx.emit(ts, x_sample, observer);
-        if (ds != DynamicsStatus::ok) return fail(detail::simulation_status(ds), ts);
-      }
-    }
-    ds = ctx.stabilize(dp.t, dp.x);
-    if (ds != DynamicsStatus::ok) return fail(detail::simulation_status(ds), dp.t);
-    if (options.stabilization == Stabilization::projection && Model::nc > 0) {
-      as = dp_restart(rhs, dp);
-      if (as != AdaptiveStatus::ok) return fail(adaptive_failure(as), dp.t);
-    }
-    result.t = dp.t;
-    result.x = dp.x;
-    if (every_step || dp.t == detail::sample_time(options, next_sample)) {
-      // emitted from a copy: emit may project, and dp.x must stay what dp_restart saw
-      x_sample = dp.x;
-      ds = ctx.emit(dp.t, x_sample, observer);
-      if (ds != DynamicsStatus::ok) return fail(detail::simulation_status(ds), dp.t);
-      ++next_sample;
-    }
-  }
-  record_statistics();
+  visit_integrator(options.integrator, [&](const auto& entry) {
+    if constexpr (std::decay_t<decltype(entry)>::adaptive)
+      detail::march_adaptive(entry.tableau, ctx, observer, result);
+    else
+      detail::march_fixed(entry.tableau, ctx, observer, result);
+  });
   return result;
 }
 

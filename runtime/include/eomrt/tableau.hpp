@@ -2,10 +2,12 @@
 /// \file
 /// Butcher tableaus of explicit Runge-Kutta methods, as constexpr data.
 ///
-/// A method is its tableau: the one generic stepper in rk_fixed.hpp (and the adaptive
-/// controller to come) read a, b, c from here, so adding a method means adding a tableau.
+/// A method is its tableau: the fixed-step stepper in rk_fixed.hpp and the adaptive one in
+/// rk_adaptive.hpp read a, b, c (and b_hat) from here, so adding a method means adding a
+/// tableau and its row in integrators.hpp.
 #include <cstddef>
 #include <limits>
+#include <type_traits>
 
 namespace eomrt {
 
@@ -39,7 +41,20 @@ struct EmbeddedTableau : ButcherTableau<S> {
   Coefficient b_hat[S];
   /// global convergence order of the solution built with b_hat
   int embedded_order;
+  /// weights d_i (dim S) of the dense output of a step from (t, x0) to (t + h, x1) of an FSAL
+  /// pair: x(t + theta h) is the cubic Hermite interpolant of x0, x1, f0 = k_1 and f1 = k_S,
+  /// plus theta^2 (1 - theta)^2 h sum_i d_i k_i, a term that leaves both ends and their
+  /// derivatives unchanged. All zero (the default): the cubic interpolant alone, of order 3.
+  Coefficient dense[S];
 };
+
+/// true for an EmbeddedTableau: the registry steps such a method adaptively.
+template <class Tableau>
+struct is_embedded_tableau : std::false_type {};
+template <std::size_t S>
+struct is_embedded_tableau<EmbeddedTableau<S>> : std::true_type {};
+template <class Tableau>
+inline constexpr bool is_embedded_tableau_v = is_embedded_tableau<Tableau>::value;
 
 namespace detail {
 
@@ -132,6 +147,8 @@ inline constexpr ButcherTableau<4> rk4{
 /// the pair behind MATLAB's ode45: b propagates the 5th-order solution (local
 /// extrapolation), b_hat is the 4th-order companion for the error estimate. FSAL: the
 /// 7th stage is f at the new state, so a step costs 6 evaluations after the first.
+/// The dense weights are those of Hairer's continuous extension (dopri5.f, CONTD5; due to
+/// Shampine 1986), a 4th-order polynomial.
 inline constexpr EmbeddedTableau<7> dormand_prince54{
     {/*a=*/{{0, 0, 0, 0, 0, 0, 0},
             {1.0L / 5, 0, 0, 0, 0, 0, 0},
@@ -146,7 +163,11 @@ inline constexpr EmbeddedTableau<7> dormand_prince54{
     /*b_hat=*/
     {5179.0L / 57600, 0, 7571.0L / 16695, 393.0L / 640, -92097.0L / 339200, 187.0L / 2100,
      1.0L / 40},
-    /*embedded_order=*/4};
+    /*embedded_order=*/4,
+    /*dense=*/
+    {-12715105075.0L / 11282082432.0L, 0, 87487479700.0L / 32700410799.0L,
+     -10690763975.0L / 1880347072.0L, 701980252875.0L / 199316789632.0L,
+     -1453857185.0L / 822651844.0L, 69997945.0L / 29380423.0L}};
 // clang-format on
 
 // a typo in a coefficient should break the build, not a simulation

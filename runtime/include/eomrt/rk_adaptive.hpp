@@ -1,20 +1,22 @@
 #pragma once
 /// \file
-/// Adaptive Dormand-Prince 5(4) integration: embedded error control, step rejection and dense
-/// output, after E. Hairer, S. P. Norsett, G. Wanner, Solving Ordinary Differential Equations I,
-/// 2nd ed., sec. II.4 (error norm, step-size control, starting step) and II.6 (continuous
-/// extension), and their code dopri5.
+/// Adaptive explicit Runge-Kutta integration with an embedded pair (tableau.hpp): error
+/// control, step rejection and dense output, after E. Hairer, S. P. Norsett, G. Wanner, Solving
+/// Ordinary Differential Equations I, 2nd ed., sec. II.4 (error norm, step-size control,
+/// starting step) and II.6 (continuous extension), and their code dopri5. The pair is a
+/// parameter, so another FSAL pair is a tableau, not a copy of this file; dormand_prince54 is
+/// the one simulate() registers (integrators.hpp).
 ///
-/// Notation as in rk_fixed.hpp: n is the state dimension and f(t, x, dxdt) the right-hand
-/// side, returning void or bool (rhs.hpp). Integration runs forward only (t_end >= t0).
-/// The algorithm is split so that a caller can act between steps (project x onto a
-/// constraint manifold, sample the dense output, stop on an event):
+/// Notation as in rk_fixed.hpp: n is the state dimension, S the number of stages of the pair,
+/// f(t, x, dxdt) the right-hand side, returning void or bool (rhs.hpp). Integration runs
+/// forward only (t_end >= t0). The algorithm is split so that a caller can act between steps
+/// (project x onto a constraint manifold, sample the dense output, stop on an event):
 ///
-///   DormandPrinceWorkspace<Vector> ws(n);                     // the only allocation
-///   AdaptiveStatus s = dp_start(f, t0, x0, t_end, options, ws);
+///   AdaptiveWorkspace<Vector, S> ws(n);                             // the only allocation
+///   AdaptiveStatus s = adaptive_start(pair, f, t0, x0, t_end, options, ws);
 ///   while (s == AdaptiveStatus::ok && ws.t < t_end) {
-///     s = dp_step(f, t_end, options, ws);                     // [ws.t_previous, ws.t] accepted
-///     ...                                                     // dp_dense_output(ws, t, x_out)
+///     s = adaptive_step(pair, f, t_end, options, ws);               // [ws.t_previous, ws.t]
+///     ...                                                           // dense_output(ws, t, x)
 ///   }
 ///
 /// integrate_adaptive is that loop with output on a time grid.
@@ -35,21 +37,8 @@
 
 namespace eomrt {
 
-// dp_step takes the 7th stage state as the new state and its derivative as the next first stage
-static_assert(is_fsal(dormand_prince54), "dormand_prince.hpp relies on the FSAL property");
-
-/// Weights d_i of Hairer's continuous extension of DOPRI5 (dopri5.f, CONTD5; due to
-/// Shampine 1986): with D = x1 - x0, B = h k1 - D and theta1 = 1 - theta,
-///   x(t0 + theta h) = x0 + theta (D + theta1 (B + theta (D - h k7 - B + theta1 h sum d_i k_i))),
-/// a 4th-order polynomial that matches x and f at both ends of the step.
-inline constexpr Coefficient dormand_prince54_dense[7] = {
-    -12715105075.0L / 11282082432.0L,  0,
-    87487479700.0L / 32700410799.0L,   -10690763975.0L / 1880347072.0L,
-    701980252875.0L / 199316789632.0L, -1453857185.0L / 822651844.0L,
-    69997945.0L / 29380423.0L};
-
-/// Tolerances and limits of an adaptive integration. Validated by dp_start and
-/// integrate_adaptive; dp_step expects the options dp_start accepted.
+/// Tolerances and limits of an adaptive integration. Validated by adaptive_start and
+/// integrate_adaptive; adaptive_step expects the options adaptive_start accepted.
 template <typename Scalar>
 struct AdaptiveOptions {
   /// relative tolerance, > 0
@@ -61,7 +50,7 @@ struct AdaptiveOptions {
   Scalar h_initial = 0;
   /// largest step, >= 0; 0: unlimited (in effect |t_end - t0|)
   Scalar h_max = 0;
-  /// limit on step attempts, accepted plus rejected, since dp_start; > 0
+  /// limit on step attempts, accepted plus rejected, since adaptive_start; > 0
   long long max_steps = 10000000;
 };
 
@@ -91,23 +80,25 @@ inline const char* to_string(AdaptiveStatus status) {
   return "unknown";
 }
 
-/// State of an adaptive Dormand-Prince integration and the scratch of its steps. All memory
-/// is taken in the constructor; dp_start, dp_step, dp_restart and dp_dense_output never
-/// allocate (given an x_out of dim n).
+/// State of an adaptive integration and the scratch of its steps. All memory is taken in the
+/// constructor; adaptive_start, adaptive_step, adaptive_restart and dense_output never allocate
+/// (given an x_out of dim n).
 /// \tparam Vector  Eigen column vector type of the state, fixed or dynamic size
-template <typename Vector>
-struct DormandPrinceWorkspace {
+/// \tparam S       number of stages of the embedded pair it serves
+template <typename Vector, std::size_t S>
+struct AdaptiveWorkspace {
   static_assert(Vector::ColsAtCompileTime == 1,
-                "DormandPrinceWorkspace: the state must be a column vector");
+                "AdaptiveWorkspace: the state must be a column vector");
+  static_assert(S >= 2, "AdaptiveWorkspace: an embedded pair has at least two stages");
   using Scalar = typename Vector::Scalar;
 
   /// \param[in] n  state dimension; must equal the compile-time size of a fixed-size Vector
   /// @throws std::invalid_argument if n is negative or differs from a fixed size
-  explicit DormandPrinceWorkspace(Eigen::Index n) {
+  explicit AdaptiveWorkspace(Eigen::Index n) {
     constexpr Eigen::Index fixed = Vector::RowsAtCompileTime;
     if (n < 0 || (fixed != Eigen::Dynamic && n != fixed)) {
       std::ostringstream msg;
-      msg << "DormandPrinceWorkspace: state dimension expected "
+      msg << "AdaptiveWorkspace: state dimension expected "
           << (fixed == Eigen::Dynamic ? std::string(">= 0") : std::to_string(fixed)) << ", got "
           << n;
       throw std::invalid_argument(msg.str());
@@ -121,30 +112,32 @@ struct DormandPrinceWorkspace {
     x_error.setZero(n);
   }
 
-  /// time of x: the end of the last accepted step (t0 after dp_start)
+  /// time of x: the end of the last accepted step (t0 after adaptive_start)
   Scalar t = 0;
   /// start of the last accepted step (equal to t before the first step)
   Scalar t_previous = 0;
-  /// next step size to try; dp_step may take less to land on t_end
+  /// next step size to try; adaptive_step may take less to land on t_end
   Scalar h = 0;
-  /// state at t (dim n); the caller may change it between steps if it then calls dp_restart
+  /// state at t (dim n); the caller may change it between steps if it then calls
+  /// adaptive_restart
   Vector x;
   /// state at t_previous (dim n)
   Vector x_previous;
-  /// stage derivatives (7 vectors of dim n). k[0] = f(t, x), the first stage of the next
-  /// step (FSAL); k[1..6] are stages 2..7 of the last attempt
-  std::array<Vector, 7> k;
+  /// stage derivatives (S vectors of dim n). k[0] = f(t, x), the first stage of the next
+  /// step (FSAL); k[1..S-1] are stages 2..S of the last attempt
+  std::array<Vector, S> k;
   /// dense output of the last accepted step (5 vectors of dim n), as computed, unaffected by
-  /// later changes of x: the end state x1, then D, B, D - h k7 - B and h sum d_i k_i
-  /// (see dormand_prince54_dense)
+  /// later changes of x: the end state x1, then D = x1 - x0, B = h k_1 - D, D - h k_S - B and
+  /// h sum d_i k_i (see EmbeddedTableau::dense)
   std::array<Vector, 5> dense;
-  /// state of the current stage; the trial state x1 after the 7th (dim n)
+  /// state of the current stage; the trial state x1 after the last one (dim n)
   Vector x_stage;
   /// local error estimate h sum (b_i - b_hat_i) k_i of the last attempt (dim n)
   Vector x_error;
-  /// step attempts since dp_start that passed (accepted) or failed (rejected) the error test
+  /// step attempts since adaptive_start that passed (accepted) or failed (rejected) the error
+  /// test
   long long accepted = 0, rejected = 0;
-  /// calls of f since dp_start, including failed ones
+  /// calls of f since adaptive_start, including failed ones
   long long evaluations = 0;
 };
 
@@ -161,6 +154,13 @@ inline constexpr Coefficient non_finite_step_factor = 0.1L;
 inline constexpr Coefficient landing_stretch = 1.01L;
 // below ~10 ulp of |t| a step no longer moves t by more than rounding
 inline constexpr Coefficient underflow_ulps = 10;
+
+/// 1 / (q + 1) for an error estimator of order q: the local error it estimates scales like
+/// h^(q + 1), so err^(-1/(q + 1)) is the step factor that would give err = 1 (1/5 for DOPRI5)
+template <std::size_t S>
+constexpr Coefficient error_exponent(const EmbeddedTableau<S>& pair) {
+  return 1.0L / (pair.embedded_order + 1);
+}
 
 /// Hairer's error norm (eq. (4.11)): sqrt(1/n sum (e_i / (atol + rtol max(|x_i|, |y_i|)))^2).
 /// A zero scale counts e_i = 0 as exact and any other e_i as infinitely large, not as NaN.
@@ -181,16 +181,22 @@ Scalar error_norm(const Eigen::MatrixBase<E>& e, const Eigen::MatrixBase<X>& x,
   return sqrt(sum / static_cast<Scalar>(n));
 }
 
-/// Misuse checks shared by dp_start and integrate_adaptive; \p operation starts the message.
-template <typename Scalar>
-void check_adaptive_arguments(const char* operation, Scalar t0, Scalar t_end,
-                              const AdaptiveOptions<Scalar>& options) {
+/// Misuse checks shared by adaptive_start and integrate_adaptive; \p operation starts the
+/// message.
+template <std::size_t S, typename Scalar>
+void check_adaptive_arguments(const char* operation, const EmbeddedTableau<S>& pair, Scalar t0,
+                              Scalar t_end, const AdaptiveOptions<Scalar>& options) {
   using std::isfinite;
   const auto fail = [operation](const char* what, const char* expected, auto got) {
     std::ostringstream msg;
     msg << operation << ": " << what << " expected " << expected << ", got " << got;
     throw std::invalid_argument(msg.str());
   };
+  // the step reuses the last stage as the next first one and builds the dense output from it
+  if (!is_consistent(pair) || !is_fsal(pair))
+    throw std::invalid_argument(
+        std::string(operation) +
+        ": embedded pair expected consistent and FSAL (last row of a = b, c = 1)");
   if (!isfinite(options.rtol) || !(options.rtol > 0))
     fail("rtol", "positive and finite", options.rtol);
   if (!isfinite(options.atol) || !(options.atol >= 0))
@@ -210,14 +216,14 @@ void check_adaptive_arguments(const char* operation, Scalar t0, Scalar t_end,
 
 /// Starting step of Hairer II.4 ("Starting Step Size"), with the RMS norm of error_norm:
 /// h0 = 0.01 |x0| / |f0|, then an Euler step of h0 estimates the second derivative, and
-/// h = min(100 h0, (0.01 / max(|f0|, |f1 - f0| / h0))^(1/5)). Expects ws.k[0] = f(t0, x0);
+/// h = min(100 h0, (0.01 / max(|f0|, |f1 - f0| / h0))^(1/(q+1))). Expects ws.k[0] = f(t0, x0);
 /// costs one evaluation, which uses ws.k[1] and ws.x_stage as scratch.
 /// \param[out] h  the step, limited by \p limit
 /// \return ok, or rhs_failed if f failed at the Euler state
-template <typename Rhs, typename Vector>
-AdaptiveStatus starting_step(Rhs& f, typename Vector::Scalar limit,
+template <std::size_t S, typename Rhs, typename Vector>
+AdaptiveStatus starting_step(const EmbeddedTableau<S>& pair, Rhs& f, typename Vector::Scalar limit,
                              const AdaptiveOptions<typename Vector::Scalar>& options,
-                             DormandPrinceWorkspace<Vector>& ws, typename Vector::Scalar& h) {
+                             AdaptiveWorkspace<Vector, S>& ws, typename Vector::Scalar& h) {
   using Scalar = typename Vector::Scalar;
   using std::pow;
   const Scalar atol = options.atol, rtol = options.rtol;
@@ -238,17 +244,81 @@ AdaptiveStatus starting_step(Rhs& f, typename Vector::Scalar limit,
 
   const Scalar d2 = error_norm(ws.k[1] - ws.k[0], ws.x, ws.x, atol, rtol) / h0;
   const Scalar d_max = d1 > d2 ? d1 : d2;
-  // the error estimator is of order 4, so the local error scales like h^5
   const Scalar h1 = d_max <= Scalar(1e-15L)
                         ? (h0 * Scalar(1e-3L) > Scalar(1e-6L) ? h0 * Scalar(1e-3L) : Scalar(1e-6L))
-                        : pow(Scalar(0.01L) / d_max, Scalar(0.2L));
+                        : pow(Scalar(0.01L) / d_max, static_cast<Scalar>(error_exponent(pair)));
   h = 100 * h0 < h1 ? 100 * h0 : h1;
   if (h > limit) h = limit;
   return AdaptiveStatus::ok;
 }
 
-// keeps a parameter out of template deduction, so dp_start takes x0 as any expression that
-// converts to the workspace's Vector (std::type_identity is C++20)
+/// Outcome of one attempt at a step: its stages ran (finite or not), or f failed.
+enum class Attempt { finite, non_finite, rhs_failed };
+
+/// Stages 2..S of a step of size h from (ws.t, ws.x) to t_new, and the error estimate into
+/// ws.x_error; the last stage state is the trial state x1 (FSAL). f is never called at a
+/// non-finite stage state: a state past overflow means h is far too large.
+template <std::size_t S, typename Rhs, typename Vector>
+Attempt attempt_step(const EmbeddedTableau<S>& pair, Rhs& f, typename Vector::Scalar t_new,
+                     typename Vector::Scalar h, AdaptiveWorkspace<Vector, S>& ws) {
+  using Scalar = typename Vector::Scalar;
+  const auto scalar = [](Coefficient c) { return static_cast<Scalar>(c); };
+  const Vector& x_stage = ws.x_stage;
+  for (std::size_t i = 1; i < S; ++i) {
+    ws.x_stage = ws.x;
+    for (std::size_t j = 0; j < i; ++j)
+      if (pair.a[i][j] != 0) ws.x_stage += (h * scalar(pair.a[i][j])) * ws.k[j];
+    if (!ws.x_stage.allFinite()) return Attempt::non_finite;
+    const Scalar t_stage = pair.c[i] == 1 ? t_new : ws.t + scalar(pair.c[i]) * h;
+    ++ws.evaluations;
+    if (!evaluate_rhs(f, t_stage, x_stage, ws.k[i])) return Attempt::rhs_failed;
+  }
+  // a non-finite k_i reaches a later stage state or this estimate, so one check covers all
+  ws.x_error.setZero();
+  for (std::size_t i = 0; i < S; ++i) {
+    const Coefficient e = pair.b[i] - pair.b_hat[i];
+    if (e != 0) ws.x_error += (h * scalar(e)) * ws.k[i];
+  }
+  return ws.x_error.allFinite() ? Attempt::finite : Attempt::non_finite;
+}
+
+/// Hairer's step factor min(10, max(0.2, 0.9 err^(-1/(q+1)))).
+template <typename Scalar, std::size_t S>
+Scalar step_factor(const EmbeddedTableau<S>& pair, Scalar err) {
+  using std::pow;
+  const auto scalar = [](Coefficient c) { return static_cast<Scalar>(c); };
+  Scalar factor = err == 0 ? scalar(step_factor_max)
+                           : scalar(step_safety) * pow(err, scalar(-error_exponent(pair)));
+  if (factor < scalar(step_factor_min)) factor = scalar(step_factor_min);
+  if (factor > scalar(step_factor_max)) factor = scalar(step_factor_max);
+  return factor;
+}
+
+/// Accepts the attempt from (ws.t, ws.x) to (t_new, ws.x_stage): the dense output first, as
+/// it needs the old state and the stages (dopri5's CONT), then the new state, whose
+/// derivative k_S is the next first stage.
+template <std::size_t S, typename Vector>
+void accept_step(const EmbeddedTableau<S>& pair, typename Vector::Scalar t_new,
+                 typename Vector::Scalar h, AdaptiveWorkspace<Vector, S>& ws) {
+  using Scalar = typename Vector::Scalar;
+  ws.dense[0] = ws.x_stage;
+  ws.dense[1] = ws.x_stage - ws.x;
+  ws.dense[2] = h * ws.k[0] - ws.dense[1];
+  ws.dense[3] = ws.dense[1] - h * ws.k[S - 1] - ws.dense[2];
+  ws.dense[4].setZero();
+  for (std::size_t i = 0; i < S; ++i)
+    if (pair.dense[i] != 0) ws.dense[4] += (h * static_cast<Scalar>(pair.dense[i])) * ws.k[i];
+
+  ws.x_previous = ws.x;
+  ws.x = ws.x_stage;
+  ws.t_previous = ws.t;
+  ws.t = t_new;
+  ws.k[0] = ws.k[S - 1];
+  ++ws.accepted;
+}
+
+// keeps a parameter out of template deduction, so adaptive_start takes x0 as any expression
+// that converts to the workspace's Vector (std::type_identity is C++20)
 template <typename T>
 struct type_identity {
   using type = T;
@@ -259,6 +329,7 @@ struct type_identity {
 /// Starts an integration at (t0, x0): resets ws, evaluates the first stage f(t0, x0) and
 /// chooses the first step (options.h_initial, or Hairer's heuristic when it is 0, at the cost
 /// of one more evaluation). The dense output then returns x0 for every t.
+/// \param[in]     pair     embedded pair, consistent and FSAL
 /// \param[in]     f        right-hand side f(t, x, dxdt)
 /// \param[in]     t0       initial time
 /// \param[in]     x0       initial state (dim n)
@@ -266,19 +337,21 @@ struct type_identity {
 /// \param[in]     options  tolerances and limits
 /// \param[in,out] ws       workspace built for n; on return ws.t = t0, ws.x = x0, ws.h > 0
 /// \return ok; non_finite if x0 or f(t0, x0) is not finite; rhs_failed if f failed
-/// @throws std::invalid_argument if options are out of range (see AdaptiveOptions), t0 or
-///         t_end is not finite, t_end < t0, or x0 is not of dim n
-template <typename Rhs, typename Vector>
-AdaptiveStatus dp_start(Rhs&& f, typename Vector::Scalar t0,
-                        const typename detail::type_identity<Vector>::type& x0,
-                        typename Vector::Scalar t_end,
-                        const AdaptiveOptions<typename Vector::Scalar>& options,
-                        DormandPrinceWorkspace<Vector>& ws) {
+/// @throws std::invalid_argument if the pair is not consistent and FSAL, options are out of
+///         range (see AdaptiveOptions), t0 or t_end is not finite, t_end < t0, or x0 is not
+///         of dim n
+template <std::size_t S, typename Rhs, typename Vector>
+AdaptiveStatus adaptive_start(const EmbeddedTableau<S>& pair, Rhs&& f, typename Vector::Scalar t0,
+                              const typename detail::type_identity<Vector>::type& x0,
+                              typename Vector::Scalar t_end,
+                              const AdaptiveOptions<typename Vector::Scalar>& options,
+                              AdaptiveWorkspace<Vector, S>& ws) {
   using Scalar = typename Vector::Scalar;
-  detail::check_adaptive_arguments("dp_start", t0, t_end, options);
+  detail::check_adaptive_arguments("adaptive_start", pair, t0, t_end, options);
   if (x0.size() != ws.x.size()) {
     std::ostringstream msg;
-    msg << "dp_start: initial state x0 of dim " << ws.x.size() << " expected, got " << x0.size();
+    msg << "adaptive_start: initial state x0 of dim " << ws.x.size() << " expected, got "
+        << x0.size();
     throw std::invalid_argument(msg.str());
   }
 
@@ -304,45 +377,40 @@ AdaptiveStatus dp_start(Rhs&& f, typename Vector::Scalar t0,
     ws.h = options.h_initial < limit ? options.h_initial : limit;
     return AdaptiveStatus::ok;
   }
-  return detail::starting_step(f, limit, options, ws, ws.h);
+  return detail::starting_step(pair, f, limit, options, ws, ws.h);
 }
 
 /// Takes one accepted step from (ws.t, ws.x) towards t_end, retrying rejected attempts:
-/// h_new = h min(10, max(0.2, 0.9 err^(-1/5))) with err the error_norm of the embedded
-/// estimate, no growth right after a rejection, and h never beyond options.h_max. A step
-/// within 1% of t_end is taken to t_end exactly; such a shortened last step keeps the
-/// controller's proposal in ws.h, so successive end times do not shrink the step.
-/// A non-finite stage state, stage derivative or error estimate counts as a rejection and
-/// cuts h by 10; f is never called at a non-finite state.
+/// h_new = h min(10, max(0.2, 0.9 err^(-1/(q+1)))) with err the error_norm of the embedded
+/// estimate and q the order of the estimator (the embedded order), no growth right after a
+/// rejection, and h never beyond options.h_max. A step within 1% of t_end is taken to t_end
+/// exactly; such a shortened last step keeps the controller's proposal in ws.h, so successive
+/// end times do not shrink the step. A non-finite stage state, stage derivative or error
+/// estimate counts as a rejection and cuts h by 10; f is never called at a non-finite state.
+/// \param[in]     pair     the embedded pair adaptive_start was given
 /// \param[in]     f        right-hand side f(t, x, dxdt)
 /// \param[in]     t_end    time not to step past; if ws.t >= t_end nothing is done
-/// \param[in]     options  the options dp_start accepted
-/// \param[in,out] ws       started by dp_start; on ok, [ws.t_previous, ws.t] is the step just
-///                         accepted, ws.x its end state, ws.k[0] = f(ws.t, ws.x), ws.h the
-///                         next step to try and ws.dense its dense output
+/// \param[in]     options  the options adaptive_start accepted
+/// \param[in,out] ws       started by adaptive_start; on ok, [ws.t_previous, ws.t] is the step
+///                         just accepted, ws.x its end state, ws.k[0] = f(ws.t, ws.x), ws.h
+///                         the next step to try and ws.dense its dense output
 /// \return ok on an accepted step (or nothing to do). On any other status ws.t, ws.x, ws.k[0]
 ///         and the dense output still describe the last accepted state, and ws.h is the step
 ///         that failed. step_size_underflow: the error test failed down to a step of ~10 ulp
 ///         of |ws.t|. non_finite: the same, but the last attempts were non-finite, so f itself
-///         is not finite near ws.t. too_many_steps: options.max_steps attempts since dp_start.
-///         rhs_failed: f reported failure at a stage.
-template <typename Rhs, typename Vector>
-AdaptiveStatus dp_step(Rhs&& f, typename Vector::Scalar t_end,
-                       const AdaptiveOptions<typename Vector::Scalar>& options,
-                       DormandPrinceWorkspace<Vector>& ws) {
+///         is not finite near ws.t. too_many_steps: options.max_steps attempts since
+///         adaptive_start. rhs_failed: f reported failure at a stage.
+template <std::size_t S, typename Rhs, typename Vector>
+AdaptiveStatus adaptive_step(const EmbeddedTableau<S>& pair, Rhs&& f, typename Vector::Scalar t_end,
+                             const AdaptiveOptions<typename Vector::Scalar>& options,
+                             AdaptiveWorkspace<Vector, S>& ws) {
   using Scalar = typename Vector::Scalar;
   using std::abs;
-  using std::pow;
-  const auto& tableau = dormand_prince54;
-  constexpr std::size_t S = std::size(dormand_prince54.b);
-  const auto scalar = [](Coefficient c) { return static_cast<Scalar>(c); };
-
   if (!(ws.t < t_end)) return AdaptiveStatus::ok;
-  const Vector& x_stage = ws.x_stage;
   // |t| is fixed during the call, so is the smallest step that still moves t
-  const Scalar h_min =
-      std::max(scalar(detail::underflow_ulps) * std::numeric_limits<Scalar>::epsilon() * abs(ws.t),
-               std::numeric_limits<Scalar>::min());
+  const Scalar h_min = std::max(static_cast<Scalar>(detail::underflow_ulps) *
+                                    std::numeric_limits<Scalar>::epsilon() * abs(ws.t),
+                                std::numeric_limits<Scalar>::min());
   bool after_rejection = false, after_non_finite = false;
 
   for (;;) {
@@ -352,46 +420,23 @@ AdaptiveStatus dp_step(Rhs&& f, typename Vector::Scalar t_end,
       return after_non_finite ? AdaptiveStatus::non_finite : AdaptiveStatus::step_size_underflow;
 
     // the step is the difference of representable times, so t_new - t is exactly h
-    const bool landing = ws.t + scalar(detail::landing_stretch) * h_proposal >= t_end &&
-                         !(options.h_max > 0 && t_end - ws.t > options.h_max);
+    const bool landing =
+        ws.t + static_cast<Scalar>(detail::landing_stretch) * h_proposal >= t_end &&
+        !(options.h_max > 0 && t_end - ws.t > options.h_max);
     const Scalar t_new = landing ? t_end : ws.t + h_proposal;
     const Scalar h = t_new - ws.t;
 
-    // stages 2..7; the 7th state is x1 (FSAL) and its derivative the next first stage
-    bool finite = true;
-    for (std::size_t i = 1; i < S && finite; ++i) {
-      ws.x_stage = ws.x;
-      for (std::size_t j = 0; j < i; ++j)
-        if (tableau.a[i][j] != 0) ws.x_stage += (h * scalar(tableau.a[i][j])) * ws.k[j];
-      // a state past overflow means h is far too large; f may not even accept it
-      finite = ws.x_stage.allFinite();
-      if (!finite) break;
-      const Scalar t_stage = tableau.c[i] == 1 ? t_new : ws.t + scalar(tableau.c[i]) * h;
-      ++ws.evaluations;
-      if (!evaluate_rhs(f, t_stage, x_stage, ws.k[i])) return AdaptiveStatus::rhs_failed;
-    }
-    // a non-finite k_i reaches a later stage state or this estimate, so one check covers all
-    if (finite) {
-      ws.x_error.setZero();
-      for (std::size_t i = 0; i < S; ++i) {
-        const Coefficient e = tableau.b[i] - tableau.b_hat[i];
-        if (e != 0) ws.x_error += (h * scalar(e)) * ws.k[i];
-      }
-      finite = ws.x_error.allFinite();
-    }
-    if (!finite) {
+    const detail::Attempt attempt = detail::attempt_step(pair, f, t_new, h, ws);
+    if (attempt == detail::Attempt::rhs_failed) return AdaptiveStatus::rhs_failed;
+    if (attempt == detail::Attempt::non_finite) {
       ++ws.rejected;
-      ws.h = h * scalar(detail::non_finite_step_factor);
+      ws.h = h * static_cast<Scalar>(detail::non_finite_step_factor);
       after_rejection = after_non_finite = true;
       continue;
     }
 
     const Scalar err = detail::error_norm(ws.x_error, ws.x, ws.x_stage, options.atol, options.rtol);
-    // local error ~ h^5 (order 4 estimator), so err^(-1/5) is the factor that would give err = 1
-    Scalar factor = err == 0 ? scalar(detail::step_factor_max)
-                             : scalar(detail::step_safety) * pow(err, Scalar(-0.2L));
-    if (factor < scalar(detail::step_factor_min)) factor = scalar(detail::step_factor_min);
-    if (factor > scalar(detail::step_factor_max)) factor = scalar(detail::step_factor_max);
+    Scalar factor = detail::step_factor(pair, err);
     if (!(err <= 1)) {
       ++ws.rejected;
       ws.h = h * factor;
@@ -399,23 +444,7 @@ AdaptiveStatus dp_step(Rhs&& f, typename Vector::Scalar t_end,
       after_non_finite = false;
       continue;
     }
-
-    // accepted: dense output first, it needs the old state and the stages (dopri5's CONT)
-    ws.dense[0] = ws.x_stage;
-    ws.dense[1] = ws.x_stage - ws.x;
-    ws.dense[2] = h * ws.k[0] - ws.dense[1];
-    ws.dense[3] = ws.dense[1] - h * ws.k[S - 1] - ws.dense[2];
-    ws.dense[4].setZero();
-    for (std::size_t i = 0; i < S; ++i)
-      if (dormand_prince54_dense[i] != 0)
-        ws.dense[4] += (h * scalar(dormand_prince54_dense[i])) * ws.k[i];
-
-    ws.x_previous = ws.x;
-    ws.x = ws.x_stage;
-    ws.t_previous = ws.t;
-    ws.t = t_new;
-    ws.k[0] = ws.k[S - 1];
-    ++ws.accepted;
+    detail::accept_step(pair, t_new, h, ws);
 
     // a step that just succeeded after a failure is not trusted to grow (Hairer II.4)
     if (after_rejection && factor > 1) factor = 1;
@@ -431,10 +460,11 @@ AdaptiveStatus dp_step(Rhs&& f, typename Vector::Scalar t_end,
 /// manifold): re-evaluates the first stage f(ws.t, ws.x) that the next step reuses. ws.t,
 /// ws.h and the dense output of the last step (the trajectory before the change) are kept.
 /// \param[in]     f   right-hand side f(t, x, dxdt)
-/// \param[in,out] ws  workspace after dp_start or dp_step; on return ws.k[0] = f(ws.t, ws.x)
+/// \param[in,out] ws  workspace after adaptive_start or adaptive_step; on return
+///                    ws.k[0] = f(ws.t, ws.x)
 /// \return ok; non_finite if ws.x or f(ws.t, ws.x) is not finite; rhs_failed if f failed
-template <typename Rhs, typename Vector>
-AdaptiveStatus dp_restart(Rhs&& f, DormandPrinceWorkspace<Vector>& ws) {
+template <typename Rhs, typename Vector, std::size_t S>
+AdaptiveStatus adaptive_restart(Rhs&& f, AdaptiveWorkspace<Vector, S>& ws) {
   if (!ws.x.allFinite()) return AdaptiveStatus::non_finite;
   ++ws.evaluations;
   const Vector& x = ws.x;
@@ -442,18 +472,19 @@ AdaptiveStatus dp_restart(Rhs&& f, DormandPrinceWorkspace<Vector>& ws) {
   return ws.k[0].allFinite() ? AdaptiveStatus::ok : AdaptiveStatus::non_finite;
 }
 
-/// Dense output on the last accepted step: Hairer's 4th-order continuous extension (see
-/// dormand_prince54_dense), whose error is O(h^5) like the step's own local error. It is
-/// evaluated from the nearer end of the step, so t = ws.t_previous gives ws.x_previous and
-/// t = ws.t the step's end state exactly. Before the first step it returns x0.
-/// \param[in]  ws     workspace after dp_step (or dp_start)
+/// Dense output on the last accepted step: the pair's continuous extension (see
+/// EmbeddedTableau::dense; for dormand_prince54 Hairer's, of 4th order, whose error is O(h^5)
+/// like the step's own local error). It is evaluated from the nearer end of the step, so
+/// t = ws.t_previous gives ws.x_previous and t = ws.t the step's end state exactly. Before the
+/// first step it returns x0.
+/// \param[in]  ws     workspace after adaptive_step (or adaptive_start)
 /// \param[in]  t      time in [ws.t_previous, ws.t]; outside it the polynomial extrapolates
 ///                    (not checked: this runs in the output loop)
 /// \param[out] x_out  state at t (dim n; sized by the caller so nothing is allocated); must
 ///                    not be a member of ws
-template <typename Vector>
-void dp_dense_output(const DormandPrinceWorkspace<Vector>& ws, typename Vector::Scalar t,
-                     Vector& x_out) {
+template <typename Vector, std::size_t S>
+void dense_output(const AdaptiveWorkspace<Vector, S>& ws, typename Vector::Scalar t,
+                  Vector& x_out) {
   using Scalar = typename Vector::Scalar;
   const Scalar h = ws.t - ws.t_previous;
   if (!(h > 0)) {
@@ -482,29 +513,12 @@ struct AdaptiveResult {
   long long accepted, rejected, evaluations;
 };
 
-/// Integrates x' = f(t, x) from (t0, x0) to the last time of an increasing grid, calling
-/// observer(t_g, x(t_g)) at every grid time t_g reached, from the dense output (so the grid
-/// does not constrain the steps; the last grid time is the end of the last step).
-/// \param[in] f         right-hand side f(t, x, dxdt), returning void or bool (see rhs.hpp)
-/// \param[in] t0        initial time
-/// \param[in] x0        initial state (dim n)
-/// \param[in] grid      output times, strictly increasing, finite, grid[0] >= t0 (a grid time
-///                      equal to t0 is observed with x0); any range with std::size and []
-/// \param[in] options   tolerances and limits
-/// \param[in] observer  called as observer(t, x) at each grid time, in order
-/// \return status, time and state reached, step statistics; see AdaptiveResult
-/// @throws std::invalid_argument if the grid is empty, not finite, not strictly increasing
-///         or starts before t0, or on any misuse that dp_start rejects
-template <typename Rhs, typename Vector, typename Grid, typename Observer = NoObserver>
-AdaptiveResult<Vector> integrate_adaptive(Rhs&& f, typename Vector::Scalar t0, const Vector& x0,
-                                          const Grid& grid,
-                                          const AdaptiveOptions<typename Vector::Scalar>& options =
-                                              AdaptiveOptions<typename Vector::Scalar>(),
-                                          Observer&& observer = Observer{}) {
-  using Scalar = typename Vector::Scalar;
-  using std::isfinite;
+namespace detail {
 
-  // misuse is reported before the loop; inside it only statuses are returned
+/// Misuse checks of an output grid: non-empty, finite, strictly increasing, from t0 on.
+template <typename Scalar, typename Grid>
+void check_grid(Scalar t0, const Grid& grid) {
+  using std::isfinite;
   const std::size_t count = static_cast<std::size_t>(std::size(grid));
   if (count == 0)
     throw std::invalid_argument("integrate_adaptive: grid expected non-empty, got 0 times");
@@ -517,25 +531,56 @@ AdaptiveResult<Vector> integrate_adaptive(Rhs&& f, typename Vector::Scalar t0, c
     if (i > 0) msg << " after grid[" << i - 1 << "] = " << at(i - 1);
     throw std::invalid_argument(msg.str());
   }
-  const Scalar t_end = at(count - 1);
-  detail::check_adaptive_arguments("integrate_adaptive", t0, t_end, options);
+}
 
-  DormandPrinceWorkspace<Vector> ws(x0.size());
+}  // namespace detail
+
+/// Integrates x' = f(t, x) from (t0, x0) to the last time of an increasing grid, calling
+/// observer(t_g, x(t_g)) at every grid time t_g reached, from the dense output (so the grid
+/// does not constrain the steps; the last grid time is the end of the last step).
+/// \param[in] pair      embedded pair, consistent and FSAL (e.g. dormand_prince54)
+/// \param[in] f         right-hand side f(t, x, dxdt), returning void or bool (see rhs.hpp)
+/// \param[in] t0        initial time
+/// \param[in] x0        initial state (dim n)
+/// \param[in] grid      output times, strictly increasing, finite, grid[0] >= t0 (a grid time
+///                      equal to t0 is observed with x0); any range with std::size and []
+/// \param[in] options   tolerances and limits
+/// \param[in] observer  called as observer(t, x) at each grid time, in order
+/// \return status, time and state reached, step statistics; see AdaptiveResult
+/// @throws std::invalid_argument if the grid is empty, not finite, not strictly increasing
+///         or starts before t0, or on any misuse that adaptive_start rejects
+template <std::size_t S, typename Rhs, typename Vector, typename Grid,
+          typename Observer = NoObserver>
+AdaptiveResult<Vector> integrate_adaptive(const EmbeddedTableau<S>& pair, Rhs&& f,
+                                          typename Vector::Scalar t0, const Vector& x0,
+                                          const Grid& grid,
+                                          const AdaptiveOptions<typename Vector::Scalar>& options =
+                                              AdaptiveOptions<typename Vector::Scalar>(),
+                                          Observer&& observer = Observer{}) {
+  using Scalar = typename Vector::Scalar;
+  // misuse is reported before the loop; inside it only statuses are returned
+  detail::check_grid(t0, grid);
+  const std::size_t count = static_cast<std::size_t>(std::size(grid));
+  const auto at = [&grid](std::size_t i) { return static_cast<Scalar>(grid[i]); };
+  const Scalar t_end = at(count - 1);
+  detail::check_adaptive_arguments("integrate_adaptive", pair, t0, t_end, options);
+
+  AdaptiveWorkspace<Vector, S> ws(x0.size());
   Vector x_grid = x0;
   const Vector& x_observed = x_grid;
   std::size_t next = 0;
   // the grid times covered by the last accepted step, or t0 itself before the first step
   const auto observe = [&]() {
     for (; next < count && at(next) <= ws.t; ++next) {
-      dp_dense_output(ws, at(next), x_grid);
+      dense_output(ws, at(next), x_grid);
       observer(at(next), x_observed);
     }
   };
 
-  AdaptiveStatus status = dp_start(f, t0, x0, t_end, options, ws);
+  AdaptiveStatus status = adaptive_start(pair, f, t0, x0, t_end, options, ws);
   if (status == AdaptiveStatus::ok) observe();
   while (status == AdaptiveStatus::ok && ws.t < t_end) {
-    status = dp_step(f, t_end, options, ws);
+    status = adaptive_step(pair, f, t_end, options, ws);
     if (status == AdaptiveStatus::ok) observe();
   }
   return AdaptiveResult<Vector>{status, ws.t, ws.x, ws.accepted, ws.rejected, ws.evaluations};

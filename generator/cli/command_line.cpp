@@ -1,0 +1,137 @@
+#include "command_line.hpp"
+
+#include <fmt/format.h>
+
+namespace eomgen::tools {
+
+namespace {
+
+// the options every subcommand has: the model file and --define
+void add_model_options(CLI::App* sub, Options& o) {
+  sub->add_option("MODEL", o.model_path, "Model file (.eom)")->required()->check(CLI::ExistingFile);
+  sub->add_option("-D,--define", o.defines, "Override a 'const' of the model: NAME=VALUE (repeatable)")
+      ->delimiter(',')
+      ->type_name("NAME=VALUE");
+}
+
+// --set NAME=VALUE, repeatable; `help` says what it sets
+void add_parameter_option(CLI::App* sub, std::vector<std::string>& set, const std::string& help) {
+  sub->add_option("--set", set, help)->delimiter(',')->type_name("NAME=VALUE");
+}
+
+// the integrator options take their names and help from the integrator registry
+void add_integrator_options(CLI::App* simulate, SimulateRequest& r) {
+  const std::string fixed_step = integrator_names(false, "/"), adaptive = integrator_names(true, "/");
+  simulate->add_option("--method", r.method, method_help())->check(CLI::IsMember(integrator_names()));
+  simulate->add_option("--dt", r.step, fmt::format("Step of {} [s] (default 1e-3)", fixed_step))
+      ->check(CLI::PositiveNumber);
+  simulate->add_option("--rtol", r.rtol, fmt::format("Relative tolerance of {} (default 1e-8)", adaptive))
+      ->check(CLI::PositiveNumber);
+  simulate->add_option("--atol", r.atol, fmt::format("Absolute tolerance of {} (default 1e-10)", adaptive))
+      ->check(CLI::PositiveNumber);
+}
+
+}  // namespace
+
+CLI::App* add_check_command(CLI::App& app, Options& o) {
+  CLI::App* check = app.add_subcommand("check", "Check a model and summarize it");
+  add_model_options(check, o);
+  return check;
+}
+
+CLI::App* add_derive_command(CLI::App& app, Options& o) {
+  CLI::App* derive = app.add_subcommand("derive", "Derive and print the equations of motion");
+  derive->alias("show");
+  add_model_options(derive, o);
+  derive->add_option("-f,--format", o.format, "Output format")
+      ->check(CLI::IsMember({"text", "latex", "markdown"}))
+      ->capture_default_str();
+  derive->add_option("--only", o.only, "Parts to print, comma-separated: M,F,Xi,Xi_t,b,phi,T,V,outputs")
+      ->type_name("PARTS");
+  CLI::Option* shared = derive->add_flag("--intermediates", o.shared,
+                                         "Print in terms of shared intermediates, then their definitions");
+  derive->add_flag("--expand", o.expand, "Write intermediates out even for a large system (may be slow)")
+      ->excludes(shared);
+  derive->add_option("-o,--output", o.output_path, "Write to FILE instead of standard output (atomically)")
+      ->type_name("FILE");
+  return derive;
+}
+
+CLI::App* add_eval_command(CLI::App& app, Options& o) {
+  CLI::App* eval = app.add_subcommand("eval", "Evaluate the equations numerically and solve for qdd, lambda");
+  add_model_options(eval, o);
+  eval->add_option("--at", o.at, "State: q1=0.1,q1_dot=0.3,u=1,t=0 (others are 0)")
+      ->delimiter(',')
+      ->type_name("NAME=VALUE,...");
+  add_parameter_option(eval, o.set, "Override a parameter's default: NAME=VALUE (repeatable)");
+  eval->add_option("-f,--format", o.format, "Output format")->check(CLI::IsMember({"text", "json"}))->capture_default_str();
+  return eval;
+}
+
+CLI::App* add_generate_command(CLI::App& app, Options& o) {
+  CLI::App* generate = app.add_subcommand("generate", "Emit an optimized C++ header (Eigen only) for the model");
+  add_model_options(generate, o);
+  generate->add_option("-o,--output", o.output_path, "Write to FILE instead of standard output (atomically)")
+      ->type_name("FILE");
+  generate->add_option("--namespace", o.outer_namespace, "Outer namespace of the generated code")
+      ->capture_default_str();
+  generate->add_flag("--no-cse", o.no_cse,
+                     "Write every output as its own expression tree, without shared temporaries (for comparison)");
+  generate->add_flag("--stats", o.stats,
+                     "Print operation counts per function, without and with shared subexpressions");
+  generate->add_flag("--linearization", o.emit_linearization,
+                     "Also emit linearization_terms, the exact derivatives from which eomrt::linearization "
+                     "gives A and B about any operating point (for gain scheduling)");
+  return generate;
+}
+
+CLI::App* add_linearize_command(CLI::App& app, Options& o) {
+  CLI::App* linearize = app.add_subcommand(
+      "linearize", "Linearize about an operating point: A, B, the second-order form, eigenvalues, stability");
+  add_model_options(linearize, o);
+  linearize->add_option("--at", o.at, "Operating point: q1=0.1,q1_dot=0.3,u=1,t=0 (others are 0)")
+      ->delimiter(',')
+      ->type_name("NAME=VALUE,...");
+  add_parameter_option(linearize, o.set, "Override a parameter's default: NAME=VALUE (repeatable)");
+  linearize->add_flag("--equilibrium", o.find_equilibrium,
+                      "Take --at as a guess: find the equilibrium (coordinates; rates held) by Newton's method first");
+  linearize->add_flag("--drop-cyclic", o.drop_cyclic, "Leave coordinates that appear nowhere in M and F out of the state");
+  linearize->add_option("-f,--format", o.format, "Output format")->check(CLI::IsMember({"text", "latex"}))->capture_default_str();
+  return linearize;
+}
+
+CLI::App* add_simulate_command(CLI::App& app, Options& o) {
+  CLI::App* simulate = app.add_subcommand(
+      "simulate", "Generate, compile (cached) and run a simulation; write a CSV and plot it with gnuplot");
+  add_model_options(simulate, o);
+  SimulateRequest& r = o.simulate;
+  simulate->add_option("--t-end", r.t_end, "End time [s] (the run starts at t = 0)")
+      ->required()
+      ->check(CLI::PositiveNumber);
+  add_integrator_options(simulate, r);
+  simulate->add_option("--sample", r.sample, "Interval between CSV rows [s] (default: about 1000 rows)")
+      ->check(CLI::PositiveNumber);
+  add_parameter_option(simulate, o.set, "Override a parameter: NAME=VALUE (repeatable)");
+  simulate->add_option("--init", o.init, "Initial coordinate or rate: q=VALUE, q_dot=VALUE (others 0)")
+      ->delimiter(',')
+      ->type_name("NAME=VALUE");
+  simulate->add_option("--input", o.inputs, "Constant input: NAME=VALUE (others 0)")
+      ->delimiter(',')
+      ->type_name("NAME=VALUE");
+  simulate->add_option("--solver", r.solver, "Constraint forces by the KKT system or the null-space method")
+      ->check(CLI::IsMember({"kkt", "null-space"}))
+      ->capture_default_str();
+  simulate->add_option("--stabilization", r.stabilization, "Constraint drift correction")
+      ->check(CLI::IsMember({"projection", "baumgarte", "none"}))
+      ->capture_default_str();
+  simulate->add_option("-o,--output", r.csv_path, "CSV file (default: MODELNAME.csv)")->type_name("FILE");
+  CLI::Option* plot = simulate->add_option("--plot", r.plot_path, "Plot file, .svg or .png (default: MODELNAME.svg)")
+                          ->type_name("FILE");
+  simulate->add_flag("--no-plot", o.no_plot, "Write the CSV only")->excludes(plot);
+  simulate->add_option("--cache-dir", r.cache_dir,
+                       "Where compiled simulations are kept (default: $EOMGEN_CACHE_DIR, else ~/.cache/eomgen)")
+      ->type_name("DIR");
+  return simulate;
+}
+
+}  // namespace eomgen::tools

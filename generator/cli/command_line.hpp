@@ -1,0 +1,47 @@
+#pragma once
+// The eomgen command line: what each subcommand accepts (CLI11), parsed into Options. What the
+// subcommands do is in eomgen_main.cpp and simulate_command.cpp.
+#include <CLI/CLI.hpp>
+#include <string>
+#include <vector>
+
+#include "simulate_command.hpp"
+
+namespace eomgen::tools {
+
+/// The command line as parsed: each subcommand fills the fields it has.
+struct Options {
+  std::string model_path;
+  std::vector<std::string> defines;  // --define NAME=VALUE
+  // derive
+  std::string format = "text";
+  std::string only;
+  bool shared = false;
+  bool expand = false;
+  std::string output_path;
+  // eval
+  std::vector<std::string> at, set;
+  // generate
+  std::string outer_namespace = "eomgen_models";
+  bool stats = false;
+  bool no_cse = false;
+  bool emit_linearization = false;
+  // linearize
+  bool drop_cyclic = false;
+  bool find_equilibrium = false;
+  // simulate
+  SimulateRequest simulate;
+  std::vector<std::string> init, inputs;
+  bool no_plot = false;
+};
+
+/// Each adds its subcommand to \p app, with options that write into \p o; \return the
+/// subcommand, whose parsed() says whether it was chosen.
+CLI::App* add_check_command(CLI::App& app, Options& o);
+CLI::App* add_derive_command(CLI::App& app, Options& o);
+CLI::App* add_eval_command(CLI::App& app, Options& o);
+CLI::App* add_generate_command(CLI::App& app, Options& o);
+CLI::App* add_linearize_command(CLI::App& app, Options& o);
+CLI::App* add_simulate_command(CLI::App& app, Options& o);
+
+}  // namespace eomgen::tools

@@ -1,0 +1,162 @@
+#pragma once
+// The settings of one run of the simulation program, read from the command line that
+// `eomgen simulate` writes (generator/cli/simulate_command.cpp):
+//
+//   program --t-end T --method NAME --solver S --stabilization S [--dt H] [--rtol R]
+//           [--atol A] [--sample S] [--set p=v]... [--init q=v | q_dot=v]... [--input u=v]...
+//           --csv FILE [--progress]
+//
+// eomgen has checked every value and name against the model and the integrator registry
+// before it builds the program, and says what is wrong in the user's terms; here a malformed
+// argument can only be a bug in eomgen, and is reported as such.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdlib>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+#include "eomrt/integrators.hpp"
+#include "eomrt/simulate.hpp"
+
+namespace eomgen::simulation_program {
+
+/// An argument eomgen should not have written (exit status 2).
+class ArgumentError : public std::runtime_error {
+ public:
+  explicit ArgumentError(const std::string& what)
+      : std::runtime_error("malformed argument from eomgen simulate: " + what) {}
+};
+
+/// What one run simulates and where it writes.
+template <class Model>
+struct RunSettings {
+  using Types = eomrt::ModelTypes<Model, double>;
+  eomrt::SimulationOptions<double> options;
+  typename Types::Parameters p;
+  typename Types::State x0 = Types::State::Zero();
+  /// the inputs, held constant
+  typename Types::Inputs u = Types::Inputs::Zero();
+  std::string csv_path;
+  /// draw a progress line on stderr when it is a terminal
+  bool progress = false;
+};
+
+namespace detail {
+
+inline double number(const std::string& text, const std::string& option) {
+  char* end = nullptr;
+  const double v = std::strtod(text.c_str(), &end);
+  if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(v))
+    throw ArgumentError(option + " '" + text + "'");
+  return v;
+}
+
+template <std::size_t N>
+int index_of(const std::array<const char*, N>& names, const std::string& name) {
+  for (std::size_t i = 0; i < N; ++i)
+    if (name == names[i]) return static_cast<int>(i);
+  return -1;
+}
+
+/// "name=value" split at the first '='
+inline std::pair<std::string, double> assignment(const std::string& item, const std::string& option) {
+  const auto eq = item.find('=');
+  if (eq == std::string::npos || eq == 0) throw ArgumentError(option + " '" + item + "'");
+  return {item.substr(0, eq), number(item.substr(eq + 1), option + " " + item.substr(0, eq))};
+}
+
+/// The entry of x0 = [q; qd] that a coordinate name q or a rate name q_dot sets, or -1.
+template <class Model>
+int state_index(const std::string& name) {
+  const int k = index_of(Model::coordinate_names, name);
+  if (k >= 0 || name.size() <= 4 || name.compare(name.size() - 4, 4, "_dot") != 0) return k;
+  const int rate = index_of(Model::coordinate_names, name.substr(0, name.size() - 4));
+  return rate >= 0 ? rate + Model::nq : -1;
+}
+
+template <class Model>
+void set_named(RunSettings<Model>& run, const std::string& option, const std::string& item) {
+  const auto [name, v] = assignment(item, option);
+  int k = -1;
+  if (option == "--set") {
+    k = index_of(Model::parameter_names, name);
+    if (k >= 0) *run.p.fields()[static_cast<std::size_t>(k)] = v;
+  } else if (option == "--init") {
+    k = state_index<Model>(name);
+    if (k >= 0) run.x0(k) = v;
+  } else {
+    k = index_of(Model::input_names, name);
+    if (k >= 0) run.u(k) = v;
+  }
+  if (k < 0) throw ArgumentError(option + " '" + item + "': no such name in " + Model::name);
+}
+
+/// Applies one option and its value; \return false if the option is not one of the program's
+template <class Model>
+bool apply_option(RunSettings<Model>& run, const std::string& option, const std::string& value) {
+  eomrt::SimulationOptions<double>& o = run.options;
+  if (option == "--t-end") {
+    o.t_end = number(value, option);
+  } else if (option == "--method") {
+    const eomrt::IntegratorInfo* method = eomrt::find_integrator(value);
+    if (method == nullptr) throw ArgumentError(option + " '" + value + "'");
+    o.integrator = method->method;
+  } else if (option == "--dt") {
+    o.step = number(value, option);
+  } else if (option == "--rtol") {
+    o.adaptive.rtol = number(value, option);
+  } else if (option == "--atol") {
+    o.adaptive.atol = number(value, option);
+  } else if (option == "--sample") {
+    o.sample_interval = number(value, option);
+  } else if (option == "--solver" && (value == "kkt" || value == "null-space")) {
+    o.solver = value == "kkt" ? eomrt::ConstraintSolver::kkt : eomrt::ConstraintSolver::null_space;
+  } else if (option == "--stabilization" && value == "projection") {
+    o.stabilization = eomrt::Stabilization::projection;
+  } else if (option == "--stabilization" && value == "baumgarte") {
+    o.stabilization = eomrt::Stabilization::baumgarte;
+  } else if (option == "--stabilization" && value == "none") {
+    o.stabilization = eomrt::Stabilization::none;
+  } else if (option == "--set" || option == "--init" || option == "--input") {
+    set_named(run, option, value);
+  } else if (option == "--csv") {
+    run.csv_path = value;
+  } else {
+    return false;
+  }
+  return true;
+}
+
+}  // namespace detail
+
+/// The settings of the command line, with the sample interval chosen when none is given.
+/// @throws ArgumentError for an argument eomgen simulate does not write
+template <class Model>
+RunSettings<Model> parse_arguments(int argc, char** argv) {
+  RunSettings<Model> run;
+  run.options.t_end = std::numeric_limits<double>::quiet_NaN();
+  for (int i = 1; i < argc; ++i) {
+    const std::string option = argv[i];
+    if (option == "--progress") {
+      run.progress = true;
+      continue;
+    }
+    if (i + 1 >= argc || !detail::apply_option(run, option, argv[i + 1])) throw ArgumentError("'" + option + "'");
+    ++i;
+  }
+  if (std::isnan(run.options.t_end) || run.csv_path.empty()) throw ArgumentError("--t-end and --csv are required");
+
+  eomrt::SimulationOptions<double>& o = run.options;
+  if (o.sample_interval == 0) {
+    // about 1000 rows; a fixed step keeps its exact size by sampling every k-th step
+    const double target = (o.t_end - o.t0) / 1000;
+    o.sample_interval = eomrt::is_adaptive(o.integrator) ? target : o.step * std::max(1.0, std::round(target / o.step));
+    if (!(o.sample_interval > 0)) o.sample_interval = 0;  // t_end == t0: one sample
+  }
+  return run;
+}
+
+}  // namespace eomgen::simulation_program
