@@ -31,10 +31,10 @@ TEST(InternalError, FailedDemandNamesTheBugTheConditionAndWhere) {
     EOMGEN_DEMAND(2 + 2 == 5, "arithmetic: the sum is off");
     FAIL() << "no InternalError thrown";
   } catch (const InternalError& e) {
-    EXPECT_EQ(e.file(), "tests/generator/error_test.cpp");
+    EXPECT_EQ(e.file(), "tests/base/error_test.cpp");
     EXPECT_EQ(e.line(), line);
     EXPECT_EQ(e.message(), "arithmetic: the sum is off (failed: 2 + 2 == 5)");
-    EXPECT_EQ(std::string(e.what()), "internal error at tests/generator/error_test.cpp:" + std::to_string(line) +
+    EXPECT_EQ(std::string(e.what()), "internal error at tests/base/error_test.cpp:" + std::to_string(line) +
                                          ": arithmetic: the sum is off (failed: 2 + 2 == 5); this is a bug in "
                                          "eomgen, please report it");
   }
@@ -48,7 +48,7 @@ TEST(InternalError, UnreachableThrowsWithTheFileAndLine) {
     FAIL() << "no InternalError thrown";
   } catch (const InternalError& e) {
     EXPECT_EQ(e.line(), line);
-    EXPECT_THAT(e.what(), StartsWith("internal error at tests/generator/error_test.cpp:"));
+    EXPECT_THAT(e.what(), StartsWith("internal error at tests/base/error_test.cpp:"));
     EXPECT_THAT(e.what(), HasSubstr(": a branch no input reaches; this is a bug in eomgen"));
   }
 }
