@@ -102,8 +102,11 @@ inline const char* to_string(Integrator method) {
 
 /// \return true if \p method is registered and steps adaptively
 constexpr bool is_adaptive(Integrator method) {
-  const IntegratorInfo* info = find_integrator(method);
-  return info != nullptr && info->adaptive;
+  // compares rows, not pointers: GCC's UndefinedBehaviorSanitizer makes a pointer test
+  // non-constant, and static_asserts below use this
+  for (const IntegratorInfo& info : integrators)
+    if (info.method == method) return info.adaptive;
+  return false;
 }
 
 namespace detail {
