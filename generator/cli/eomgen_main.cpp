@@ -150,6 +150,16 @@ std::string statistics_table(const std::vector<eomgen::FunctionStatistics>& stat
   return out;
 }
 
+// which of the two derivations was kept, and both estimates (KinematicsResolution)
+std::string resolution_line(const eomgen::EquationsOfMotion& eom) {
+  const bool local = eom.resolution == eomgen::KinematicsResolution::local;
+  const std::string local_estimate = std::isnan(eom.estimated_operations_local)
+                                         ? std::string("not tried")
+                                         : fmt::format("{:.0f}", eom.estimated_operations_local);
+  return fmt::format("kinematics: {} (estimated operations of M and F: local frames {}, inertial {:.0f})\n",
+                     local ? "local frames" : "inertial", local_estimate, eom.estimated_operations_inertial);
+}
+
 void run_generate(const Options& o) {
   using clock = std::chrono::steady_clock;
   const auto milliseconds = [](clock::duration d) { return std::chrono::duration<double, std::milli>(d).count(); };
@@ -169,7 +179,7 @@ void run_generate(const Options& o) {
   // wall times inside the process (what a build step or a benchmark against an in-process
   // peer should compare), not the program's start-up
   const std::string stats =
-      o.stats ? statistics_table(emitted.statistics) +
+      o.stats ? statistics_table(emitted.statistics) + resolution_line(eom) +
                     fmt::format("time [ms]: parse {:.3f}, derive {:.3f}, emit {:.3f}\n", milliseconds(loaded - start),
                                 milliseconds(derived - loaded), milliseconds(clock::now() - derived))
               : std::string();

@@ -8,6 +8,8 @@
 // The step counts are compared exactly.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <vector>
 
@@ -37,7 +39,8 @@ void expect_recorded(const State<Model>& x0, const SimulationOptions<double>& op
   EXPECT_EQ(tr.t.size(), recorded.samples);
   EXPECT_EQ(static_cast<std::size_t>(tr.result.x.size()), recorded.x.size());
   for (std::size_t i = 0; i < recorded.x.size() && i < static_cast<std::size_t>(tr.result.x.size()); ++i)
-    EXPECT_NEAR(tr.result.x(static_cast<Eigen::Index>(i)), recorded.x[i], 1e-10) << "x(" << i << ")";
+    EXPECT_NEAR(tr.result.x(static_cast<Eigen::Index>(i)), recorded.x[i], 1e-10 * std::max(1.0, std::abs(recorded.x[i])))
+        << "x(" << i << ")";
   if (!::testing::Test::HasFailure()) return;
   // what this run recorded, in the form of the calls below
   std::printf("recorded: {{");

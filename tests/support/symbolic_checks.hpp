@@ -101,7 +101,26 @@ template <class Reduce>
 }
 
 inline GiNaC::ex expanded(const GiNaC::ex& d) { return d.expand(); }
-inline GiNaC::ex simplified(const GiNaC::ex& d) { return simplify_for_display(d); }
+
+// sin and cos of a sum written out by the addition theorems (the derivation keeps a run of
+// rotations about one axis as one angle, sin(q1 + q2); a hand derivation may not)
+struct SplitAngleSums : GiNaC::map_function {
+  GiNaC::ex operator()(const GiNaC::ex& e) override {
+    const GiNaC::ex x = e.map(*this);
+    const std::string name = GiNaC::is_a<GiNaC::function>(x) ? GiNaC::ex_to<GiNaC::function>(x).get_name() : "";
+    const bool sine = name == "sin", cosine = name == "cos";
+    if ((!sine && !cosine) || !GiNaC::is_a<GiNaC::add>(x.op(0))) return x;
+    const GiNaC::ex first = x.op(0).op(0), rest = x.op(0) - first;
+    const GiNaC::ex s1 = GiNaC::sin(first), c1 = GiNaC::cos(first);
+    const GiNaC::ex s2 = (*this)(GiNaC::sin(rest)), c2 = (*this)(GiNaC::cos(rest));
+    return sine ? s1 * c2 + c1 * s2 : c1 * c2 - s1 * s2;
+  }
+};
+
+inline GiNaC::ex simplified(const GiNaC::ex& d) {
+  SplitAngleSums split;
+  return simplify_for_display(split(d));
+}
 
 }  // namespace detail
 
@@ -113,7 +132,8 @@ inline ::testing::AssertionResult equal_after_expansion(const GiNaC::ex& a, cons
   return detail::vanishes(a, b, detail::expanded);
 }
 
-/// a - b is zero after expansion and sin^2 + cos^2 = 1 (simplify_for_display), entry by entry.
+/// a - b is zero after expansion, the addition theorems and sin^2 + cos^2 = 1 (simplify_for_display),
+/// entry by entry.
 inline ::testing::AssertionResult equal_after_simplification(const GiNaC::matrix& a, const GiNaC::matrix& b) {
   return detail::entries_vanish(a, b, detail::simplified);
 }

@@ -1,6 +1,11 @@
 #include "eomgen/derivation/equations_of_motion.hpp"
 
+#include <limits>
 #include <vector>
+
+#include "eomgen/base/error.hpp"
+#include "operation_estimate.hpp"
+#include "relative_rotations.hpp"
 
 namespace eomgen {
 namespace {
@@ -42,22 +47,30 @@ struct FrameState {
   matrix alpha0;          // d omega^{f0} / dt seen in 0, at qdd = 0, resolved in f
 };
 
-// Kinematics of one point relative to the inertial origin, resolved in the inertial frame.
+// Kinematics of one point relative to the inertial origin: resolved in the inertial frame, or
+// (KinematicsResolution::local) kept as sums of terms each resolved in the frame it arose in.
 struct PointState {
-  matrix r;               // r^{P w}
-  std::vector<matrix> V;  // partial velocities d v_P / d qd_k
-  matrix v;               // v^{P w / 0}
-  matrix a0;              // acceleration at qdd = 0
+  Vector r;               // r^{P w}
+  std::vector<Vector> V;  // partial velocities d v_P / d qd_k
+  Vector v;               // v^{P w / 0}
+  Vector a0;              // acceleration at qdd = 0
 };
+
+
 
 class Derivation {
  public:
-  explicit Derivation(const MechanicalSystem& s)
-      : s_(s), vars_(s.variables()), n_(vars_.coordinate_count()), z_(eom_.subexpressions) {}
+  Derivation(const MechanicalSystem& s, KinematicsResolution resolution)
+      : s_(s), vars_(s.variables()), n_(vars_.coordinate_count()), resolution_(resolution),
+        z_(eom_.subexpressions), rotations_(s, eom_.subexpressions) {}
 
   EquationsOfMotion run() {
+    eom_.resolution = resolution_;
     frame_kinematics();
-    point_kinematics();
+    if (resolution_ == KinematicsResolution::inertial)
+      point_kinematics_inertial();
+    else
+      point_kinematics_local();
     m_terms_.assign(n_ * n_, exvector());
     f_terms_.assign(n_, exvector());
     inertia_terms();
@@ -93,7 +106,7 @@ class Derivation {
       FrameState& st = frames_[f];
       const matrix& C_fp = frame.rotation.dcm();
       const matrix& w_rel = frame.relative_angular_velocity;
-      st.C_0f = z_.bind(p.C_0f.mul(C_fp.transpose()));
+      if (resolution_ == KinematicsResolution::inertial) st.C_0f = z_.bind(p.C_0f.mul(C_fp.transpose()));
       st.W.resize(n_);
       for (std::size_t k = 0; k < n_; ++k)
         st.W[k] = z_.bind(C_fp.mul(p.W[k]).add(map_entries(w_rel, [&](const ex& e) { return rate_partial(e, k); })));
@@ -106,40 +119,90 @@ class Derivation {
     }
   }
 
-  void point_kinematics() {
+  void start_points() {
     points_.resize(s_.points().size());
-    PointState& origin = points_[0];
-    origin.r = zero3();
-    origin.V.assign(n_, zero3());
-    origin.v = zero3();
-    origin.a0 = zero3();
+    points_[0].V.assign(n_, Vector());
+  }
+
+  // the partial velocity of an offset r_f (in frame f) with respect to qd_k, in f
+  matrix offset_partial(const FrameState& f, const matrix& r_f, std::size_t k) const {
+    return map_entries(r_f, [&](const ex& e) { return coordinate_partial(e, k); }).add(cross3(f.W[k], r_f));
+  }
+
+  // the acceleration at qdd = 0 of an offset r_f (in frame f): r'' + alpha0 x r + 2 omega x r' +
+  // omega x (omega x r), with omega x r given (bound or not)
+  matrix offset_acceleration(const FrameState& f, const matrix& r_f, const matrix& w_x_r) const {
+    const matrix rdot = map_entries(r_f, [&](const ex& e) { return vars_.time_derivative(e); });
+    const matrix rddot0 = map_entries(rdot, [&](const ex& e) { return rate_at_zero_acceleration(e); });
+    return rddot0.add(cross3(f.alpha0, r_f)).add(cross3(f.omega, rdot).mul_scalar(2)).add(cross3(f.omega, w_x_r));
+  }
+
+  matrix offset_velocity(const FrameState& f, const matrix& r_f) const {
+    return map_entries(r_f, [&](const ex& e) { return vars_.time_derivative(e); }).add(cross3(f.omega, r_f));
+  }
+
+  void point_kinematics_inertial() {
+    start_points();
+    const FrameId inertial = s_.inertial_frame();
+    for (std::size_t i = 1; i < s_.points().size(); ++i) {
+      const Point& point = s_.points()[i];
+      const PointState& parent = points_[point.parent->index];
+      matrix r = inertial_components(parent.r), v = inertial_components(parent.v),
+             a0 = inertial_components(parent.a0);
+      std::vector<matrix> V(n_);
+      for (std::size_t k = 0; k < n_; ++k) V[k] = inertial_components(parent.V[k]);
+      for (const auto& [frame_id, r_f] : point.offset.terms()) {
+        const FrameState& f = frames_[frame_id.index];
+        r = r.add(f.C_0f.mul(r_f));
+        for (std::size_t k = 0; k < n_; ++k) {
+          const matrix local = offset_partial(f, r_f, k);
+          if (!is_zero(local)) V[k] = V[k].add(f.C_0f.mul(local));
+        }
+        v = v.add(f.C_0f.mul(offset_velocity(f, r_f)));
+        a0 = a0.add(f.C_0f.mul(offset_acceleration(f, r_f, z_.bind(cross3(f.omega, r_f)))));
+      }
+      PointState& st = points_[i];
+      st.r = Vector(inertial, z_.bind(r));
+      st.V.resize(n_);
+      for (std::size_t k = 0; k < n_; ++k) st.V[k] = Vector(inertial, z_.bind(V[k]));
+      st.v = Vector(inertial, z_.bind(v));
+      st.a0 = Vector(inertial, z_.bind(a0));
+    }
+  }
+
+  void point_kinematics_local() {
+    start_points();
     for (std::size_t i = 1; i < s_.points().size(); ++i) {
       const Point& point = s_.points()[i];
       PointState st = points_[point.parent->index];
       for (const auto& [frame_id, r_f] : point.offset.terms()) {
         const FrameState& f = frames_[frame_id.index];
-        const matrix rdot = map_entries(r_f, [&](const ex& e) { return vars_.time_derivative(e); });
-        const matrix rddot0 = map_entries(rdot, [&](const ex& e) { return vars_.without_accelerations(vars_.time_derivative(e)); });
-        st.r = st.r.add(f.C_0f.mul(r_f));
-        for (std::size_t k = 0; k < n_; ++k) {
-          // V_k += C_0f (d r_f / d q_k + W_k x r_f)
-          const matrix local = map_entries(r_f, [&](const ex& e) { return coordinate_partial(e, k); }).add(cross3(f.W[k], r_f));
-          if (!is_zero(local)) st.V[k] = st.V[k].add(f.C_0f.mul(local));
-        }
-        // v += C_0f (r_f' + omega x r_f)
-        st.v = st.v.add(f.C_0f.mul(rdot.add(cross3(f.omega, r_f))));
-        // a0 += C_0f (r_f'' + alpha0 x r + 2 omega x r_f' + omega x (omega x r))
-        const matrix w_x_r = z_.bind(cross3(f.omega, r_f));
-        st.a0 = st.a0.add(f.C_0f.mul(rddot0.add(cross3(f.alpha0, r_f))
-                                         .add(cross3(f.omega, rdot).mul_scalar(2))
-                                         .add(cross3(f.omega, w_x_r))));
+        st.r += Vector(frame_id, r_f);
+        for (std::size_t k = 0; k < n_; ++k) st.V[k] += Vector(frame_id, offset_partial(f, r_f, k));
+        st.v += Vector(frame_id, offset_velocity(f, r_f));
+        st.a0 += Vector(frame_id, offset_acceleration(f, r_f, cross3(f.omega, r_f)));
       }
-      st.r = z_.bind(st.r);
-      for (auto& V : st.V) V = z_.bind(V);
-      st.v = z_.bind(st.v);
-      st.a0 = z_.bind(st.a0);
       points_[i] = std::move(st);
     }
+  }
+
+  // the components of a vector of the inertial resolution (zero or one term, in the inertial frame)
+  static matrix inertial_components(const Vector& v) { return v.is_zero() ? zero3() : v.terms().front().second; }
+
+  // u . v, resolving each term of v in the frame of each term of u
+  ex dot(const Vector& u, const Vector& v) {
+    exvector terms;
+    for (const auto& [frame, c] : u.terms()) terms.push_back(dot3(c, rotations_.resolve(v, frame)));
+    return GiNaC::add(terms);
+  }
+
+  // a load's vector as the derivation resolves vectors: in the inertial frame, or as given
+  Vector physical(const Vector& v) {
+    switch (resolution_) {
+      case KinematicsResolution::inertial: return Vector(s_.inertial_frame(), in_inertial(v));
+      case KinematicsResolution::local: return v;
+    }
+    EOMGEN_UNREACHABLE("Derivation::physical: a KinematicsResolution outside its enumerators");
   }
 
   // resolves a physical vector in the inertial frame through the bound DCMs
@@ -158,12 +221,16 @@ class Derivation {
 
   void translational_inertia(const ex& mass, const PointState& c) {
     for (std::size_t j = 0; j < n_; ++j) {
-      if (is_zero(c.V[j])) continue;
-      for (std::size_t k = j; k < n_; ++k) add_m(j, k, mass * dot3(c.V[j], c.V[k]));
-      add_f(j, -mass * dot3(c.V[j], c.a0));
+      if (c.V[j].is_zero()) continue;
+      for (std::size_t k = j; k < n_; ++k) add_m(j, k, mass * dot(c.V[j], c.V[k]));
+      add_f(j, -mass * dot(c.V[j], c.a0));
     }
-    t_terms_.push_back(mass * dot3(c.v, c.v) / 2);
+    t_terms_.push_back(mass * dot(c.v, c.v) / 2);
   }
+
+  // bound in the inertial resolution; the local one multiplies its entries out instead, so that
+  // their parameter-only factors meet those of the other bodies
+  matrix shared(const matrix& m) { return resolution_ == KinematicsResolution::inertial ? z_.bind(m) : m; }
 
   void inertia_terms() {
     for (const Particle& p : s_.particles()) translational_inertia(p.mass, points_[p.point.index]);
@@ -173,9 +240,9 @@ class Derivation {
       const matrix& J = b.inertia;
       // rotational part: W_j . J W_k, and the inertia torque J alpha0 + omega x J omega
       std::vector<matrix> JW(n_);
-      for (std::size_t k = 0; k < n_; ++k) JW[k] = z_.bind(J.mul(f.W[k]));
-      const matrix Jw = z_.bind(J.mul(f.omega));
-      const matrix torque = z_.bind(J.mul(f.alpha0).add(cross3(f.omega, Jw)));
+      for (std::size_t k = 0; k < n_; ++k) JW[k] = shared(J.mul(f.W[k]));
+      const matrix Jw = shared(J.mul(f.omega));
+      const matrix torque = shared(J.mul(f.alpha0).add(cross3(f.omega, Jw)));
       for (std::size_t j = 0; j < n_; ++j) {
         if (is_zero(f.W[j])) continue;
         for (std::size_t k = j; k < n_; ++k) add_m(j, k, dot3(f.W[j], JW[k]));
@@ -187,11 +254,11 @@ class Derivation {
 
   void gravity_terms() {
     if (s_.gravity().is_zero()) return;
-    const matrix g = in_inertial(s_.gravity());
+    const Vector g = physical(s_.gravity());
     auto add_weight = [&](const ex& mass, const PointState& c) {
       // V = -m g . r, generalized force m g . V_k
-      v_terms_.push_back(-mass * dot3(g, c.r));
-      for (std::size_t k = 0; k < n_; ++k) add_f(k, mass * dot3(g, c.V[k]));
+      v_terms_.push_back(-mass * dot(g, c.r));
+      for (std::size_t k = 0; k < n_; ++k) add_f(k, mass * dot(g, c.V[k]));
     };
     for (const Particle& p : s_.particles()) add_weight(p.mass, points_[p.point.index]);
     for (const RigidBody& b : s_.rigid_bodies()) add_weight(b.mass, points_[b.mass_centre.index]);
@@ -209,25 +276,37 @@ class Derivation {
   }
 
   void force_terms(const PointForce& f) {
-    const matrix force = in_inertial(f.force);
+    const Vector force = physical(f.force);
     const PointState& p = points_[f.point.index];
-    for (std::size_t k = 0; k < n_; ++k) add_f(k, dot3(force, p.V[k]));
+    for (std::size_t k = 0; k < n_; ++k) add_f(k, dot(force, p.V[k]));
   }
 
   void moment_terms(const BodyMoment& m) {
     const FrameState& b = frames_[m.frame.index];
-    const matrix moment = z_.bind(b.C_0f.transpose().mul(in_inertial(m.moment)));
+    const matrix moment = resolution_ == KinematicsResolution::inertial
+                              ? z_.bind(b.C_0f.transpose().mul(in_inertial(m.moment)))
+                              : rotations_.resolve(m.moment, m.frame);
     for (std::size_t k = 0; k < n_; ++k) add_f(k, dot3(moment, b.W[k]));
+  }
+
+  // r^{ab}, bound in the inertial resolution (a spring or damper uses it several times)
+  Vector separation(const PointState& a, const PointState& b) {
+    const Vector r = a.r - b.r;
+    switch (resolution_) {
+      case KinematicsResolution::inertial: return Vector(s_.inertial_frame(), z_.bind(inertial_components(r)));
+      case KinematicsResolution::local: return r;
+    }
+    EOMGEN_UNREACHABLE("Derivation::separation: a KinematicsResolution outside its enumerators");
   }
 
   void damper_terms(const LinearDamper& d) {
     // f_a = -c ((v_a - v_b) . e) e along e = r^{ab} / |r^{ab}|
     const PointState& a = points_[d.a.index];
     const PointState& b = points_[d.b.index];
-    const matrix r = z_.bind(a.r.sub(b.r));
-    const ex length_sq = z_.bind(dot3(r, r));
-    const ex along = z_.bind(-d.damping * dot3(r, a.v.sub(b.v)) / length_sq);
-    for (std::size_t k = 0; k < n_; ++k) add_f(k, along * dot3(r, a.V[k].sub(b.V[k])));
+    const Vector r = separation(a, b);
+    const ex length_sq = z_.bind(dot(r, r));
+    const ex along = z_.bind(-d.damping * dot(r, a.v - b.v) / length_sq);
+    for (std::size_t k = 0; k < n_; ++k) add_f(k, along * dot(r, a.V[k] - b.V[k]));
   }
 
   void damper_terms(const CoordinateDamper& d) {
@@ -239,12 +318,12 @@ class Derivation {
     // V = k/2 (L - L0)^2; force on a: -k (L - L0) r^{ab} / L
     const PointState& a = points_[sp.a.index];
     const PointState& b = points_[sp.b.index];
-    const matrix r = z_.bind(a.r.sub(b.r));
-    const ex length = z_.bind(GiNaC::sqrt(dot3(r, r)));
+    const Vector r = separation(a, b);
+    const ex length = z_.bind(GiNaC::sqrt(dot(r, r)));
     const ex stretch = length - sp.rest_length;
     v_terms_.push_back(sp.stiffness * GiNaC::pow(stretch, 2) / 2);
     const ex tension = z_.bind(-sp.stiffness * stretch / length);
-    for (std::size_t k = 0; k < n_; ++k) add_f(k, tension * dot3(r, a.V[k].sub(b.V[k])));
+    for (std::size_t k = 0; k < n_; ++k) add_f(k, tension * dot(r, a.V[k] - b.V[k]));
   }
 
   void spring_terms(const TorsionalSpring& sp) {
@@ -258,20 +337,26 @@ class Derivation {
     for (std::size_t k = 0; k < n_; ++k) add_f(k, -coordinate_partial(p.value, k));
   }
 
+  // a sum of terms, multiplied out in the local resolution
+  ex total(const exvector& terms) const {
+    const ex sum = GiNaC::add(terms);
+    return resolution_ == KinematicsResolution::local ? sum.expand() : sum;
+  }
+
   void assemble() {
     eom_.coordinate_count = n_;
     eom_.mass_matrix = matrix(n_, n_);
     eom_.forcing = matrix(n_, 1);
     for (std::size_t j = 0; j < n_; ++j) {
       for (std::size_t k = j; k < n_; ++k) {
-        const ex entry = GiNaC::add(m_terms_[j * n_ + k]);
+        const ex entry = total(m_terms_[j * n_ + k]);
         eom_.mass_matrix(j, k) = entry;
         eom_.mass_matrix(k, j) = entry;
       }
-      eom_.forcing(j, 0) = GiNaC::add(f_terms_[j]);
+      eom_.forcing(j, 0) = total(f_terms_[j]);
     }
-    eom_.kinetic_energy = GiNaC::add(t_terms_);
-    eom_.potential_energy = GiNaC::add(v_terms_);
+    eom_.kinetic_energy = total(t_terms_);
+    eom_.potential_energy = total(v_terms_);
   }
 
   void constraints() {
@@ -307,8 +392,10 @@ class Derivation {
   const MechanicalSystem& s_;
   const Variables& vars_;
   const std::size_t n_;
+  const KinematicsResolution resolution_;
   EquationsOfMotion eom_;
   Subexpressions& z_;
+  RelativeRotations rotations_;
   std::vector<FrameState> frames_;
   std::vector<PointState> points_;
   std::vector<exvector> m_terms_;
@@ -319,6 +406,25 @@ class Derivation {
 
 }  // namespace
 
-EquationsOfMotion derive_equations(const MechanicalSystem& system) { return Derivation(system).run(); }
+EquationsOfMotion derive_equations(const MechanicalSystem& system, KinematicsResolution resolution) {
+  EquationsOfMotion eom = Derivation(system, resolution).run();
+  const double estimate = estimated_operations(eom, system.variables());
+  const double not_tried = std::numeric_limits<double>::quiet_NaN();
+  eom.estimated_operations_inertial = resolution == KinematicsResolution::inertial ? estimate : not_tried;
+  eom.estimated_operations_local = resolution == KinematicsResolution::local ? estimate : not_tried;
+  return eom;
+}
+
+EquationsOfMotion derive_equations(const MechanicalSystem& system) {
+  EquationsOfMotion inertial = derive_equations(system, KinematicsResolution::inertial);
+  // the local resolution grows like the fourth power of a chain's depth: tried on small models
+  // only, and kept when its code is smaller
+  if (system.variables().coordinate_count() > local_resolution_limit) return inertial;
+  EquationsOfMotion local = derive_equations(system, KinematicsResolution::local);
+  local.estimated_operations_inertial = inertial.estimated_operations_inertial;
+  inertial.estimated_operations_local = local.estimated_operations_local;
+  return local.estimated_operations_local < inertial.estimated_operations_inertial ? std::move(local)
+                                                                                    : std::move(inertial);
+}
 
 }  // namespace eomgen

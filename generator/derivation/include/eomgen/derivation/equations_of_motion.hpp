@@ -19,6 +19,22 @@
 
 namespace eomgen {
 
+/// Where the derivation resolves the vectors of points (positions, partial velocities,
+/// accelerations).
+///  - inertial: in the inertial frame, each bound to a shared intermediate. Linear in the size of
+///    the shared graph: the form for long chains.
+///  - local: each term stays in the frame it arose in, and the entries of M, F, T and V are
+///    multiplied out. Dot products then bring only relative rotations (a run of principal rotations
+///    about one axis as one angle), a body's own angle cancels as in a hand derivation, and
+///    parameter-only products collect into coefficients computed once per parameter set. Its
+///    size grows like the fourth power of a chain's depth: the form for small models.
+/// derive_equations tries both on models of at most local_resolution_limit coordinates and keeps
+/// the one whose M and F take fewer estimated operations.
+enum class KinematicsResolution { inertial, local };
+
+/// Models with more coordinates than this are derived in the inertial resolution only.
+inline constexpr std::size_t local_resolution_limit = 12;
+
 /// The derived equations. Every matrix may refer to the intermediates of `subexpressions`.
 struct EquationsOfMotion {
   Subexpressions subexpressions;
@@ -32,10 +48,17 @@ struct EquationsOfMotion {
   GiNaC::ex potential_energy;                  ///< V
   std::size_t coordinate_count = 0;            ///< n
   std::size_t constraint_count = 0;            ///< m
+  KinematicsResolution resolution = KinematicsResolution::inertial;  ///< the form kept
+  /// Estimated operations of M and F in each form (NaN for a form not tried); see
+  /// KinematicsResolution.
+  double estimated_operations_inertial = 0, estimated_operations_local = 0;
 };
 
 /// Derives the equations of motion. Pure: the system is only read.
 /// \throws DerivationError if an expression cannot be differentiated (e.g. an input in a rotation).
 EquationsOfMotion derive_equations(const MechanicalSystem& system);
+
+/// The equations in the given resolution only (for comparisons and benchmarks).
+EquationsOfMotion derive_equations(const MechanicalSystem& system, KinematicsResolution resolution);
 
 }  // namespace eomgen

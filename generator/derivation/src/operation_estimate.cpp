@@ -1,0 +1,94 @@
+#include "operation_estimate.hpp"
+
+#include <cmath>
+#include <map>
+#include <set>
+
+namespace eomgen {
+namespace {
+
+using GiNaC::ex;
+
+// A sine or cosine takes about as long as this many multiplications; the local resolution trades
+// products of rotations for calls on summed angles, which pays only while the calls are few.
+constexpr double call_cost = 8;
+
+class Estimate {
+ public:
+  Estimate(const EquationsOfMotion& eom, const Variables& variables) : variables_(variables) {
+    for (const auto& d : eom.subexpressions.definitions()) definitions_.emplace(d.symbol, &d.value);
+  }
+
+  double of(const ex& e) { return state_dependent(e) ? count(e) : 0; }
+
+ private:
+  // true when e depends on anything but parameters and numbers (intermediates included)
+  bool state_dependent(const ex& e) {
+    auto memo = dependent_.find(e);
+    if (memo != dependent_.end()) return memo->second;
+    bool result = false;
+    if (GiNaC::is_a<GiNaC::symbol>(e)) {
+      auto definition = definitions_.find(e);
+      if (definition != definitions_.end()) {
+        result = state_dependent(*definition->second);
+      } else {
+        const auto kind = variables_.kind_of(e);
+        result = !kind || *kind != SymbolKind::parameter;
+      }
+    } else {
+      for (std::size_t i = 0; i < e.nops() && !result; ++i) result = state_dependent(e.op(i));
+    }
+    dependent_.emplace(e, result);
+    return result;
+  }
+
+  // operations of e, each distinct subexpression once (as emission's common-subexpression pass
+  // does); the parameter-only operands of a sum or product count as one constant
+  double count(const ex& e) {
+    if (!state_dependent(e) || !counted_.insert(e).second) return 0;
+    if (GiNaC::is_a<GiNaC::symbol>(e)) {
+      auto definition = definitions_.find(e);
+      return definition == definitions_.end() ? 0 : count(*definition->second);
+    }
+    double operations = 0, operands = 0;
+    bool constant = false;
+    for (std::size_t i = 0; i < e.nops(); ++i) {
+      if (state_dependent(e.op(i))) {
+        operations += count(e.op(i));
+        ++operands;
+      } else {
+        constant = true;
+      }
+    }
+    if (GiNaC::is_a<GiNaC::add>(e) || GiNaC::is_a<GiNaC::mul>(e)) return operations + operands + (constant ? 1 : 0) - 1;
+    if (GiNaC::is_a<GiNaC::power>(e)) {
+      const ex exponent = e.op(1);
+      if (GiNaC::is_a<GiNaC::numeric>(exponent) && GiNaC::ex_to<GiNaC::numeric>(exponent).is_integer()) {
+        const double k = std::abs(GiNaC::ex_to<GiNaC::numeric>(exponent).to_double());
+        return operations + (k - 1) + (exponent.info(GiNaC::info_flags::negative) ? 1 : 0);
+      }
+      return operations + 1;
+    }
+    if (GiNaC::is_a<GiNaC::function>(e)) return operations + call_cost;
+    return operations;
+  }
+
+  const Variables& variables_;
+  std::map<ex, const ex*, GiNaC::ex_is_less> definitions_;
+  std::map<ex, bool, GiNaC::ex_is_less> dependent_;
+  std::set<ex, GiNaC::ex_is_less> counted_;
+};
+
+}  // namespace
+
+double estimated_operations(const EquationsOfMotion& eom, const Variables& variables) {
+  Estimate estimate(eom, variables);
+  double operations = 0;
+  for (unsigned j = 0; j < eom.mass_matrix.rows(); ++j) {
+    for (unsigned k = j; k < eom.mass_matrix.cols(); ++k) operations += estimate.of(eom.mass_matrix(j, k));
+    operations += estimate.of(eom.forcing(j, 0));
+  }
+  return operations;
+}
+
+}  // namespace eomgen

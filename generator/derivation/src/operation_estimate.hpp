@@ -1,0 +1,16 @@
+#pragma once
+// A quick count of the floating-point operations that evaluating M and F takes, to choose between
+// two derivations of one model before anything is emitted. It follows what emission does: shared
+// intermediates counted once, parameter-only subexpressions free (they are computed once per
+// parameter set), a sum of n terms n - 1 additions, x^k as k - 1 multiplications, and a call of sin, cos
+// or sqrt weighted as the multiplications it costs.
+#include <cstddef>
+
+#include "eomgen/derivation/equations_of_motion.hpp"
+
+namespace eomgen {
+
+/// Operations of the upper triangle of M and of F, intermediates included once each.
+double estimated_operations(const EquationsOfMotion& eom, const Variables& variables);
+
+}  // namespace eomgen
