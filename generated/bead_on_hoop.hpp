@@ -22,7 +22,7 @@ struct Model {
   static constexpr const char* name = "bead_on_hoop";
   static constexpr const char* description = "Bead sliding on a hoop turning at a constant rate about its vertical diameter";
   static constexpr const char* generator_version = "0.1.0";
-  static constexpr const char* model_hash = "dcad9e14feac8b86";
+  static constexpr const char* model_hash = "afb88bd782561a0d";
   static constexpr std::array<const char*, nq> coordinate_names{{"theta"}};
   static constexpr std::array<const char*, nu> input_names{{}};
   static constexpr std::array<const char*, np> parameter_names{{"m", "R", "Omega", "g"}};
@@ -57,12 +57,10 @@ struct Model {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
-    const Scalar w0 = t * p.Omega;
-    const Scalar w1 = cos(q(0));
-    const Scalar w2 = sin(w0) * p.R * w1;
-    const Scalar w3 = cos(w0) * p.R * w1;
-    const Scalar w4 = sin(q(0)) * p.R;
-    M(0, 0) = (w2 * w2 + w3 * w3 + w4 * w4) * p.m;
+    const Scalar w0 = p.R * p.R;
+    const Scalar w1 = sin(q(0));
+    const Scalar w2 = cos(q(0));
+    M(0, 0) = w0 * p.m * w1 * w1 + w0 * p.m * w2 * w2;
   }
 
   /// F(q, qd, t, u): everything of Lagrange's equations except M qdd
@@ -71,15 +69,8 @@ struct Model {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
-    const Scalar w0 = t * p.Omega;
-    const Scalar w1 = cos(w0);
-    const Scalar w2 = cos(q(0));
-    const Scalar w3 = qd(0) * qd(0);
-    const Scalar w4 = sin(q(0));
-    const Scalar w5 = w3 * w4 * p.R + p.Omega * w4 * p.Omega * p.R;
-    const Scalar w6 = sin(w0);
-    const Scalar w7 = w4 * p.R;
-    F(0) = p.m * ((w5 * w6 - w1 * Scalar(2) * qd(0) * p.Omega * p.R * w2) * w6 * p.R * w2 + w1 * p.R * w2 * (Scalar(2) * w6 * qd(0) * p.Omega * p.R * w2 + w1 * w5) - w7 * w3 * p.R * w2) - p.g * w7 * p.m;
+    const Scalar w0 = sin(q(0));
+    F(0) = p.R * p.R * p.m * w0 * p.Omega * p.Omega * cos(q(0)) - p.g * p.m * w0 * p.R;
   }
 
   /// M and F together, sharing their common subexpressions
@@ -88,18 +79,11 @@ struct Model {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
-    const Scalar w0 = t * p.Omega;
-    const Scalar w1 = sin(w0);
+    const Scalar w0 = p.R * p.R;
+    const Scalar w1 = sin(q(0));
     const Scalar w2 = cos(q(0));
-    const Scalar w3 = w1 * p.R * w2;
-    const Scalar w4 = cos(w0);
-    const Scalar w5 = w4 * p.R * w2;
-    const Scalar w6 = sin(q(0));
-    const Scalar w7 = w6 * p.R;
-    const Scalar w8 = qd(0) * qd(0);
-    const Scalar w9 = w8 * w6 * p.R + p.Omega * w6 * p.Omega * p.R;
-    M(0, 0) = (w3 * w3 + w5 * w5 + w7 * w7) * p.m;
-    F(0) = p.m * ((w9 * w1 - w4 * Scalar(2) * qd(0) * p.Omega * p.R * w2) * w3 + w5 * (Scalar(2) * w1 * qd(0) * p.Omega * p.R * w2 + w4 * w9) - w7 * w8 * p.R * w2) - p.g * w7 * p.m;
+    M(0, 0) = w0 * p.m * w1 * w1 + w0 * p.m * w2 * w2;
+    F(0) = w0 * p.m * w1 * p.Omega * p.Omega * w2 - p.g * p.m * w1 * p.R;
   }
 
   /// Xi(q, t) of the Pfaffian constraints Xi qd + Xi_t = 0
@@ -141,15 +125,12 @@ struct Model {
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
     Scalar T = Scalar(0);
-    const Scalar w0 = t * p.Omega;
-    const Scalar w1 = sin(w0);
+    const Scalar w0 = qd(0) * qd(0);
+    const Scalar w1 = p.R * p.R;
     const Scalar w2 = sin(q(0));
-    const Scalar w3 = cos(w0);
+    const Scalar w3 = w2 * w2;
     const Scalar w4 = cos(q(0));
-    const Scalar w5 = w3 * qd(0) * p.R * w4 - w1 * w2 * p.Omega * p.R;
-    const Scalar w6 = w3 * w2 * p.Omega * p.R + w1 * qd(0) * p.R * w4;
-    const Scalar w7 = qd(0) * w2 * p.R;
-    T = p.m * Scalar(0.5) * (w5 * w5 + w6 * w6 + w7 * w7);
+    T = w0 * w1 * p.m * Scalar(0.5) * w3 + w1 * p.m * Scalar(0.5) * w3 * p.Omega * p.Omega + w0 * w1 * p.m * Scalar(0.5) * w4 * w4;
     return T;
   }
 
@@ -160,7 +141,7 @@ struct Model {
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
     Scalar V = Scalar(0);
-    V = -(p.g * p.R * cos(q(0)) * p.m);
+    V = -(p.g * p.m * p.R * cos(q(0)));
     return V;
   }
 

@@ -22,7 +22,7 @@ struct Model {
   static constexpr const char* name = "cart_pole";
   static constexpr const char* description = "Cart-pole: a uniform rod hinged on a cart pushed along a rail";
   static constexpr const char* generator_version = "0.1.0";
-  static constexpr const char* model_hash = "c1963a60e3c76383";
+  static constexpr const char* model_hash = "59f5752dbbcf2a02";
   static constexpr std::array<const char*, nq> coordinate_names{{"x", "theta"}};
   static constexpr std::array<const char*, nu> input_names{{"u"}};
   static constexpr std::array<const char*, np> parameter_names{{"mc", "mp", "l", "rp", "g"}};
@@ -58,11 +58,9 @@ struct Model {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
-    const Scalar w0 = cos(q(1)) * Scalar(0.5) * p.l;
-    const Scalar w1 = sin(q(1)) * Scalar(0.5) * p.l;
     M(0, 0) = p.mp + p.mc;
-    M(0, 1) = -(p.mp * w0);
-    M(1, 1) = (p.rp * p.rp * Scalar(3) + p.l * p.l) * Scalar(0.08333333333333333) * p.mp + (w1 * w1 + w0 * w0) * p.mp;
+    M(0, 1) = -(cos(q(1)) * p.mp * Scalar(0.5) * p.l);
+    M(1, 1) = Scalar(0.25) * p.mp * p.rp * p.rp + Scalar(0.3333333333333333) * p.mp * p.l * p.l;
     M(1, 0) = M(0, 1);
   }
 
@@ -73,12 +71,8 @@ struct Model {
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
     const Scalar w0 = sin(q(1));
-    const Scalar w1 = qd(1) * Scalar(0.5) * p.l;
-    const Scalar w2 = qd(1) * w0 * w1;
-    const Scalar w3 = w0 * Scalar(0.5) * p.l;
-    const Scalar w4 = cos(q(1));
-    F(0) = -(p.mp * w2 - u(0));
-    F(1) = -((w3 * qd(1) * w4 * w1 - w4 * Scalar(0.5) * p.l * w2) * p.mp - p.g * w3 * p.mp);
+    F(0) = u(0) - w0 * p.mp * Scalar(0.5) * p.l * qd(1) * qd(1);
+    F(1) = p.g * w0 * p.mp * Scalar(0.5) * p.l;
   }
 
   /// M and F together, sharing their common subexpressions
@@ -87,17 +81,12 @@ struct Model {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
-    const Scalar w0 = cos(q(1));
-    const Scalar w1 = w0 * Scalar(0.5) * p.l;
-    const Scalar w2 = sin(q(1));
-    const Scalar w3 = w2 * Scalar(0.5) * p.l;
-    const Scalar w4 = qd(1) * Scalar(0.5) * p.l;
-    const Scalar w5 = qd(1) * w2 * w4;
+    const Scalar w0 = sin(q(1));
     M(0, 0) = p.mp + p.mc;
-    M(0, 1) = -(p.mp * w1);
-    M(1, 1) = (p.rp * p.rp * Scalar(3) + p.l * p.l) * Scalar(0.08333333333333333) * p.mp + (w3 * w3 + w1 * w1) * p.mp;
-    F(0) = -(p.mp * w5 - u(0));
-    F(1) = -((w3 * qd(1) * w0 * w4 - w1 * w5) * p.mp - p.g * w3 * p.mp);
+    M(0, 1) = -(cos(q(1)) * p.mp * Scalar(0.5) * p.l);
+    M(1, 1) = Scalar(0.25) * p.mp * p.rp * p.rp + Scalar(0.3333333333333333) * p.mp * p.l * p.l;
+    F(0) = u(0) - w0 * p.mp * Scalar(0.5) * p.l * qd(1) * qd(1);
+    F(1) = p.g * w0 * p.mp * Scalar(0.5) * p.l;
     M(1, 0) = M(0, 1);
   }
 
@@ -140,9 +129,9 @@ struct Model {
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
     Scalar T = Scalar(0);
-    const Scalar w0 = qd(1) * sin(q(1)) * Scalar(0.5) * p.l;
-    const Scalar w1 = qd(0) - qd(1) * cos(q(1)) * Scalar(0.5) * p.l;
-    T = qd(0) * qd(0) * Scalar(0.5) * p.mc + qd(1) * qd(1) * (p.rp * p.rp * Scalar(3) + p.l * p.l) * Scalar(0.08333333333333333) * p.mp * Scalar(0.5) + (w0 * w0 + w1 * w1) * p.mp * Scalar(0.5);
+    const Scalar w0 = qd(0) * qd(0);
+    const Scalar w1 = qd(1) * qd(1);
+    T = w0 * p.mp * Scalar(0.5) - qd(1) * cos(q(1)) * p.mp * Scalar(0.5) * qd(0) * p.l + w0 * Scalar(0.5) * p.mc + Scalar(0.125) * p.mp * p.rp * p.rp * w1 + Scalar(0.16666666666666666) * p.mp * w1 * p.l * p.l;
     return T;
   }
 
@@ -153,7 +142,7 @@ struct Model {
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
     Scalar V = Scalar(0);
-    V = p.g * p.mp * cos(q(1)) * Scalar(0.5) * p.l;
+    V = p.g * cos(q(1)) * p.mp * Scalar(0.5) * p.l;
     return V;
   }
 

@@ -22,7 +22,7 @@ struct Model {
   static constexpr const char* name = "double_pendulum";
   static constexpr const char* description = "Planar double pendulum: two point masses on massless rods, relative angles";
   static constexpr const char* generator_version = "0.1.0";
-  static constexpr const char* model_hash = "a4330621e88feaef";
+  static constexpr const char* model_hash = "6e9d91fc247fce9b";
   static constexpr std::array<const char*, nq> coordinate_names{{"theta1", "theta2"}};
   static constexpr std::array<const char*, nu> input_names{{}};
   static constexpr std::array<const char*, np> parameter_names{{"m1", "m2", "l1", "l2", "g"}};
@@ -58,19 +58,12 @@ struct Model {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
-    const Scalar w0 = sin(q(0));
-    const Scalar w1 = p.l1 * w0;
+    const Scalar w0 = p.l2 * p.l2 * p.m2;
+    const Scalar w1 = p.l1 * p.l1;
     const Scalar w2 = cos(q(1));
-    const Scalar w3 = sin(q(1));
-    const Scalar w4 = cos(q(0));
-    const Scalar w5 = (w2 * w0 + w3 * w4) * p.l2;
-    const Scalar w6 = w1 + w5;
-    const Scalar w7 = (w3 * w0 - w2 * w4) * p.l2;
-    const Scalar w8 = p.l1 * w4;
-    const Scalar w9 = w7 - w8;
-    M(0, 0) = (w6 * w6 + w9 * w9) * p.m2 + p.m1 * (w1 * w1 + w8 * w8);
-    M(0, 1) = (w7 * w9 + w6 * w5) * p.m2;
-    M(1, 1) = (w7 * w7 + w5 * w5) * p.m2;
+    M(0, 0) = w0 + p.m1 * w1 + p.l1 * w2 * Scalar(2) * p.l2 * p.m2 + p.m2 * w1;
+    M(0, 1) = w0 + p.l1 * w2 * p.l2 * p.m2;
+    M(1, 1) = w0;
     M(1, 0) = M(0, 1);
   }
 
@@ -81,25 +74,12 @@ struct Model {
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
     const Scalar w0 = sin(q(1));
-    const Scalar w1 = sin(q(0));
-    const Scalar w2 = cos(q(1));
-    const Scalar w3 = cos(q(0));
-    const Scalar w4 = w0 * w1 - w2 * w3;
-    const Scalar w5 = w4 * p.l2;
-    const Scalar w6 = p.l1 * w3;
-    const Scalar w7 = p.l1 * qd(0);
-    const Scalar w8 = qd(0) * w1 * w7;
-    const Scalar w9 = w2 * w1 + w0 * w3;
-    const Scalar w10 = qd(1) + qd(0);
-    const Scalar w11 = p.l2 * w10;
-    const Scalar w12 = w8 + w9 * w10 * w11;
-    const Scalar w13 = qd(0) * w7 * w3;
-    const Scalar w14 = w13 - w4 * w10 * w11;
-    const Scalar w15 = p.l1 * w1;
-    const Scalar w16 = w9 * p.l2;
-    const Scalar w17 = w15 + w16;
-    F(0) = -(((w5 - w6) * w12 + w14 * w17) * p.m2 + p.m1 * p.g * w15 + p.g * w17 * p.m2 - p.m1 * (w6 * w8 - w13 * w15));
-    F(1) = -((w5 * w12 + w14 * w16) * p.m2 + p.g * p.m2 * w16);
+    const Scalar w1 = p.l1 * w0 * qd(0) * qd(0) * p.l2 * p.m2;
+    const Scalar w2 = qd(1) + qd(0);
+    const Scalar w3 = sin(q(0));
+    const Scalar w4 = p.g * sin(q(0) + q(1)) * p.l2 * p.m2;
+    F(0) = p.l1 * w0 * p.l2 * w2 * w2 * p.m2 - w1 - p.m1 * p.l1 * p.g * w3 - w4 - p.l1 * p.g * w3 * p.m2;
+    F(1) = -(w1 + w4);
   }
 
   /// M and F together, sharing their common subexpressions
@@ -108,30 +88,19 @@ struct Model {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
-    const Scalar w0 = sin(q(0));
-    const Scalar w1 = p.l1 * w0;
+    const Scalar w0 = p.l2 * p.l2 * p.m2;
+    const Scalar w1 = p.l1 * p.l1;
     const Scalar w2 = cos(q(1));
     const Scalar w3 = sin(q(1));
-    const Scalar w4 = cos(q(0));
-    const Scalar w5 = w2 * w0 + w3 * w4;
-    const Scalar w6 = w5 * p.l2;
-    const Scalar w7 = w1 + w6;
-    const Scalar w8 = w3 * w0 - w2 * w4;
-    const Scalar w9 = w8 * p.l2;
-    const Scalar w10 = p.l1 * w4;
-    const Scalar w11 = w9 - w10;
-    const Scalar w12 = p.l1 * qd(0);
-    const Scalar w13 = qd(0) * w0 * w12;
-    const Scalar w14 = qd(1) + qd(0);
-    const Scalar w15 = p.l2 * w14;
-    const Scalar w16 = w13 + w5 * w14 * w15;
-    const Scalar w17 = qd(0) * w12 * w4;
-    const Scalar w18 = w17 - w8 * w14 * w15;
-    M(0, 0) = (w7 * w7 + w11 * w11) * p.m2 + p.m1 * (w1 * w1 + w10 * w10);
-    M(0, 1) = (w9 * w11 + w7 * w6) * p.m2;
-    M(1, 1) = (w9 * w9 + w6 * w6) * p.m2;
-    F(0) = -((w11 * w16 + w18 * w7) * p.m2 + p.m1 * p.g * w1 + p.g * w7 * p.m2 - p.m1 * (w10 * w13 - w17 * w1));
-    F(1) = -((w9 * w16 + w18 * w6) * p.m2 + p.g * p.m2 * w6);
+    const Scalar w4 = p.l1 * w3 * qd(0) * qd(0) * p.l2 * p.m2;
+    const Scalar w5 = qd(1) + qd(0);
+    const Scalar w6 = sin(q(0));
+    const Scalar w7 = p.g * sin(q(0) + q(1)) * p.l2 * p.m2;
+    M(0, 0) = w0 + p.m1 * w1 + p.l1 * w2 * Scalar(2) * p.l2 * p.m2 + p.m2 * w1;
+    M(0, 1) = w0 + p.l1 * w2 * p.l2 * p.m2;
+    M(1, 1) = w0;
+    F(0) = p.l1 * w3 * p.l2 * w5 * w5 * p.m2 - w4 - p.m1 * p.l1 * p.g * w6 - w7 - p.l1 * p.g * w6 * p.m2;
+    F(1) = -(w4 + w7);
     M(1, 0) = M(0, 1);
   }
 
@@ -174,16 +143,10 @@ struct Model {
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
     Scalar T = Scalar(0);
-    const Scalar w0 = cos(q(1));
-    const Scalar w1 = sin(q(0));
-    const Scalar w2 = sin(q(1));
-    const Scalar w3 = cos(q(0));
-    const Scalar w4 = qd(1) + qd(0);
-    const Scalar w5 = p.l1 * qd(0) * w1;
-    const Scalar w6 = (w0 * w1 + w2 * w3) * p.l2 * w4 + w5;
-    const Scalar w7 = p.l1 * qd(0) * w3;
-    const Scalar w8 = w7 - (w2 * w1 - w0 * w3) * p.l2 * w4;
-    T = Scalar(0.5) * (w6 * w6 + w8 * w8) * p.m2 + p.m1 * Scalar(0.5) * (w7 * w7 + w5 * w5);
+    const Scalar w0 = qd(0) * qd(0);
+    const Scalar w1 = p.l1 * p.l1;
+    const Scalar w2 = qd(1) + qd(0);
+    T = w0 * Scalar(0.5) * p.m2 * w1 + p.l2 * p.l2 * Scalar(0.5) * w2 * w2 * p.m2 + p.l1 * cos(q(1)) * p.l2 * qd(0) * w2 * p.m2 + p.m1 * w0 * Scalar(0.5) * w1;
     return T;
   }
 
@@ -195,8 +158,7 @@ struct Model {
     using std::log; using std::abs; using std::pow;
     Scalar V = Scalar(0);
     const Scalar w0 = cos(q(0));
-    const Scalar w1 = p.l1 * w0;
-    V = -(p.m1 * p.g * w1 - p.g * ((sin(q(1)) * sin(q(0)) - cos(q(1)) * w0) * p.l2 - w1) * p.m2);
+    V = -(p.g * cos(q(0) + q(1)) * p.l2 * p.m2 + p.m1 * p.l1 * p.g * w0 + p.l1 * p.g * p.m2 * w0);
     return V;
   }
 

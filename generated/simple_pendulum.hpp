@@ -22,7 +22,7 @@ struct Model {
   static constexpr const char* name = "simple_pendulum";
   static constexpr const char* description = "Simple pendulum: a point mass on a massless rod in a vertical plane";
   static constexpr const char* generator_version = "0.1.0";
-  static constexpr const char* model_hash = "080c2340af28b876";
+  static constexpr const char* model_hash = "776ae9e49a4b3410";
   static constexpr std::array<const char*, nq> coordinate_names{{"theta"}};
   static constexpr std::array<const char*, nu> input_names{{}};
   static constexpr std::array<const char*, np> parameter_names{{"m", "l", "g"}};
@@ -56,9 +56,7 @@ struct Model {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
-    const Scalar w0 = p.l * sin(q(0));
-    const Scalar w1 = p.l * cos(q(0));
-    M(0, 0) = p.m * (w0 * w0 + w1 * w1);
+    M(0, 0) = p.m * p.l * p.l;
   }
 
   /// F(q, qd, t, u): everything of Lagrange's equations except M qdd
@@ -67,11 +65,7 @@ struct Model {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
-    const Scalar w0 = sin(q(0));
-    const Scalar w1 = p.l * w0;
-    const Scalar w2 = cos(q(0));
-    const Scalar w3 = qd(0) * p.l;
-    F(0) = p.m * (p.l * w2 * qd(0) * w3 * w0 - qd(0) * w3 * w2 * w1) - p.g * p.m * w1;
+    F(0) = -(p.g * p.m * p.l * sin(q(0)));
   }
 
   /// M and F together, sharing their common subexpressions
@@ -80,13 +74,8 @@ struct Model {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
-    const Scalar w0 = sin(q(0));
-    const Scalar w1 = p.l * w0;
-    const Scalar w2 = cos(q(0));
-    const Scalar w3 = p.l * w2;
-    const Scalar w4 = qd(0) * p.l;
-    M(0, 0) = p.m * (w1 * w1 + w3 * w3);
-    F(0) = p.m * (w3 * qd(0) * w4 * w0 - qd(0) * w4 * w2 * w1) - p.g * p.m * w1;
+    M(0, 0) = p.m * p.l * p.l;
+    F(0) = -(p.g * p.m * p.l * sin(q(0)));
   }
 
   /// Xi(q, t) of the Pfaffian constraints Xi qd + Xi_t = 0
@@ -128,9 +117,7 @@ struct Model {
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
     Scalar T = Scalar(0);
-    const Scalar w0 = qd(0) * p.l * cos(q(0));
-    const Scalar w1 = qd(0) * p.l * sin(q(0));
-    T = p.m * Scalar(0.5) * (w0 * w0 + w1 * w1);
+    T = qd(0) * qd(0) * p.m * Scalar(0.5) * p.l * p.l;
     return T;
   }
 
@@ -141,7 +128,7 @@ struct Model {
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
     Scalar V = Scalar(0);
-    V = -(p.g * p.l * cos(q(0)) * p.m);
+    V = -(p.g * p.m * p.l * cos(q(0)));
     return V;
   }
 

@@ -22,7 +22,7 @@ struct Model {
   static constexpr const char* name = "spherical_pendulum";
   static constexpr const char* description = "Spherical pendulum: a point mass on a massless rod with a ball-joint pivot";
   static constexpr const char* generator_version = "0.1.0";
-  static constexpr const char* model_hash = "89c6cacab3272f04";
+  static constexpr const char* model_hash = "607e0420a38706a4";
   static constexpr std::array<const char*, nq> coordinate_names{{"theta", "phi"}};
   static constexpr std::array<const char*, nu> input_names{{}};
   static constexpr std::array<const char*, np> parameter_names{{"m", "l", "g"}};
@@ -57,18 +57,13 @@ struct Model {
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
     const Scalar w0 = sin(q(0));
-    const Scalar w1 = p.l * w0;
-    const Scalar w2 = cos(q(1));
+    const Scalar w1 = p.l * p.l;
+    const Scalar w2 = p.m * w0 * w0 * w1;
     const Scalar w3 = cos(q(0));
-    const Scalar w4 = w2 * p.l * w3;
-    const Scalar w5 = sin(q(1));
-    const Scalar w6 = w5 * p.l * w3;
-    const Scalar w7 = w5 * p.l * w0;
-    const Scalar w8 = w2 * p.l * w0;
-    M(0, 0) = p.m * (w1 * w1 + w4 * w4 + w6 * w6);
-    M(0, 1) = p.m * (w8 * w6 - w4 * w7);
-    M(1, 1) = (w8 * w8 + w7 * w7) * p.m;
-    M(1, 0) = M(0, 1);
+    M(0, 0) = w2 + p.m * w3 * w3 * w1;
+    M(1, 1) = w2;
+    M(0, 1) = Scalar(0);
+    M(1, 0) = Scalar(0);
   }
 
   /// F(q, qd, t, u): everything of Lagrange's equations except M qdd
@@ -78,16 +73,10 @@ struct Model {
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
     const Scalar w0 = sin(q(0));
-    const Scalar w1 = p.l * w0;
-    const Scalar w2 = cos(q(1));
-    const Scalar w3 = cos(q(0));
-    const Scalar w4 = qd(0) * qd(0);
-    const Scalar w5 = w4 * p.l * w0 + qd(1) * qd(1) * p.l * w0;
-    const Scalar w6 = sin(q(1));
-    const Scalar w7 = w2 * w5 + qd(1) * w6 * Scalar(2) * qd(0) * p.l * w3;
-    const Scalar w8 = w6 * w5 - qd(1) * w2 * Scalar(2) * qd(0) * p.l * w3;
-    F(0) = p.m * (w2 * p.l * w3 * w7 + w8 * w6 * p.l * w3 - w4 * p.l * w3 * w1) - p.g * p.m * w1;
-    F(1) = -(p.m * (w6 * p.l * w0 * w7 - w8 * w2 * p.l * w0));
+    const Scalar w1 = p.l * p.l;
+    const Scalar w2 = cos(q(0));
+    F(0) = -(p.g * p.m * p.l * w0 - p.m * w0 * qd(1) * qd(1) * w1 * w2);
+    F(1) = -(qd(1) * Scalar(2) * p.m * qd(0) * w0 * w1 * w2);
   }
 
   /// M and F together, sharing their common subexpressions
@@ -97,24 +86,15 @@ struct Model {
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
     const Scalar w0 = sin(q(0));
-    const Scalar w1 = p.l * w0;
-    const Scalar w2 = cos(q(1));
+    const Scalar w1 = p.l * p.l;
+    const Scalar w2 = p.m * w0 * w0 * w1;
     const Scalar w3 = cos(q(0));
-    const Scalar w4 = w2 * p.l * w3;
-    const Scalar w5 = sin(q(1));
-    const Scalar w6 = w5 * p.l * w3;
-    const Scalar w7 = w5 * p.l * w0;
-    const Scalar w8 = w2 * p.l * w0;
-    const Scalar w9 = qd(0) * qd(0);
-    const Scalar w10 = w9 * p.l * w0 + qd(1) * qd(1) * p.l * w0;
-    const Scalar w11 = w2 * w10 + qd(1) * w5 * Scalar(2) * qd(0) * p.l * w3;
-    const Scalar w12 = w5 * w10 - qd(1) * w2 * Scalar(2) * qd(0) * p.l * w3;
-    M(0, 0) = p.m * (w1 * w1 + w4 * w4 + w6 * w6);
-    M(0, 1) = p.m * (w8 * w6 - w4 * w7);
-    M(1, 1) = (w8 * w8 + w7 * w7) * p.m;
-    F(0) = p.m * (w4 * w11 + w12 * w6 - w9 * p.l * w3 * w1) - p.g * p.m * w1;
-    F(1) = -(p.m * (w7 * w11 - w12 * w8));
-    M(1, 0) = M(0, 1);
+    M(0, 0) = w2 + p.m * w3 * w3 * w1;
+    M(1, 1) = w2;
+    F(0) = -(p.g * p.m * p.l * w0 - p.m * w0 * qd(1) * qd(1) * w1 * w3);
+    F(1) = -(qd(1) * Scalar(2) * p.m * qd(0) * w0 * w1 * w3);
+    M(0, 1) = Scalar(0);
+    M(1, 0) = Scalar(0);
   }
 
   /// Xi(q, t) of the Pfaffian constraints Xi qd + Xi_t = 0
@@ -156,14 +136,12 @@ struct Model {
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
     Scalar T = Scalar(0);
-    const Scalar w0 = sin(q(0));
-    const Scalar w1 = qd(0) * p.l * w0;
-    const Scalar w2 = sin(q(1));
-    const Scalar w3 = cos(q(1));
-    const Scalar w4 = cos(q(0));
-    const Scalar w5 = qd(1) * w2 * p.l * w0 - w3 * qd(0) * p.l * w4;
-    const Scalar w6 = w2 * qd(0) * p.l * w4 + qd(1) * w3 * p.l * w0;
-    T = p.m * (w1 * w1 + w5 * w5 + w6 * w6) * Scalar(0.5);
+    const Scalar w0 = qd(0) * qd(0);
+    const Scalar w1 = cos(q(0));
+    const Scalar w2 = p.l * p.l;
+    const Scalar w3 = sin(q(0));
+    const Scalar w4 = w3 * w3;
+    T = w0 * p.m * Scalar(0.5) * w1 * w1 * w2 + p.m * Scalar(0.5) * w4 * qd(1) * qd(1) * w2 + w0 * p.m * Scalar(0.5) * w4 * w2;
     return T;
   }
 
@@ -174,7 +152,7 @@ struct Model {
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
     Scalar V = Scalar(0);
-    V = -(p.g * p.l * cos(q(0)) * p.m);
+    V = -(p.g * p.m * p.l * cos(q(0)));
     return V;
   }
 
