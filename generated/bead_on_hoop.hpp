@@ -22,7 +22,7 @@ struct Model {
   static constexpr const char* name = "bead_on_hoop";
   static constexpr const char* description = "Bead sliding on a hoop turning at a constant rate about its vertical diameter";
   static constexpr const char* generator_version = "0.1.0";
-  static constexpr const char* model_hash = "dcad9e14feac8b86";
+  static constexpr const char* model_hash = "d2530ee8a0ecec3c";
   static constexpr std::array<const char*, nq> coordinate_names{{"theta"}};
   static constexpr std::array<const char*, nu> input_names{{}};
   static constexpr std::array<const char*, np> parameter_names{{"m", "R", "Omega", "g"}};
@@ -51,137 +51,242 @@ struct Model {
     std::array<Scalar*, np> fields() noexcept { return {{&m, &R, &Omega, &g}}; }
   };
 
+  /// The values of the functions below that depend on the parameters only, computed once per
+  /// parameter set. Immutable: for other parameters, build other Constants.
+  template <class Scalar>
+  class Constants {
+   public:
+    /// Computes every constant from a copy of the parameters.
+    explicit Constants(const Parameters<Scalar>& parameters) noexcept : p(parameters) {
+      using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
+      using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
+      using std::log; using std::abs; using std::pow;
+      k0 = Scalar(2) * p.Omega * p.R;
+      k1 = p.Omega * p.R;
+      k2 = p.g * p.m;
+      k3 = p.m * Scalar(0.5);
+      k4 = acos(p.g / (p.R * p.Omega * p.Omega));
+    }
+    /// The parameters these constants were computed from.
+    const Parameters<Scalar>& parameters() const noexcept { return p; }
+
+   private:
+    friend struct Model;
+    Parameters<Scalar> p;
+    Scalar k0, k1, k2, k3, k4;
+  };
+
   /// M(q, t), symmetric positive (semi)definite
   template <class Scalar>
-  static void mass_matrix([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] MassMatrix<Scalar>& M) noexcept {
+  static void mass_matrix([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] MassMatrix<Scalar>& M) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
-    const Scalar w0 = t * p.Omega;
+    const Scalar w0 = t * c.p.Omega;
     const Scalar w1 = cos(q(0));
-    const Scalar w2 = sin(w0) * p.R * w1;
-    const Scalar w3 = cos(w0) * p.R * w1;
-    const Scalar w4 = sin(q(0)) * p.R;
-    M(0, 0) = (w2 * w2 + w3 * w3 + w4 * w4) * p.m;
+    const Scalar w2 = sin(w0) * c.p.R * w1;
+    const Scalar w3 = cos(w0) * c.p.R * w1;
+    const Scalar w4 = sin(q(0)) * c.p.R;
+    M(0, 0) = (w2 * w2 + w3 * w3 + w4 * w4) * c.p.m;
+  }
+
+  /// M(q, t), symmetric positive (semi)definite
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static void mass_matrix([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] MassMatrix<Scalar>& M) noexcept {
+    mass_matrix(t, q, Constants<Scalar>(p), M);
   }
 
   /// F(q, qd, t, u): everything of Lagrange's equations except M qdd
   template <class Scalar>
-  static void forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] Vector<Scalar>& F) noexcept {
+  static void forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] Vector<Scalar>& F) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
-    const Scalar w0 = t * p.Omega;
+    const Scalar w0 = t * c.p.Omega;
     const Scalar w1 = cos(w0);
     const Scalar w2 = cos(q(0));
     const Scalar w3 = qd(0) * qd(0);
     const Scalar w4 = sin(q(0));
-    const Scalar w5 = w3 * w4 * p.R + p.Omega * w4 * p.Omega * p.R;
+    const Scalar w5 = w3 * w4 * c.p.R + c.p.Omega * w4 * c.k1;
     const Scalar w6 = sin(w0);
-    const Scalar w7 = w4 * p.R;
-    F(0) = p.m * ((w5 * w6 - w1 * Scalar(2) * qd(0) * p.Omega * p.R * w2) * w6 * p.R * w2 + w1 * p.R * w2 * (Scalar(2) * w6 * qd(0) * p.Omega * p.R * w2 + w1 * w5) - w7 * w3 * p.R * w2) - p.g * w7 * p.m;
+    const Scalar w7 = w4 * c.p.R;
+    F(0) = c.p.m * ((w5 * w6 - w1 * c.k0 * qd(0) * w2) * w6 * c.p.R * w2 + w1 * c.p.R * w2 * (c.k0 * w6 * qd(0) * w2 + w1 * w5) - w7 * w3 * c.p.R * w2) - c.k2 * w7;
+  }
+
+  /// F(q, qd, t, u): everything of Lagrange's equations except M qdd
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static void forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] Vector<Scalar>& F) noexcept {
+    forcing(t, q, qd, u, Constants<Scalar>(p), F);
   }
 
   /// M and F together, sharing their common subexpressions
   template <class Scalar>
-  static void mass_matrix_and_forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] MassMatrix<Scalar>& M, [[maybe_unused]] Vector<Scalar>& F) noexcept {
+  static void mass_matrix_and_forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] MassMatrix<Scalar>& M, [[maybe_unused]] Vector<Scalar>& F) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
-    const Scalar w0 = t * p.Omega;
+    const Scalar w0 = t * c.p.Omega;
     const Scalar w1 = sin(w0);
     const Scalar w2 = cos(q(0));
-    const Scalar w3 = w1 * p.R * w2;
+    const Scalar w3 = w1 * c.p.R * w2;
     const Scalar w4 = cos(w0);
-    const Scalar w5 = w4 * p.R * w2;
+    const Scalar w5 = w4 * c.p.R * w2;
     const Scalar w6 = sin(q(0));
-    const Scalar w7 = w6 * p.R;
+    const Scalar w7 = w6 * c.p.R;
     const Scalar w8 = qd(0) * qd(0);
-    const Scalar w9 = w8 * w6 * p.R + p.Omega * w6 * p.Omega * p.R;
-    M(0, 0) = (w3 * w3 + w5 * w5 + w7 * w7) * p.m;
-    F(0) = p.m * ((w9 * w1 - w4 * Scalar(2) * qd(0) * p.Omega * p.R * w2) * w3 + w5 * (Scalar(2) * w1 * qd(0) * p.Omega * p.R * w2 + w4 * w9) - w7 * w8 * p.R * w2) - p.g * w7 * p.m;
+    const Scalar w9 = w8 * w6 * c.p.R + c.p.Omega * w6 * c.k1;
+    M(0, 0) = (w3 * w3 + w5 * w5 + w7 * w7) * c.p.m;
+    F(0) = c.p.m * ((w9 * w1 - w4 * c.k0 * qd(0) * w2) * w3 + w5 * (c.k0 * w1 * qd(0) * w2 + w4 * w9) - w7 * w8 * c.p.R * w2) - c.k2 * w7;
+  }
+
+  /// M and F together, sharing their common subexpressions
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static void mass_matrix_and_forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] MassMatrix<Scalar>& M, [[maybe_unused]] Vector<Scalar>& F) noexcept {
+    mass_matrix_and_forcing(t, q, qd, u, Constants<Scalar>(p), M, F);
   }
 
   /// Xi(q, t) of the Pfaffian constraints Xi qd + Xi_t = 0
   template <class Scalar>
+  static void constraint_jacobian([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] ConstraintJacobian<Scalar>& Xi) noexcept {
+    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
+    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
+    using std::log; using std::abs; using std::pow;
+  }
+
+  /// Xi(q, t) of the Pfaffian constraints Xi qd + Xi_t = 0
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
   static void constraint_jacobian([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintJacobian<Scalar>& Xi) noexcept {
+    constraint_jacobian(t, q, Constants<Scalar>(p), Xi);
+  }
+
+  /// Xi_t(q, t)
+  template <class Scalar>
+  static void constraint_rate_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] ConstraintVector<Scalar>& Xi_t) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
   }
 
   /// Xi_t(q, t)
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
   template <class Scalar>
   static void constraint_rate_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintVector<Scalar>& Xi_t) noexcept {
+    constraint_rate_term(t, q, Constants<Scalar>(p), Xi_t);
+  }
+
+  /// dXi/dt qd + dXi_t/dt, so that Xi qdd + b = 0
+  template <class Scalar>
+  static void constraint_acceleration_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] ConstraintVector<Scalar>& b) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
   }
 
   /// dXi/dt qd + dXi_t/dt, so that Xi qdd + b = 0
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
   template <class Scalar>
   static void constraint_acceleration_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintVector<Scalar>& b) noexcept {
+    constraint_acceleration_term(t, q, qd, Constants<Scalar>(p), b);
+  }
+
+  /// phi(q, t) of the holonomic constraints
+  template <class Scalar>
+  static void holonomic_residuals([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] HolonomicVector<Scalar>& phi) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
   }
 
   /// phi(q, t) of the holonomic constraints
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
   template <class Scalar>
   static void holonomic_residuals([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] HolonomicVector<Scalar>& phi) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+    holonomic_residuals(t, q, Constants<Scalar>(p), phi);
   }
 
   /// T(q, qd, t)
   template <class Scalar>
-  static Scalar kinetic_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Parameters<Scalar>& p) noexcept {
+  static Scalar kinetic_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Constants<Scalar>& c) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
     Scalar T = Scalar(0);
-    const Scalar w0 = t * p.Omega;
+    const Scalar w0 = t * c.p.Omega;
     const Scalar w1 = sin(w0);
     const Scalar w2 = sin(q(0));
     const Scalar w3 = cos(w0);
     const Scalar w4 = cos(q(0));
-    const Scalar w5 = w3 * qd(0) * p.R * w4 - w1 * w2 * p.Omega * p.R;
-    const Scalar w6 = w3 * w2 * p.Omega * p.R + w1 * qd(0) * p.R * w4;
-    const Scalar w7 = qd(0) * w2 * p.R;
-    T = p.m * Scalar(0.5) * (w5 * w5 + w6 * w6 + w7 * w7);
+    const Scalar w5 = w3 * qd(0) * c.p.R * w4 - w1 * w2 * c.k1;
+    const Scalar w6 = w3 * w2 * c.k1 + w1 * qd(0) * c.p.R * w4;
+    const Scalar w7 = qd(0) * w2 * c.p.R;
+    T = c.k3 * (w5 * w5 + w6 * w6 + w7 * w7);
     return T;
+  }
+
+  /// T(q, qd, t)
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static Scalar kinetic_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Parameters<Scalar>& p) noexcept {
+    return kinetic_energy(t, q, qd, Constants<Scalar>(p));
   }
 
   /// V(q, t)
   template <class Scalar>
-  static Scalar potential_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p) noexcept {
+  static Scalar potential_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
     Scalar V = Scalar(0);
-    V = -(p.g * p.R * cos(q(0)) * p.m);
+    V = -(c.k2 * c.p.R * cos(q(0)));
     return V;
+  }
+
+  /// V(q, t)
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static Scalar potential_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p) noexcept {
+    return potential_energy(t, q, Constants<Scalar>(p));
   }
 
   /// the model's named outputs, in the order of output_names
   template <class Scalar>
-  static void outputs([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] OutputVector<Scalar>& y) noexcept {
+  static void outputs([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] OutputVector<Scalar>& y) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
-    const Scalar w0 = t * p.Omega;
+    const Scalar w0 = t * c.p.Omega;
     const Scalar w1 = cos(w0);
     const Scalar w2 = sin(q(0));
     const Scalar w3 = sin(w0);
     const Scalar w4 = cos(q(0));
-    y(0) = w1 * w2 * p.R;
-    y(1) = w3 * w2 * p.R;
-    y(2) = -(p.R * w4);
-    y(3) = w1 * qd(0) * p.R * w4 - w3 * w2 * p.Omega * p.R;
-    y(4) = w1 * w2 * p.Omega * p.R + w3 * qd(0) * p.R * w4;
-    y(5) = qd(0) * w2 * p.R;
-    y(6) = acos(p.g / (p.R * p.Omega * p.Omega));
+    y(0) = w1 * w2 * c.p.R;
+    y(1) = w3 * w2 * c.p.R;
+    y(2) = -(c.p.R * w4);
+    y(3) = w1 * qd(0) * c.p.R * w4 - w3 * w2 * c.k1;
+    y(4) = w1 * w2 * c.k1 + w3 * qd(0) * c.p.R * w4;
+    y(5) = qd(0) * w2 * c.p.R;
+    y(6) = c.k4;
+  }
+
+  /// the model's named outputs, in the order of output_names
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static void outputs([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] OutputVector<Scalar>& y) noexcept {
+    outputs(t, q, qd, u, Constants<Scalar>(p), y);
   }
 };
 

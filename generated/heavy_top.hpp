@@ -22,7 +22,7 @@ struct Model {
   static constexpr const char* name = "heavy_top";
   static constexpr const char* description = "Heavy symmetric top spinning on a fixed pivot at its tip, 3-1-3 Euler angles";
   static constexpr const char* generator_version = "0.1.0";
-  static constexpr const char* model_hash = "8cd28e1869028717";
+  static constexpr const char* model_hash = "47a7eea3145d95fd";
   static constexpr std::array<const char*, nq> coordinate_names{{"psi", "theta", "phi"}};
   static constexpr std::array<const char*, nu> input_names{{}};
   static constexpr std::array<const char*, np> parameter_names{{"m", "l", "J1", "J3", "g"}};
@@ -52,9 +52,31 @@ struct Model {
     std::array<Scalar*, np> fields() noexcept { return {{&m, &l, &J1, &J3, &g}}; }
   };
 
+  /// The values of the functions below that depend on the parameters only, computed once per
+  /// parameter set. Immutable: for other parameters, build other Constants.
+  template <class Scalar>
+  class Constants {
+   public:
+    /// Computes every constant from a copy of the parameters.
+    explicit Constants(const Parameters<Scalar>& parameters) noexcept : p(parameters) {
+      using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
+      using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
+      using std::log; using std::abs; using std::pow;
+      k0 = p.g * p.m;
+      k1 = p.m * Scalar(0.5);
+    }
+    /// The parameters these constants were computed from.
+    const Parameters<Scalar>& parameters() const noexcept { return p; }
+
+   private:
+    friend struct Model;
+    Parameters<Scalar> p;
+    Scalar k0, k1;
+  };
+
   /// M(q, t), symmetric positive (semi)definite
   template <class Scalar>
-  static void mass_matrix([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] MassMatrix<Scalar>& M) noexcept {
+  static void mass_matrix([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] MassMatrix<Scalar>& M) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
@@ -64,34 +86,42 @@ struct Model {
     const Scalar w3 = sin(q(2));
     const Scalar w4 = w0 * w3;
     const Scalar w5 = cos(q(1));
-    const Scalar w6 = w5 * p.J3;
+    const Scalar w6 = w5 * c.p.J3;
     const Scalar w7 = cos(q(0));
     const Scalar w8 = sin(q(0));
     const Scalar w9 = w3 * w7 + w5 * w8 * w1;
     const Scalar w10 = w5 * w3 * w8 - w7 * w1;
-    const Scalar w11 = w4 * p.l * w9 - w2 * p.l * w10;
+    const Scalar w11 = w4 * c.p.l * w9 - w2 * c.p.l * w10;
     const Scalar w12 = w5 * w3 * w7 + w8 * w1;
     const Scalar w13 = w3 * w8 - w5 * w7 * w1;
-    const Scalar w14 = w2 * w12 * p.l + w4 * w13 * p.l;
-    const Scalar w15 = w13 * p.l * w1 - w12 * w3 * p.l;
-    const Scalar w16 = w3 * p.l * w10 + p.l * w9 * w1;
-    const Scalar w17 = p.J1 * w1;
-    const Scalar w18 = w3 * p.J1;
-    const Scalar w19 = w4 * w3 * p.l + w2 * p.l * w1;
-    M(0, 0) = w2 * w2 * p.J1 + w4 * w4 * p.J1 + w5 * w6 + p.m * (w11 * w11 + w14 * w14);
-    M(0, 1) = -(w2 * w18 - p.m * (w14 * w15 + w16 * w11) - w4 * w17);
+    const Scalar w14 = w2 * w12 * c.p.l + w4 * w13 * c.p.l;
+    const Scalar w15 = w13 * c.p.l * w1 - w12 * w3 * c.p.l;
+    const Scalar w16 = w3 * c.p.l * w10 + c.p.l * w9 * w1;
+    const Scalar w17 = c.p.J1 * w1;
+    const Scalar w18 = w3 * c.p.J1;
+    const Scalar w19 = w4 * w3 * c.p.l + w2 * c.p.l * w1;
+    M(0, 0) = w2 * w2 * c.p.J1 + w4 * w4 * c.p.J1 + w5 * w6 + c.p.m * (w11 * w11 + w14 * w14);
+    M(0, 1) = -(w2 * w18 - c.p.m * (w14 * w15 + w16 * w11) - w4 * w17);
     M(0, 2) = w6;
-    M(1, 1) = p.m * (w16 * w16 + w19 * w19 + w15 * w15) + w17 * w1 + w3 * w18;
-    M(2, 2) = p.J3;
+    M(1, 1) = c.p.m * (w16 * w16 + w19 * w19 + w15 * w15) + w17 * w1 + w3 * w18;
+    M(2, 2) = c.p.J3;
     M(1, 2) = Scalar(0);
     M(1, 0) = M(0, 1);
     M(2, 0) = M(0, 2);
     M(2, 1) = Scalar(0);
   }
 
+  /// M(q, t), symmetric positive (semi)definite
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static void mass_matrix([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] MassMatrix<Scalar>& M) noexcept {
+    mass_matrix(t, q, Constants<Scalar>(p), M);
+  }
+
   /// F(q, qd, t, u): everything of Lagrange's equations except M qdd
   template <class Scalar>
-  static void forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] Vector<Scalar>& F) noexcept {
+  static void forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] Vector<Scalar>& F) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
@@ -107,33 +137,41 @@ struct Model {
     const Scalar w9 = w4 * w1 * w5 - w3 * w6;
     const Scalar w10 = w0 * qd(0) * w6 - qd(1) * w1;
     const Scalar w11 = w10 * qd(2) + qd(1) * w4 * qd(0) * w1;
-    const Scalar w12 = w10 * p.l;
+    const Scalar w12 = w10 * c.p.l;
     const Scalar w13 = w4 * qd(0) + qd(2);
-    const Scalar w14 = w12 * w13 - p.l * w11;
+    const Scalar w14 = w12 * w13 - c.p.l * w11;
     const Scalar w15 = qd(1) * w6 + w0 * qd(0) * w1;
-    const Scalar w16 = p.l * w15;
+    const Scalar w16 = c.p.l * w15;
     const Scalar w17 = w16 * w15 + w12 * w10;
     const Scalar w18 = w15 * qd(2) - qd(1) * w4 * qd(0) * w6;
-    const Scalar w19 = p.l * w18 - w13 * w16;
+    const Scalar w19 = c.p.l * w18 - w13 * w16;
     const Scalar w20 = w14 * w7 + w0 * w5 * w17 - w19 * w9;
     const Scalar w21 = w4 * w1 * w3 + w5 * w6;
     const Scalar w22 = w1 * w5 - w4 * w3 * w6;
     const Scalar w23 = w21 * w19 - w17 * w0 * w3 + w14 * w22;
-    const Scalar w24 = w13 * p.J3;
-    const Scalar w25 = w10 * p.J1;
-    const Scalar w26 = w25 * w13 - w10 * w24 - p.J1 * w11;
-    const Scalar w27 = p.J1 * w15;
-    const Scalar w28 = w18 * p.J1 - w27 * w13 + w15 * w24;
-    const Scalar w29 = qd(1) * w0 * qd(0) * p.J3 - w25 * w15 + w27 * w10;
-    const Scalar w30 = w2 * w1 * p.l + w8 * p.l * w6;
-    F(0) = p.m * ((w2 * p.l * w7 - w8 * p.l * w9) * w20 + (w8 * w21 * p.l + w2 * w22 * p.l) * w23) + w26 * w2 + w8 * w28 + w4 * w29;
-    F(1) = p.g * p.m * w30 + ((w22 * p.l * w6 - w21 * w1 * p.l) * w23 + w30 * (w8 * w14 - w2 * w19 - w17 * w4) + (w1 * p.l * w9 + p.l * w7 * w6) * w20) * p.m + w26 * w6 - w1 * w28;
+    const Scalar w24 = w13 * c.p.J3;
+    const Scalar w25 = w10 * c.p.J1;
+    const Scalar w26 = w25 * w13 - w10 * w24 - c.p.J1 * w11;
+    const Scalar w27 = c.p.J1 * w15;
+    const Scalar w28 = w18 * c.p.J1 - w27 * w13 + w15 * w24;
+    const Scalar w29 = qd(1) * w0 * qd(0) * c.p.J3 - w25 * w15 + w27 * w10;
+    const Scalar w30 = w2 * w1 * c.p.l + w8 * c.p.l * w6;
+    F(0) = c.p.m * ((w2 * c.p.l * w7 - w8 * c.p.l * w9) * w20 + (w8 * w21 * c.p.l + w2 * w22 * c.p.l) * w23) + w26 * w2 + w8 * w28 + w4 * w29;
+    F(1) = c.k0 * w30 + ((w22 * c.p.l * w6 - w21 * w1 * c.p.l) * w23 + w30 * (w8 * w14 - w2 * w19 - w17 * w4) + (w1 * c.p.l * w9 + c.p.l * w7 * w6) * w20) * c.p.m + w26 * w6 - w1 * w28;
     F(2) = w29;
+  }
+
+  /// F(q, qd, t, u): everything of Lagrange's equations except M qdd
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static void forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] Vector<Scalar>& F) noexcept {
+    forcing(t, q, qd, u, Constants<Scalar>(p), F);
   }
 
   /// M and F together, sharing their common subexpressions
   template <class Scalar>
-  static void mass_matrix_and_forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] MassMatrix<Scalar>& M, [[maybe_unused]] Vector<Scalar>& F) noexcept {
+  static void mass_matrix_and_forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] MassMatrix<Scalar>& M, [[maybe_unused]] Vector<Scalar>& F) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
@@ -143,45 +181,45 @@ struct Model {
     const Scalar w3 = sin(q(2));
     const Scalar w4 = w0 * w3;
     const Scalar w5 = cos(q(1));
-    const Scalar w6 = w5 * p.J3;
+    const Scalar w6 = w5 * c.p.J3;
     const Scalar w7 = cos(q(0));
     const Scalar w8 = sin(q(0));
     const Scalar w9 = w3 * w7 + w5 * w8 * w1;
     const Scalar w10 = w5 * w3 * w8 - w7 * w1;
-    const Scalar w11 = w4 * p.l * w9 - w2 * p.l * w10;
+    const Scalar w11 = w4 * c.p.l * w9 - w2 * c.p.l * w10;
     const Scalar w12 = w5 * w3 * w7 + w8 * w1;
     const Scalar w13 = w3 * w8 - w5 * w7 * w1;
-    const Scalar w14 = w2 * w12 * p.l + w4 * w13 * p.l;
-    const Scalar w15 = w13 * p.l * w1 - w12 * w3 * p.l;
-    const Scalar w16 = w3 * p.l * w10 + p.l * w9 * w1;
-    const Scalar w17 = p.J1 * w1;
-    const Scalar w18 = w3 * p.J1;
-    const Scalar w19 = w4 * w3 * p.l + w2 * p.l * w1;
+    const Scalar w14 = w2 * w12 * c.p.l + w4 * w13 * c.p.l;
+    const Scalar w15 = w13 * c.p.l * w1 - w12 * w3 * c.p.l;
+    const Scalar w16 = w3 * c.p.l * w10 + c.p.l * w9 * w1;
+    const Scalar w17 = c.p.J1 * w1;
+    const Scalar w18 = w3 * c.p.J1;
+    const Scalar w19 = w4 * w3 * c.p.l + w2 * c.p.l * w1;
     const Scalar w20 = w0 * qd(0) * w1 - qd(1) * w3;
     const Scalar w21 = w20 * qd(2) + qd(1) * w5 * qd(0) * w3;
-    const Scalar w22 = w20 * p.l;
+    const Scalar w22 = w20 * c.p.l;
     const Scalar w23 = w5 * qd(0) + qd(2);
-    const Scalar w24 = w22 * w23 - p.l * w21;
+    const Scalar w24 = w22 * w23 - c.p.l * w21;
     const Scalar w25 = qd(1) * w1 + w0 * qd(0) * w3;
-    const Scalar w26 = p.l * w25;
+    const Scalar w26 = c.p.l * w25;
     const Scalar w27 = w26 * w25 + w22 * w20;
     const Scalar w28 = w25 * qd(2) - qd(1) * w5 * qd(0) * w1;
-    const Scalar w29 = p.l * w28 - w23 * w26;
+    const Scalar w29 = c.p.l * w28 - w23 * w26;
     const Scalar w30 = w24 * w9 + w0 * w8 * w27 - w29 * w10;
     const Scalar w31 = w12 * w29 - w27 * w0 * w7 + w24 * w13;
-    const Scalar w32 = w23 * p.J3;
-    const Scalar w33 = w20 * p.J1;
-    const Scalar w34 = w33 * w23 - w20 * w32 - p.J1 * w21;
-    const Scalar w35 = p.J1 * w25;
-    const Scalar w36 = w28 * p.J1 - w35 * w23 + w25 * w32;
-    const Scalar w37 = qd(1) * w0 * qd(0) * p.J3 - w33 * w25 + w35 * w20;
-    M(0, 0) = w2 * w2 * p.J1 + w4 * w4 * p.J1 + w5 * w6 + p.m * (w11 * w11 + w14 * w14);
-    M(0, 1) = -(w2 * w18 - p.m * (w14 * w15 + w16 * w11) - w4 * w17);
+    const Scalar w32 = w23 * c.p.J3;
+    const Scalar w33 = w20 * c.p.J1;
+    const Scalar w34 = w33 * w23 - w20 * w32 - c.p.J1 * w21;
+    const Scalar w35 = c.p.J1 * w25;
+    const Scalar w36 = w28 * c.p.J1 - w35 * w23 + w25 * w32;
+    const Scalar w37 = qd(1) * w0 * qd(0) * c.p.J3 - w33 * w25 + w35 * w20;
+    M(0, 0) = w2 * w2 * c.p.J1 + w4 * w4 * c.p.J1 + w5 * w6 + c.p.m * (w11 * w11 + w14 * w14);
+    M(0, 1) = -(w2 * w18 - c.p.m * (w14 * w15 + w16 * w11) - w4 * w17);
     M(0, 2) = w6;
-    M(1, 1) = p.m * (w16 * w16 + w19 * w19 + w15 * w15) + w17 * w1 + w3 * w18;
-    M(2, 2) = p.J3;
-    F(0) = p.m * (w11 * w30 + w14 * w31) + w34 * w4 + w2 * w36 + w5 * w37;
-    F(1) = p.g * p.m * w19 + (w15 * w31 + w19 * (w2 * w24 - w4 * w29 - w27 * w5) + w16 * w30) * p.m + w34 * w1 - w3 * w36;
+    M(1, 1) = c.p.m * (w16 * w16 + w19 * w19 + w15 * w15) + w17 * w1 + w3 * w18;
+    M(2, 2) = c.p.J3;
+    F(0) = c.p.m * (w11 * w30 + w14 * w31) + w34 * w4 + w2 * w36 + w5 * w37;
+    F(1) = c.k0 * w19 + (w15 * w31 + w19 * (w2 * w24 - w4 * w29 - w27 * w5) + w16 * w30) * c.p.m + w34 * w1 - w3 * w36;
     F(2) = w37;
     M(1, 2) = Scalar(0);
     M(1, 0) = M(0, 1);
@@ -189,41 +227,81 @@ struct Model {
     M(2, 1) = Scalar(0);
   }
 
+  /// M and F together, sharing their common subexpressions
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static void mass_matrix_and_forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] MassMatrix<Scalar>& M, [[maybe_unused]] Vector<Scalar>& F) noexcept {
+    mass_matrix_and_forcing(t, q, qd, u, Constants<Scalar>(p), M, F);
+  }
+
   /// Xi(q, t) of the Pfaffian constraints Xi qd + Xi_t = 0
   template <class Scalar>
+  static void constraint_jacobian([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] ConstraintJacobian<Scalar>& Xi) noexcept {
+    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
+    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
+    using std::log; using std::abs; using std::pow;
+  }
+
+  /// Xi(q, t) of the Pfaffian constraints Xi qd + Xi_t = 0
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
   static void constraint_jacobian([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintJacobian<Scalar>& Xi) noexcept {
+    constraint_jacobian(t, q, Constants<Scalar>(p), Xi);
+  }
+
+  /// Xi_t(q, t)
+  template <class Scalar>
+  static void constraint_rate_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] ConstraintVector<Scalar>& Xi_t) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
   }
 
   /// Xi_t(q, t)
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
   template <class Scalar>
   static void constraint_rate_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintVector<Scalar>& Xi_t) noexcept {
+    constraint_rate_term(t, q, Constants<Scalar>(p), Xi_t);
+  }
+
+  /// dXi/dt qd + dXi_t/dt, so that Xi qdd + b = 0
+  template <class Scalar>
+  static void constraint_acceleration_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] ConstraintVector<Scalar>& b) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
   }
 
   /// dXi/dt qd + dXi_t/dt, so that Xi qdd + b = 0
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
   template <class Scalar>
   static void constraint_acceleration_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintVector<Scalar>& b) noexcept {
+    constraint_acceleration_term(t, q, qd, Constants<Scalar>(p), b);
+  }
+
+  /// phi(q, t) of the holonomic constraints
+  template <class Scalar>
+  static void holonomic_residuals([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] HolonomicVector<Scalar>& phi) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
   }
 
   /// phi(q, t) of the holonomic constraints
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
   template <class Scalar>
   static void holonomic_residuals([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] HolonomicVector<Scalar>& phi) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+    holonomic_residuals(t, q, Constants<Scalar>(p), phi);
   }
 
   /// T(q, qd, t)
   template <class Scalar>
-  static Scalar kinetic_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Parameters<Scalar>& p) noexcept {
+  static Scalar kinetic_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Constants<Scalar>& c) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
@@ -236,28 +314,44 @@ struct Model {
     const Scalar w5 = cos(q(0));
     const Scalar w6 = sin(q(0));
     const Scalar w7 = qd(1) * w1 + w0 * qd(0) * w2;
-    const Scalar w8 = w3 * (w4 * w2 * w5 + w6 * w1) * p.l + (w2 * w6 - w4 * w5 * w1) * p.l * w7;
-    const Scalar w9 = w3 * w0 * w2 * p.l - w0 * w1 * p.l * w7;
-    const Scalar w10 = w3 * p.l * (w4 * w2 * w6 - w5 * w1) - p.l * (w2 * w5 + w4 * w6 * w1) * w7;
+    const Scalar w8 = w3 * (w4 * w2 * w5 + w6 * w1) * c.p.l + (w2 * w6 - w4 * w5 * w1) * c.p.l * w7;
+    const Scalar w9 = w3 * w0 * w2 * c.p.l - w0 * w1 * c.p.l * w7;
+    const Scalar w10 = w3 * c.p.l * (w4 * w2 * w6 - w5 * w1) - c.p.l * (w2 * w5 + w4 * w6 * w1) * w7;
     const Scalar w11 = w4 * qd(0) + qd(2);
-    T = w3 * p.J1 * w3 * Scalar(0.5) + (w8 * w8 + w9 * w9 + w10 * w10) * p.m * Scalar(0.5) + Scalar(0.5) * w11 * w11 * p.J3 + p.J1 * w7 * Scalar(0.5) * w7;
+    T = w3 * c.p.J1 * w3 * Scalar(0.5) + (w8 * w8 + w9 * w9 + w10 * w10) * c.k1 + Scalar(0.5) * w11 * w11 * c.p.J3 + c.p.J1 * w7 * Scalar(0.5) * w7;
     return T;
+  }
+
+  /// T(q, qd, t)
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static Scalar kinetic_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Parameters<Scalar>& p) noexcept {
+    return kinetic_energy(t, q, qd, Constants<Scalar>(p));
   }
 
   /// V(q, t)
   template <class Scalar>
-  static Scalar potential_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p) noexcept {
+  static Scalar potential_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
     Scalar V = Scalar(0);
-    V = p.g * p.m * cos(q(1)) * p.l;
+    V = c.k0 * cos(q(1)) * c.p.l;
     return V;
+  }
+
+  /// V(q, t)
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static Scalar potential_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p) noexcept {
+    return potential_energy(t, q, Constants<Scalar>(p));
   }
 
   /// the model's named outputs, in the order of output_names
   template <class Scalar>
-  static void outputs([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] OutputVector<Scalar>& y) noexcept {
+  static void outputs([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] OutputVector<Scalar>& y) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
@@ -265,11 +359,11 @@ struct Model {
     const Scalar w1 = sin(q(0));
     const Scalar w2 = cos(q(0));
     const Scalar w3 = cos(q(1));
-    const Scalar w4 = w3 * p.l;
+    const Scalar w4 = w3 * c.p.l;
     const Scalar w5 = cos(q(2));
     const Scalar w6 = sin(q(2));
-    y(0) = w0 * p.l * w1;
-    y(1) = -(w0 * p.l * w2);
+    y(0) = w0 * c.p.l * w1;
+    y(1) = -(w0 * c.p.l * w2);
     y(2) = w4;
     y(3) = qd(1) * w5 + w0 * qd(0) * w6;
     y(4) = w0 * qd(0) * w5 - qd(1) * w6;
@@ -278,6 +372,14 @@ struct Model {
     y(7) = -(w0 * w2);
     y(8) = w3;
     y(9) = w4;
+  }
+
+  /// the model's named outputs, in the order of output_names
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static void outputs([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] OutputVector<Scalar>& y) noexcept {
+    outputs(t, q, qd, u, Constants<Scalar>(p), y);
   }
 };
 

@@ -22,7 +22,7 @@ struct Model {
   static constexpr const char* name = "planar_chain";
   static constexpr const char* description = "Planar chain of n uniform rods with relative joint angles (n-link pendulum)";
   static constexpr const char* generator_version = "0.1.0";
-  static constexpr const char* model_hash = "964eb630012ee95d";
+  static constexpr const char* model_hash = "155e394d57030f6d";
   static constexpr std::array<const char*, nq> coordinate_names{{"q1", "q2", "q3", "q4"}};
   static constexpr std::array<const char*, nu> input_names{{}};
   static constexpr std::array<const char*, np> parameter_names{{"m", "l", "rd", "g"}};
@@ -51,66 +51,92 @@ struct Model {
     std::array<Scalar*, np> fields() noexcept { return {{&m, &l, &rd, &g}}; }
   };
 
+  /// The values of the functions below that depend on the parameters only, computed once per
+  /// parameter set. Immutable: for other parameters, build other Constants.
+  template <class Scalar>
+  class Constants {
+   public:
+    /// Computes every constant from a copy of the parameters.
+    explicit Constants(const Parameters<Scalar>& parameters) noexcept : p(parameters) {
+      using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
+      using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
+      using std::log; using std::abs; using std::pow;
+      const Scalar w0 = Scalar(0.08333333333333333) * p.m * (p.l * p.l + p.rd * p.rd * Scalar(3));
+      k0 = Scalar(0.5) * p.l;
+      k1 = Scalar(4) * w0;
+      k2 = Scalar(3) * w0;
+      k3 = Scalar(2) * w0;
+      k4 = -w0;
+      k5 = w0;
+      k6 = p.g * p.m;
+      k7 = p.m * Scalar(0.5);
+    }
+    /// The parameters these constants were computed from.
+    const Parameters<Scalar>& parameters() const noexcept { return p; }
+
+   private:
+    friend struct Model;
+    Parameters<Scalar> p;
+    Scalar k0, k1, k2, k3, k4, k5, k6, k7;
+  };
+
   /// M(q, t), symmetric positive (semi)definite
   template <class Scalar>
-  static void mass_matrix([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] MassMatrix<Scalar>& M) noexcept {
+  static void mass_matrix([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] MassMatrix<Scalar>& M) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
-    const Scalar w0 = Scalar(0.08333333333333333) * p.m * (p.l * p.l + p.rd * p.rd * Scalar(3));
-    const Scalar w1 = sin(q(3));
-    const Scalar w2 = sin(q(1));
-    const Scalar w3 = sin(q(0));
-    const Scalar w4 = cos(q(1));
-    const Scalar w5 = cos(q(0));
-    const Scalar w6 = w2 * w3 - w4 * w5;
-    const Scalar w7 = sin(q(2));
-    const Scalar w8 = w4 * w3 + w2 * w5;
-    const Scalar w9 = cos(q(2));
-    const Scalar w10 = w6 * w7 - w8 * w9;
-    const Scalar w11 = cos(q(3));
-    const Scalar w12 = w8 * w7 + w6 * w9;
-    const Scalar w13 = (w11 * w12 - w1 * w10) * Scalar(0.5) * p.l;
-    const Scalar w14 = p.l * w5;
-    const Scalar w15 = w6 * p.l;
-    const Scalar w16 = -(w14 - w15);
-    const Scalar w17 = w12 * p.l;
-    const Scalar w18 = w13 + w16 + w17;
-    const Scalar w19 = Scalar(0.5) * p.l * (w11 * w10 + w12 * w1);
-    const Scalar w20 = p.l * w10;
-    const Scalar w21 = -w20;
-    const Scalar w22 = p.l * w3;
-    const Scalar w23 = w8 * p.l;
-    const Scalar w24 = w22 + w23;
-    const Scalar w25 = w21 + w24 - w19;
-    const Scalar w26 = w6 * Scalar(0.5) * p.l;
-    const Scalar w27 = w14 - w26;
-    const Scalar w28 = w8 * Scalar(0.5) * p.l;
-    const Scalar w29 = w28 + w22;
-    const Scalar w30 = Scalar(0.5) * p.l * w10;
-    const Scalar w31 = w30 - w24;
-    const Scalar w32 = w12 * Scalar(0.5) * p.l;
-    const Scalar w33 = w16 + w32;
-    const Scalar w34 = Scalar(0.5) * p.l * w3;
-    const Scalar w35 = Scalar(0.5) * p.l * w5;
-    const Scalar w36 = w13 + w17 + w15;
-    const Scalar w37 = w19 - (w21 + w23);
-    const Scalar w38 = Scalar(3) * w0;
-    const Scalar w39 = w32 + w15;
-    const Scalar w40 = w30 - w23;
-    const Scalar w41 = Scalar(2) * w0;
-    const Scalar w42 = w17 + w13;
-    const Scalar w43 = w19 + w20;
-    M(0, 0) = Scalar(4) * w0 + p.m * (w18 * w18 + w25 * w25) + p.m * (w27 * w27 + w29 * w29) + (w31 * w31 + w33 * w33) * p.m + (w34 * w34 + w35 * w35) * p.m;
-    M(0, 1) = w38 - (w25 * w37 - w18 * w36) * p.m - p.m * (w27 * w26 - w28 * w29) + p.m * (w33 * w39 + w40 * w31);
-    M(0, 2) = w41 + p.m * (w18 * w42 - w25 * w43) + p.m * (w30 * w31 + w32 * w33);
-    M(0, 3) = -((w25 * w19 - w18 * w13) * p.m - w0);
-    M(1, 1) = p.m * (w39 * w39 + w40 * w40) + w38 + p.m * (w28 * w28 + w26 * w26) + p.m * (w36 * w36 + w37 * w37);
-    M(1, 2) = p.m * (w32 * w39 + w30 * w40) + w41 + p.m * (w42 * w36 + w43 * w37);
-    M(1, 3) = p.m * (w13 * w36 + w19 * w37) + w0;
-    M(2, 2) = w41 + (w43 * w43 + w42 * w42) * p.m + p.m * (w30 * w30 + w32 * w32);
-    M(2, 3) = (w43 * w19 + w13 * w42) * p.m + w0;
-    M(3, 3) = (w13 * w13 + w19 * w19) * p.m + w0;
+    const Scalar w0 = sin(q(3));
+    const Scalar w1 = sin(q(1));
+    const Scalar w2 = sin(q(0));
+    const Scalar w3 = cos(q(1));
+    const Scalar w4 = cos(q(0));
+    const Scalar w5 = w1 * w2 - w3 * w4;
+    const Scalar w6 = sin(q(2));
+    const Scalar w7 = w3 * w2 + w1 * w4;
+    const Scalar w8 = cos(q(2));
+    const Scalar w9 = w5 * w6 - w7 * w8;
+    const Scalar w10 = cos(q(3));
+    const Scalar w11 = w7 * w6 + w5 * w8;
+    const Scalar w12 = (w10 * w11 - w0 * w9) * c.k0;
+    const Scalar w13 = c.p.l * w4;
+    const Scalar w14 = w5 * c.p.l;
+    const Scalar w15 = -(w13 - w14);
+    const Scalar w16 = w11 * c.p.l;
+    const Scalar w17 = w12 + w15 + w16;
+    const Scalar w18 = c.k0 * (w10 * w9 + w11 * w0);
+    const Scalar w19 = c.p.l * w9;
+    const Scalar w20 = -w19;
+    const Scalar w21 = c.p.l * w2;
+    const Scalar w22 = w7 * c.p.l;
+    const Scalar w23 = w21 + w22;
+    const Scalar w24 = w20 + w23 - w18;
+    const Scalar w25 = w5 * c.k0;
+    const Scalar w26 = w13 - w25;
+    const Scalar w27 = w7 * c.k0;
+    const Scalar w28 = w27 + w21;
+    const Scalar w29 = c.k0 * w9;
+    const Scalar w30 = w29 - w23;
+    const Scalar w31 = w11 * c.k0;
+    const Scalar w32 = w15 + w31;
+    const Scalar w33 = c.k0 * w2;
+    const Scalar w34 = c.k0 * w4;
+    const Scalar w35 = w12 + w16 + w14;
+    const Scalar w36 = w18 - (w20 + w22);
+    const Scalar w37 = w31 + w14;
+    const Scalar w38 = w29 - w22;
+    const Scalar w39 = w16 + w12;
+    const Scalar w40 = w18 + w19;
+    M(0, 0) = c.k1 + c.p.m * (w17 * w17 + w24 * w24) + c.p.m * (w26 * w26 + w28 * w28) + (w30 * w30 + w32 * w32) * c.p.m + (w33 * w33 + w34 * w34) * c.p.m;
+    M(0, 1) = c.k2 - (w24 * w36 - w17 * w35) * c.p.m - c.p.m * (w26 * w25 - w27 * w28) + c.p.m * (w32 * w37 + w38 * w30);
+    M(0, 2) = c.k3 + c.p.m * (w17 * w39 - w24 * w40) + c.p.m * (w29 * w30 + w31 * w32);
+    M(0, 3) = -(c.k4 + (w24 * w18 - w17 * w12) * c.p.m);
+    M(1, 1) = c.p.m * (w37 * w37 + w38 * w38) + c.k2 + c.p.m * (w27 * w27 + w25 * w25) + c.p.m * (w35 * w35 + w36 * w36);
+    M(1, 2) = c.p.m * (w31 * w37 + w29 * w38) + c.k3 + c.p.m * (w39 * w35 + w40 * w36);
+    M(1, 3) = c.p.m * (w12 * w35 + w18 * w36) + c.k5;
+    M(2, 2) = c.k3 + (w40 * w40 + w39 * w39) * c.p.m + c.p.m * (w29 * w29 + w31 * w31);
+    M(2, 3) = (w40 * w18 + w12 * w39) * c.p.m + c.k5;
+    M(3, 3) = (w12 * w12 + w18 * w18) * c.p.m + c.k5;
     M(1, 0) = M(0, 1);
     M(2, 0) = M(0, 2);
     M(3, 0) = M(0, 3);
@@ -119,22 +145,30 @@ struct Model {
     M(3, 2) = M(2, 3);
   }
 
+  /// M(q, t), symmetric positive (semi)definite
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static void mass_matrix([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] MassMatrix<Scalar>& M) noexcept {
+    mass_matrix(t, q, Constants<Scalar>(p), M);
+  }
+
   /// F(q, qd, t, u): everything of Lagrange's equations except M qdd
   template <class Scalar>
-  static void forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] Vector<Scalar>& F) noexcept {
+  static void forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] Vector<Scalar>& F) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
     const Scalar w0 = sin(q(0));
-    const Scalar w1 = Scalar(0.5) * p.l * w0;
-    const Scalar w2 = Scalar(0.5) * qd(0) * p.l;
+    const Scalar w1 = c.k0 * w0;
+    const Scalar w2 = c.k0 * qd(0);
     const Scalar w3 = cos(q(0));
     const Scalar w4 = cos(q(1));
     const Scalar w5 = sin(q(1));
     const Scalar w6 = w4 * w0 + w5 * w3;
     const Scalar w7 = qd(1) + qd(0);
-    const Scalar w8 = p.l * w7;
-    const Scalar w9 = qd(0) * p.l;
+    const Scalar w8 = c.p.l * w7;
+    const Scalar w9 = qd(0) * c.p.l;
     const Scalar w10 = qd(0) * w9 * w0;
     const Scalar w11 = -(w6 * w8 * w7 + w10);
     const Scalar w12 = w7 + qd(2);
@@ -142,137 +176,142 @@ struct Model {
     const Scalar w14 = sin(q(2));
     const Scalar w15 = cos(q(2));
     const Scalar w16 = w13 * w14 - w6 * w15;
-    const Scalar w17 = w12 * Scalar(0.5) * p.l;
+    const Scalar w17 = w12 * c.k0;
     const Scalar w18 = w11 + w12 * w16 * w17;
-    const Scalar w19 = p.l * w3;
-    const Scalar w20 = w13 * p.l;
+    const Scalar w19 = c.p.l * w3;
+    const Scalar w20 = w13 * c.p.l;
     const Scalar w21 = -(w19 - w20);
     const Scalar w22 = w6 * w14 + w13 * w15;
-    const Scalar w23 = w22 * Scalar(0.5) * p.l;
+    const Scalar w23 = w22 * c.k0;
     const Scalar w24 = -(qd(0) * w9 * w3);
     const Scalar w25 = w24 + w8 * w13 * w7;
     const Scalar w26 = w12 * w22 * w17 + w25;
-    const Scalar w27 = Scalar(0.5) * p.l * w16;
-    const Scalar w28 = p.l * w0;
-    const Scalar w29 = w6 * p.l;
+    const Scalar w27 = c.k0 * w16;
+    const Scalar w28 = c.p.l * w0;
+    const Scalar w29 = w6 * c.p.l;
     const Scalar w30 = w28 + w29;
     const Scalar w31 = w27 - w30;
     const Scalar w32 = sin(q(3));
     const Scalar w33 = cos(q(3));
     const Scalar w34 = w33 * w22 - w32 * w16;
-    const Scalar w35 = w34 * Scalar(0.5) * p.l;
-    const Scalar w36 = w22 * p.l;
-    const Scalar w37 = w12 * p.l;
+    const Scalar w35 = w34 * c.k0;
+    const Scalar w36 = w22 * c.p.l;
+    const Scalar w37 = w12 * c.p.l;
     const Scalar w38 = w12 + qd(3);
     const Scalar w39 = w33 * w16 + w22 * w32;
-    const Scalar w40 = w38 * Scalar(0.5) * p.l;
+    const Scalar w40 = w38 * c.k0;
     const Scalar w41 = w37 * w12 * w16 + w11 + w38 * w39 * w40;
-    const Scalar w42 = Scalar(0.5) * p.l * w39;
-    const Scalar w43 = p.l * w16;
+    const Scalar w42 = c.k0 * w39;
+    const Scalar w43 = c.p.l * w16;
     const Scalar w44 = -w43;
     const Scalar w45 = w44 + w30 - w42;
     const Scalar w46 = w37 * w12 * w22 + w25 + w38 * w34 * w40;
-    const Scalar w47 = Scalar(0.5) * p.l * w7;
+    const Scalar w47 = c.k0 * w7;
     const Scalar w48 = w24 + w13 * w47 * w7;
-    const Scalar w49 = w6 * Scalar(0.5) * p.l;
+    const Scalar w49 = w6 * c.k0;
     const Scalar w50 = w49 + w28;
-    const Scalar w51 = w13 * Scalar(0.5) * p.l;
+    const Scalar w51 = w13 * c.k0;
     const Scalar w52 = w6 * w47 * w7 + w10;
     const Scalar w53 = w42 - (w44 + w29);
     const Scalar w54 = w27 - w29;
     const Scalar w55 = w42 + w43;
-    F(0) = -(p.m * (w1 * w2 * qd(0) * w3 - w2 * qd(0) * w0 * Scalar(0.5) * p.l * w3) + p.m * (w26 * w31 - w18 * (w21 + w23)) - ((w35 + w21 + w36) * w41 + w45 * w46) * p.m - p.g * p.m * w31 + p.g * p.m * w1 - (w48 * w50 + (w19 - w51) * w52) * p.m + p.g * p.m * w50 + p.g * w45 * p.m);
-    F(1) = -(p.g * p.m * w49 + p.m * (w52 * w51 - w48 * w49) - p.g * p.m * w53 - p.g * p.m * w54 + p.m * (w54 * w26 - w18 * (w23 + w20)) - (w41 * (w35 + w36 + w20) - w46 * w53) * p.m);
-    F(2) = p.m * (w41 * (w36 + w35) - w55 * w46) - p.m * (w27 * w26 - w18 * w23) + p.g * w55 * p.m + p.g * w27 * p.m;
-    F(3) = p.g * p.m * w42 + p.m * (w41 * w35 - w46 * w42);
+    F(0) = -(c.p.m * (w1 * w2 * qd(0) * w3 - w2 * qd(0) * w0 * c.k0 * w3) + c.p.m * (w26 * w31 - w18 * (w21 + w23)) - ((w35 + w21 + w36) * w41 + w45 * w46) * c.p.m - c.k6 * w31 + c.k6 * w1 - (w48 * w50 + (w19 - w51) * w52) * c.p.m + c.k6 * w50 + c.k6 * w45);
+    F(1) = -(c.k6 * w49 + c.p.m * (w52 * w51 - w48 * w49) - c.k6 * w53 - c.k6 * w54 + c.p.m * (w54 * w26 - w18 * (w23 + w20)) - (w41 * (w35 + w36 + w20) - w46 * w53) * c.p.m);
+    F(2) = c.p.m * (w41 * (w36 + w35) - w55 * w46) - c.p.m * (w27 * w26 - w18 * w23) + c.k6 * w55 + c.k6 * w27;
+    F(3) = c.k6 * w42 + c.p.m * (w41 * w35 - w46 * w42);
+  }
+
+  /// F(q, qd, t, u): everything of Lagrange's equations except M qdd
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static void forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] Vector<Scalar>& F) noexcept {
+    forcing(t, q, qd, u, Constants<Scalar>(p), F);
   }
 
   /// M and F together, sharing their common subexpressions
   template <class Scalar>
-  static void mass_matrix_and_forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] MassMatrix<Scalar>& M, [[maybe_unused]] Vector<Scalar>& F) noexcept {
+  static void mass_matrix_and_forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] MassMatrix<Scalar>& M, [[maybe_unused]] Vector<Scalar>& F) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
-    const Scalar w0 = Scalar(0.08333333333333333) * p.m * (p.l * p.l + p.rd * p.rd * Scalar(3));
-    const Scalar w1 = sin(q(3));
-    const Scalar w2 = sin(q(1));
-    const Scalar w3 = sin(q(0));
-    const Scalar w4 = cos(q(1));
-    const Scalar w5 = cos(q(0));
-    const Scalar w6 = w2 * w3 - w4 * w5;
-    const Scalar w7 = sin(q(2));
-    const Scalar w8 = w4 * w3 + w2 * w5;
-    const Scalar w9 = cos(q(2));
-    const Scalar w10 = w6 * w7 - w8 * w9;
-    const Scalar w11 = cos(q(3));
-    const Scalar w12 = w8 * w7 + w6 * w9;
-    const Scalar w13 = w11 * w12 - w1 * w10;
-    const Scalar w14 = w13 * Scalar(0.5) * p.l;
-    const Scalar w15 = p.l * w5;
-    const Scalar w16 = w6 * p.l;
-    const Scalar w17 = -(w15 - w16);
-    const Scalar w18 = w12 * p.l;
-    const Scalar w19 = w14 + w17 + w18;
-    const Scalar w20 = w11 * w10 + w12 * w1;
-    const Scalar w21 = Scalar(0.5) * p.l * w20;
-    const Scalar w22 = p.l * w10;
-    const Scalar w23 = -w22;
-    const Scalar w24 = p.l * w3;
-    const Scalar w25 = w8 * p.l;
-    const Scalar w26 = w24 + w25;
-    const Scalar w27 = w23 + w26 - w21;
-    const Scalar w28 = w6 * Scalar(0.5) * p.l;
-    const Scalar w29 = w15 - w28;
-    const Scalar w30 = w8 * Scalar(0.5) * p.l;
-    const Scalar w31 = w30 + w24;
-    const Scalar w32 = Scalar(0.5) * p.l * w10;
-    const Scalar w33 = w32 - w26;
-    const Scalar w34 = w12 * Scalar(0.5) * p.l;
-    const Scalar w35 = w17 + w34;
-    const Scalar w36 = Scalar(0.5) * p.l * w3;
-    const Scalar w37 = Scalar(0.5) * p.l * w5;
-    const Scalar w38 = w14 + w18 + w16;
-    const Scalar w39 = w21 - (w23 + w25);
-    const Scalar w40 = Scalar(3) * w0;
-    const Scalar w41 = w34 + w16;
-    const Scalar w42 = w32 - w25;
-    const Scalar w43 = Scalar(2) * w0;
-    const Scalar w44 = w18 + w14;
-    const Scalar w45 = w21 + w22;
-    const Scalar w46 = Scalar(0.5) * qd(0) * p.l;
-    const Scalar w47 = qd(1) + qd(0);
-    const Scalar w48 = p.l * w47;
-    const Scalar w49 = qd(0) * p.l;
-    const Scalar w50 = qd(0) * w49 * w3;
-    const Scalar w51 = -(w8 * w48 * w47 + w50);
-    const Scalar w52 = w47 + qd(2);
-    const Scalar w53 = w52 * Scalar(0.5) * p.l;
-    const Scalar w54 = w51 + w52 * w10 * w53;
-    const Scalar w55 = -(qd(0) * w49 * w5);
-    const Scalar w56 = w55 + w48 * w6 * w47;
-    const Scalar w57 = w52 * w12 * w53 + w56;
-    const Scalar w58 = w52 * p.l;
-    const Scalar w59 = w52 + qd(3);
-    const Scalar w60 = w59 * Scalar(0.5) * p.l;
-    const Scalar w61 = w58 * w52 * w10 + w51 + w59 * w20 * w60;
-    const Scalar w62 = w58 * w52 * w12 + w56 + w59 * w13 * w60;
-    const Scalar w63 = Scalar(0.5) * p.l * w47;
-    const Scalar w64 = w55 + w6 * w63 * w47;
-    const Scalar w65 = w8 * w63 * w47 + w50;
-    M(0, 0) = Scalar(4) * w0 + p.m * (w19 * w19 + w27 * w27) + p.m * (w29 * w29 + w31 * w31) + (w33 * w33 + w35 * w35) * p.m + (w36 * w36 + w37 * w37) * p.m;
-    M(0, 1) = w40 - (w27 * w39 - w19 * w38) * p.m - p.m * (w29 * w28 - w30 * w31) + p.m * (w35 * w41 + w42 * w33);
-    M(0, 2) = w43 + p.m * (w19 * w44 - w27 * w45) + p.m * (w32 * w33 + w34 * w35);
-    M(0, 3) = -((w27 * w21 - w19 * w14) * p.m - w0);
-    M(1, 1) = p.m * (w41 * w41 + w42 * w42) + w40 + p.m * (w30 * w30 + w28 * w28) + p.m * (w38 * w38 + w39 * w39);
-    M(1, 2) = p.m * (w34 * w41 + w32 * w42) + w43 + p.m * (w44 * w38 + w45 * w39);
-    M(1, 3) = p.m * (w14 * w38 + w21 * w39) + w0;
-    M(2, 2) = w43 + (w45 * w45 + w44 * w44) * p.m + p.m * (w32 * w32 + w34 * w34);
-    M(2, 3) = (w45 * w21 + w14 * w44) * p.m + w0;
-    M(3, 3) = (w14 * w14 + w21 * w21) * p.m + w0;
-    F(0) = -(p.m * (w36 * w46 * qd(0) * w5 - w46 * qd(0) * w3 * w37) + p.m * (w57 * w33 - w54 * w35) - (w19 * w61 + w27 * w62) * p.m - p.g * p.m * w33 + p.g * p.m * w36 - (w64 * w31 + w29 * w65) * p.m + p.g * p.m * w31 + p.g * w27 * p.m);
-    F(1) = -(p.g * p.m * w30 + p.m * (w65 * w28 - w64 * w30) - p.g * p.m * w39 - p.g * p.m * w42 + p.m * (w42 * w57 - w54 * w41) - (w61 * w38 - w62 * w39) * p.m);
-    F(2) = p.m * (w61 * w44 - w45 * w62) - p.m * (w32 * w57 - w54 * w34) + p.g * w45 * p.m + p.g * w32 * p.m;
-    F(3) = p.g * p.m * w21 + p.m * (w61 * w14 - w62 * w21);
+    const Scalar w0 = sin(q(3));
+    const Scalar w1 = sin(q(1));
+    const Scalar w2 = sin(q(0));
+    const Scalar w3 = cos(q(1));
+    const Scalar w4 = cos(q(0));
+    const Scalar w5 = w1 * w2 - w3 * w4;
+    const Scalar w6 = sin(q(2));
+    const Scalar w7 = w3 * w2 + w1 * w4;
+    const Scalar w8 = cos(q(2));
+    const Scalar w9 = w5 * w6 - w7 * w8;
+    const Scalar w10 = cos(q(3));
+    const Scalar w11 = w7 * w6 + w5 * w8;
+    const Scalar w12 = w10 * w11 - w0 * w9;
+    const Scalar w13 = w12 * c.k0;
+    const Scalar w14 = c.p.l * w4;
+    const Scalar w15 = w5 * c.p.l;
+    const Scalar w16 = -(w14 - w15);
+    const Scalar w17 = w11 * c.p.l;
+    const Scalar w18 = w13 + w16 + w17;
+    const Scalar w19 = w10 * w9 + w11 * w0;
+    const Scalar w20 = c.k0 * w19;
+    const Scalar w21 = c.p.l * w9;
+    const Scalar w22 = -w21;
+    const Scalar w23 = c.p.l * w2;
+    const Scalar w24 = w7 * c.p.l;
+    const Scalar w25 = w23 + w24;
+    const Scalar w26 = w22 + w25 - w20;
+    const Scalar w27 = w5 * c.k0;
+    const Scalar w28 = w14 - w27;
+    const Scalar w29 = w7 * c.k0;
+    const Scalar w30 = w29 + w23;
+    const Scalar w31 = c.k0 * w9;
+    const Scalar w32 = w31 - w25;
+    const Scalar w33 = w11 * c.k0;
+    const Scalar w34 = w16 + w33;
+    const Scalar w35 = c.k0 * w2;
+    const Scalar w36 = c.k0 * w4;
+    const Scalar w37 = w13 + w17 + w15;
+    const Scalar w38 = w20 - (w22 + w24);
+    const Scalar w39 = w33 + w15;
+    const Scalar w40 = w31 - w24;
+    const Scalar w41 = w17 + w13;
+    const Scalar w42 = w20 + w21;
+    const Scalar w43 = c.k0 * qd(0);
+    const Scalar w44 = qd(1) + qd(0);
+    const Scalar w45 = c.p.l * w44;
+    const Scalar w46 = qd(0) * c.p.l;
+    const Scalar w47 = qd(0) * w46 * w2;
+    const Scalar w48 = -(w7 * w45 * w44 + w47);
+    const Scalar w49 = w44 + qd(2);
+    const Scalar w50 = w49 * c.k0;
+    const Scalar w51 = w48 + w49 * w9 * w50;
+    const Scalar w52 = -(qd(0) * w46 * w4);
+    const Scalar w53 = w52 + w45 * w5 * w44;
+    const Scalar w54 = w49 * w11 * w50 + w53;
+    const Scalar w55 = w49 * c.p.l;
+    const Scalar w56 = w49 + qd(3);
+    const Scalar w57 = w56 * c.k0;
+    const Scalar w58 = w55 * w49 * w9 + w48 + w56 * w19 * w57;
+    const Scalar w59 = w55 * w49 * w11 + w53 + w56 * w12 * w57;
+    const Scalar w60 = c.k0 * w44;
+    const Scalar w61 = w52 + w5 * w60 * w44;
+    const Scalar w62 = w7 * w60 * w44 + w47;
+    M(0, 0) = c.k1 + c.p.m * (w18 * w18 + w26 * w26) + c.p.m * (w28 * w28 + w30 * w30) + (w32 * w32 + w34 * w34) * c.p.m + (w35 * w35 + w36 * w36) * c.p.m;
+    M(0, 1) = c.k2 - (w26 * w38 - w18 * w37) * c.p.m - c.p.m * (w28 * w27 - w29 * w30) + c.p.m * (w34 * w39 + w40 * w32);
+    M(0, 2) = c.k3 + c.p.m * (w18 * w41 - w26 * w42) + c.p.m * (w31 * w32 + w33 * w34);
+    M(0, 3) = -(c.k4 + (w26 * w20 - w18 * w13) * c.p.m);
+    M(1, 1) = c.p.m * (w39 * w39 + w40 * w40) + c.k2 + c.p.m * (w29 * w29 + w27 * w27) + c.p.m * (w37 * w37 + w38 * w38);
+    M(1, 2) = c.p.m * (w33 * w39 + w31 * w40) + c.k3 + c.p.m * (w41 * w37 + w42 * w38);
+    M(1, 3) = c.p.m * (w13 * w37 + w20 * w38) + c.k5;
+    M(2, 2) = c.k3 + (w42 * w42 + w41 * w41) * c.p.m + c.p.m * (w31 * w31 + w33 * w33);
+    M(2, 3) = (w42 * w20 + w13 * w41) * c.p.m + c.k5;
+    M(3, 3) = (w13 * w13 + w20 * w20) * c.p.m + c.k5;
+    F(0) = -(c.p.m * (w35 * w43 * qd(0) * w4 - w43 * qd(0) * w2 * w36) + c.p.m * (w54 * w32 - w51 * w34) - (w18 * w58 + w26 * w59) * c.p.m - c.k6 * w32 + c.k6 * w35 - (w61 * w30 + w28 * w62) * c.p.m + c.k6 * w30 + c.k6 * w26);
+    F(1) = -(c.k6 * w29 + c.p.m * (w62 * w27 - w61 * w29) - c.k6 * w38 - c.k6 * w40 + c.p.m * (w40 * w54 - w51 * w39) - (w58 * w37 - w59 * w38) * c.p.m);
+    F(2) = c.p.m * (w58 * w41 - w42 * w59) - c.p.m * (w31 * w54 - w51 * w33) + c.k6 * w42 + c.k6 * w31;
+    F(3) = c.k6 * w20 + c.p.m * (w58 * w13 - w59 * w20);
     M(1, 0) = M(0, 1);
     M(2, 0) = M(0, 2);
     M(3, 0) = M(0, 3);
@@ -281,80 +320,127 @@ struct Model {
     M(3, 2) = M(2, 3);
   }
 
+  /// M and F together, sharing their common subexpressions
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static void mass_matrix_and_forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] MassMatrix<Scalar>& M, [[maybe_unused]] Vector<Scalar>& F) noexcept {
+    mass_matrix_and_forcing(t, q, qd, u, Constants<Scalar>(p), M, F);
+  }
+
   /// Xi(q, t) of the Pfaffian constraints Xi qd + Xi_t = 0
   template <class Scalar>
+  static void constraint_jacobian([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] ConstraintJacobian<Scalar>& Xi) noexcept {
+    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
+    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
+    using std::log; using std::abs; using std::pow;
+  }
+
+  /// Xi(q, t) of the Pfaffian constraints Xi qd + Xi_t = 0
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
   static void constraint_jacobian([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintJacobian<Scalar>& Xi) noexcept {
+    constraint_jacobian(t, q, Constants<Scalar>(p), Xi);
+  }
+
+  /// Xi_t(q, t)
+  template <class Scalar>
+  static void constraint_rate_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] ConstraintVector<Scalar>& Xi_t) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
   }
 
   /// Xi_t(q, t)
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
   template <class Scalar>
   static void constraint_rate_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintVector<Scalar>& Xi_t) noexcept {
+    constraint_rate_term(t, q, Constants<Scalar>(p), Xi_t);
+  }
+
+  /// dXi/dt qd + dXi_t/dt, so that Xi qdd + b = 0
+  template <class Scalar>
+  static void constraint_acceleration_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] ConstraintVector<Scalar>& b) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
   }
 
   /// dXi/dt qd + dXi_t/dt, so that Xi qdd + b = 0
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
   template <class Scalar>
   static void constraint_acceleration_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintVector<Scalar>& b) noexcept {
+    constraint_acceleration_term(t, q, qd, Constants<Scalar>(p), b);
+  }
+
+  /// phi(q, t) of the holonomic constraints
+  template <class Scalar>
+  static void holonomic_residuals([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] HolonomicVector<Scalar>& phi) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
   }
 
   /// phi(q, t) of the holonomic constraints
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
   template <class Scalar>
   static void holonomic_residuals([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] HolonomicVector<Scalar>& phi) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+    holonomic_residuals(t, q, Constants<Scalar>(p), phi);
   }
 
   /// T(q, qd, t)
   template <class Scalar>
-  static Scalar kinetic_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Parameters<Scalar>& p) noexcept {
+  static Scalar kinetic_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Constants<Scalar>& c) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
     Scalar T = Scalar(0);
     const Scalar w0 = qd(1) + qd(0);
     const Scalar w1 = w0 + qd(2);
-    const Scalar w2 = p.l * p.l + p.rd * p.rd * Scalar(3);
-    const Scalar w3 = cos(q(1));
-    const Scalar w4 = sin(q(0));
-    const Scalar w5 = sin(q(1));
-    const Scalar w6 = cos(q(0));
-    const Scalar w7 = w3 * w4 + w5 * w6;
-    const Scalar w8 = sin(q(2));
-    const Scalar w9 = w5 * w4 - w3 * w6;
-    const Scalar w10 = cos(q(2));
-    const Scalar w11 = w7 * w8 + w9 * w10;
-    const Scalar w12 = qd(0) * p.l * w6;
-    const Scalar w13 = -(w12 - w9 * p.l * w0);
-    const Scalar w14 = w1 * w11 * Scalar(0.5) * p.l + w13;
-    const Scalar w15 = w9 * w8 - w7 * w10;
-    const Scalar w16 = qd(0) * p.l * w4;
-    const Scalar w17 = -(w7 * p.l * w0 + w16);
-    const Scalar w18 = w1 * Scalar(0.5) * p.l * w15 + w17;
-    const Scalar w19 = w1 + qd(3);
-    const Scalar w20 = Scalar(0.5) * qd(0) * p.l * w6;
-    const Scalar w21 = Scalar(0.5) * qd(0) * p.l * w4;
-    const Scalar w22 = cos(q(3));
-    const Scalar w23 = sin(q(3));
-    const Scalar w24 = w19 * Scalar(0.5) * p.l * (w22 * w15 + w11 * w23) + w1 * p.l * w15 + w17;
-    const Scalar w25 = w1 * w11 * p.l + w13 + w19 * (w22 * w11 - w23 * w15) * Scalar(0.5) * p.l;
-    const Scalar w26 = w7 * Scalar(0.5) * p.l * w0 + w16;
-    const Scalar w27 = w12 - w9 * Scalar(0.5) * p.l * w0;
-    T = w1 * Scalar(0.5) * w1 * Scalar(0.08333333333333333) * p.m * w2 + p.m * (w14 * w14 + w18 * w18) * Scalar(0.5) + w19 * Scalar(0.5) * Scalar(0.08333333333333333) * w19 * p.m * w2 + (w20 * w20 + w21 * w21) * p.m * Scalar(0.5) + p.m * Scalar(0.5) * (w24 * w24 + w25 * w25) + Scalar(0.5) * qd(0) * Scalar(0.08333333333333333) * p.m * qd(0) * w2 + Scalar(0.08333333333333333) * p.m * w0 * w2 * Scalar(0.5) * w0 + p.m * Scalar(0.5) * (w26 * w26 + w27 * w27);
+    const Scalar w2 = cos(q(1));
+    const Scalar w3 = sin(q(0));
+    const Scalar w4 = sin(q(1));
+    const Scalar w5 = cos(q(0));
+    const Scalar w6 = w2 * w3 + w4 * w5;
+    const Scalar w7 = sin(q(2));
+    const Scalar w8 = w4 * w3 - w2 * w5;
+    const Scalar w9 = cos(q(2));
+    const Scalar w10 = w6 * w7 + w8 * w9;
+    const Scalar w11 = qd(0) * c.p.l * w5;
+    const Scalar w12 = -(w11 - w8 * c.p.l * w0);
+    const Scalar w13 = w1 * w10 * c.k0 + w12;
+    const Scalar w14 = w8 * w7 - w6 * w9;
+    const Scalar w15 = qd(0) * c.p.l * w3;
+    const Scalar w16 = -(w6 * c.p.l * w0 + w15);
+    const Scalar w17 = w1 * c.k0 * w14 + w16;
+    const Scalar w18 = w1 + qd(3);
+    const Scalar w19 = c.k0 * qd(0) * w5;
+    const Scalar w20 = c.k0 * qd(0) * w3;
+    const Scalar w21 = cos(q(3));
+    const Scalar w22 = sin(q(3));
+    const Scalar w23 = w18 * c.k0 * (w21 * w14 + w10 * w22) + w1 * c.p.l * w14 + w16;
+    const Scalar w24 = w1 * w10 * c.p.l + w12 + w18 * (w21 * w10 - w22 * w14) * c.k0;
+    const Scalar w25 = w6 * c.k0 * w0 + w15;
+    const Scalar w26 = w11 - w8 * c.k0 * w0;
+    T = w1 * Scalar(0.5) * w1 * c.k5 + c.k7 * (w13 * w13 + w17 * w17) + w18 * Scalar(0.5) * c.k5 * w18 + (w19 * w19 + w20 * w20) * c.k7 + c.k7 * (w23 * w23 + w24 * w24) + Scalar(0.5) * qd(0) * c.k5 * qd(0) + c.k5 * w0 * Scalar(0.5) * w0 + c.k7 * (w25 * w25 + w26 * w26);
     return T;
+  }
+
+  /// T(q, qd, t)
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static Scalar kinetic_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Parameters<Scalar>& p) noexcept {
+    return kinetic_energy(t, q, qd, Constants<Scalar>(p));
   }
 
   /// V(q, t)
   template <class Scalar>
-  static Scalar potential_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p) noexcept {
+  static Scalar potential_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
@@ -368,15 +454,23 @@ struct Model {
     const Scalar w6 = w3 * w2 + w1 * w0;
     const Scalar w7 = cos(q(2));
     const Scalar w8 = w6 * w5 + w4 * w7;
-    const Scalar w9 = p.l * w0;
-    const Scalar w10 = -(w9 - w4 * p.l);
-    V = -(p.g * Scalar(0.5) * p.l * w0 * p.m - ((cos(q(3)) * w8 - sin(q(3)) * (w4 * w5 - w6 * w7)) * Scalar(0.5) * p.l + w10 + w8 * p.l) * p.g * p.m - p.g * p.m * (w10 + w8 * Scalar(0.5) * p.l) + p.g * (w9 - w4 * Scalar(0.5) * p.l) * p.m);
+    const Scalar w9 = c.p.l * w0;
+    const Scalar w10 = -(w9 - w4 * c.p.l);
+    V = -(c.k6 * c.k0 * w0 - ((cos(q(3)) * w8 - sin(q(3)) * (w4 * w5 - w6 * w7)) * c.k0 + w10 + w8 * c.p.l) * c.k6 - c.k6 * (w10 + w8 * c.k0) + c.k6 * (w9 - w4 * c.k0));
     return V;
+  }
+
+  /// V(q, t)
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static Scalar potential_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p) noexcept {
+    return potential_energy(t, q, Constants<Scalar>(p));
   }
 
   /// the model's named outputs, in the order of output_names
   template <class Scalar>
-  static void outputs([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] OutputVector<Scalar>& y) noexcept {
+  static void outputs([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] OutputVector<Scalar>& y) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
@@ -400,17 +494,25 @@ struct Model {
     const Scalar w17 = w13 * w7 + w14 * w0;
     const Scalar w18 = w6 * w0 + w5 * w7;
     const Scalar w19 = w1 * w0 - w3 * w7;
-    const Scalar w20 = w14 * qd(0) * p.l + w1 * qd(0) * p.l + w6 * qd(0) * p.l;
-    const Scalar w21 = w12 * qd(1) * p.l + qd(1) * w2 * p.l;
-    const Scalar w22 = w5 * qd(0) * p.l + qd(0) * p.l * w13 - w3 * qd(0) * p.l - qd(0) * p.l;
-    const Scalar w23 = w10 * p.l * qd(2) + p.l * qd(2);
-    const Scalar w24 = qd(1) * p.l * w4 + qd(1) * p.l - qd(1) * p.l * w11;
-    y(0) = p.l * w0 - p.l * w8 + p.l * w15 + w16 * p.l;
-    y(1) = -(p.l * w7 - p.l * w17 - w18 * p.l - w19 * p.l);
-    y(3) = -(p.l * w17 * qd(3) + w0 * w20 + w16 * w21 + w22 * w7 + w18 * w23 + w24 * w19 - p.l * w8 * w9 * qd(2));
-    y(4) = -(w21 * w19 + w23 * w8 - w7 * w20 - p.l * qd(3) * w15 + w22 * w0 - w16 * w24 + w18 * p.l * w9 * qd(2));
+    const Scalar w20 = w14 * qd(0) * c.p.l + w1 * qd(0) * c.p.l + w6 * qd(0) * c.p.l;
+    const Scalar w21 = w12 * qd(1) * c.p.l + qd(1) * w2 * c.p.l;
+    const Scalar w22 = w5 * qd(0) * c.p.l + qd(0) * c.p.l * w13 - w3 * qd(0) * c.p.l - qd(0) * c.p.l;
+    const Scalar w23 = w10 * c.p.l * qd(2) + c.p.l * qd(2);
+    const Scalar w24 = qd(1) * c.p.l * w4 + qd(1) * c.p.l - qd(1) * c.p.l * w11;
+    y(0) = c.p.l * w0 - c.p.l * w8 + c.p.l * w15 + w16 * c.p.l;
+    y(1) = -(c.p.l * w7 - c.p.l * w17 - w18 * c.p.l - w19 * c.p.l);
+    y(3) = -(c.p.l * w17 * qd(3) + w0 * w20 + w16 * w21 + w22 * w7 + w18 * w23 + w24 * w19 - c.p.l * w8 * w9 * qd(2));
+    y(4) = -(w21 * w19 + w23 * w8 - w7 * w20 - c.p.l * qd(3) * w15 + w22 * w0 - w16 * w24 + w18 * c.p.l * w9 * qd(2));
     y(2) = Scalar(0);
     y(5) = Scalar(0);
+  }
+
+  /// the model's named outputs, in the order of output_names
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static void outputs([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] OutputVector<Scalar>& y) noexcept {
+    outputs(t, q, qd, u, Constants<Scalar>(p), y);
   }
 };
 

@@ -22,7 +22,7 @@ struct Model {
   static constexpr const char* name = "quaternion_rigid_body";
   static constexpr const char* description = "Free rigid body, scalar-last quaternion attitude with the unit-norm constraint, body torque input";
   static constexpr const char* generator_version = "0.1.0";
-  static constexpr const char* model_hash = "c31abe033a76cca4";
+  static constexpr const char* model_hash = "f9ebae51a4fa4207";
   static constexpr std::array<const char*, nq> coordinate_names{{"e1", "e2", "e3", "eta"}};
   static constexpr std::array<const char*, nu> input_names{{"tau1", "tau2", "tau3"}};
   static constexpr std::array<const char*, np> parameter_names{{"m", "J1", "J2", "J3"}};
@@ -51,22 +51,48 @@ struct Model {
     std::array<Scalar*, np> fields() noexcept { return {{&m, &J1, &J2, &J3}}; }
   };
 
+  /// The values of the functions below that depend on the parameters only, computed once per
+  /// parameter set. Immutable: for other parameters, build other Constants.
+  template <class Scalar>
+  class Constants {
+   public:
+    /// Computes every constant from a copy of the parameters.
+    explicit Constants(const Parameters<Scalar>& parameters) noexcept : p(parameters) {
+      using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
+      using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
+      using std::log; using std::abs; using std::pow;
+      k0 = Scalar(2) * p.J3;
+      k1 = p.J2 * Scalar(2);
+      k2 = Scalar(2) * p.J1;
+      k3 = Scalar(4) * p.J2;
+      k4 = Scalar(4) * p.J3;
+      k5 = Scalar(4) * p.J1;
+    }
+    /// The parameters these constants were computed from.
+    const Parameters<Scalar>& parameters() const noexcept { return p; }
+
+   private:
+    friend struct Model;
+    Parameters<Scalar> p;
+    Scalar k0, k1, k2, k3, k4, k5;
+  };
+
   /// M(q, t), symmetric positive (semi)definite
   template <class Scalar>
-  static void mass_matrix([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] MassMatrix<Scalar>& M) noexcept {
+  static void mass_matrix([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] MassMatrix<Scalar>& M) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
-    const Scalar w0 = Scalar(2) * q(2) * p.J1;
-    const Scalar w1 = p.J2 * Scalar(2) * q(3);
-    const Scalar w2 = Scalar(2) * q(0) * p.J3;
-    const Scalar w3 = p.J2 * Scalar(2) * q(0);
-    const Scalar w4 = Scalar(2) * q(1) * p.J1;
-    const Scalar w5 = Scalar(2) * q(3) * p.J3;
-    const Scalar w6 = Scalar(2) * q(2) * p.J3;
-    const Scalar w7 = Scalar(2) * q(0) * p.J1;
-    const Scalar w8 = p.J2 * Scalar(2) * q(1);
-    M(0, 0) = Scalar(2) * q(1) * Scalar(2) * q(1) * p.J3 + p.J2 * Scalar(2) * q(2) * Scalar(2) * q(2) + Scalar(2) * Scalar(2) * p.J1 * q(3) * q(3);
+    const Scalar w0 = c.k2 * q(2);
+    const Scalar w1 = c.k1 * q(3);
+    const Scalar w2 = c.k0 * q(0);
+    const Scalar w3 = c.k1 * q(0);
+    const Scalar w4 = c.k2 * q(1);
+    const Scalar w5 = c.k0 * q(3);
+    const Scalar w6 = c.k0 * q(2);
+    const Scalar w7 = c.k2 * q(0);
+    const Scalar w8 = c.k1 * q(1);
+    M(0, 0) = Scalar(2) * q(1) * c.k0 * q(1) + c.k1 * q(2) * Scalar(2) * q(2) + Scalar(2) * c.k2 * q(3) * q(3);
     M(0, 1) = Scalar(2) * w0 * q(3) - w1 * Scalar(2) * q(2) - Scalar(2) * q(1) * w2;
     M(0, 2) = Scalar(2) * q(1) * w5 - w3 * Scalar(2) * q(2) - w4 * Scalar(2) * q(3);
     M(0, 3) = -(Scalar(2) * w6 * q(1) + w7 * Scalar(2) * q(3) - Scalar(2) * q(2) * w8);
@@ -84,9 +110,17 @@ struct Model {
     M(3, 2) = M(2, 3);
   }
 
+  /// M(q, t), symmetric positive (semi)definite
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static void mass_matrix([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] MassMatrix<Scalar>& M) noexcept {
+    mass_matrix(t, q, Constants<Scalar>(p), M);
+  }
+
   /// F(q, qd, t, u): everything of Lagrange's equations except M qdd
   template <class Scalar>
-  static void forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] Vector<Scalar>& F) noexcept {
+  static void forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] Vector<Scalar>& F) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
@@ -119,12 +153,12 @@ struct Model {
     const Scalar w26 = w13 * w12 + w22 * w24 - w18 * w20;
     const Scalar w27 = w9 * w13 - w19 * w20 - w24 * w23;
     const Scalar w28 = qd(1) * Scalar(2) * q(0) + Scalar(2) * q(2) * qd(3) - Scalar(2) * qd(0) * q(1) - Scalar(2) * q(3) * qd(2);
-    const Scalar w29 = w28 * p.J3;
+    const Scalar w29 = w28 * c.p.J3;
     const Scalar w30 = Scalar(2) * q(0) * qd(2) - Scalar(2) * qd(0) * q(2) - Scalar(2) * q(1) * qd(3) + qd(1) * Scalar(2) * q(3);
-    const Scalar w31 = p.J2 * w30;
+    const Scalar w31 = c.p.J2 * w30;
     const Scalar w32 = w29 * w30 - w28 * w31;
     const Scalar w33 = Scalar(2) * qd(0) * q(3) + qd(1) * Scalar(2) * q(2) - Scalar(2) * q(0) * qd(3) - Scalar(2) * q(1) * qd(2);
-    const Scalar w34 = w33 * p.J1;
+    const Scalar w34 = w33 * c.p.J1;
     const Scalar w35 = w33 * w31 - w34 * w30;
     const Scalar w36 = w29 * w33 - w34 * w28;
     F(0) = Scalar(2) * w26 * q(3) - Scalar(2) * w25 * q(2) - Scalar(2) * q(1) * w27 + Scalar(2) * w32 * q(3) - Scalar(2) * q(1) * w35 + w36 * Scalar(2) * q(2);
@@ -133,21 +167,29 @@ struct Model {
     F(3) = -(Scalar(2) * q(1) * w25 - Scalar(2) * w35 * q(2) - Scalar(2) * q(2) * w27 + Scalar(2) * q(0) * w32 + Scalar(2) * q(0) * w26 - w36 * Scalar(2) * q(1));
   }
 
+  /// F(q, qd, t, u): everything of Lagrange's equations except M qdd
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static void forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] Vector<Scalar>& F) noexcept {
+    forcing(t, q, qd, u, Constants<Scalar>(p), F);
+  }
+
   /// M and F together, sharing their common subexpressions
   template <class Scalar>
-  static void mass_matrix_and_forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] MassMatrix<Scalar>& M, [[maybe_unused]] Vector<Scalar>& F) noexcept {
+  static void mass_matrix_and_forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] MassMatrix<Scalar>& M, [[maybe_unused]] Vector<Scalar>& F) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
-    const Scalar w0 = Scalar(2) * q(2) * p.J1;
-    const Scalar w1 = p.J2 * Scalar(2) * q(3);
-    const Scalar w2 = Scalar(2) * q(0) * p.J3;
-    const Scalar w3 = p.J2 * Scalar(2) * q(0);
-    const Scalar w4 = Scalar(2) * q(1) * p.J1;
-    const Scalar w5 = Scalar(2) * q(3) * p.J3;
-    const Scalar w6 = Scalar(2) * q(2) * p.J3;
-    const Scalar w7 = Scalar(2) * q(0) * p.J1;
-    const Scalar w8 = p.J2 * Scalar(2) * q(1);
+    const Scalar w0 = c.k2 * q(2);
+    const Scalar w1 = c.k1 * q(3);
+    const Scalar w2 = c.k0 * q(0);
+    const Scalar w3 = c.k1 * q(0);
+    const Scalar w4 = c.k2 * q(1);
+    const Scalar w5 = c.k0 * q(3);
+    const Scalar w6 = c.k0 * q(2);
+    const Scalar w7 = c.k2 * q(0);
+    const Scalar w8 = c.k1 * q(1);
     const Scalar w9 = Scalar(2) * q(1) * q(2);
     const Scalar w10 = Scalar(2) * q(0) * q(3);
     const Scalar w11 = w9 + w10;
@@ -177,15 +219,15 @@ struct Model {
     const Scalar w35 = w22 * w21 + w31 * w33 - w27 * w29;
     const Scalar w36 = w18 * w22 - w28 * w29 - w33 * w32;
     const Scalar w37 = qd(1) * Scalar(2) * q(0) + Scalar(2) * q(2) * qd(3) - Scalar(2) * qd(0) * q(1) - Scalar(2) * q(3) * qd(2);
-    const Scalar w38 = w37 * p.J3;
+    const Scalar w38 = w37 * c.p.J3;
     const Scalar w39 = Scalar(2) * q(0) * qd(2) - Scalar(2) * qd(0) * q(2) - Scalar(2) * q(1) * qd(3) + qd(1) * Scalar(2) * q(3);
-    const Scalar w40 = p.J2 * w39;
+    const Scalar w40 = c.p.J2 * w39;
     const Scalar w41 = w38 * w39 - w37 * w40;
     const Scalar w42 = Scalar(2) * qd(0) * q(3) + qd(1) * Scalar(2) * q(2) - Scalar(2) * q(0) * qd(3) - Scalar(2) * q(1) * qd(2);
-    const Scalar w43 = w42 * p.J1;
+    const Scalar w43 = w42 * c.p.J1;
     const Scalar w44 = w42 * w40 - w43 * w39;
     const Scalar w45 = w38 * w42 - w43 * w37;
-    M(0, 0) = Scalar(2) * q(1) * Scalar(2) * q(1) * p.J3 + p.J2 * Scalar(2) * q(2) * Scalar(2) * q(2) + Scalar(2) * Scalar(2) * p.J1 * q(3) * q(3);
+    M(0, 0) = Scalar(2) * q(1) * c.k0 * q(1) + c.k1 * q(2) * Scalar(2) * q(2) + Scalar(2) * c.k2 * q(3) * q(3);
     M(0, 1) = Scalar(2) * w0 * q(3) - w1 * Scalar(2) * q(2) - Scalar(2) * q(1) * w2;
     M(0, 2) = Scalar(2) * q(1) * w5 - w3 * Scalar(2) * q(2) - w4 * Scalar(2) * q(3);
     M(0, 3) = -(Scalar(2) * w6 * q(1) + w7 * Scalar(2) * q(3) - Scalar(2) * q(2) * w8);
@@ -207,9 +249,17 @@ struct Model {
     M(3, 2) = M(2, 3);
   }
 
+  /// M and F together, sharing their common subexpressions
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static void mass_matrix_and_forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] MassMatrix<Scalar>& M, [[maybe_unused]] Vector<Scalar>& F) noexcept {
+    mass_matrix_and_forcing(t, q, qd, u, Constants<Scalar>(p), M, F);
+  }
+
   /// Xi(q, t) of the Pfaffian constraints Xi qd + Xi_t = 0
   template <class Scalar>
-  static void constraint_jacobian([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintJacobian<Scalar>& Xi) noexcept {
+  static void constraint_jacobian([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] ConstraintJacobian<Scalar>& Xi) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
@@ -219,36 +269,68 @@ struct Model {
     Xi(0, 3) = Scalar(2) * q(3);
   }
 
+  /// Xi(q, t) of the Pfaffian constraints Xi qd + Xi_t = 0
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static void constraint_jacobian([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintJacobian<Scalar>& Xi) noexcept {
+    constraint_jacobian(t, q, Constants<Scalar>(p), Xi);
+  }
+
   /// Xi_t(q, t)
   template <class Scalar>
-  static void constraint_rate_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintVector<Scalar>& Xi_t) noexcept {
+  static void constraint_rate_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] ConstraintVector<Scalar>& Xi_t) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
     Xi_t(0) = Scalar(0);
   }
 
+  /// Xi_t(q, t)
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static void constraint_rate_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintVector<Scalar>& Xi_t) noexcept {
+    constraint_rate_term(t, q, Constants<Scalar>(p), Xi_t);
+  }
+
   /// dXi/dt qd + dXi_t/dt, so that Xi qdd + b = 0
   template <class Scalar>
-  static void constraint_acceleration_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintVector<Scalar>& b) noexcept {
+  static void constraint_acceleration_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] ConstraintVector<Scalar>& b) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
     b(0) = qd(0) * qd(0) * Scalar(2) + qd(3) * qd(3) * Scalar(2) + Scalar(2) * qd(1) * qd(1) + Scalar(2) * qd(2) * qd(2);
   }
 
+  /// dXi/dt qd + dXi_t/dt, so that Xi qdd + b = 0
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static void constraint_acceleration_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintVector<Scalar>& b) noexcept {
+    constraint_acceleration_term(t, q, qd, Constants<Scalar>(p), b);
+  }
+
   /// phi(q, t) of the holonomic constraints
   template <class Scalar>
-  static void holonomic_residuals([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] HolonomicVector<Scalar>& phi) noexcept {
+  static void holonomic_residuals([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] HolonomicVector<Scalar>& phi) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
     phi(0) = q(1) * q(1) + q(0) * q(0) + q(3) * q(3) - Scalar(1) + q(2) * q(2);
   }
 
+  /// phi(q, t) of the holonomic constraints
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static void holonomic_residuals([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] HolonomicVector<Scalar>& phi) noexcept {
+    holonomic_residuals(t, q, Constants<Scalar>(p), phi);
+  }
+
   /// T(q, qd, t)
   template <class Scalar>
-  static Scalar kinetic_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Parameters<Scalar>& p) noexcept {
+  static Scalar kinetic_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Constants<Scalar>& c) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
@@ -256,13 +338,21 @@ struct Model {
     const Scalar w0 = qd(1) * Scalar(2) * q(0) + Scalar(2) * q(2) * qd(3) - Scalar(2) * qd(0) * q(1) - Scalar(2) * q(3) * qd(2);
     const Scalar w1 = Scalar(2) * qd(0) * q(3) + qd(1) * Scalar(2) * q(2) - Scalar(2) * q(0) * qd(3) - Scalar(2) * q(1) * qd(2);
     const Scalar w2 = Scalar(2) * q(0) * qd(2) - Scalar(2) * qd(0) * q(2) - Scalar(2) * q(1) * qd(3) + qd(1) * Scalar(2) * q(3);
-    T = w0 * p.J3 * Scalar(0.5) * w0 + w1 * p.J1 * Scalar(0.5) * w1 + w2 * Scalar(0.5) * p.J2 * w2;
+    T = w0 * c.p.J3 * Scalar(0.5) * w0 + w1 * c.p.J1 * Scalar(0.5) * w1 + w2 * Scalar(0.5) * c.p.J2 * w2;
     return T;
+  }
+
+  /// T(q, qd, t)
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static Scalar kinetic_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Parameters<Scalar>& p) noexcept {
+    return kinetic_energy(t, q, qd, Constants<Scalar>(p));
   }
 
   /// V(q, t)
   template <class Scalar>
-  static Scalar potential_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p) noexcept {
+  static Scalar potential_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
@@ -270,9 +360,17 @@ struct Model {
     return V;
   }
 
+  /// V(q, t)
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static Scalar potential_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p) noexcept {
+    return potential_energy(t, q, Constants<Scalar>(p));
+  }
+
   /// the model's named outputs, in the order of output_names
   template <class Scalar>
-  static void outputs([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] OutputVector<Scalar>& y) noexcept {
+  static void outputs([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] OutputVector<Scalar>& y) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
@@ -295,10 +393,18 @@ struct Model {
     y(0) = Scalar(2) * qd(0) * q(3) + qd(1) * Scalar(2) * q(2) - Scalar(2) * q(0) * qd(3) - Scalar(2) * q(1) * qd(2);
     y(1) = Scalar(2) * q(0) * qd(2) - Scalar(2) * qd(0) * q(2) - Scalar(2) * q(1) * qd(3) + qd(1) * Scalar(2) * q(3);
     y(2) = -(qd(1) * Scalar(2) * q(0) + Scalar(2) * q(2) * qd(3) - Scalar(2) * qd(0) * q(1) - Scalar(2) * q(3) * qd(2));
-    y(3) = -(Scalar(4) * w0 * (w1 - w2) * p.J2 + (w4 + w5 + w7 + w8) * Scalar(2) * p.J1 * w9 - Scalar(4) * (w10 + w11) * w12 * p.J3);
-    y(4) = Scalar(4) * (w1 + w2) * p.J1 * w9 + (w4 + w13 + w5 + w6) * w0 * p.J2 * Scalar(2) - Scalar(4) * (w14 - w15) * w12 * p.J3;
-    y(5) = -(Scalar(2) * (w13 + w5 + w3 + w7) * w12 * p.J3 - Scalar(4) * w0 * p.J2 * (w14 + w15) - Scalar(4) * (w10 - w11) * p.J1 * w9);
+    y(3) = -(c.k3 * w0 * (w1 - w2) + (w4 + w5 + w7 + w8) * c.k2 * w9 - c.k4 * (w10 + w11) * w12);
+    y(4) = c.k5 * (w1 + w2) * w9 + (w4 + w13 + w5 + w6) * w0 * c.k1 - c.k4 * (w14 - w15) * w12;
+    y(5) = -(c.k0 * (w13 + w5 + w3 + w7) * w12 - c.k3 * w0 * (w14 + w15) - c.k5 * (w10 - w11) * w9);
     y(6) = sqrt(w5 + w3 + w6 + w8);
+  }
+
+  /// the model's named outputs, in the order of output_names
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static void outputs([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] OutputVector<Scalar>& y) noexcept {
+    outputs(t, q, qd, u, Constants<Scalar>(p), y);
   }
 };
 

@@ -22,7 +22,7 @@ struct Model {
   static constexpr const char* name = "rolling_coin";
   static constexpr const char* description = "Thin disk (coin) rolling without slip on a plane: twist, lean, roll";
   static constexpr const char* generator_version = "0.1.0";
-  static constexpr const char* model_hash = "8ef37b64c80faeba";
+  static constexpr const char* model_hash = "b6389ffb7e08968e";
   static constexpr std::array<const char*, nq> coordinate_names{{"x", "y", "psi", "theta", "phi"}};
   static constexpr std::array<const char*, nu> input_names{{}};
   static constexpr std::array<const char*, np> parameter_names{{"m", "r", "g"}};
@@ -50,30 +50,54 @@ struct Model {
     std::array<Scalar*, np> fields() noexcept { return {{&m, &r, &g}}; }
   };
 
+  /// The values of the functions below that depend on the parameters only, computed once per
+  /// parameter set. Immutable: for other parameters, build other Constants.
+  template <class Scalar>
+  class Constants {
+   public:
+    /// Computes every constant from a copy of the parameters.
+    explicit Constants(const Parameters<Scalar>& parameters) noexcept : p(parameters) {
+      using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
+      using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
+      using std::log; using std::abs; using std::pow;
+      const Scalar w0 = p.r * p.r;
+      k0 = w0 * Scalar(0.25) * p.m;
+      k1 = w0 * p.m * Scalar(0.5);
+      k2 = p.g * p.m;
+      k3 = p.m * Scalar(0.5);
+    }
+    /// The parameters these constants were computed from.
+    const Parameters<Scalar>& parameters() const noexcept { return p; }
+
+   private:
+    friend struct Model;
+    Parameters<Scalar> p;
+    Scalar k0, k1, k2, k3;
+  };
+
   /// M(q, t), symmetric positive (semi)definite
   template <class Scalar>
-  static void mass_matrix([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] MassMatrix<Scalar>& M) noexcept {
+  static void mass_matrix([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] MassMatrix<Scalar>& M) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
-    const Scalar w0 = p.r * p.r;
-    const Scalar w1 = sin(q(4));
-    const Scalar w2 = cos(q(3));
-    const Scalar w3 = w1 * w2;
-    const Scalar w4 = cos(q(4));
-    const Scalar w5 = w2 * w4;
-    const Scalar w6 = sin(q(3));
-    const Scalar w7 = w0 * Scalar(0.25) * p.m * w4;
-    const Scalar w8 = w1 * w0 * Scalar(0.25) * p.m;
-    const Scalar w9 = w0 * p.m * Scalar(0.5);
-    const Scalar w10 = p.r * w6;
-    M(0, 0) = p.m;
-    M(1, 1) = p.m;
-    M(2, 2) = w0 * Scalar(0.25) * p.m * w3 * w3 + w5 * w0 * Scalar(0.25) * w5 * p.m + w0 * p.m * Scalar(0.5) * w6 * w6;
-    M(2, 3) = -(w5 * w8 - w3 * w7);
-    M(2, 4) = -(w9 * w6);
-    M(3, 3) = w1 * w8 + w10 * w10 * p.m + w4 * w7;
-    M(4, 4) = w9;
+    const Scalar w0 = sin(q(4));
+    const Scalar w1 = cos(q(3));
+    const Scalar w2 = w0 * w1;
+    const Scalar w3 = cos(q(4));
+    const Scalar w4 = w1 * w3;
+    const Scalar w5 = sin(q(3));
+    const Scalar w6 = c.k1 * w5;
+    const Scalar w7 = c.k0 * w3;
+    const Scalar w8 = w0 * c.k0;
+    const Scalar w9 = c.p.r * w5;
+    M(0, 0) = c.p.m;
+    M(1, 1) = c.p.m;
+    M(2, 2) = c.k0 * w2 * w2 + w4 * c.k0 * w4 + w6 * w5;
+    M(2, 3) = -(w4 * w8 - w2 * w7);
+    M(2, 4) = -w6;
+    M(3, 3) = w0 * w8 + w9 * w9 * c.p.m + w3 * w7;
+    M(4, 4) = c.k1;
     M(0, 1) = Scalar(0);
     M(0, 2) = Scalar(0);
     M(0, 3) = Scalar(0);
@@ -94,9 +118,17 @@ struct Model {
     M(4, 3) = Scalar(0);
   }
 
+  /// M(q, t), symmetric positive (semi)definite
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static void mass_matrix([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] MassMatrix<Scalar>& M) noexcept {
+    mass_matrix(t, q, Constants<Scalar>(p), M);
+  }
+
   /// F(q, qd, t, u): everything of Lagrange's equations except M qdd
   template <class Scalar>
-  static void forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] Vector<Scalar>& F) noexcept {
+  static void forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] Vector<Scalar>& F) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
@@ -108,62 +140,68 @@ struct Model {
     const Scalar w5 = sin(q(3));
     const Scalar w6 = w5 * qd(2);
     const Scalar w7 = w6 - qd(4);
-    const Scalar w8 = p.r * p.r;
-    const Scalar w9 = w7 * w8 * p.m * Scalar(0.5);
-    const Scalar w10 = w8 * Scalar(0.25) * p.m * w4;
-    const Scalar w11 = w6 * qd(3);
-    const Scalar w12 = w4 * w9 - w7 * w10 - (w3 * w11 + w4 * qd(4)) * w8 * Scalar(0.25) * p.m;
-    const Scalar w13 = w3 * w1 + w2 * qd(3);
-    const Scalar w14 = w8 * w13 * Scalar(0.25) * p.m;
-    const Scalar w15 = w8 * Scalar(0.25) * p.m * (w11 * w2 + w13 * qd(4)) - w13 * w9 + w7 * w14;
-    const Scalar w16 = w13 * w10 - w4 * w14 + w8 * p.m * w1 * qd(3) * Scalar(0.5);
-    const Scalar w17 = p.r * w5;
-    F(2) = -(w12 * w3 * w0 - w15 * w0 * w2 + w16 * w5);
-    F(3) = -(p.m * w17 * qd(3) * qd(3) * w0 * p.r + w3 * w15 - p.g * p.m * w17 + w12 * w2);
-    F(4) = w16;
+    const Scalar w8 = w7 * c.k1;
+    const Scalar w9 = c.k0 * w4;
+    const Scalar w10 = w6 * qd(3);
+    const Scalar w11 = w4 * w8 - w7 * w9 - (w3 * w10 + w4 * qd(4)) * c.k0;
+    const Scalar w12 = w3 * w1 + w2 * qd(3);
+    const Scalar w13 = c.k0 * w12;
+    const Scalar w14 = c.k0 * (w10 * w2 + w12 * qd(4)) - w12 * w8 + w7 * w13;
+    const Scalar w15 = w12 * w9 - w4 * w13 + c.k1 * w1 * qd(3);
+    const Scalar w16 = c.p.r * w5;
+    F(2) = -(w11 * w3 * w0 - w14 * w0 * w2 + w15 * w5);
+    F(3) = -(c.p.m * w16 * qd(3) * qd(3) * w0 * c.p.r + w3 * w14 - c.k2 * w16 + w11 * w2);
+    F(4) = w15;
     F(0) = Scalar(0);
     F(1) = Scalar(0);
   }
 
+  /// F(q, qd, t, u): everything of Lagrange's equations except M qdd
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static void forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] Vector<Scalar>& F) noexcept {
+    forcing(t, q, qd, u, Constants<Scalar>(p), F);
+  }
+
   /// M and F together, sharing their common subexpressions
   template <class Scalar>
-  static void mass_matrix_and_forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] MassMatrix<Scalar>& M, [[maybe_unused]] Vector<Scalar>& F) noexcept {
+  static void mass_matrix_and_forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] MassMatrix<Scalar>& M, [[maybe_unused]] Vector<Scalar>& F) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
-    const Scalar w0 = p.r * p.r;
-    const Scalar w1 = sin(q(4));
-    const Scalar w2 = cos(q(3));
-    const Scalar w3 = w1 * w2;
-    const Scalar w4 = cos(q(4));
-    const Scalar w5 = w2 * w4;
-    const Scalar w6 = sin(q(3));
-    const Scalar w7 = w0 * Scalar(0.25) * p.m * w4;
-    const Scalar w8 = w1 * w0 * Scalar(0.25) * p.m;
-    const Scalar w9 = w0 * p.m * Scalar(0.5);
-    const Scalar w10 = p.r * w6;
-    const Scalar w11 = w2 * qd(2);
-    const Scalar w12 = w1 * qd(3) - w11 * w4;
-    const Scalar w13 = w6 * qd(2);
-    const Scalar w14 = w13 - qd(4);
-    const Scalar w15 = w14 * w0 * p.m * Scalar(0.5);
-    const Scalar w16 = w0 * Scalar(0.25) * p.m * w12;
-    const Scalar w17 = w13 * qd(3);
-    const Scalar w18 = w12 * w15 - w14 * w16 - (w1 * w17 + w12 * qd(4)) * w0 * Scalar(0.25) * p.m;
-    const Scalar w19 = w1 * w11 + w4 * qd(3);
-    const Scalar w20 = w0 * w19 * Scalar(0.25) * p.m;
-    const Scalar w21 = w0 * Scalar(0.25) * p.m * (w17 * w4 + w19 * qd(4)) - w19 * w15 + w14 * w20;
-    const Scalar w22 = w19 * w16 - w12 * w20 + w0 * p.m * w11 * qd(3) * Scalar(0.5);
-    M(0, 0) = p.m;
-    M(1, 1) = p.m;
-    M(2, 2) = w0 * Scalar(0.25) * p.m * w3 * w3 + w5 * w0 * Scalar(0.25) * w5 * p.m + w0 * p.m * Scalar(0.5) * w6 * w6;
-    M(2, 3) = -(w5 * w8 - w3 * w7);
-    M(2, 4) = -(w9 * w6);
-    M(3, 3) = w1 * w8 + w10 * w10 * p.m + w4 * w7;
-    M(4, 4) = w9;
-    F(2) = -(w18 * w3 - w21 * w5 + w22 * w6);
-    F(3) = -(p.m * w10 * qd(3) * qd(3) * w2 * p.r + w1 * w21 - p.g * p.m * w10 + w18 * w4);
-    F(4) = w22;
+    const Scalar w0 = sin(q(4));
+    const Scalar w1 = cos(q(3));
+    const Scalar w2 = w0 * w1;
+    const Scalar w3 = cos(q(4));
+    const Scalar w4 = w1 * w3;
+    const Scalar w5 = sin(q(3));
+    const Scalar w6 = c.k1 * w5;
+    const Scalar w7 = c.k0 * w3;
+    const Scalar w8 = w0 * c.k0;
+    const Scalar w9 = c.p.r * w5;
+    const Scalar w10 = w1 * qd(2);
+    const Scalar w11 = w0 * qd(3) - w10 * w3;
+    const Scalar w12 = w5 * qd(2);
+    const Scalar w13 = w12 - qd(4);
+    const Scalar w14 = w13 * c.k1;
+    const Scalar w15 = c.k0 * w11;
+    const Scalar w16 = w12 * qd(3);
+    const Scalar w17 = w11 * w14 - w13 * w15 - (w0 * w16 + w11 * qd(4)) * c.k0;
+    const Scalar w18 = w0 * w10 + w3 * qd(3);
+    const Scalar w19 = c.k0 * w18;
+    const Scalar w20 = c.k0 * (w16 * w3 + w18 * qd(4)) - w18 * w14 + w13 * w19;
+    const Scalar w21 = w18 * w15 - w11 * w19 + c.k1 * w10 * qd(3);
+    M(0, 0) = c.p.m;
+    M(1, 1) = c.p.m;
+    M(2, 2) = c.k0 * w2 * w2 + w4 * c.k0 * w4 + w6 * w5;
+    M(2, 3) = -(w4 * w8 - w2 * w7);
+    M(2, 4) = -w6;
+    M(3, 3) = w0 * w8 + w9 * w9 * c.p.m + w3 * w7;
+    M(4, 4) = c.k1;
+    F(2) = -(w17 * w2 - w20 * w4 + w21 * w5);
+    F(3) = -(c.p.m * w9 * qd(3) * qd(3) * w1 * c.p.r + w0 * w20 - c.k2 * w9 + w17 * w3);
+    F(4) = w21;
     M(0, 1) = Scalar(0);
     M(0, 2) = Scalar(0);
     M(0, 3) = Scalar(0);
@@ -186,9 +224,17 @@ struct Model {
     M(4, 3) = Scalar(0);
   }
 
+  /// M and F together, sharing their common subexpressions
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static void mass_matrix_and_forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] MassMatrix<Scalar>& M, [[maybe_unused]] Vector<Scalar>& F) noexcept {
+    mass_matrix_and_forcing(t, q, qd, u, Constants<Scalar>(p), M, F);
+  }
+
   /// Xi(q, t) of the Pfaffian constraints Xi qd + Xi_t = 0
   template <class Scalar>
-  static void constraint_jacobian([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintJacobian<Scalar>& Xi) noexcept {
+  static void constraint_jacobian([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] ConstraintJacobian<Scalar>& Xi) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
@@ -199,20 +245,28 @@ struct Model {
     const Scalar w4 = cos(q(4));
     const Scalar w5 = sin(q(4));
     Xi(0, 1) = Scalar(1);
-    Xi(0, 2) = -(p.r * w0 * w1);
-    Xi(0, 3) = -(w2 * p.r * w3);
-    Xi(0, 4) = -(w5 * (w4 * w3 * w0 - w5 * w1) * p.r - p.r * w4 * (w4 * w1 + w5 * w3 * w0));
+    Xi(0, 2) = -(c.p.r * w0 * w1);
+    Xi(0, 3) = -(w2 * c.p.r * w3);
+    Xi(0, 4) = -(w5 * (w4 * w3 * w0 - w5 * w1) * c.p.r - c.p.r * w4 * (w4 * w1 + w5 * w3 * w0));
     Xi(1, 0) = -Scalar(1);
-    Xi(1, 2) = -(p.r * w3 * w0);
-    Xi(1, 3) = w2 * p.r * w1;
-    Xi(1, 4) = -((w5 * w0 * w1 - w4 * w3) * p.r * w4 - w5 * p.r * (w4 * w0 * w1 + w5 * w3));
+    Xi(1, 2) = -(c.p.r * w3 * w0);
+    Xi(1, 3) = w2 * c.p.r * w1;
+    Xi(1, 4) = -((w5 * w0 * w1 - w4 * w3) * c.p.r * w4 - w5 * c.p.r * (w4 * w0 * w1 + w5 * w3));
     Xi(0, 0) = Scalar(0);
     Xi(1, 1) = Scalar(0);
   }
 
+  /// Xi(q, t) of the Pfaffian constraints Xi qd + Xi_t = 0
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static void constraint_jacobian([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintJacobian<Scalar>& Xi) noexcept {
+    constraint_jacobian(t, q, Constants<Scalar>(p), Xi);
+  }
+
   /// Xi_t(q, t)
   template <class Scalar>
-  static void constraint_rate_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintVector<Scalar>& Xi_t) noexcept {
+  static void constraint_rate_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] ConstraintVector<Scalar>& Xi_t) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
@@ -220,9 +274,17 @@ struct Model {
     Xi_t(1) = Scalar(0);
   }
 
+  /// Xi_t(q, t)
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static void constraint_rate_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintVector<Scalar>& Xi_t) noexcept {
+    constraint_rate_term(t, q, Constants<Scalar>(p), Xi_t);
+  }
+
   /// dXi/dt qd + dXi_t/dt, so that Xi qdd + b = 0
   template <class Scalar>
-  static void constraint_acceleration_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintVector<Scalar>& b) noexcept {
+  static void constraint_acceleration_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] ConstraintVector<Scalar>& b) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
@@ -232,21 +294,37 @@ struct Model {
     const Scalar w3 = sin(q(3));
     const Scalar w4 = sin(q(4));
     const Scalar w5 = cos(q(4));
-    b(0) = qd(3) * (p.r * w2 * w3 * qd(3) - w0 * p.r * w1 * qd(2)) + ((w4 * w3 * w1 - w5 * w2) * p.r * w5 * qd(4) - w0 * p.r * qd(3) * w1 - w4 * p.r * qd(4) * (w5 * w3 * w1 + w4 * w2) + p.r * w2 * w3 * qd(2)) * qd(2);
-    b(1) = -((w4 * (w5 * w2 * w3 - w4 * w1) * p.r * qd(4) + p.r * w3 * w1 * qd(2) + w0 * p.r * w2 * qd(3) - p.r * w5 * (w5 * w1 + w4 * w2 * w3) * qd(4)) * qd(2) + qd(3) * (w0 * p.r * w2 * qd(2) + p.r * w3 * qd(3) * w1));
+    b(0) = qd(3) * (c.p.r * w2 * w3 * qd(3) - w0 * c.p.r * w1 * qd(2)) + ((w4 * w3 * w1 - w5 * w2) * c.p.r * w5 * qd(4) - w0 * c.p.r * qd(3) * w1 - w4 * c.p.r * qd(4) * (w5 * w3 * w1 + w4 * w2) + c.p.r * w2 * w3 * qd(2)) * qd(2);
+    b(1) = -((w4 * (w5 * w2 * w3 - w4 * w1) * c.p.r * qd(4) + c.p.r * w3 * w1 * qd(2) + w0 * c.p.r * w2 * qd(3) - c.p.r * w5 * (w5 * w1 + w4 * w2 * w3) * qd(4)) * qd(2) + qd(3) * (w0 * c.p.r * w2 * qd(2) + c.p.r * w3 * qd(3) * w1));
+  }
+
+  /// dXi/dt qd + dXi_t/dt, so that Xi qdd + b = 0
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static void constraint_acceleration_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintVector<Scalar>& b) noexcept {
+    constraint_acceleration_term(t, q, qd, Constants<Scalar>(p), b);
   }
 
   /// phi(q, t) of the holonomic constraints
   template <class Scalar>
-  static void holonomic_residuals([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] HolonomicVector<Scalar>& phi) noexcept {
+  static void holonomic_residuals([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] HolonomicVector<Scalar>& phi) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
   }
 
+  /// phi(q, t) of the holonomic constraints
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static void holonomic_residuals([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] HolonomicVector<Scalar>& phi) noexcept {
+    holonomic_residuals(t, q, Constants<Scalar>(p), phi);
+  }
+
   /// T(q, qd, t)
   template <class Scalar>
-  static Scalar kinetic_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Parameters<Scalar>& p) noexcept {
+  static Scalar kinetic_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Constants<Scalar>& c) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
@@ -255,29 +333,44 @@ struct Model {
     const Scalar w1 = cos(q(3)) * qd(2);
     const Scalar w2 = cos(q(4));
     const Scalar w3 = w0 * w1 + w2 * qd(3);
-    const Scalar w4 = p.r * p.r;
-    const Scalar w5 = sin(q(3));
-    const Scalar w6 = w5 * qd(2) - qd(4);
-    const Scalar w7 = p.r * w5 * qd(3);
-    const Scalar w8 = w0 * qd(3) - w1 * w2;
-    T = w3 * Scalar(0.5) * w4 * w3 * Scalar(0.25) * p.m + w6 * Scalar(0.5) * w6 * w4 * p.m * Scalar(0.5) + p.m * Scalar(0.5) * (w7 * w7 + qd(0) * qd(0) + qd(1) * qd(1)) + Scalar(0.5) * w8 * w4 * Scalar(0.25) * p.m * w8;
+    const Scalar w4 = sin(q(3));
+    const Scalar w5 = w4 * qd(2) - qd(4);
+    const Scalar w6 = c.p.r * w4 * qd(3);
+    const Scalar w7 = w0 * qd(3) - w1 * w2;
+    T = w3 * Scalar(0.5) * c.k0 * w3 + w5 * Scalar(0.5) * w5 * c.k1 + c.k3 * (w6 * w6 + qd(0) * qd(0) + qd(1) * qd(1)) + Scalar(0.5) * w7 * c.k0 * w7;
     return T;
+  }
+
+  /// T(q, qd, t)
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static Scalar kinetic_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Parameters<Scalar>& p) noexcept {
+    return kinetic_energy(t, q, qd, Constants<Scalar>(p));
   }
 
   /// V(q, t)
   template <class Scalar>
-  static Scalar potential_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p) noexcept {
+  static Scalar potential_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
     Scalar V = Scalar(0);
-    V = p.g * p.m * cos(q(3)) * p.r;
+    V = c.k2 * cos(q(3)) * c.p.r;
     return V;
+  }
+
+  /// V(q, t)
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static Scalar potential_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p) noexcept {
+    return potential_energy(t, q, Constants<Scalar>(p));
   }
 
   /// the model's named outputs, in the order of output_names
   template <class Scalar>
-  static void outputs([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] OutputVector<Scalar>& y) noexcept {
+  static void outputs([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] OutputVector<Scalar>& y) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
@@ -285,16 +378,24 @@ struct Model {
     const Scalar w1 = sin(q(3));
     y(0) = q(0);
     y(1) = q(1);
-    y(2) = w0 * p.r;
+    y(2) = w0 * c.p.r;
     y(3) = qd(0);
     y(4) = qd(1);
-    y(5) = -(p.r * w1 * qd(3));
-    y(6) = -(p.r * w1 * cos(q(2)) - q(0));
-    y(7) = q(1) - p.r * sin(q(2)) * w1;
+    y(5) = -(c.p.r * w1 * qd(3));
+    y(6) = -(c.p.r * w1 * cos(q(2)) - q(0));
+    y(7) = q(1) - c.p.r * sin(q(2)) * w1;
     y(9) = -(w1 * qd(2) - qd(4));
     y(10) = qd(3);
     y(11) = w0 * qd(2);
     y(8) = Scalar(0);
+  }
+
+  /// the model's named outputs, in the order of output_names
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static void outputs([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] OutputVector<Scalar>& y) noexcept {
+    outputs(t, q, qd, u, Constants<Scalar>(p), y);
   }
 };
 

@@ -22,7 +22,7 @@ struct Model {
   static constexpr const char* name = "spacecraft_panel";
   static constexpr const char* description = "Spacecraft bus spinning about b3 with a solar panel hinged about b2 (notes Example 3.1)";
   static constexpr const char* generator_version = "0.1.0";
-  static constexpr const char* model_hash = "4375cc83f3f3038c";
+  static constexpr const char* model_hash = "f5e912957a46af25";
   static constexpr std::array<const char*, nq> coordinate_names{{"gamma", "theta"}};
   static constexpr std::array<const char*, nu> input_names{{"tau_b", "tau_p"}};
   static constexpr std::array<const char*, np> parameter_names{{"l_fh", "l_ef", "w_p", "t_p", "m_b", "J_b1", "J_b2", "J_b3", "m_p"}};
@@ -56,47 +56,80 @@ struct Model {
     std::array<Scalar*, np> fields() noexcept { return {{&l_fh, &l_ef, &w_p, &t_p, &m_b, &J_b1, &J_b2, &J_b3, &m_p}}; }
   };
 
+  /// The values of the functions below that depend on the parameters only, computed once per
+  /// parameter set. Immutable: for other parameters, build other Constants.
+  template <class Scalar>
+  class Constants {
+   public:
+    /// Computes every constant from a copy of the parameters.
+    explicit Constants(const Parameters<Scalar>& parameters) noexcept : p(parameters) {
+      using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
+      using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
+      using std::log; using std::abs; using std::pow;
+      const Scalar w0 = p.w_p * p.w_p;
+      const Scalar w1 = p.t_p * p.t_p;
+      const Scalar w2 = p.l_ef * p.l_ef;
+      k0 = Scalar(0.08333333333333333) * (w0 + w1) * p.m_p;
+      k1 = p.l_ef * Scalar(0.5);
+      k2 = Scalar(0.08333333333333333) * (w2 + w0) * p.m_p;
+      k3 = (w2 + w1) * Scalar(0.08333333333333333) * p.m_p;
+      k4 = Scalar(0.5) * p.m_p;
+    }
+    /// The parameters these constants were computed from.
+    const Parameters<Scalar>& parameters() const noexcept { return p; }
+
+   private:
+    friend struct Model;
+    Parameters<Scalar> p;
+    Scalar k0, k1, k2, k3, k4;
+  };
+
   /// M(q, t), symmetric positive (semi)definite
   template <class Scalar>
-  static void mass_matrix([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] MassMatrix<Scalar>& M) noexcept {
+  static void mass_matrix([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] MassMatrix<Scalar>& M) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
     const Scalar w0 = cos(q(1));
-    const Scalar w1 = p.w_p * p.w_p;
-    const Scalar w2 = p.t_p * p.t_p;
-    const Scalar w3 = sin(q(1));
-    const Scalar w4 = cos(q(0));
-    const Scalar w5 = sin(q(0));
-    const Scalar w6 = w5 * p.l_fh - w3 * p.l_ef * Scalar(0.5) * w4;
-    const Scalar w7 = w3 * p.l_ef * Scalar(0.5) * w5 + p.l_fh * w4;
-    const Scalar w8 = p.l_ef * p.l_ef;
-    const Scalar w9 = w0 * w4 * p.l_ef * Scalar(0.5);
-    const Scalar w10 = p.l_ef * w0 * w5 * Scalar(0.5);
-    const Scalar w11 = w3 * p.l_ef * Scalar(0.5);
-    M(0, 0) = w0 * Scalar(0.08333333333333333) * (w1 + w2) * p.m_p * w0 + p.J_b3 + (w6 * w6 + w7 * w7) * p.m_p + w3 * w3 * Scalar(0.08333333333333333) * (w8 + w1) * p.m_p;
-    M(0, 1) = -((w9 * w7 + w6 * w10) * p.m_p);
-    M(1, 1) = (w8 + w2) * Scalar(0.08333333333333333) * p.m_p + p.m_p * (w9 * w9 + w11 * w11 + w10 * w10);
+    const Scalar w1 = sin(q(1));
+    const Scalar w2 = cos(q(0));
+    const Scalar w3 = sin(q(0));
+    const Scalar w4 = w3 * c.p.l_fh - w1 * c.k1 * w2;
+    const Scalar w5 = w1 * c.k1 * w3 + c.p.l_fh * w2;
+    const Scalar w6 = w0 * w2 * c.k1;
+    const Scalar w7 = c.k1 * w0 * w3;
+    const Scalar w8 = w1 * c.k1;
+    M(0, 0) = w0 * c.k0 * w0 + c.p.J_b3 + (w4 * w4 + w5 * w5) * c.p.m_p + w1 * w1 * c.k2;
+    M(0, 1) = -((w6 * w5 + w4 * w7) * c.p.m_p);
+    M(1, 1) = c.k3 + c.p.m_p * (w6 * w6 + w8 * w8 + w7 * w7);
     M(1, 0) = M(0, 1);
+  }
+
+  /// M(q, t), symmetric positive (semi)definite
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static void mass_matrix([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] MassMatrix<Scalar>& M) noexcept {
+    mass_matrix(t, q, Constants<Scalar>(p), M);
   }
 
   /// F(q, qd, t, u): everything of Lagrange's equations except M qdd
   template <class Scalar>
-  static void forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] Vector<Scalar>& F) noexcept {
+  static void forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] Vector<Scalar>& F) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
     const Scalar w0 = sin(q(1));
     const Scalar w1 = cos(q(0));
     const Scalar w2 = sin(q(0));
-    const Scalar w3 = qd(0) * p.l_fh;
+    const Scalar w3 = qd(0) * c.p.l_fh;
     const Scalar w4 = cos(q(1));
     const Scalar w5 = w4 * qd(0);
     const Scalar w6 = qd(1) * w5;
-    const Scalar w7 = qd(1) * p.l_ef * Scalar(0.5);
-    const Scalar w8 = w6 * p.l_ef + w7 * w5 * Scalar(2);
+    const Scalar w7 = qd(1) * c.k1;
+    const Scalar w8 = w6 * c.p.l_ef + w7 * w5 * Scalar(2);
     const Scalar w9 = w0 * qd(0);
-    const Scalar w10 = p.l_ef * w9 * Scalar(0.5);
+    const Scalar w10 = c.k1 * w9;
     const Scalar w11 = w9 * w10 + qd(1) * w7;
     const Scalar w12 = w0 * w2;
     const Scalar w13 = w4 * w2;
@@ -106,124 +139,166 @@ struct Model {
     const Scalar w17 = w15 * w5 * w10 + w11 * w16 + w8 * Scalar(0.5) * w2 - qd(0) * w3 * w2;
     const Scalar w18 = w2 * u(1);
     const Scalar w19 = u(1) * w1;
-    const Scalar w20 = p.l_ef * p.l_ef;
-    const Scalar w21 = p.w_p * p.w_p;
-    const Scalar w22 = w20 + w21;
-    const Scalar w23 = Scalar(0.08333333333333333) * w9 * w22 * p.m_p;
-    const Scalar w24 = p.t_p * p.t_p;
-    const Scalar w25 = qd(1) * (w20 + w24) * Scalar(0.08333333333333333) * p.m_p;
-    const Scalar w26 = w21 + w24;
-    const Scalar w27 = w5 * Scalar(0.08333333333333333) * w26 * p.m_p;
-    F(0) = w0 * (w15 * w18 - w13 * w19) - ((w2 * p.l_fh - w0 * p.l_ef * Scalar(0.5) * w1) * w14 + (w0 * p.l_ef * Scalar(0.5) * w2 + p.l_fh * w1) * w17) * p.m_p + w4 * (w9 * w25 - qd(1) * w23 + qd(1) * w9 * Scalar(0.08333333333333333) * w26 * p.m_p) + w4 * (w12 * w19 - w18 * w16) + w0 * (qd(1) * w27 - w6 * Scalar(0.08333333333333333) * w22 * p.m_p - w5 * w25) + u(0);
-    F(1) = w18 * w2 + w1 * w19 - p.m_p * ((w11 * w4 - w0 * w5 * w10) * w0 * p.l_ef * Scalar(0.5) - w15 * p.l_ef * Scalar(0.5) * w17 - p.l_ef * w13 * Scalar(0.5) * w14) - (w9 * w27 - w5 * w23);
+    const Scalar w20 = c.k2 * w9;
+    const Scalar w21 = qd(1) * c.k3;
+    const Scalar w22 = w5 * c.k0;
+    F(0) = w0 * (w15 * w18 - w13 * w19) - ((w2 * c.p.l_fh - w0 * c.k1 * w1) * w14 + (w0 * c.k1 * w2 + c.p.l_fh * w1) * w17) * c.p.m_p + w4 * (w9 * w21 - qd(1) * w20 + qd(1) * w9 * c.k0) + w4 * (w12 * w19 - w18 * w16) + w0 * (qd(1) * w22 - w6 * c.k2 - w5 * w21) + u(0);
+    F(1) = w18 * w2 + w1 * w19 - c.p.m_p * ((w11 * w4 - w0 * w5 * w10) * w0 * c.k1 - w15 * c.k1 * w17 - c.k1 * w13 * w14) - (w9 * w22 - w5 * w20);
+  }
+
+  /// F(q, qd, t, u): everything of Lagrange's equations except M qdd
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static void forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] Vector<Scalar>& F) noexcept {
+    forcing(t, q, qd, u, Constants<Scalar>(p), F);
   }
 
   /// M and F together, sharing their common subexpressions
   template <class Scalar>
-  static void mass_matrix_and_forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] MassMatrix<Scalar>& M, [[maybe_unused]] Vector<Scalar>& F) noexcept {
+  static void mass_matrix_and_forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] MassMatrix<Scalar>& M, [[maybe_unused]] Vector<Scalar>& F) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
     const Scalar w0 = cos(q(1));
-    const Scalar w1 = p.w_p * p.w_p;
-    const Scalar w2 = p.t_p * p.t_p;
-    const Scalar w3 = w1 + w2;
-    const Scalar w4 = sin(q(1));
-    const Scalar w5 = cos(q(0));
-    const Scalar w6 = sin(q(0));
-    const Scalar w7 = w6 * p.l_fh - w4 * p.l_ef * Scalar(0.5) * w5;
-    const Scalar w8 = w4 * p.l_ef * Scalar(0.5) * w6 + p.l_fh * w5;
-    const Scalar w9 = p.l_ef * p.l_ef;
-    const Scalar w10 = w9 + w1;
-    const Scalar w11 = w0 * w5;
-    const Scalar w12 = w11 * p.l_ef * Scalar(0.5);
-    const Scalar w13 = w0 * w6;
-    const Scalar w14 = p.l_ef * w13 * Scalar(0.5);
-    const Scalar w15 = w9 + w2;
-    const Scalar w16 = w4 * p.l_ef * Scalar(0.5);
-    const Scalar w17 = qd(0) * p.l_fh;
-    const Scalar w18 = w0 * qd(0);
-    const Scalar w19 = qd(1) * w18;
-    const Scalar w20 = qd(1) * p.l_ef * Scalar(0.5);
-    const Scalar w21 = w19 * p.l_ef + w20 * w18 * Scalar(2);
-    const Scalar w22 = w4 * qd(0);
-    const Scalar w23 = p.l_ef * w22 * Scalar(0.5);
-    const Scalar w24 = w22 * w23 + qd(1) * w20;
-    const Scalar w25 = w4 * w6;
-    const Scalar w26 = qd(0) * w17 * w5 - w21 * Scalar(0.5) * w5 + w24 * w25 + w18 * w13 * w23;
-    const Scalar w27 = w4 * w5;
-    const Scalar w28 = w11 * w18 * w23 + w24 * w27 + w21 * Scalar(0.5) * w6 - qd(0) * w17 * w6;
-    const Scalar w29 = w6 * u(1);
-    const Scalar w30 = u(1) * w5;
-    const Scalar w31 = Scalar(0.08333333333333333) * w22 * w10 * p.m_p;
-    const Scalar w32 = qd(1) * w15 * Scalar(0.08333333333333333) * p.m_p;
-    const Scalar w33 = w18 * Scalar(0.08333333333333333) * w3 * p.m_p;
-    M(0, 0) = w0 * Scalar(0.08333333333333333) * w3 * p.m_p * w0 + p.J_b3 + (w7 * w7 + w8 * w8) * p.m_p + w4 * w4 * Scalar(0.08333333333333333) * w10 * p.m_p;
-    M(0, 1) = -((w12 * w8 + w7 * w14) * p.m_p);
-    M(1, 1) = w15 * Scalar(0.08333333333333333) * p.m_p + p.m_p * (w12 * w12 + w16 * w16 + w14 * w14);
-    F(0) = w4 * (w11 * w29 - w13 * w30) - (w7 * w26 + w8 * w28) * p.m_p + w0 * (w22 * w32 - qd(1) * w31 + qd(1) * w22 * Scalar(0.08333333333333333) * w3 * p.m_p) + w0 * (w25 * w30 - w29 * w27) + w4 * (qd(1) * w33 - w19 * Scalar(0.08333333333333333) * w10 * p.m_p - w18 * w32) + u(0);
-    F(1) = w29 * w6 + w5 * w30 - p.m_p * ((w24 * w0 - w4 * w18 * w23) * w16 - w12 * w28 - w14 * w26) - (w22 * w33 - w18 * w31);
+    const Scalar w1 = sin(q(1));
+    const Scalar w2 = cos(q(0));
+    const Scalar w3 = sin(q(0));
+    const Scalar w4 = w3 * c.p.l_fh - w1 * c.k1 * w2;
+    const Scalar w5 = w1 * c.k1 * w3 + c.p.l_fh * w2;
+    const Scalar w6 = w0 * w2;
+    const Scalar w7 = w6 * c.k1;
+    const Scalar w8 = w0 * w3;
+    const Scalar w9 = c.k1 * w8;
+    const Scalar w10 = w1 * c.k1;
+    const Scalar w11 = qd(0) * c.p.l_fh;
+    const Scalar w12 = w0 * qd(0);
+    const Scalar w13 = qd(1) * w12;
+    const Scalar w14 = qd(1) * c.k1;
+    const Scalar w15 = w13 * c.p.l_ef + w14 * w12 * Scalar(2);
+    const Scalar w16 = w1 * qd(0);
+    const Scalar w17 = c.k1 * w16;
+    const Scalar w18 = w16 * w17 + qd(1) * w14;
+    const Scalar w19 = w1 * w3;
+    const Scalar w20 = qd(0) * w11 * w2 - w15 * Scalar(0.5) * w2 + w18 * w19 + w12 * w8 * w17;
+    const Scalar w21 = w1 * w2;
+    const Scalar w22 = w6 * w12 * w17 + w18 * w21 + w15 * Scalar(0.5) * w3 - qd(0) * w11 * w3;
+    const Scalar w23 = w3 * u(1);
+    const Scalar w24 = u(1) * w2;
+    const Scalar w25 = c.k2 * w16;
+    const Scalar w26 = qd(1) * c.k3;
+    const Scalar w27 = w12 * c.k0;
+    M(0, 0) = w0 * c.k0 * w0 + c.p.J_b3 + (w4 * w4 + w5 * w5) * c.p.m_p + w1 * w1 * c.k2;
+    M(0, 1) = -((w7 * w5 + w4 * w9) * c.p.m_p);
+    M(1, 1) = c.k3 + c.p.m_p * (w7 * w7 + w10 * w10 + w9 * w9);
+    F(0) = w1 * (w6 * w23 - w8 * w24) - (w4 * w20 + w5 * w22) * c.p.m_p + w0 * (w16 * w26 - qd(1) * w25 + qd(1) * w16 * c.k0) + w0 * (w19 * w24 - w23 * w21) + w1 * (qd(1) * w27 - w13 * c.k2 - w12 * w26) + u(0);
+    F(1) = w23 * w3 + w2 * w24 - c.p.m_p * ((w18 * w0 - w1 * w12 * w17) * w10 - w7 * w22 - w9 * w20) - (w16 * w27 - w12 * w25);
     M(1, 0) = M(0, 1);
+  }
+
+  /// M and F together, sharing their common subexpressions
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static void mass_matrix_and_forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] MassMatrix<Scalar>& M, [[maybe_unused]] Vector<Scalar>& F) noexcept {
+    mass_matrix_and_forcing(t, q, qd, u, Constants<Scalar>(p), M, F);
   }
 
   /// Xi(q, t) of the Pfaffian constraints Xi qd + Xi_t = 0
   template <class Scalar>
+  static void constraint_jacobian([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] ConstraintJacobian<Scalar>& Xi) noexcept {
+    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
+    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
+    using std::log; using std::abs; using std::pow;
+  }
+
+  /// Xi(q, t) of the Pfaffian constraints Xi qd + Xi_t = 0
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
   static void constraint_jacobian([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintJacobian<Scalar>& Xi) noexcept {
+    constraint_jacobian(t, q, Constants<Scalar>(p), Xi);
+  }
+
+  /// Xi_t(q, t)
+  template <class Scalar>
+  static void constraint_rate_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] ConstraintVector<Scalar>& Xi_t) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
   }
 
   /// Xi_t(q, t)
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
   template <class Scalar>
   static void constraint_rate_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintVector<Scalar>& Xi_t) noexcept {
+    constraint_rate_term(t, q, Constants<Scalar>(p), Xi_t);
+  }
+
+  /// dXi/dt qd + dXi_t/dt, so that Xi qdd + b = 0
+  template <class Scalar>
+  static void constraint_acceleration_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] ConstraintVector<Scalar>& b) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
   }
 
   /// dXi/dt qd + dXi_t/dt, so that Xi qdd + b = 0
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
   template <class Scalar>
   static void constraint_acceleration_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintVector<Scalar>& b) noexcept {
+    constraint_acceleration_term(t, q, qd, Constants<Scalar>(p), b);
+  }
+
+  /// phi(q, t) of the holonomic constraints
+  template <class Scalar>
+  static void holonomic_residuals([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] HolonomicVector<Scalar>& phi) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
   }
 
   /// phi(q, t) of the holonomic constraints
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
   template <class Scalar>
   static void holonomic_residuals([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] HolonomicVector<Scalar>& phi) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+    holonomic_residuals(t, q, Constants<Scalar>(p), phi);
   }
 
   /// T(q, qd, t)
   template <class Scalar>
-  static Scalar kinetic_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Parameters<Scalar>& p) noexcept {
+  static Scalar kinetic_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Constants<Scalar>& c) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
     Scalar T = Scalar(0);
-    const Scalar w0 = p.l_ef * p.l_ef;
-    const Scalar w1 = p.t_p * p.t_p;
-    const Scalar w2 = cos(q(1));
+    const Scalar w0 = cos(q(1));
+    const Scalar w1 = w0 * qd(0);
+    const Scalar w2 = sin(q(1));
     const Scalar w3 = w2 * qd(0);
-    const Scalar w4 = p.w_p * p.w_p;
-    const Scalar w5 = sin(q(1));
-    const Scalar w6 = w5 * qd(0);
-    const Scalar w7 = qd(1) * w5 * p.l_ef * Scalar(0.5);
-    const Scalar w8 = cos(q(0));
-    const Scalar w9 = sin(q(0));
-    const Scalar w10 = p.l_ef * w6 * Scalar(0.5) * w8 - qd(0) * w9 * p.l_fh + qd(1) * p.l_ef * w2 * w9 * Scalar(0.5);
-    const Scalar w11 = qd(1) * w2 * w8 * p.l_ef * Scalar(0.5) - qd(0) * p.l_fh * w8 - p.l_ef * w6 * Scalar(0.5) * w9;
-    T = Scalar(0.5) * qd(0) * qd(0) * p.J_b3 + qd(1) * Scalar(0.5) * qd(1) * (w0 + w1) * Scalar(0.08333333333333333) * p.m_p + w3 * Scalar(0.5) * w3 * Scalar(0.08333333333333333) * (w4 + w1) * p.m_p + w6 * Scalar(0.5) * Scalar(0.08333333333333333) * w6 * (w0 + w4) * p.m_p + (w7 * w7 + w10 * w10 + w11 * w11) * Scalar(0.5) * p.m_p;
+    const Scalar w4 = qd(1) * w2 * c.k1;
+    const Scalar w5 = cos(q(0));
+    const Scalar w6 = sin(q(0));
+    const Scalar w7 = c.k1 * w3 * w5 - qd(0) * w6 * c.p.l_fh + qd(1) * c.k1 * w0 * w6;
+    const Scalar w8 = qd(1) * w0 * w5 * c.k1 - qd(0) * c.p.l_fh * w5 - c.k1 * w3 * w6;
+    T = Scalar(0.5) * qd(0) * qd(0) * c.p.J_b3 + qd(1) * Scalar(0.5) * qd(1) * c.k3 + w1 * Scalar(0.5) * w1 * c.k0 + w3 * Scalar(0.5) * c.k2 * w3 + (w4 * w4 + w7 * w7 + w8 * w8) * c.k4;
     return T;
+  }
+
+  /// T(q, qd, t)
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static Scalar kinetic_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Parameters<Scalar>& p) noexcept {
+    return kinetic_energy(t, q, qd, Constants<Scalar>(p));
   }
 
   /// V(q, t)
   template <class Scalar>
-  static Scalar potential_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p) noexcept {
+  static Scalar potential_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
@@ -231,9 +306,17 @@ struct Model {
     return V;
   }
 
+  /// V(q, t)
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static Scalar potential_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p) noexcept {
+    return potential_energy(t, q, Constants<Scalar>(p));
+  }
+
   /// the model's named outputs, in the order of output_names
   template <class Scalar>
-  static void outputs([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] OutputVector<Scalar>& y) noexcept {
+  static void outputs([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] OutputVector<Scalar>& y) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
@@ -241,15 +324,23 @@ struct Model {
     const Scalar w1 = cos(q(0));
     const Scalar w2 = sin(q(0));
     const Scalar w3 = cos(q(1));
-    y(0) = w0 * p.l_ef * w1 - w2 * p.l_fh;
-    y(1) = p.l_fh * w1 + w0 * p.l_ef * w2;
-    y(2) = p.l_ef * w3;
-    y(3) = -(w3 * qd(0) * p.l_fh - qd(1) * p.l_ef);
-    y(4) = w0 * p.l_ef * qd(0);
-    y(5) = -(w0 * qd(0) * p.l_fh);
+    y(0) = w0 * c.p.l_ef * w1 - w2 * c.p.l_fh;
+    y(1) = c.p.l_fh * w1 + w0 * c.p.l_ef * w2;
+    y(2) = c.p.l_ef * w3;
+    y(3) = -(w3 * qd(0) * c.p.l_fh - qd(1) * c.p.l_ef);
+    y(4) = w0 * c.p.l_ef * qd(0);
+    y(5) = -(w0 * qd(0) * c.p.l_fh);
     y(6) = -(w0 * qd(0));
     y(7) = qd(1);
     y(8) = w3 * qd(0);
+  }
+
+  /// the model's named outputs, in the order of output_names
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static void outputs([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] OutputVector<Scalar>& y) noexcept {
+    outputs(t, q, qd, u, Constants<Scalar>(p), y);
   }
 };
 

@@ -22,7 +22,7 @@ struct Model {
   static constexpr const char* name = "spherical_pendulum";
   static constexpr const char* description = "Spherical pendulum: a point mass on a massless rod with a ball-joint pivot";
   static constexpr const char* generator_version = "0.1.0";
-  static constexpr const char* model_hash = "89c6cacab3272f04";
+  static constexpr const char* model_hash = "9e7306700bda91c9";
   static constexpr std::array<const char*, nq> coordinate_names{{"theta", "phi"}};
   static constexpr std::array<const char*, nu> input_names{{}};
   static constexpr std::array<const char*, np> parameter_names{{"m", "l", "g"}};
@@ -50,137 +50,233 @@ struct Model {
     std::array<Scalar*, np> fields() noexcept { return {{&m, &l, &g}}; }
   };
 
+  /// The values of the functions below that depend on the parameters only, computed once per
+  /// parameter set. Immutable: for other parameters, build other Constants.
+  template <class Scalar>
+  class Constants {
+   public:
+    /// Computes every constant from a copy of the parameters.
+    explicit Constants(const Parameters<Scalar>& parameters) noexcept : p(parameters) {
+      using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
+      using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
+      using std::log; using std::abs; using std::pow;
+      k0 = p.g * p.m;
+      k1 = Scalar(2) * p.l;
+      k2 = p.m * Scalar(0.5);
+      k3 = p.m * p.l * p.l;
+    }
+    /// The parameters these constants were computed from.
+    const Parameters<Scalar>& parameters() const noexcept { return p; }
+
+   private:
+    friend struct Model;
+    Parameters<Scalar> p;
+    Scalar k0, k1, k2, k3;
+  };
+
   /// M(q, t), symmetric positive (semi)definite
   template <class Scalar>
-  static void mass_matrix([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] MassMatrix<Scalar>& M) noexcept {
+  static void mass_matrix([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] MassMatrix<Scalar>& M) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
     const Scalar w0 = sin(q(0));
-    const Scalar w1 = p.l * w0;
+    const Scalar w1 = c.p.l * w0;
     const Scalar w2 = cos(q(1));
     const Scalar w3 = cos(q(0));
-    const Scalar w4 = w2 * p.l * w3;
+    const Scalar w4 = w2 * c.p.l * w3;
     const Scalar w5 = sin(q(1));
-    const Scalar w6 = w5 * p.l * w3;
-    const Scalar w7 = w5 * p.l * w0;
-    const Scalar w8 = w2 * p.l * w0;
-    M(0, 0) = p.m * (w1 * w1 + w4 * w4 + w6 * w6);
-    M(0, 1) = p.m * (w8 * w6 - w4 * w7);
-    M(1, 1) = (w8 * w8 + w7 * w7) * p.m;
+    const Scalar w6 = w5 * c.p.l * w3;
+    const Scalar w7 = w5 * c.p.l * w0;
+    const Scalar w8 = w2 * c.p.l * w0;
+    M(0, 0) = c.p.m * (w1 * w1 + w4 * w4 + w6 * w6);
+    M(0, 1) = c.p.m * (w8 * w6 - w4 * w7);
+    M(1, 1) = (w8 * w8 + w7 * w7) * c.p.m;
     M(1, 0) = M(0, 1);
+  }
+
+  /// M(q, t), symmetric positive (semi)definite
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static void mass_matrix([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] MassMatrix<Scalar>& M) noexcept {
+    mass_matrix(t, q, Constants<Scalar>(p), M);
   }
 
   /// F(q, qd, t, u): everything of Lagrange's equations except M qdd
   template <class Scalar>
-  static void forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] Vector<Scalar>& F) noexcept {
+  static void forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] Vector<Scalar>& F) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
     const Scalar w0 = sin(q(0));
-    const Scalar w1 = p.l * w0;
+    const Scalar w1 = c.p.l * w0;
     const Scalar w2 = cos(q(1));
     const Scalar w3 = cos(q(0));
     const Scalar w4 = qd(0) * qd(0);
-    const Scalar w5 = w4 * p.l * w0 + qd(1) * qd(1) * p.l * w0;
+    const Scalar w5 = w4 * c.p.l * w0 + qd(1) * qd(1) * c.p.l * w0;
     const Scalar w6 = sin(q(1));
-    const Scalar w7 = w2 * w5 + qd(1) * w6 * Scalar(2) * qd(0) * p.l * w3;
-    const Scalar w8 = w6 * w5 - qd(1) * w2 * Scalar(2) * qd(0) * p.l * w3;
-    F(0) = p.m * (w2 * p.l * w3 * w7 + w8 * w6 * p.l * w3 - w4 * p.l * w3 * w1) - p.g * p.m * w1;
-    F(1) = -(p.m * (w6 * p.l * w0 * w7 - w8 * w2 * p.l * w0));
+    const Scalar w7 = w2 * w5 + qd(1) * w6 * c.k1 * qd(0) * w3;
+    const Scalar w8 = w6 * w5 - qd(1) * w2 * c.k1 * qd(0) * w3;
+    F(0) = c.p.m * (w2 * c.p.l * w3 * w7 + w8 * w6 * c.p.l * w3 - w4 * c.p.l * w3 * w1) - c.k0 * w1;
+    F(1) = -(c.p.m * (w6 * c.p.l * w0 * w7 - w8 * w2 * c.p.l * w0));
+  }
+
+  /// F(q, qd, t, u): everything of Lagrange's equations except M qdd
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static void forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] Vector<Scalar>& F) noexcept {
+    forcing(t, q, qd, u, Constants<Scalar>(p), F);
   }
 
   /// M and F together, sharing their common subexpressions
   template <class Scalar>
-  static void mass_matrix_and_forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] MassMatrix<Scalar>& M, [[maybe_unused]] Vector<Scalar>& F) noexcept {
+  static void mass_matrix_and_forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] MassMatrix<Scalar>& M, [[maybe_unused]] Vector<Scalar>& F) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
     const Scalar w0 = sin(q(0));
-    const Scalar w1 = p.l * w0;
+    const Scalar w1 = c.p.l * w0;
     const Scalar w2 = cos(q(1));
     const Scalar w3 = cos(q(0));
-    const Scalar w4 = w2 * p.l * w3;
+    const Scalar w4 = w2 * c.p.l * w3;
     const Scalar w5 = sin(q(1));
-    const Scalar w6 = w5 * p.l * w3;
-    const Scalar w7 = w5 * p.l * w0;
-    const Scalar w8 = w2 * p.l * w0;
+    const Scalar w6 = w5 * c.p.l * w3;
+    const Scalar w7 = w5 * c.p.l * w0;
+    const Scalar w8 = w2 * c.p.l * w0;
     const Scalar w9 = qd(0) * qd(0);
-    const Scalar w10 = w9 * p.l * w0 + qd(1) * qd(1) * p.l * w0;
-    const Scalar w11 = w2 * w10 + qd(1) * w5 * Scalar(2) * qd(0) * p.l * w3;
-    const Scalar w12 = w5 * w10 - qd(1) * w2 * Scalar(2) * qd(0) * p.l * w3;
-    M(0, 0) = p.m * (w1 * w1 + w4 * w4 + w6 * w6);
-    M(0, 1) = p.m * (w8 * w6 - w4 * w7);
-    M(1, 1) = (w8 * w8 + w7 * w7) * p.m;
-    F(0) = p.m * (w4 * w11 + w12 * w6 - w9 * p.l * w3 * w1) - p.g * p.m * w1;
-    F(1) = -(p.m * (w7 * w11 - w12 * w8));
+    const Scalar w10 = w9 * c.p.l * w0 + qd(1) * qd(1) * c.p.l * w0;
+    const Scalar w11 = w2 * w10 + qd(1) * w5 * c.k1 * qd(0) * w3;
+    const Scalar w12 = w5 * w10 - qd(1) * w2 * c.k1 * qd(0) * w3;
+    M(0, 0) = c.p.m * (w1 * w1 + w4 * w4 + w6 * w6);
+    M(0, 1) = c.p.m * (w8 * w6 - w4 * w7);
+    M(1, 1) = (w8 * w8 + w7 * w7) * c.p.m;
+    F(0) = c.p.m * (w4 * w11 + w12 * w6 - w9 * c.p.l * w3 * w1) - c.k0 * w1;
+    F(1) = -(c.p.m * (w7 * w11 - w12 * w8));
     M(1, 0) = M(0, 1);
+  }
+
+  /// M and F together, sharing their common subexpressions
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static void mass_matrix_and_forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] MassMatrix<Scalar>& M, [[maybe_unused]] Vector<Scalar>& F) noexcept {
+    mass_matrix_and_forcing(t, q, qd, u, Constants<Scalar>(p), M, F);
   }
 
   /// Xi(q, t) of the Pfaffian constraints Xi qd + Xi_t = 0
   template <class Scalar>
+  static void constraint_jacobian([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] ConstraintJacobian<Scalar>& Xi) noexcept {
+    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
+    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
+    using std::log; using std::abs; using std::pow;
+  }
+
+  /// Xi(q, t) of the Pfaffian constraints Xi qd + Xi_t = 0
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
   static void constraint_jacobian([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintJacobian<Scalar>& Xi) noexcept {
+    constraint_jacobian(t, q, Constants<Scalar>(p), Xi);
+  }
+
+  /// Xi_t(q, t)
+  template <class Scalar>
+  static void constraint_rate_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] ConstraintVector<Scalar>& Xi_t) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
   }
 
   /// Xi_t(q, t)
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
   template <class Scalar>
   static void constraint_rate_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintVector<Scalar>& Xi_t) noexcept {
+    constraint_rate_term(t, q, Constants<Scalar>(p), Xi_t);
+  }
+
+  /// dXi/dt qd + dXi_t/dt, so that Xi qdd + b = 0
+  template <class Scalar>
+  static void constraint_acceleration_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] ConstraintVector<Scalar>& b) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
   }
 
   /// dXi/dt qd + dXi_t/dt, so that Xi qdd + b = 0
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
   template <class Scalar>
   static void constraint_acceleration_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintVector<Scalar>& b) noexcept {
+    constraint_acceleration_term(t, q, qd, Constants<Scalar>(p), b);
+  }
+
+  /// phi(q, t) of the holonomic constraints
+  template <class Scalar>
+  static void holonomic_residuals([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] HolonomicVector<Scalar>& phi) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
   }
 
   /// phi(q, t) of the holonomic constraints
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
   template <class Scalar>
   static void holonomic_residuals([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] HolonomicVector<Scalar>& phi) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+    holonomic_residuals(t, q, Constants<Scalar>(p), phi);
   }
 
   /// T(q, qd, t)
   template <class Scalar>
-  static Scalar kinetic_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Parameters<Scalar>& p) noexcept {
+  static Scalar kinetic_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Constants<Scalar>& c) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
     Scalar T = Scalar(0);
     const Scalar w0 = sin(q(0));
-    const Scalar w1 = qd(0) * p.l * w0;
+    const Scalar w1 = qd(0) * c.p.l * w0;
     const Scalar w2 = sin(q(1));
     const Scalar w3 = cos(q(1));
     const Scalar w4 = cos(q(0));
-    const Scalar w5 = qd(1) * w2 * p.l * w0 - w3 * qd(0) * p.l * w4;
-    const Scalar w6 = w2 * qd(0) * p.l * w4 + qd(1) * w3 * p.l * w0;
-    T = p.m * (w1 * w1 + w5 * w5 + w6 * w6) * Scalar(0.5);
+    const Scalar w5 = qd(1) * w2 * c.p.l * w0 - w3 * qd(0) * c.p.l * w4;
+    const Scalar w6 = w2 * qd(0) * c.p.l * w4 + qd(1) * w3 * c.p.l * w0;
+    T = c.k2 * (w1 * w1 + w5 * w5 + w6 * w6);
     return T;
+  }
+
+  /// T(q, qd, t)
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static Scalar kinetic_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Parameters<Scalar>& p) noexcept {
+    return kinetic_energy(t, q, qd, Constants<Scalar>(p));
   }
 
   /// V(q, t)
   template <class Scalar>
-  static Scalar potential_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p) noexcept {
+  static Scalar potential_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
     Scalar V = Scalar(0);
-    V = -(p.g * p.l * cos(q(0)) * p.m);
+    V = -(c.k0 * c.p.l * cos(q(0)));
     return V;
+  }
+
+  /// V(q, t)
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static Scalar potential_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p) noexcept {
+    return potential_energy(t, q, Constants<Scalar>(p));
   }
 
   /// the model's named outputs, in the order of output_names
   template <class Scalar>
-  static void outputs([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] OutputVector<Scalar>& y) noexcept {
+  static void outputs([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] OutputVector<Scalar>& y) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
@@ -188,15 +284,23 @@ struct Model {
     const Scalar w1 = sin(q(0));
     const Scalar w2 = sin(q(1));
     const Scalar w3 = cos(q(0));
-    const Scalar w4 = -(p.l * w3);
-    y(0) = w0 * p.l * w1;
-    y(1) = w2 * p.l * w1;
+    const Scalar w4 = -(c.p.l * w3);
+    y(0) = w0 * c.p.l * w1;
+    y(1) = w2 * c.p.l * w1;
     y(2) = w4;
-    y(3) = -(qd(1) * w2 * p.l * w1 - w0 * qd(0) * p.l * w3);
-    y(4) = w2 * qd(0) * p.l * w3 + qd(1) * w0 * p.l * w1;
-    y(5) = qd(0) * p.l * w1;
+    y(3) = -(qd(1) * w2 * c.p.l * w1 - w0 * qd(0) * c.p.l * w3);
+    y(4) = w2 * qd(0) * c.p.l * w3 + qd(1) * w0 * c.p.l * w1;
+    y(5) = qd(0) * c.p.l * w1;
     y(6) = w4;
-    y(7) = qd(1) * p.m * w1 * w1 * p.l * p.l;
+    y(7) = qd(1) * c.k3 * w1 * w1;
+  }
+
+  /// the model's named outputs, in the order of output_names
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static void outputs([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] OutputVector<Scalar>& y) noexcept {
+    outputs(t, q, qd, u, Constants<Scalar>(p), y);
   }
 };
 
