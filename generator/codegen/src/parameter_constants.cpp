@@ -43,7 +43,8 @@ std::vector<bool> classify(const ir::Program& program) {
                   "split_constants: a program already reads the constants");
     bool all = !in.args.empty();
     for (std::size_t a : in.args) all = all && constant[a];
-    constant[i] = in.op == Op::number || (in.op == Op::variable && in.variable.kind == ir::VariableKind::parameter) || all;
+    constant[i] =
+        in.op == Op::number || (in.op == Op::variable && in.variable.kind == ir::VariableKind::parameter) || all;
   }
   return constant;
 }
@@ -141,8 +142,8 @@ class Splitter {
     return in;
   }
 
-  ProgramBuilder pool_;                     // every constant value met, in order of meeting
-  std::vector<std::size_t> roots_;          // the pooled value of constant k
+  ProgramBuilder pool_;                         // every constant value met, in order of meeting
+  std::vector<std::size_t> roots_;              // the pooled value of constant k
   std::map<std::size_t, std::size_t> numbers_;  // pooled value -> its constant's number
 };
 

@@ -58,7 +58,8 @@ using void_t = void;
 template <class Model, class Scalar, class = void>
 struct has_constants : std::false_type {};
 template <class Model, class Scalar>
-struct has_constants<Model, Scalar, void_t<typename Model::template Constants<Scalar>>> : std::true_type {};
+struct has_constants<Model, Scalar, void_t<typename Model::template Constants<Scalar>>>
+    : std::true_type {};
 
 template <class Model, class Scalar, bool = has_constants<Model, Scalar>::value>
 struct parameter_set {
@@ -136,19 +137,20 @@ struct meets_model_contract<
                std::declval<const P&>())))>>
     : std::true_type {};
 
-// Constants built from Parameters, giving them back
+// Constants built explicitly from Parameters, giving them back
 template <class Model, class Scalar, class = void>
 struct constants_are_built_from_parameters : std::false_type {};
 template <class Model, class Scalar>
 struct constants_are_built_from_parameters<
     Model, Scalar,
-    std::enable_if_t<std::is_same_v<decltype(std::declval<const typename Model::template Constants<Scalar>&>()
-                                                 .parameters()),
-                                    const typename Model::template Parameters<Scalar>&>>>
-    : std::bool_constant<std::is_constructible_v<typename Model::template Constants<Scalar>,
-                                                 const typename Model::template Parameters<Scalar>&> &&
-                         !std::is_convertible_v<const typename Model::template Parameters<Scalar>&,
-                                                typename Model::template Constants<Scalar>>> {};
+    std::enable_if_t<std::is_same_v<
+        decltype(std::declval<const typename Model::template Constants<Scalar>&>().parameters()),
+        const typename Model::template Parameters<Scalar>&>>>
+    : std::bool_constant<
+          std::is_constructible_v<typename Model::template Constants<Scalar>,
+                                  const typename Model::template Parameters<Scalar>&> &&
+          !std::is_convertible_v<const typename Model::template Parameters<Scalar>&,
+                                 typename Model::template Constants<Scalar>>> {};
 
 }  // namespace detail
 
@@ -165,11 +167,13 @@ using ParameterSet = typename detail::parameter_set<Model, Scalar>::type;
 /// and, if it has them, its Constants.
 template <class Model, class Scalar, class P>
 inline constexpr bool is_parameter_argument_v =
-    std::is_same_v<P, typename Model::template Parameters<Scalar>> || std::is_same_v<P, ParameterSet<Model, Scalar>>;
+    std::is_same_v<P, typename Model::template Parameters<Scalar>> ||
+    std::is_same_v<P, ParameterSet<Model, Scalar>>;
 
 /// The ParameterSet of parameters p: Constants(p), or a copy of p for a model without Constants.
 template <class Model, class Scalar>
-ParameterSet<Model, Scalar> make_parameter_set(const typename Model::template Parameters<Scalar>& p) noexcept {
+ParameterSet<Model, Scalar> make_parameter_set(
+    const typename Model::template Parameters<Scalar>& p) noexcept {
   return ParameterSet<Model, Scalar>(p);
 }
 
@@ -195,7 +199,8 @@ constexpr bool check_model() {
   static_assert(Model::nh >= 0 && Model::nh <= Model::nc, "eomrt model: 0 <= nh <= nc expected");
   static_assert(std::is_default_constructible_v<typename ModelTypes<Model, Scalar>::Parameters>,
                 "eomrt model: Parameters<Scalar> must be default-constructible");
-  static_assert(detail::meets_model_contract<Model, Scalar, typename ModelTypes<Model, Scalar>::Parameters>::value,
+  static_assert(detail::meets_model_contract<Model, Scalar,
+                                             typename ModelTypes<Model, Scalar>::Parameters>::value,
                 "eomrt model: expected holonomic_rows and static mass_matrix_and_forcing, "
                 "constraint_jacobian, constraint_rate_term, constraint_acceleration_term, "
                 "holonomic_residuals, kinetic_energy and potential_energy with the argument "
