@@ -22,7 +22,7 @@ struct Model {
   static constexpr const char* name = "double_pendulum";
   static constexpr const char* description = "Planar double pendulum: two point masses on massless rods, relative angles";
   static constexpr const char* generator_version = "0.1.0";
-  static constexpr const char* model_hash = "6e9d91fc247fce9b";
+  static constexpr const char* model_hash = "fac535b51858d561";
   static constexpr std::array<const char*, nq> coordinate_names{{"theta1", "theta2"}};
   static constexpr std::array<const char*, nu> input_names{{}};
   static constexpr std::array<const char*, np> parameter_names{{"m1", "m2", "l1", "l2", "g"}};
@@ -52,141 +52,249 @@ struct Model {
     std::array<Scalar*, np> fields() noexcept { return {{&m1, &m2, &l1, &l2, &g}}; }
   };
 
+  /// The values of the functions below that depend on the parameters only, computed once per
+  /// parameter set. Immutable: for other parameters, build other Constants.
+  template <class Scalar>
+  class Constants {
+   public:
+    /// Computes every constant from a copy of the parameters.
+    explicit Constants(const Parameters<Scalar>& parameters) noexcept : p(parameters) {
+      using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
+      using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
+      using std::log; using std::abs; using std::pow;
+      const Scalar w0 = p.l2 * p.l2;
+      const Scalar w1 = w0 * p.m2;
+      const Scalar w2 = p.l1 * p.l1;
+      k0 = p.l1 * Scalar(2) * p.l2 * p.m2;
+      k1 = w1 + p.m1 * w2 + p.m2 * w2;
+      k2 = p.l1 * p.l2 * p.m2;
+      k3 = w1;
+      k4 = p.m1 * p.l1 * p.g;
+      k5 = p.g * p.l2 * p.m2;
+      k6 = p.l1 * p.g * p.m2;
+      k7 = Scalar(0.5) * p.m2 * w2;
+      k8 = w0 * Scalar(0.5) * p.m2;
+      k9 = p.m1 * Scalar(0.5) * w2;
+    }
+    /// The parameters these constants were computed from.
+    const Parameters<Scalar>& parameters() const noexcept { return p; }
+
+   private:
+    friend struct Model;
+    Parameters<Scalar> p;
+    Scalar k0, k1, k2, k3, k4, k5, k6, k7, k8, k9;
+  };
+
   /// M(q, t), symmetric positive (semi)definite
   template <class Scalar>
-  static void mass_matrix([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] MassMatrix<Scalar>& M) noexcept {
+  static void mass_matrix([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] MassMatrix<Scalar>& M) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
-    const Scalar w0 = p.l2 * p.l2 * p.m2;
-    const Scalar w1 = p.l1 * p.l1;
-    const Scalar w2 = cos(q(1));
-    M(0, 0) = w0 + p.m1 * w1 + p.l1 * w2 * Scalar(2) * p.l2 * p.m2 + p.m2 * w1;
-    M(0, 1) = w0 + p.l1 * w2 * p.l2 * p.m2;
-    M(1, 1) = w0;
+    const Scalar w0 = cos(q(1));
+    M(0, 0) = c.k1 + c.k0 * w0;
+    M(0, 1) = c.k3 + c.k2 * w0;
+    M(1, 1) = c.k3;
     M(1, 0) = M(0, 1);
+  }
+
+  /// M(q, t), symmetric positive (semi)definite
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static void mass_matrix([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] MassMatrix<Scalar>& M) noexcept {
+    mass_matrix(t, q, Constants<Scalar>(p), M);
   }
 
   /// F(q, qd, t, u): everything of Lagrange's equations except M qdd
   template <class Scalar>
-  static void forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] Vector<Scalar>& F) noexcept {
+  static void forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] Vector<Scalar>& F) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
     const Scalar w0 = sin(q(1));
-    const Scalar w1 = p.l1 * w0 * qd(0) * qd(0) * p.l2 * p.m2;
+    const Scalar w1 = c.k2 * w0 * qd(0) * qd(0);
     const Scalar w2 = qd(1) + qd(0);
     const Scalar w3 = sin(q(0));
-    const Scalar w4 = p.g * sin(q(0) + q(1)) * p.l2 * p.m2;
-    F(0) = p.l1 * w0 * p.l2 * w2 * w2 * p.m2 - w1 - p.m1 * p.l1 * p.g * w3 - w4 - p.l1 * p.g * w3 * p.m2;
+    const Scalar w4 = c.k5 * sin(q(0) + q(1));
+    F(0) = c.k2 * w0 * w2 * w2 - w1 - c.k4 * w3 - w4 - c.k6 * w3;
     F(1) = -(w1 + w4);
+  }
+
+  /// F(q, qd, t, u): everything of Lagrange's equations except M qdd
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static void forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] Vector<Scalar>& F) noexcept {
+    forcing(t, q, qd, u, Constants<Scalar>(p), F);
   }
 
   /// M and F together, sharing their common subexpressions
   template <class Scalar>
-  static void mass_matrix_and_forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] MassMatrix<Scalar>& M, [[maybe_unused]] Vector<Scalar>& F) noexcept {
+  static void mass_matrix_and_forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] MassMatrix<Scalar>& M, [[maybe_unused]] Vector<Scalar>& F) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
-    const Scalar w0 = p.l2 * p.l2 * p.m2;
-    const Scalar w1 = p.l1 * p.l1;
-    const Scalar w2 = cos(q(1));
-    const Scalar w3 = sin(q(1));
-    const Scalar w4 = p.l1 * w3 * qd(0) * qd(0) * p.l2 * p.m2;
-    const Scalar w5 = qd(1) + qd(0);
-    const Scalar w6 = sin(q(0));
-    const Scalar w7 = p.g * sin(q(0) + q(1)) * p.l2 * p.m2;
-    M(0, 0) = w0 + p.m1 * w1 + p.l1 * w2 * Scalar(2) * p.l2 * p.m2 + p.m2 * w1;
-    M(0, 1) = w0 + p.l1 * w2 * p.l2 * p.m2;
-    M(1, 1) = w0;
-    F(0) = p.l1 * w3 * p.l2 * w5 * w5 * p.m2 - w4 - p.m1 * p.l1 * p.g * w6 - w7 - p.l1 * p.g * w6 * p.m2;
-    F(1) = -(w4 + w7);
+    const Scalar w0 = cos(q(1));
+    const Scalar w1 = sin(q(1));
+    const Scalar w2 = c.k2 * w1 * qd(0) * qd(0);
+    const Scalar w3 = qd(1) + qd(0);
+    const Scalar w4 = sin(q(0));
+    const Scalar w5 = c.k5 * sin(q(0) + q(1));
+    M(0, 0) = c.k1 + c.k0 * w0;
+    M(0, 1) = c.k3 + c.k2 * w0;
+    M(1, 1) = c.k3;
+    F(0) = c.k2 * w1 * w3 * w3 - w2 - c.k4 * w4 - w5 - c.k6 * w4;
+    F(1) = -(w2 + w5);
     M(1, 0) = M(0, 1);
+  }
+
+  /// M and F together, sharing their common subexpressions
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static void mass_matrix_and_forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] MassMatrix<Scalar>& M, [[maybe_unused]] Vector<Scalar>& F) noexcept {
+    mass_matrix_and_forcing(t, q, qd, u, Constants<Scalar>(p), M, F);
   }
 
   /// Xi(q, t) of the Pfaffian constraints Xi qd + Xi_t = 0
   template <class Scalar>
+  static void constraint_jacobian([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] ConstraintJacobian<Scalar>& Xi) noexcept {
+    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
+    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
+    using std::log; using std::abs; using std::pow;
+  }
+
+  /// Xi(q, t) of the Pfaffian constraints Xi qd + Xi_t = 0
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
   static void constraint_jacobian([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintJacobian<Scalar>& Xi) noexcept {
+    constraint_jacobian(t, q, Constants<Scalar>(p), Xi);
+  }
+
+  /// Xi_t(q, t)
+  template <class Scalar>
+  static void constraint_rate_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] ConstraintVector<Scalar>& Xi_t) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
   }
 
   /// Xi_t(q, t)
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
   template <class Scalar>
   static void constraint_rate_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintVector<Scalar>& Xi_t) noexcept {
+    constraint_rate_term(t, q, Constants<Scalar>(p), Xi_t);
+  }
+
+  /// dXi/dt qd + dXi_t/dt, so that Xi qdd + b = 0
+  template <class Scalar>
+  static void constraint_acceleration_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] ConstraintVector<Scalar>& b) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
   }
 
   /// dXi/dt qd + dXi_t/dt, so that Xi qdd + b = 0
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
   template <class Scalar>
   static void constraint_acceleration_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintVector<Scalar>& b) noexcept {
+    constraint_acceleration_term(t, q, qd, Constants<Scalar>(p), b);
+  }
+
+  /// phi(q, t) of the holonomic constraints
+  template <class Scalar>
+  static void holonomic_residuals([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] HolonomicVector<Scalar>& phi) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
   }
 
   /// phi(q, t) of the holonomic constraints
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
   template <class Scalar>
   static void holonomic_residuals([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] HolonomicVector<Scalar>& phi) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+    holonomic_residuals(t, q, Constants<Scalar>(p), phi);
   }
 
   /// T(q, qd, t)
   template <class Scalar>
-  static Scalar kinetic_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Parameters<Scalar>& p) noexcept {
+  static Scalar kinetic_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Constants<Scalar>& c) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
     Scalar T = Scalar(0);
     const Scalar w0 = qd(0) * qd(0);
-    const Scalar w1 = p.l1 * p.l1;
-    const Scalar w2 = qd(1) + qd(0);
-    T = w0 * Scalar(0.5) * p.m2 * w1 + p.l2 * p.l2 * Scalar(0.5) * w2 * w2 * p.m2 + p.l1 * cos(q(1)) * p.l2 * qd(0) * w2 * p.m2 + p.m1 * w0 * Scalar(0.5) * w1;
+    const Scalar w1 = qd(1) + qd(0);
+    T = w0 * c.k7 + c.k8 * w1 * w1 + c.k2 * cos(q(1)) * qd(0) * w1 + c.k9 * w0;
     return T;
+  }
+
+  /// T(q, qd, t)
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static Scalar kinetic_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Parameters<Scalar>& p) noexcept {
+    return kinetic_energy(t, q, qd, Constants<Scalar>(p));
   }
 
   /// V(q, t)
   template <class Scalar>
-  static Scalar potential_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p) noexcept {
+  static Scalar potential_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
     Scalar V = Scalar(0);
     const Scalar w0 = cos(q(0));
-    V = -(p.g * cos(q(0) + q(1)) * p.l2 * p.m2 + p.m1 * p.l1 * p.g * w0 + p.l1 * p.g * p.m2 * w0);
+    V = -(c.k5 * cos(q(0) + q(1)) + c.k4 * w0 + c.k6 * w0);
     return V;
+  }
+
+  /// V(q, t)
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static Scalar potential_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p) noexcept {
+    return potential_energy(t, q, Constants<Scalar>(p));
   }
 
   /// the model's named outputs, in the order of output_names
   template <class Scalar>
-  static void outputs([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] OutputVector<Scalar>& y) noexcept {
+  static void outputs([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] OutputVector<Scalar>& y) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
     const Scalar w0 = sin(q(0));
-    const Scalar w1 = p.l1 * w0;
+    const Scalar w1 = c.p.l1 * w0;
     const Scalar w2 = cos(q(0));
-    const Scalar w3 = -(p.l1 * w2);
+    const Scalar w3 = -(c.p.l1 * w2);
     const Scalar w4 = cos(q(1));
     const Scalar w5 = sin(q(1));
     const Scalar w6 = w4 * w0 + w5 * w2;
     const Scalar w7 = w5 * w0 - w4 * w2;
-    const Scalar w8 = w4 * p.l2 * qd(0) + p.l1 * qd(0);
+    const Scalar w8 = w4 * c.p.l2 * qd(0) + c.p.l1 * qd(0);
     y(0) = w1;
     y(1) = w3;
-    y(3) = w1 + w6 * p.l2;
-    y(4) = w7 * p.l2 + w3;
-    y(6) = -(qd(1) * w7 * p.l2 - w8 * w2 + w5 * p.l2 * qd(0) * w0);
-    y(7) = qd(1) * w6 * p.l2 + w8 * w0 + w5 * p.l2 * qd(0) * w2;
+    y(3) = w1 + w6 * c.p.l2;
+    y(4) = w7 * c.p.l2 + w3;
+    y(6) = -(qd(1) * w7 * c.p.l2 - w8 * w2 + w5 * c.p.l2 * qd(0) * w0);
+    y(7) = qd(1) * w6 * c.p.l2 + w8 * w0 + w5 * c.p.l2 * qd(0) * w2;
     y(9) = q(0) + q(1);
     y(2) = Scalar(0);
     y(5) = Scalar(0);
     y(8) = Scalar(0);
+  }
+
+  /// the model's named outputs, in the order of output_names
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static void outputs([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] OutputVector<Scalar>& y) noexcept {
+    outputs(t, q, qd, u, Constants<Scalar>(p), y);
   }
 };
 

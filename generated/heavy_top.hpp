@@ -22,7 +22,7 @@ struct Model {
   static constexpr const char* name = "heavy_top";
   static constexpr const char* description = "Heavy symmetric top spinning on a fixed pivot at its tip, 3-1-3 Euler angles";
   static constexpr const char* generator_version = "0.1.0";
-  static constexpr const char* model_hash = "d8c0c697d3e7e1c1";
+  static constexpr const char* model_hash = "5b3881166e4c0043";
   static constexpr std::array<const char*, nq> coordinate_names{{"psi", "theta", "phi"}};
   static constexpr std::array<const char*, nu> input_names{{}};
   static constexpr std::array<const char*, np> parameter_names{{"m", "l", "J1", "J3", "g"}};
@@ -52,9 +52,35 @@ struct Model {
     std::array<Scalar*, np> fields() noexcept { return {{&m, &l, &J1, &J3, &g}}; }
   };
 
+  /// The values of the functions below that depend on the parameters only, computed once per
+  /// parameter set. Immutable: for other parameters, build other Constants.
+  template <class Scalar>
+  class Constants {
+   public:
+    /// Computes every constant from a copy of the parameters.
+    explicit Constants(const Parameters<Scalar>& parameters) noexcept : p(parameters) {
+      using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
+      using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
+      using std::log; using std::abs; using std::pow;
+      const Scalar w0 = p.l * p.l;
+      k0 = p.m * w0;
+      k1 = p.g * p.m * p.l;
+      k2 = Scalar(0.5) * p.J1;
+      k3 = p.m * Scalar(0.5) * w0;
+      k4 = Scalar(0.5) * p.J3;
+    }
+    /// The parameters these constants were computed from.
+    const Parameters<Scalar>& parameters() const noexcept { return p; }
+
+   private:
+    friend struct Model;
+    Parameters<Scalar> p;
+    Scalar k0, k1, k2, k3, k4;
+  };
+
   /// M(q, t), symmetric positive (semi)definite
   template <class Scalar>
-  static void mass_matrix([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] MassMatrix<Scalar>& M) noexcept {
+  static void mass_matrix([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] MassMatrix<Scalar>& M) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
@@ -62,27 +88,34 @@ struct Model {
     const Scalar w1 = cos(q(2));
     const Scalar w2 = w0 * w1;
     const Scalar w3 = w2 * w2;
-    const Scalar w4 = p.l * p.l;
-    const Scalar w5 = cos(q(1));
-    const Scalar w6 = sin(q(2));
-    const Scalar w7 = w0 * w6;
-    const Scalar w8 = w7 * w7;
-    const Scalar w9 = w6 * w6;
-    const Scalar w10 = w1 * w1;
-    M(0, 0) = w3 * p.m * w4 + w3 * p.J1 + w5 * w5 * p.J3 + w8 * p.J1 + p.m * w8 * w4;
-    M(0, 1) = w7 * p.m * w4 * w1 - w2 * w6 * p.J1 + w7 * p.J1 * w1 - w2 * p.m * w6 * w4;
-    M(0, 2) = w5 * p.J3;
-    M(1, 1) = w9 * p.J1 + p.m * w10 * w4 + w9 * p.m * w4 + w10 * p.J1;
-    M(2, 2) = p.J3;
+    const Scalar w4 = cos(q(1));
+    const Scalar w5 = sin(q(2));
+    const Scalar w6 = w0 * w5;
+    const Scalar w7 = w6 * w6;
+    const Scalar w8 = w5 * w5;
+    const Scalar w9 = w1 * w1;
+    M(0, 0) = w3 * c.k0 + w3 * c.p.J1 + w4 * w4 * c.p.J3 + w7 * c.p.J1 + c.k0 * w7;
+    M(0, 1) = w6 * c.k0 * w1 - w2 * w5 * c.p.J1 + w6 * c.p.J1 * w1 - w2 * c.k0 * w5;
+    M(0, 2) = w4 * c.p.J3;
+    M(1, 1) = w8 * c.p.J1 + c.k0 * w9 + w8 * c.k0 + w9 * c.p.J1;
+    M(2, 2) = c.p.J3;
     M(1, 2) = Scalar(0);
     M(1, 0) = M(0, 1);
     M(2, 0) = M(0, 2);
     M(2, 1) = Scalar(0);
   }
 
+  /// M(q, t), symmetric positive (semi)definite
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static void mass_matrix([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] MassMatrix<Scalar>& M) noexcept {
+    mass_matrix(t, q, Constants<Scalar>(p), M);
+  }
+
   /// F(q, qd, t, u): everything of Lagrange's equations except M qdd
   template <class Scalar>
-  static void forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] Vector<Scalar>& F) noexcept {
+  static void forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] Vector<Scalar>& F) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
@@ -93,20 +126,27 @@ struct Model {
     const Scalar w4 = sin(q(2));
     const Scalar w5 = qd(1) * w1 + w0 * qd(0) * w4;
     const Scalar w6 = w5 * qd(2) - qd(1) * w3 * qd(0) * w1;
-    const Scalar w7 = p.l * p.l;
-    const Scalar w8 = w3 * qd(0) + qd(2);
-    const Scalar w9 = w0 * qd(0) * w1 - qd(1) * w4;
-    const Scalar w10 = w0 * w4;
-    const Scalar w11 = qd(1) * w0 * qd(0);
-    const Scalar w12 = w9 * qd(2) + qd(1) * w3 * qd(0) * w4;
-    F(0) = w2 * p.m * w6 * w7 - w2 * p.m * w8 * w7 * w5 - w9 * w10 * w8 * p.J3 + w2 * w6 * p.J1 - w2 * w8 * p.J1 * w5 + w3 * w11 * p.J3 + w9 * w10 * w8 * p.J1 - w10 * p.J1 * w12 - w10 * p.m * w7 * w12 + w2 * w8 * w5 * p.J3 + w9 * w10 * p.m * w8 * w7;
-    F(1) = w9 * w8 * p.J1 * w1 - w4 * w6 * p.J1 - p.m * w7 * w1 * w12 + p.m * w4 * w8 * w7 * w5 - w9 * w8 * p.J3 * w1 + w4 * w8 * p.J1 * w5 + w2 * p.g * p.m * p.l * w1 - p.J1 * w1 * w12 + p.g * w10 * p.m * w4 * p.l - w4 * w8 * w5 * p.J3 + w9 * p.m * w8 * w7 * w1 - p.m * w4 * w6 * w7;
-    F(2) = w11 * p.J3;
+    const Scalar w7 = w3 * qd(0) + qd(2);
+    const Scalar w8 = w0 * qd(0) * w1 - qd(1) * w4;
+    const Scalar w9 = w0 * w4;
+    const Scalar w10 = qd(1) * w0 * qd(0);
+    const Scalar w11 = w8 * qd(2) + qd(1) * w3 * qd(0) * w4;
+    F(0) = w2 * c.k0 * w6 - w2 * c.k0 * w7 * w5 - w8 * w9 * w7 * c.p.J3 + w2 * w6 * c.p.J1 - w2 * w7 * c.p.J1 * w5 + w3 * w10 * c.p.J3 + w8 * w9 * w7 * c.p.J1 - w9 * c.p.J1 * w11 - w9 * c.k0 * w11 + w2 * w7 * w5 * c.p.J3 + w8 * w9 * c.k0 * w7;
+    F(1) = w8 * w7 * c.p.J1 * w1 - w4 * w6 * c.p.J1 - c.k0 * w1 * w11 + c.k0 * w4 * w7 * w5 - w8 * w7 * c.p.J3 * w1 + w4 * w7 * c.p.J1 * w5 + w2 * c.k1 * w1 - c.p.J1 * w1 * w11 + c.k1 * w9 * w4 - w4 * w7 * w5 * c.p.J3 + w8 * c.k0 * w7 * w1 - c.k0 * w4 * w6;
+    F(2) = w10 * c.p.J3;
+  }
+
+  /// F(q, qd, t, u): everything of Lagrange's equations except M qdd
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static void forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] Vector<Scalar>& F) noexcept {
+    forcing(t, q, qd, u, Constants<Scalar>(p), F);
   }
 
   /// M and F together, sharing their common subexpressions
   template <class Scalar>
-  static void mass_matrix_and_forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] MassMatrix<Scalar>& M, [[maybe_unused]] Vector<Scalar>& F) noexcept {
+  static void mass_matrix_and_forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] MassMatrix<Scalar>& M, [[maybe_unused]] Vector<Scalar>& F) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
@@ -114,68 +154,107 @@ struct Model {
     const Scalar w1 = cos(q(2));
     const Scalar w2 = w0 * w1;
     const Scalar w3 = w2 * w2;
-    const Scalar w4 = p.l * p.l;
-    const Scalar w5 = cos(q(1));
-    const Scalar w6 = sin(q(2));
-    const Scalar w7 = w0 * w6;
-    const Scalar w8 = w7 * w7;
-    const Scalar w9 = w6 * w6;
-    const Scalar w10 = w1 * w1;
-    const Scalar w11 = qd(1) * w1 + w0 * qd(0) * w6;
-    const Scalar w12 = w11 * qd(2) - qd(1) * w5 * qd(0) * w1;
-    const Scalar w13 = w5 * qd(0) + qd(2);
-    const Scalar w14 = w0 * qd(0) * w1 - qd(1) * w6;
-    const Scalar w15 = qd(1) * w0 * qd(0);
-    const Scalar w16 = w14 * qd(2) + qd(1) * w5 * qd(0) * w6;
-    M(0, 0) = w3 * p.m * w4 + w3 * p.J1 + w5 * w5 * p.J3 + w8 * p.J1 + p.m * w8 * w4;
-    M(0, 1) = w7 * p.m * w4 * w1 - w2 * w6 * p.J1 + w7 * p.J1 * w1 - w2 * p.m * w6 * w4;
-    M(0, 2) = w5 * p.J3;
-    M(1, 1) = w9 * p.J1 + p.m * w10 * w4 + w9 * p.m * w4 + w10 * p.J1;
-    M(2, 2) = p.J3;
-    F(0) = w2 * p.m * w12 * w4 - w2 * p.m * w13 * w4 * w11 - w14 * w7 * w13 * p.J3 + w2 * w12 * p.J1 - w2 * w13 * p.J1 * w11 + w5 * w15 * p.J3 + w14 * w7 * w13 * p.J1 - w7 * p.J1 * w16 - w7 * p.m * w4 * w16 + w2 * w13 * w11 * p.J3 + w14 * w7 * p.m * w13 * w4;
-    F(1) = w14 * w13 * p.J1 * w1 - w6 * w12 * p.J1 - p.m * w4 * w1 * w16 + p.m * w6 * w13 * w4 * w11 - w14 * w13 * p.J3 * w1 + w6 * w13 * p.J1 * w11 + w2 * p.g * p.m * p.l * w1 - p.J1 * w1 * w16 + p.g * w7 * p.m * w6 * p.l - w6 * w13 * w11 * p.J3 + w14 * p.m * w13 * w4 * w1 - p.m * w6 * w12 * w4;
-    F(2) = w15 * p.J3;
+    const Scalar w4 = cos(q(1));
+    const Scalar w5 = sin(q(2));
+    const Scalar w6 = w0 * w5;
+    const Scalar w7 = w6 * w6;
+    const Scalar w8 = w5 * w5;
+    const Scalar w9 = w1 * w1;
+    const Scalar w10 = qd(1) * w1 + w0 * qd(0) * w5;
+    const Scalar w11 = w10 * qd(2) - qd(1) * w4 * qd(0) * w1;
+    const Scalar w12 = w4 * qd(0) + qd(2);
+    const Scalar w13 = w0 * qd(0) * w1 - qd(1) * w5;
+    const Scalar w14 = qd(1) * w0 * qd(0);
+    const Scalar w15 = w13 * qd(2) + qd(1) * w4 * qd(0) * w5;
+    M(0, 0) = w3 * c.k0 + w3 * c.p.J1 + w4 * w4 * c.p.J3 + w7 * c.p.J1 + c.k0 * w7;
+    M(0, 1) = w6 * c.k0 * w1 - w2 * w5 * c.p.J1 + w6 * c.p.J1 * w1 - w2 * c.k0 * w5;
+    M(0, 2) = w4 * c.p.J3;
+    M(1, 1) = w8 * c.p.J1 + c.k0 * w9 + w8 * c.k0 + w9 * c.p.J1;
+    M(2, 2) = c.p.J3;
+    F(0) = w2 * c.k0 * w11 - w2 * c.k0 * w12 * w10 - w13 * w6 * w12 * c.p.J3 + w2 * w11 * c.p.J1 - w2 * w12 * c.p.J1 * w10 + w4 * w14 * c.p.J3 + w13 * w6 * w12 * c.p.J1 - w6 * c.p.J1 * w15 - w6 * c.k0 * w15 + w2 * w12 * w10 * c.p.J3 + w13 * w6 * c.k0 * w12;
+    F(1) = w13 * w12 * c.p.J1 * w1 - w5 * w11 * c.p.J1 - c.k0 * w1 * w15 + c.k0 * w5 * w12 * w10 - w13 * w12 * c.p.J3 * w1 + w5 * w12 * c.p.J1 * w10 + w2 * c.k1 * w1 - c.p.J1 * w1 * w15 + c.k1 * w6 * w5 - w5 * w12 * w10 * c.p.J3 + w13 * c.k0 * w12 * w1 - c.k0 * w5 * w11;
+    F(2) = w14 * c.p.J3;
     M(1, 2) = Scalar(0);
     M(1, 0) = M(0, 1);
     M(2, 0) = M(0, 2);
     M(2, 1) = Scalar(0);
   }
 
+  /// M and F together, sharing their common subexpressions
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static void mass_matrix_and_forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] MassMatrix<Scalar>& M, [[maybe_unused]] Vector<Scalar>& F) noexcept {
+    mass_matrix_and_forcing(t, q, qd, u, Constants<Scalar>(p), M, F);
+  }
+
   /// Xi(q, t) of the Pfaffian constraints Xi qd + Xi_t = 0
   template <class Scalar>
+  static void constraint_jacobian([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] ConstraintJacobian<Scalar>& Xi) noexcept {
+    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
+    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
+    using std::log; using std::abs; using std::pow;
+  }
+
+  /// Xi(q, t) of the Pfaffian constraints Xi qd + Xi_t = 0
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
   static void constraint_jacobian([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintJacobian<Scalar>& Xi) noexcept {
+    constraint_jacobian(t, q, Constants<Scalar>(p), Xi);
+  }
+
+  /// Xi_t(q, t)
+  template <class Scalar>
+  static void constraint_rate_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] ConstraintVector<Scalar>& Xi_t) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
   }
 
   /// Xi_t(q, t)
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
   template <class Scalar>
   static void constraint_rate_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintVector<Scalar>& Xi_t) noexcept {
+    constraint_rate_term(t, q, Constants<Scalar>(p), Xi_t);
+  }
+
+  /// dXi/dt qd + dXi_t/dt, so that Xi qdd + b = 0
+  template <class Scalar>
+  static void constraint_acceleration_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] ConstraintVector<Scalar>& b) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
   }
 
   /// dXi/dt qd + dXi_t/dt, so that Xi qdd + b = 0
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
   template <class Scalar>
   static void constraint_acceleration_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintVector<Scalar>& b) noexcept {
+    constraint_acceleration_term(t, q, qd, Constants<Scalar>(p), b);
+  }
+
+  /// phi(q, t) of the holonomic constraints
+  template <class Scalar>
+  static void holonomic_residuals([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] HolonomicVector<Scalar>& phi) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
   }
 
   /// phi(q, t) of the holonomic constraints
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
   template <class Scalar>
   static void holonomic_residuals([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] HolonomicVector<Scalar>& phi) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+    holonomic_residuals(t, q, Constants<Scalar>(p), phi);
   }
 
   /// T(q, qd, t)
   template <class Scalar>
-  static Scalar kinetic_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Parameters<Scalar>& p) noexcept {
+  static Scalar kinetic_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Constants<Scalar>& c) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
@@ -185,28 +264,43 @@ struct Model {
     const Scalar w2 = sin(q(2));
     const Scalar w3 = qd(1) * w0 + w1 * qd(0) * w2;
     const Scalar w4 = w3 * w3;
-    const Scalar w5 = p.l * p.l;
-    const Scalar w6 = cos(q(1)) * qd(0) + qd(2);
-    const Scalar w7 = w1 * qd(0) * w0 - qd(1) * w2;
-    const Scalar w8 = w7 * w7;
-    T = w4 * Scalar(0.5) * p.J1 + w4 * p.m * Scalar(0.5) * w5 + w6 * w6 * Scalar(0.5) * p.J3 + p.m * Scalar(0.5) * w8 * w5 + Scalar(0.5) * w8 * p.J1;
+    const Scalar w5 = cos(q(1)) * qd(0) + qd(2);
+    const Scalar w6 = w1 * qd(0) * w0 - qd(1) * w2;
+    const Scalar w7 = w6 * w6;
+    T = w4 * c.k2 + w4 * c.k3 + w5 * w5 * c.k4 + c.k3 * w7 + c.k2 * w7;
     return T;
+  }
+
+  /// T(q, qd, t)
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static Scalar kinetic_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Parameters<Scalar>& p) noexcept {
+    return kinetic_energy(t, q, qd, Constants<Scalar>(p));
   }
 
   /// V(q, t)
   template <class Scalar>
-  static Scalar potential_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p) noexcept {
+  static Scalar potential_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
     Scalar V = Scalar(0);
-    V = p.g * cos(q(1)) * p.m * p.l;
+    V = c.k1 * cos(q(1));
     return V;
+  }
+
+  /// V(q, t)
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static Scalar potential_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p) noexcept {
+    return potential_energy(t, q, Constants<Scalar>(p));
   }
 
   /// the model's named outputs, in the order of output_names
   template <class Scalar>
-  static void outputs([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] OutputVector<Scalar>& y) noexcept {
+  static void outputs([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] OutputVector<Scalar>& y) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
@@ -214,11 +308,11 @@ struct Model {
     const Scalar w1 = sin(q(0));
     const Scalar w2 = cos(q(0));
     const Scalar w3 = cos(q(1));
-    const Scalar w4 = w3 * p.l;
+    const Scalar w4 = w3 * c.p.l;
     const Scalar w5 = cos(q(2));
     const Scalar w6 = sin(q(2));
-    y(0) = w0 * p.l * w1;
-    y(1) = -(w0 * p.l * w2);
+    y(0) = w0 * c.p.l * w1;
+    y(1) = -(w0 * c.p.l * w2);
     y(2) = w4;
     y(3) = qd(1) * w5 + w0 * qd(0) * w6;
     y(4) = w0 * qd(0) * w5 - qd(1) * w6;
@@ -227,6 +321,14 @@ struct Model {
     y(7) = -(w0 * w2);
     y(8) = w3;
     y(9) = w4;
+  }
+
+  /// the model's named outputs, in the order of output_names
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static void outputs([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] OutputVector<Scalar>& y) noexcept {
+    outputs(t, q, qd, u, Constants<Scalar>(p), y);
   }
 };
 

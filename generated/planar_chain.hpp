@@ -22,7 +22,7 @@ struct Model {
   static constexpr const char* name = "planar_chain";
   static constexpr const char* description = "Planar chain of n uniform rods with relative joint angles (n-link pendulum)";
   static constexpr const char* generator_version = "0.1.0";
-  static constexpr const char* model_hash = "ade11228c74ba50c";
+  static constexpr const char* model_hash = "a563a2cc631d31d5";
   static constexpr std::array<const char*, nq> coordinate_names{{"q1", "q2", "q3", "q4"}};
   static constexpr std::array<const char*, nu> input_names{{}};
   static constexpr std::array<const char*, np> parameter_names{{"m", "l", "rd", "g"}};
@@ -51,44 +51,79 @@ struct Model {
     std::array<Scalar*, np> fields() noexcept { return {{&m, &l, &rd, &g}}; }
   };
 
+  /// The values of the functions below that depend on the parameters only, computed once per
+  /// parameter set. Immutable: for other parameters, build other Constants.
+  template <class Scalar>
+  class Constants {
+   public:
+    /// Computes every constant from a copy of the parameters.
+    explicit Constants(const Parameters<Scalar>& parameters) noexcept : p(parameters) {
+      using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
+      using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
+      using std::log; using std::abs; using std::pow;
+      const Scalar w0 = p.l * p.l;
+      const Scalar w1 = p.rd * p.rd;
+      const Scalar w2 = p.m * w0 * Scalar(1.6666666666666667);
+      k0 = p.m * w0 * Scalar(3);
+      k1 = p.m * w0;
+      k2 = p.m * Scalar(5) * w0;
+      k3 = w1 * p.m + Scalar(7.333333333333333) * p.m * w0;
+      k4 = Scalar(1.5) * p.m * w0;
+      k5 = p.m * Scalar(0.5) * w0;
+      k6 = p.m * w0 * Scalar(2.5);
+      k7 = Scalar(4) * p.m * w0 + w1 * Scalar(0.75) * p.m;
+      k8 = w1 * p.m * Scalar(0.5) + w2;
+      k9 = p.m * Scalar(0.3333333333333333) * w0 + Scalar(0.25) * w1 * p.m;
+      k10 = p.g * Scalar(3.5) * p.m * p.l;
+      k11 = p.g * p.m * p.l * Scalar(2.5);
+      k12 = p.g * p.m * Scalar(0.5) * p.l;
+      k13 = p.g * Scalar(1.5) * p.m * p.l;
+      k14 = Scalar(0.125) * w1 * p.m;
+      k15 = w2;
+      k16 = Scalar(1.1666666666666667) * p.m * w0;
+      k17 = p.m * Scalar(0.16666666666666666) * w0;
+      k18 = p.m * Scalar(0.6666666666666666) * w0;
+    }
+    /// The parameters these constants were computed from.
+    const Parameters<Scalar>& parameters() const noexcept { return p; }
+
+   private:
+    friend struct Model;
+    Parameters<Scalar> p;
+    Scalar k0, k1, k2, k3, k4, k5, k6, k7, k8, k9;
+    Scalar k10, k11, k12, k13, k14, k15, k16, k17, k18;
+  };
+
   /// M(q, t), symmetric positive (semi)definite
   template <class Scalar>
-  static void mass_matrix([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] MassMatrix<Scalar>& M) noexcept {
+  static void mass_matrix([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] MassMatrix<Scalar>& M) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
     const Scalar w0 = cos(q(1) + q(2));
-    const Scalar w1 = p.l * p.l;
-    const Scalar w2 = p.rd * p.rd;
-    const Scalar w3 = cos(q(2));
-    const Scalar w4 = p.m * w1 * Scalar(3) * w3;
-    const Scalar w5 = cos(q(3));
-    const Scalar w6 = w5 * p.m * w1;
-    const Scalar w7 = cos(q(1));
-    const Scalar w8 = cos(q(1) + q(2) + q(3));
-    const Scalar w9 = cos(q(2) + q(3));
-    const Scalar w10 = p.m * w1 * w9;
-    const Scalar w11 = Scalar(1.5) * p.m * w0 * w1;
-    const Scalar w12 = p.m * Scalar(0.5) * w1 * w8;
-    const Scalar w13 = Scalar(4) * p.m * w1;
-    const Scalar w14 = w2 * Scalar(0.75) * p.m;
-    const Scalar w15 = Scalar(1.5) * p.m * w1 * w3;
-    const Scalar w16 = w2 * p.m * Scalar(0.5);
-    const Scalar w17 = p.m * w1 * Scalar(1.6666666666666667);
-    const Scalar w18 = p.m * Scalar(0.5) * w1 * w9;
-    const Scalar w19 = w5 * p.m * Scalar(0.5) * w1;
-    const Scalar w20 = p.m * Scalar(0.3333333333333333) * w1;
-    const Scalar w21 = Scalar(0.25) * w2 * p.m;
-    M(0, 0) = p.m * w0 * w1 * Scalar(3) + w2 * p.m + w4 + w6 + w7 * p.m * Scalar(5) * w1 + p.m * w1 * w8 + w10 + Scalar(7.333333333333333) * p.m * w1;
-    M(0, 1) = w11 + w12 + w7 * p.m * w1 * Scalar(2.5) + w13 + w14 + w4 + w6 + w10;
-    M(0, 2) = w11 + w12 + w15 + w16 + w17 + w18 + w6;
-    M(0, 3) = w12 + w19 + w20 + w18 + w21;
-    M(1, 1) = w13 + w14 + w4 + w6 + w10;
-    M(1, 2) = w15 + w16 + w17 + w18 + w6;
-    M(1, 3) = w19 + w20 + w18 + w21;
-    M(2, 2) = w16 + w17 + w6;
-    M(2, 3) = w19 + w20 + w21;
-    M(3, 3) = w20 + w21;
+    const Scalar w1 = cos(q(2));
+    const Scalar w2 = c.k0 * w1;
+    const Scalar w3 = cos(q(3));
+    const Scalar w4 = w3 * c.k1;
+    const Scalar w5 = cos(q(1));
+    const Scalar w6 = cos(q(1) + q(2) + q(3));
+    const Scalar w7 = cos(q(2) + q(3));
+    const Scalar w8 = c.k1 * w7;
+    const Scalar w9 = c.k4 * w0;
+    const Scalar w10 = c.k5 * w6;
+    const Scalar w11 = c.k4 * w1;
+    const Scalar w12 = c.k5 * w7;
+    const Scalar w13 = w3 * c.k5;
+    M(0, 0) = c.k0 * w0 + c.k3 + w2 + w4 + w5 * c.k2 + c.k1 * w6 + w8;
+    M(0, 1) = w9 + w10 + w5 * c.k6 + c.k7 + w2 + w4 + w8;
+    M(0, 2) = w9 + w10 + w11 + c.k8 + w12 + w4;
+    M(0, 3) = w10 + w13 + c.k9 + w12;
+    M(1, 1) = c.k7 + w2 + w4 + w8;
+    M(1, 2) = w11 + c.k8 + w12 + w4;
+    M(1, 3) = w13 + c.k9 + w12;
+    M(2, 2) = c.k8 + w4;
+    M(2, 3) = w13 + c.k9;
+    M(3, 3) = c.k9;
     M(1, 0) = M(0, 1);
     M(2, 0) = M(0, 2);
     M(3, 0) = M(0, 3);
@@ -97,128 +132,135 @@ struct Model {
     M(3, 2) = M(2, 3);
   }
 
+  /// M(q, t), symmetric positive (semi)definite
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static void mass_matrix([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] MassMatrix<Scalar>& M) noexcept {
+    mass_matrix(t, q, Constants<Scalar>(p), M);
+  }
+
   /// F(q, qd, t, u): everything of Lagrange's equations except M qdd
   template <class Scalar>
-  static void forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] Vector<Scalar>& F) noexcept {
+  static void forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] Vector<Scalar>& F) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
     const Scalar w0 = sin(q(1));
     const Scalar w1 = qd(0) * qd(0);
-    const Scalar w2 = p.l * p.l;
-    const Scalar w3 = -(w0 * w1 * p.m * w2 * Scalar(2.5));
-    const Scalar w4 = sin(q(2));
-    const Scalar w5 = qd(1) + qd(0);
-    const Scalar w6 = w5 + qd(2);
-    const Scalar w7 = w6 * w6;
-    const Scalar w8 = Scalar(1.5) * p.m * w4 * w7 * w2;
-    const Scalar w9 = w5 * w5;
-    const Scalar w10 = sin(q(2) + q(3));
-    const Scalar w11 = p.m * Scalar(0.5) * w9 * w10 * w2;
-    const Scalar w12 = -w11;
-    const Scalar w13 = sin(q(1) + q(2));
-    const Scalar w14 = w6 + qd(3);
-    const Scalar w15 = w14 * w14;
-    const Scalar w16 = p.m * Scalar(0.5) * w10 * w2 * w15;
-    const Scalar w17 = sin(q(1) + q(2) + q(3));
-    const Scalar w18 = -(p.g * sin(q(0) + q(1)) * p.m * p.l * Scalar(2.5));
-    const Scalar w19 = Scalar(1.5) * p.m * w4 * w9 * w2;
-    const Scalar w20 = -w19;
-    const Scalar w21 = sin(q(3));
-    const Scalar w22 = p.m * Scalar(0.5) * w21 * w2 * w15;
-    const Scalar w23 = p.g * p.m * Scalar(0.5) * p.l * sin(q(0) + q(1) + q(2) + q(3));
-    const Scalar w24 = -w23;
-    const Scalar w25 = w1 * w17 * p.m * Scalar(0.5) * w2;
-    const Scalar w26 = -w25;
-    const Scalar w27 = p.g * Scalar(1.5) * p.m * sin(q(0) + q(1) + q(2)) * p.l;
-    const Scalar w28 = -w27;
-    const Scalar w29 = p.m * Scalar(0.5) * w21 * w7 * w2;
-    const Scalar w30 = -w29;
-    const Scalar w31 = w1 * Scalar(1.5) * p.m * w2 * w13;
-    const Scalar w32 = -w31;
-    F(0) = w3 + w8 + w0 * p.m * w9 * w2 * Scalar(2.5) + w12 + Scalar(1.5) * p.m * w7 * w2 * w13 + w16 - p.g * Scalar(3.5) * p.m * p.l * sin(q(0)) + w17 * p.m * Scalar(0.5) * w2 * w15 + w18 + w20 + w22 + w24 + w26 + w28 + w30 + w32;
-    F(1) = w3 + w8 + w12 + w16 + w18 + w20 + w22 + w24 + w26 + w28 + w30 + w32;
-    F(2) = -(w19 - w22 + w11 + w29 + w23 + w25 + w31 + w27);
-    F(3) = -(w11 + w29 + w23 + w25);
+    const Scalar w2 = -(w0 * w1 * c.k6);
+    const Scalar w3 = sin(q(2));
+    const Scalar w4 = qd(1) + qd(0);
+    const Scalar w5 = w4 + qd(2);
+    const Scalar w6 = w5 * w5;
+    const Scalar w7 = c.k4 * w3 * w6;
+    const Scalar w8 = w4 * w4;
+    const Scalar w9 = sin(q(2) + q(3));
+    const Scalar w10 = c.k5 * w8 * w9;
+    const Scalar w11 = -w10;
+    const Scalar w12 = sin(q(1) + q(2));
+    const Scalar w13 = w5 + qd(3);
+    const Scalar w14 = w13 * w13;
+    const Scalar w15 = c.k5 * w9 * w14;
+    const Scalar w16 = sin(q(1) + q(2) + q(3));
+    const Scalar w17 = -(c.k11 * sin(q(0) + q(1)));
+    const Scalar w18 = c.k4 * w3 * w8;
+    const Scalar w19 = -w18;
+    const Scalar w20 = sin(q(3));
+    const Scalar w21 = c.k5 * w20 * w14;
+    const Scalar w22 = c.k12 * sin(q(0) + q(1) + q(2) + q(3));
+    const Scalar w23 = -w22;
+    const Scalar w24 = w1 * w16 * c.k5;
+    const Scalar w25 = -w24;
+    const Scalar w26 = c.k13 * sin(q(0) + q(1) + q(2));
+    const Scalar w27 = -w26;
+    const Scalar w28 = c.k5 * w20 * w6;
+    const Scalar w29 = -w28;
+    const Scalar w30 = w1 * c.k4 * w12;
+    const Scalar w31 = -w30;
+    F(0) = w2 + w7 + w0 * c.k6 * w8 + w11 + c.k4 * w6 * w12 + w15 - c.k10 * sin(q(0)) + w16 * c.k5 * w14 + w17 + w19 + w21 + w23 + w25 + w27 + w29 + w31;
+    F(1) = w2 + w7 + w11 + w15 + w17 + w19 + w21 + w23 + w25 + w27 + w29 + w31;
+    F(2) = -(w18 - w21 + w10 + w28 + w22 + w24 + w30 + w26);
+    F(3) = -(w10 + w28 + w22 + w24);
+  }
+
+  /// F(q, qd, t, u): everything of Lagrange's equations except M qdd
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static void forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] Vector<Scalar>& F) noexcept {
+    forcing(t, q, qd, u, Constants<Scalar>(p), F);
   }
 
   /// M and F together, sharing their common subexpressions
   template <class Scalar>
-  static void mass_matrix_and_forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] MassMatrix<Scalar>& M, [[maybe_unused]] Vector<Scalar>& F) noexcept {
+  static void mass_matrix_and_forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] MassMatrix<Scalar>& M, [[maybe_unused]] Vector<Scalar>& F) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
     const Scalar w0 = q(1) + q(2);
     const Scalar w1 = cos(w0);
-    const Scalar w2 = p.l * p.l;
-    const Scalar w3 = p.rd * p.rd;
-    const Scalar w4 = cos(q(2));
-    const Scalar w5 = p.m * w2 * Scalar(3) * w4;
-    const Scalar w6 = cos(q(3));
-    const Scalar w7 = w6 * p.m * w2;
-    const Scalar w8 = cos(q(1));
-    const Scalar w9 = q(1) + q(2) + q(3);
+    const Scalar w2 = cos(q(2));
+    const Scalar w3 = c.k0 * w2;
+    const Scalar w4 = cos(q(3));
+    const Scalar w5 = w4 * c.k1;
+    const Scalar w6 = cos(q(1));
+    const Scalar w7 = q(1) + q(2) + q(3);
+    const Scalar w8 = cos(w7);
+    const Scalar w9 = q(2) + q(3);
     const Scalar w10 = cos(w9);
-    const Scalar w11 = q(2) + q(3);
-    const Scalar w12 = cos(w11);
-    const Scalar w13 = p.m * w2 * w12;
-    const Scalar w14 = Scalar(1.5) * p.m * w1 * w2;
-    const Scalar w15 = p.m * Scalar(0.5) * w2 * w10;
-    const Scalar w16 = Scalar(4) * p.m * w2;
-    const Scalar w17 = w3 * Scalar(0.75) * p.m;
-    const Scalar w18 = Scalar(1.5) * p.m * w2 * w4;
-    const Scalar w19 = w3 * p.m * Scalar(0.5);
-    const Scalar w20 = p.m * w2 * Scalar(1.6666666666666667);
-    const Scalar w21 = p.m * Scalar(0.5) * w2 * w12;
-    const Scalar w22 = w6 * p.m * Scalar(0.5) * w2;
-    const Scalar w23 = p.m * Scalar(0.3333333333333333) * w2;
-    const Scalar w24 = Scalar(0.25) * w3 * p.m;
-    const Scalar w25 = sin(q(1));
-    const Scalar w26 = qd(0) * qd(0);
-    const Scalar w27 = -(w25 * w26 * p.m * w2 * Scalar(2.5));
-    const Scalar w28 = sin(q(2));
-    const Scalar w29 = qd(1) + qd(0);
-    const Scalar w30 = w29 + qd(2);
+    const Scalar w11 = c.k1 * w10;
+    const Scalar w12 = c.k4 * w1;
+    const Scalar w13 = c.k5 * w8;
+    const Scalar w14 = c.k4 * w2;
+    const Scalar w15 = c.k5 * w10;
+    const Scalar w16 = w4 * c.k5;
+    const Scalar w17 = sin(q(1));
+    const Scalar w18 = qd(0) * qd(0);
+    const Scalar w19 = -(w17 * w18 * c.k6);
+    const Scalar w20 = sin(q(2));
+    const Scalar w21 = qd(1) + qd(0);
+    const Scalar w22 = w21 + qd(2);
+    const Scalar w23 = w22 * w22;
+    const Scalar w24 = c.k4 * w20 * w23;
+    const Scalar w25 = w21 * w21;
+    const Scalar w26 = sin(w9);
+    const Scalar w27 = c.k5 * w25 * w26;
+    const Scalar w28 = -w27;
+    const Scalar w29 = sin(w0);
+    const Scalar w30 = w22 + qd(3);
     const Scalar w31 = w30 * w30;
-    const Scalar w32 = Scalar(1.5) * p.m * w28 * w31 * w2;
-    const Scalar w33 = w29 * w29;
-    const Scalar w34 = sin(w11);
-    const Scalar w35 = p.m * Scalar(0.5) * w33 * w34 * w2;
+    const Scalar w32 = c.k5 * w26 * w31;
+    const Scalar w33 = sin(w7);
+    const Scalar w34 = -(c.k11 * sin(q(0) + q(1)));
+    const Scalar w35 = c.k4 * w20 * w25;
     const Scalar w36 = -w35;
-    const Scalar w37 = sin(w0);
-    const Scalar w38 = w30 + qd(3);
-    const Scalar w39 = w38 * w38;
-    const Scalar w40 = p.m * Scalar(0.5) * w34 * w2 * w39;
-    const Scalar w41 = sin(w9);
-    const Scalar w42 = -(p.g * sin(q(0) + q(1)) * p.m * p.l * Scalar(2.5));
-    const Scalar w43 = Scalar(1.5) * p.m * w28 * w33 * w2;
+    const Scalar w37 = sin(q(3));
+    const Scalar w38 = c.k5 * w37 * w31;
+    const Scalar w39 = c.k12 * sin(q(0) + q(1) + q(2) + q(3));
+    const Scalar w40 = -w39;
+    const Scalar w41 = w18 * w33 * c.k5;
+    const Scalar w42 = -w41;
+    const Scalar w43 = c.k13 * sin(q(0) + q(1) + q(2));
     const Scalar w44 = -w43;
-    const Scalar w45 = sin(q(3));
-    const Scalar w46 = p.m * Scalar(0.5) * w45 * w2 * w39;
-    const Scalar w47 = p.g * p.m * Scalar(0.5) * p.l * sin(q(0) + q(1) + q(2) + q(3));
+    const Scalar w45 = c.k5 * w37 * w23;
+    const Scalar w46 = -w45;
+    const Scalar w47 = w18 * c.k4 * w29;
     const Scalar w48 = -w47;
-    const Scalar w49 = w26 * w41 * p.m * Scalar(0.5) * w2;
-    const Scalar w50 = -w49;
-    const Scalar w51 = p.g * Scalar(1.5) * p.m * sin(q(0) + q(1) + q(2)) * p.l;
-    const Scalar w52 = -w51;
-    const Scalar w53 = p.m * Scalar(0.5) * w45 * w31 * w2;
-    const Scalar w54 = -w53;
-    const Scalar w55 = w26 * Scalar(1.5) * p.m * w2 * w37;
-    const Scalar w56 = -w55;
-    M(0, 0) = p.m * w1 * w2 * Scalar(3) + w3 * p.m + w5 + w7 + w8 * p.m * Scalar(5) * w2 + p.m * w2 * w10 + w13 + Scalar(7.333333333333333) * p.m * w2;
-    M(0, 1) = w14 + w15 + w8 * p.m * w2 * Scalar(2.5) + w16 + w17 + w5 + w7 + w13;
-    M(0, 2) = w14 + w15 + w18 + w19 + w20 + w21 + w7;
-    M(0, 3) = w15 + w22 + w23 + w21 + w24;
-    M(1, 1) = w16 + w17 + w5 + w7 + w13;
-    M(1, 2) = w18 + w19 + w20 + w21 + w7;
-    M(1, 3) = w22 + w23 + w21 + w24;
-    M(2, 2) = w19 + w20 + w7;
-    M(2, 3) = w22 + w23 + w24;
-    M(3, 3) = w23 + w24;
-    F(0) = w27 + w32 + w25 * p.m * w33 * w2 * Scalar(2.5) + w36 + Scalar(1.5) * p.m * w31 * w2 * w37 + w40 - p.g * Scalar(3.5) * p.m * p.l * sin(q(0)) + w41 * p.m * Scalar(0.5) * w2 * w39 + w42 + w44 + w46 + w48 + w50 + w52 + w54 + w56;
-    F(1) = w27 + w32 + w36 + w40 + w42 + w44 + w46 + w48 + w50 + w52 + w54 + w56;
-    F(2) = -(w43 - w46 + w35 + w53 + w47 + w49 + w55 + w51);
-    F(3) = -(w35 + w53 + w47 + w49);
+    M(0, 0) = c.k0 * w1 + c.k3 + w3 + w5 + w6 * c.k2 + c.k1 * w8 + w11;
+    M(0, 1) = w12 + w13 + w6 * c.k6 + c.k7 + w3 + w5 + w11;
+    M(0, 2) = w12 + w13 + w14 + c.k8 + w15 + w5;
+    M(0, 3) = w13 + w16 + c.k9 + w15;
+    M(1, 1) = c.k7 + w3 + w5 + w11;
+    M(1, 2) = w14 + c.k8 + w15 + w5;
+    M(1, 3) = w16 + c.k9 + w15;
+    M(2, 2) = c.k8 + w5;
+    M(2, 3) = w16 + c.k9;
+    M(3, 3) = c.k9;
+    F(0) = w19 + w24 + w17 * c.k6 * w25 + w28 + c.k4 * w23 * w29 + w32 - c.k10 * sin(q(0)) + w33 * c.k5 * w31 + w34 + w36 + w38 + w40 + w42 + w44 + w46 + w48;
+    F(1) = w19 + w24 + w28 + w32 + w34 + w36 + w38 + w40 + w42 + w44 + w46 + w48;
+    F(2) = -(w35 - w38 + w27 + w45 + w39 + w41 + w47 + w43);
+    F(3) = -(w27 + w45 + w39 + w41);
     M(1, 0) = M(0, 1);
     M(2, 0) = M(0, 2);
     M(3, 0) = M(0, 3);
@@ -227,72 +269,126 @@ struct Model {
     M(3, 2) = M(2, 3);
   }
 
+  /// M and F together, sharing their common subexpressions
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static void mass_matrix_and_forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] MassMatrix<Scalar>& M, [[maybe_unused]] Vector<Scalar>& F) noexcept {
+    mass_matrix_and_forcing(t, q, qd, u, Constants<Scalar>(p), M, F);
+  }
+
   /// Xi(q, t) of the Pfaffian constraints Xi qd + Xi_t = 0
   template <class Scalar>
+  static void constraint_jacobian([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] ConstraintJacobian<Scalar>& Xi) noexcept {
+    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
+    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
+    using std::log; using std::abs; using std::pow;
+  }
+
+  /// Xi(q, t) of the Pfaffian constraints Xi qd + Xi_t = 0
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
   static void constraint_jacobian([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintJacobian<Scalar>& Xi) noexcept {
+    constraint_jacobian(t, q, Constants<Scalar>(p), Xi);
+  }
+
+  /// Xi_t(q, t)
+  template <class Scalar>
+  static void constraint_rate_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] ConstraintVector<Scalar>& Xi_t) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
   }
 
   /// Xi_t(q, t)
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
   template <class Scalar>
   static void constraint_rate_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintVector<Scalar>& Xi_t) noexcept {
+    constraint_rate_term(t, q, Constants<Scalar>(p), Xi_t);
+  }
+
+  /// dXi/dt qd + dXi_t/dt, so that Xi qdd + b = 0
+  template <class Scalar>
+  static void constraint_acceleration_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] ConstraintVector<Scalar>& b) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
   }
 
   /// dXi/dt qd + dXi_t/dt, so that Xi qdd + b = 0
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
   template <class Scalar>
   static void constraint_acceleration_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintVector<Scalar>& b) noexcept {
+    constraint_acceleration_term(t, q, qd, Constants<Scalar>(p), b);
+  }
+
+  /// phi(q, t) of the holonomic constraints
+  template <class Scalar>
+  static void holonomic_residuals([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] HolonomicVector<Scalar>& phi) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
   }
 
   /// phi(q, t) of the holonomic constraints
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
   template <class Scalar>
   static void holonomic_residuals([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] HolonomicVector<Scalar>& phi) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+    holonomic_residuals(t, q, Constants<Scalar>(p), phi);
   }
 
   /// T(q, qd, t)
   template <class Scalar>
-  static Scalar kinetic_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Parameters<Scalar>& p) noexcept {
+  static Scalar kinetic_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Constants<Scalar>& c) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
     Scalar T = Scalar(0);
-    const Scalar w0 = p.rd * p.rd;
-    const Scalar w1 = qd(1) + qd(0);
-    const Scalar w2 = w1 + qd(2);
-    const Scalar w3 = w2 + qd(3);
-    const Scalar w4 = w3 * w3;
-    const Scalar w5 = qd(0) * qd(0);
-    const Scalar w6 = p.l * p.l;
-    const Scalar w7 = w1 * w1;
-    const Scalar w8 = w2 * w2;
-    T = Scalar(0.125) * w0 * p.m * w4 + w5 * p.m * w6 * Scalar(1.6666666666666667) + cos(q(1)) * p.m * qd(0) * w1 * w6 * Scalar(2.5) + Scalar(1.1666666666666667) * p.m * w7 * w6 + Scalar(0.125) * w0 * p.m * w7 + cos(q(3)) * w2 * w3 * p.m * Scalar(0.5) * w6 + p.m * Scalar(0.16666666666666666) * w6 * w4 + w3 * p.m * Scalar(0.5) * qd(0) * w6 * cos(q(1) + q(2) + q(3)) + w2 * Scalar(1.5) * p.m * qd(0) * cos(q(1) + q(2)) * w6 + w3 * p.m * Scalar(0.5) * w1 * w6 * cos(q(2) + q(3)) + p.m * Scalar(0.6666666666666666) * w8 * w6 + w5 * Scalar(0.125) * w0 * p.m + Scalar(0.125) * w0 * p.m * w8 + w2 * Scalar(1.5) * p.m * w1 * w6 * cos(q(2));
+    const Scalar w0 = qd(1) + qd(0);
+    const Scalar w1 = w0 + qd(2);
+    const Scalar w2 = w1 + qd(3);
+    const Scalar w3 = w2 * w2;
+    const Scalar w4 = qd(0) * qd(0);
+    const Scalar w5 = w0 * w0;
+    const Scalar w6 = w1 * w1;
+    T = c.k14 * w3 + w4 * c.k15 + cos(q(1)) * c.k6 * qd(0) * w0 + c.k16 * w5 + c.k14 * w5 + cos(q(3)) * w1 * w2 * c.k5 + c.k17 * w3 + w2 * c.k5 * qd(0) * cos(q(1) + q(2) + q(3)) + w1 * c.k4 * qd(0) * cos(q(1) + q(2)) + w2 * c.k5 * w0 * cos(q(2) + q(3)) + c.k18 * w6 + w4 * c.k14 + c.k14 * w6 + w1 * c.k4 * w0 * cos(q(2));
     return T;
+  }
+
+  /// T(q, qd, t)
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static Scalar kinetic_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Parameters<Scalar>& p) noexcept {
+    return kinetic_energy(t, q, qd, Constants<Scalar>(p));
   }
 
   /// V(q, t)
   template <class Scalar>
-  static Scalar potential_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p) noexcept {
+  static Scalar potential_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
     Scalar V = Scalar(0);
-    V = -(cos(q(0) + q(1) + q(2) + q(3)) * p.g * p.m * Scalar(0.5) * p.l + p.g * cos(q(0) + q(1) + q(2)) * Scalar(1.5) * p.m * p.l + p.g * cos(q(0) + q(1)) * p.m * p.l * Scalar(2.5) + p.g * Scalar(3.5) * p.m * p.l * cos(q(0)));
+    V = -(cos(q(0) + q(1) + q(2) + q(3)) * c.k12 + c.k13 * cos(q(0) + q(1) + q(2)) + c.k11 * cos(q(0) + q(1)) + c.k10 * cos(q(0)));
     return V;
+  }
+
+  /// V(q, t)
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static Scalar potential_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p) noexcept {
+    return potential_energy(t, q, Constants<Scalar>(p));
   }
 
   /// the model's named outputs, in the order of output_names
   template <class Scalar>
-  static void outputs([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] OutputVector<Scalar>& y) noexcept {
+  static void outputs([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] OutputVector<Scalar>& y) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
@@ -316,17 +412,25 @@ struct Model {
     const Scalar w17 = w13 * w7 + w14 * w0;
     const Scalar w18 = w6 * w0 + w5 * w7;
     const Scalar w19 = w1 * w0 - w3 * w7;
-    const Scalar w20 = w14 * qd(0) * p.l + w1 * qd(0) * p.l + w6 * qd(0) * p.l;
-    const Scalar w21 = w12 * qd(1) * p.l + qd(1) * w2 * p.l;
-    const Scalar w22 = w5 * qd(0) * p.l + qd(0) * p.l * w13 - w3 * qd(0) * p.l - qd(0) * p.l;
-    const Scalar w23 = w10 * p.l * qd(2) + p.l * qd(2);
-    const Scalar w24 = qd(1) * p.l * w4 + qd(1) * p.l - qd(1) * p.l * w11;
-    y(0) = p.l * w0 - p.l * w8 + p.l * w15 + w16 * p.l;
-    y(1) = -(p.l * w7 - p.l * w17 - w18 * p.l - w19 * p.l);
-    y(3) = -(p.l * w17 * qd(3) + w0 * w20 + w16 * w21 + w22 * w7 + w18 * w23 + w24 * w19 - p.l * w8 * w9 * qd(2));
-    y(4) = -(w21 * w19 + w23 * w8 - w7 * w20 - p.l * qd(3) * w15 + w22 * w0 - w16 * w24 + w18 * p.l * w9 * qd(2));
+    const Scalar w20 = w14 * qd(0) * c.p.l + w1 * qd(0) * c.p.l + w6 * qd(0) * c.p.l;
+    const Scalar w21 = w12 * qd(1) * c.p.l + qd(1) * w2 * c.p.l;
+    const Scalar w22 = w5 * qd(0) * c.p.l + qd(0) * c.p.l * w13 - w3 * qd(0) * c.p.l - qd(0) * c.p.l;
+    const Scalar w23 = w10 * c.p.l * qd(2) + c.p.l * qd(2);
+    const Scalar w24 = qd(1) * c.p.l * w4 + qd(1) * c.p.l - qd(1) * c.p.l * w11;
+    y(0) = c.p.l * w0 - c.p.l * w8 + c.p.l * w15 + w16 * c.p.l;
+    y(1) = -(c.p.l * w7 - c.p.l * w17 - w18 * c.p.l - w19 * c.p.l);
+    y(3) = -(c.p.l * w17 * qd(3) + w0 * w20 + w16 * w21 + w22 * w7 + w18 * w23 + w24 * w19 - c.p.l * w8 * w9 * qd(2));
+    y(4) = -(w21 * w19 + w23 * w8 - w7 * w20 - c.p.l * qd(3) * w15 + w22 * w0 - w16 * w24 + w18 * c.p.l * w9 * qd(2));
     y(2) = Scalar(0);
     y(5) = Scalar(0);
+  }
+
+  /// the model's named outputs, in the order of output_names
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static void outputs([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] OutputVector<Scalar>& y) noexcept {
+    outputs(t, q, qd, u, Constants<Scalar>(p), y);
   }
 };
 

@@ -22,7 +22,7 @@ struct Model {
   static constexpr const char* name = "quaternion_rigid_body";
   static constexpr const char* description = "Free rigid body, scalar-last quaternion attitude with the unit-norm constraint, body torque input";
   static constexpr const char* generator_version = "0.1.0";
-  static constexpr const char* model_hash = "66dfdfa4e533a98c";
+  static constexpr const char* model_hash = "439780d13d2b4396";
   static constexpr std::array<const char*, nq> coordinate_names{{"e1", "e2", "e3", "eta"}};
   static constexpr std::array<const char*, nu> input_names{{"tau1", "tau2", "tau3"}};
   static constexpr std::array<const char*, np> parameter_names{{"m", "J1", "J2", "J3"}};
@@ -51,9 +51,38 @@ struct Model {
     std::array<Scalar*, np> fields() noexcept { return {{&m, &J1, &J2, &J3}}; }
   };
 
+  /// The values of the functions below that depend on the parameters only, computed once per
+  /// parameter set. Immutable: for other parameters, build other Constants.
+  template <class Scalar>
+  class Constants {
+   public:
+    /// Computes every constant from a copy of the parameters.
+    explicit Constants(const Parameters<Scalar>& parameters) noexcept : p(parameters) {
+      using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
+      using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
+      using std::log; using std::abs; using std::pow;
+      k0 = Scalar(4) * p.J1;
+      k1 = Scalar(4) * p.J3;
+      k2 = Scalar(4) * p.J2;
+      k3 = Scalar(2) * p.J3;
+      k4 = Scalar(2) * p.J1;
+      k5 = p.J2 * Scalar(2);
+      k6 = p.J2 * Scalar(0.5);
+      k7 = Scalar(0.5) * p.J3;
+      k8 = Scalar(0.5) * p.J1;
+    }
+    /// The parameters these constants were computed from.
+    const Parameters<Scalar>& parameters() const noexcept { return p; }
+
+   private:
+    friend struct Model;
+    Parameters<Scalar> p;
+    Scalar k0, k1, k2, k3, k4, k5, k6, k7, k8;
+  };
+
   /// M(q, t), symmetric positive (semi)definite
   template <class Scalar>
-  static void mass_matrix([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] MassMatrix<Scalar>& M) noexcept {
+  static void mass_matrix([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] MassMatrix<Scalar>& M) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
@@ -61,16 +90,16 @@ struct Model {
     const Scalar w1 = q(1) * q(1);
     const Scalar w2 = q(2) * q(2);
     const Scalar w3 = q(0) * q(0);
-    M(0, 0) = Scalar(4) * w0 * p.J1 + Scalar(4) * w1 * p.J3 + Scalar(4) * p.J2 * w2;
-    M(0, 1) = -(Scalar(4) * p.J2 * q(2) * q(3) - Scalar(4) * q(2) * p.J1 * q(3) + Scalar(4) * q(0) * q(1) * p.J3);
-    M(0, 2) = -(Scalar(4) * p.J2 * q(0) * q(2) - Scalar(4) * q(1) * q(3) * p.J3 + Scalar(4) * q(1) * p.J1 * q(3));
-    M(0, 3) = -(Scalar(4) * q(0) * p.J1 * q(3) + Scalar(4) * q(1) * q(2) * p.J3 - Scalar(4) * p.J2 * q(1) * q(2));
-    M(1, 1) = Scalar(4) * w3 * p.J3 + Scalar(4) * p.J2 * w0 + Scalar(4) * p.J1 * w2;
-    M(1, 2) = -(Scalar(4) * q(0) * q(3) * p.J3 - Scalar(4) * p.J2 * q(0) * q(3) + Scalar(4) * q(1) * q(2) * p.J1);
-    M(1, 3) = -(Scalar(4) * q(0) * q(2) * p.J1 - Scalar(4) * q(0) * q(2) * p.J3 + Scalar(4) * p.J2 * q(1) * q(3));
-    M(2, 2) = Scalar(4) * p.J2 * w3 + Scalar(4) * w0 * p.J3 + Scalar(4) * w1 * p.J1;
-    M(2, 3) = -(Scalar(4) * q(2) * q(3) * p.J3 - Scalar(4) * q(0) * q(1) * p.J1 + Scalar(4) * p.J2 * q(0) * q(1));
-    M(3, 3) = Scalar(4) * w3 * p.J1 + Scalar(4) * w2 * p.J3 + Scalar(4) * w1 * p.J2;
+    M(0, 0) = c.k0 * w0 + c.k1 * w1 + c.k2 * w2;
+    M(0, 1) = -(c.k2 * q(2) * q(3) - c.k0 * q(2) * q(3) + c.k1 * q(0) * q(1));
+    M(0, 2) = -(c.k2 * q(0) * q(2) - c.k1 * q(1) * q(3) + c.k0 * q(1) * q(3));
+    M(0, 3) = -(c.k0 * q(0) * q(3) + c.k1 * q(1) * q(2) - c.k2 * q(1) * q(2));
+    M(1, 1) = c.k1 * w3 + c.k2 * w0 + c.k0 * w2;
+    M(1, 2) = -(c.k1 * q(0) * q(3) - c.k2 * q(0) * q(3) + c.k0 * q(1) * q(2));
+    M(1, 3) = -(c.k0 * q(0) * q(2) - c.k1 * q(0) * q(2) + c.k2 * q(1) * q(3));
+    M(2, 2) = c.k2 * w3 + c.k1 * w0 + c.k0 * w1;
+    M(2, 3) = -(c.k1 * q(2) * q(3) - c.k0 * q(0) * q(1) + c.k2 * q(0) * q(1));
+    M(3, 3) = c.k0 * w3 + c.k1 * w2 + c.k2 * w1;
     M(1, 0) = M(0, 1);
     M(2, 0) = M(0, 2);
     M(3, 0) = M(0, 3);
@@ -79,24 +108,40 @@ struct Model {
     M(3, 2) = M(2, 3);
   }
 
+  /// M(q, t), symmetric positive (semi)definite
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static void mass_matrix([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] MassMatrix<Scalar>& M) noexcept {
+    mass_matrix(t, q, Constants<Scalar>(p), M);
+  }
+
   /// F(q, qd, t, u): everything of Lagrange's equations except M qdd
   template <class Scalar>
-  static void forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] Vector<Scalar>& F) noexcept {
+  static void forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] Vector<Scalar>& F) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
     const Scalar w0 = Scalar(2) * q(0) * qd(2) - Scalar(2) * qd(0) * q(2) - Scalar(2) * q(1) * qd(3) + qd(1) * Scalar(2) * q(3);
     const Scalar w1 = qd(1) * Scalar(2) * q(0) + Scalar(2) * q(2) * qd(3) - Scalar(2) * qd(0) * q(1) - Scalar(2) * q(3) * qd(2);
     const Scalar w2 = Scalar(2) * qd(0) * q(3) + qd(1) * Scalar(2) * q(2) - Scalar(2) * q(0) * qd(3) - Scalar(2) * q(1) * qd(2);
-    F(0) = w0 * Scalar(2) * w1 * q(3) * p.J3 - Scalar(2) * w1 * w2 * q(2) * p.J1 - Scalar(2) * u(1) * q(2) + Scalar(2) * w1 * w2 * q(2) * p.J3 + Scalar(2) * q(1) * u(2) - p.J2 * w0 * Scalar(2) * w1 * q(3) - p.J2 * w0 * Scalar(2) * q(1) * w2 + Scalar(2) * u(0) * q(3) + w0 * Scalar(2) * q(1) * w2 * p.J1;
-    F(1) = Scalar(2) * q(2) * u(0) + p.J2 * w0 * Scalar(2) * q(0) * w2 - w0 * Scalar(2) * q(0) * w2 * p.J1 - Scalar(2) * q(0) * u(2) + Scalar(2) * u(1) * q(3) - p.J2 * w0 * Scalar(2) * w1 * q(2) - Scalar(2) * w1 * w2 * q(3) * p.J3 + w0 * Scalar(2) * w1 * q(2) * p.J3 + Scalar(2) * w1 * w2 * p.J1 * q(3);
-    F(2) = p.J2 * w0 * Scalar(2) * w1 * q(1) + Scalar(2) * q(0) * u(1) - Scalar(2) * q(0) * w1 * w2 * p.J3 - p.J2 * w0 * Scalar(2) * w2 * q(3) + Scalar(2) * u(2) * q(3) - w0 * Scalar(2) * w1 * q(1) * p.J3 + w0 * Scalar(2) * w2 * p.J1 * q(3) - Scalar(2) * q(1) * u(0) + Scalar(2) * q(0) * w1 * w2 * p.J1;
-    F(3) = -(Scalar(2) * q(1) * u(1) + Scalar(2) * q(0) * u(0) + Scalar(2) * w1 * q(1) * w2 * p.J1 - p.J2 * w0 * Scalar(2) * w2 * q(2) + w0 * Scalar(2) * q(0) * w1 * p.J3 - Scalar(2) * w1 * q(1) * w2 * p.J3 + w0 * Scalar(2) * w2 * q(2) * p.J1 - p.J2 * w0 * Scalar(2) * q(0) * w1 + Scalar(2) * u(2) * q(2));
+    F(0) = w0 * c.k3 * w1 * q(3) - c.k4 * w1 * w2 * q(2) - Scalar(2) * u(1) * q(2) + c.k3 * w1 * w2 * q(2) + Scalar(2) * q(1) * u(2) - c.k5 * w0 * w1 * q(3) - c.k5 * w0 * q(1) * w2 + Scalar(2) * u(0) * q(3) + w0 * c.k4 * q(1) * w2;
+    F(1) = Scalar(2) * q(2) * u(0) + c.k5 * w0 * q(0) * w2 - w0 * c.k4 * q(0) * w2 - Scalar(2) * q(0) * u(2) + Scalar(2) * u(1) * q(3) - c.k5 * w0 * w1 * q(2) - c.k3 * w1 * w2 * q(3) + w0 * c.k3 * w1 * q(2) + c.k4 * w1 * w2 * q(3);
+    F(2) = c.k5 * w0 * w1 * q(1) + Scalar(2) * q(0) * u(1) - c.k3 * q(0) * w1 * w2 - c.k5 * w0 * w2 * q(3) + Scalar(2) * u(2) * q(3) - w0 * c.k3 * w1 * q(1) + w0 * c.k4 * w2 * q(3) - Scalar(2) * q(1) * u(0) + c.k4 * q(0) * w1 * w2;
+    F(3) = -(Scalar(2) * q(1) * u(1) + Scalar(2) * q(0) * u(0) + c.k4 * w1 * q(1) * w2 - c.k5 * w0 * w2 * q(2) + w0 * c.k3 * q(0) * w1 - c.k3 * w1 * q(1) * w2 + w0 * c.k4 * w2 * q(2) - c.k5 * w0 * q(0) * w1 + Scalar(2) * u(2) * q(2));
+  }
+
+  /// F(q, qd, t, u): everything of Lagrange's equations except M qdd
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static void forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] Vector<Scalar>& F) noexcept {
+    forcing(t, q, qd, u, Constants<Scalar>(p), F);
   }
 
   /// M and F together, sharing their common subexpressions
   template <class Scalar>
-  static void mass_matrix_and_forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] MassMatrix<Scalar>& M, [[maybe_unused]] Vector<Scalar>& F) noexcept {
+  static void mass_matrix_and_forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] MassMatrix<Scalar>& M, [[maybe_unused]] Vector<Scalar>& F) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
@@ -107,20 +152,20 @@ struct Model {
     const Scalar w4 = Scalar(2) * q(0) * qd(2) - Scalar(2) * qd(0) * q(2) - Scalar(2) * q(1) * qd(3) + qd(1) * Scalar(2) * q(3);
     const Scalar w5 = qd(1) * Scalar(2) * q(0) + Scalar(2) * q(2) * qd(3) - Scalar(2) * qd(0) * q(1) - Scalar(2) * q(3) * qd(2);
     const Scalar w6 = Scalar(2) * qd(0) * q(3) + qd(1) * Scalar(2) * q(2) - Scalar(2) * q(0) * qd(3) - Scalar(2) * q(1) * qd(2);
-    M(0, 0) = Scalar(4) * w0 * p.J1 + Scalar(4) * w1 * p.J3 + Scalar(4) * p.J2 * w2;
-    M(0, 1) = -(Scalar(4) * p.J2 * q(2) * q(3) - Scalar(4) * q(2) * p.J1 * q(3) + Scalar(4) * q(0) * q(1) * p.J3);
-    M(0, 2) = -(Scalar(4) * p.J2 * q(0) * q(2) - Scalar(4) * q(1) * q(3) * p.J3 + Scalar(4) * q(1) * p.J1 * q(3));
-    M(0, 3) = -(Scalar(4) * q(0) * p.J1 * q(3) + Scalar(4) * q(1) * q(2) * p.J3 - Scalar(4) * p.J2 * q(1) * q(2));
-    M(1, 1) = Scalar(4) * w3 * p.J3 + Scalar(4) * p.J2 * w0 + Scalar(4) * p.J1 * w2;
-    M(1, 2) = -(Scalar(4) * q(0) * q(3) * p.J3 - Scalar(4) * p.J2 * q(0) * q(3) + Scalar(4) * q(1) * q(2) * p.J1);
-    M(1, 3) = -(Scalar(4) * q(0) * q(2) * p.J1 - Scalar(4) * q(0) * q(2) * p.J3 + Scalar(4) * p.J2 * q(1) * q(3));
-    M(2, 2) = Scalar(4) * p.J2 * w3 + Scalar(4) * w0 * p.J3 + Scalar(4) * w1 * p.J1;
-    M(2, 3) = -(Scalar(4) * q(2) * q(3) * p.J3 - Scalar(4) * q(0) * q(1) * p.J1 + Scalar(4) * p.J2 * q(0) * q(1));
-    M(3, 3) = Scalar(4) * w3 * p.J1 + Scalar(4) * w2 * p.J3 + Scalar(4) * w1 * p.J2;
-    F(0) = w4 * Scalar(2) * w5 * q(3) * p.J3 - Scalar(2) * w5 * w6 * q(2) * p.J1 - Scalar(2) * u(1) * q(2) + Scalar(2) * w5 * w6 * q(2) * p.J3 + Scalar(2) * q(1) * u(2) - p.J2 * w4 * Scalar(2) * w5 * q(3) - p.J2 * w4 * Scalar(2) * q(1) * w6 + Scalar(2) * u(0) * q(3) + w4 * Scalar(2) * q(1) * w6 * p.J1;
-    F(1) = Scalar(2) * q(2) * u(0) + p.J2 * w4 * Scalar(2) * q(0) * w6 - w4 * Scalar(2) * q(0) * w6 * p.J1 - Scalar(2) * q(0) * u(2) + Scalar(2) * u(1) * q(3) - p.J2 * w4 * Scalar(2) * w5 * q(2) - Scalar(2) * w5 * w6 * q(3) * p.J3 + w4 * Scalar(2) * w5 * q(2) * p.J3 + Scalar(2) * w5 * w6 * p.J1 * q(3);
-    F(2) = p.J2 * w4 * Scalar(2) * w5 * q(1) + Scalar(2) * q(0) * u(1) - Scalar(2) * q(0) * w5 * w6 * p.J3 - p.J2 * w4 * Scalar(2) * w6 * q(3) + Scalar(2) * u(2) * q(3) - w4 * Scalar(2) * w5 * q(1) * p.J3 + w4 * Scalar(2) * w6 * p.J1 * q(3) - Scalar(2) * q(1) * u(0) + Scalar(2) * q(0) * w5 * w6 * p.J1;
-    F(3) = -(Scalar(2) * q(1) * u(1) + Scalar(2) * q(0) * u(0) + Scalar(2) * w5 * q(1) * w6 * p.J1 - p.J2 * w4 * Scalar(2) * w6 * q(2) + w4 * Scalar(2) * q(0) * w5 * p.J3 - Scalar(2) * w5 * q(1) * w6 * p.J3 + w4 * Scalar(2) * w6 * q(2) * p.J1 - p.J2 * w4 * Scalar(2) * q(0) * w5 + Scalar(2) * u(2) * q(2));
+    M(0, 0) = c.k0 * w0 + c.k1 * w1 + c.k2 * w2;
+    M(0, 1) = -(c.k2 * q(2) * q(3) - c.k0 * q(2) * q(3) + c.k1 * q(0) * q(1));
+    M(0, 2) = -(c.k2 * q(0) * q(2) - c.k1 * q(1) * q(3) + c.k0 * q(1) * q(3));
+    M(0, 3) = -(c.k0 * q(0) * q(3) + c.k1 * q(1) * q(2) - c.k2 * q(1) * q(2));
+    M(1, 1) = c.k1 * w3 + c.k2 * w0 + c.k0 * w2;
+    M(1, 2) = -(c.k1 * q(0) * q(3) - c.k2 * q(0) * q(3) + c.k0 * q(1) * q(2));
+    M(1, 3) = -(c.k0 * q(0) * q(2) - c.k1 * q(0) * q(2) + c.k2 * q(1) * q(3));
+    M(2, 2) = c.k2 * w3 + c.k1 * w0 + c.k0 * w1;
+    M(2, 3) = -(c.k1 * q(2) * q(3) - c.k0 * q(0) * q(1) + c.k2 * q(0) * q(1));
+    M(3, 3) = c.k0 * w3 + c.k1 * w2 + c.k2 * w1;
+    F(0) = w4 * c.k3 * w5 * q(3) - c.k4 * w5 * w6 * q(2) - Scalar(2) * u(1) * q(2) + c.k3 * w5 * w6 * q(2) + Scalar(2) * q(1) * u(2) - c.k5 * w4 * w5 * q(3) - c.k5 * w4 * q(1) * w6 + Scalar(2) * u(0) * q(3) + w4 * c.k4 * q(1) * w6;
+    F(1) = Scalar(2) * q(2) * u(0) + c.k5 * w4 * q(0) * w6 - w4 * c.k4 * q(0) * w6 - Scalar(2) * q(0) * u(2) + Scalar(2) * u(1) * q(3) - c.k5 * w4 * w5 * q(2) - c.k3 * w5 * w6 * q(3) + w4 * c.k3 * w5 * q(2) + c.k4 * w5 * w6 * q(3);
+    F(2) = c.k5 * w4 * w5 * q(1) + Scalar(2) * q(0) * u(1) - c.k3 * q(0) * w5 * w6 - c.k5 * w4 * w6 * q(3) + Scalar(2) * u(2) * q(3) - w4 * c.k3 * w5 * q(1) + w4 * c.k4 * w6 * q(3) - Scalar(2) * q(1) * u(0) + c.k4 * q(0) * w5 * w6;
+    F(3) = -(Scalar(2) * q(1) * u(1) + Scalar(2) * q(0) * u(0) + c.k4 * w5 * q(1) * w6 - c.k5 * w4 * w6 * q(2) + w4 * c.k3 * q(0) * w5 - c.k3 * w5 * q(1) * w6 + w4 * c.k4 * w6 * q(2) - c.k5 * w4 * q(0) * w5 + Scalar(2) * u(2) * q(2));
     M(1, 0) = M(0, 1);
     M(2, 0) = M(0, 2);
     M(3, 0) = M(0, 3);
@@ -129,9 +174,17 @@ struct Model {
     M(3, 2) = M(2, 3);
   }
 
+  /// M and F together, sharing their common subexpressions
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static void mass_matrix_and_forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] MassMatrix<Scalar>& M, [[maybe_unused]] Vector<Scalar>& F) noexcept {
+    mass_matrix_and_forcing(t, q, qd, u, Constants<Scalar>(p), M, F);
+  }
+
   /// Xi(q, t) of the Pfaffian constraints Xi qd + Xi_t = 0
   template <class Scalar>
-  static void constraint_jacobian([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintJacobian<Scalar>& Xi) noexcept {
+  static void constraint_jacobian([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] ConstraintJacobian<Scalar>& Xi) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
@@ -141,36 +194,68 @@ struct Model {
     Xi(0, 3) = Scalar(2) * q(3);
   }
 
+  /// Xi(q, t) of the Pfaffian constraints Xi qd + Xi_t = 0
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static void constraint_jacobian([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintJacobian<Scalar>& Xi) noexcept {
+    constraint_jacobian(t, q, Constants<Scalar>(p), Xi);
+  }
+
   /// Xi_t(q, t)
   template <class Scalar>
-  static void constraint_rate_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintVector<Scalar>& Xi_t) noexcept {
+  static void constraint_rate_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] ConstraintVector<Scalar>& Xi_t) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
     Xi_t(0) = Scalar(0);
   }
 
+  /// Xi_t(q, t)
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static void constraint_rate_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintVector<Scalar>& Xi_t) noexcept {
+    constraint_rate_term(t, q, Constants<Scalar>(p), Xi_t);
+  }
+
   /// dXi/dt qd + dXi_t/dt, so that Xi qdd + b = 0
   template <class Scalar>
-  static void constraint_acceleration_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintVector<Scalar>& b) noexcept {
+  static void constraint_acceleration_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] ConstraintVector<Scalar>& b) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
     b(0) = qd(0) * qd(0) * Scalar(2) + qd(3) * qd(3) * Scalar(2) + Scalar(2) * qd(1) * qd(1) + Scalar(2) * qd(2) * qd(2);
   }
 
+  /// dXi/dt qd + dXi_t/dt, so that Xi qdd + b = 0
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static void constraint_acceleration_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintVector<Scalar>& b) noexcept {
+    constraint_acceleration_term(t, q, qd, Constants<Scalar>(p), b);
+  }
+
   /// phi(q, t) of the holonomic constraints
   template <class Scalar>
-  static void holonomic_residuals([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] HolonomicVector<Scalar>& phi) noexcept {
+  static void holonomic_residuals([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] HolonomicVector<Scalar>& phi) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
     phi(0) = q(1) * q(1) + q(0) * q(0) + q(3) * q(3) - Scalar(1) + q(2) * q(2);
   }
 
+  /// phi(q, t) of the holonomic constraints
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static void holonomic_residuals([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] HolonomicVector<Scalar>& phi) noexcept {
+    holonomic_residuals(t, q, Constants<Scalar>(p), phi);
+  }
+
   /// T(q, qd, t)
   template <class Scalar>
-  static Scalar kinetic_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Parameters<Scalar>& p) noexcept {
+  static Scalar kinetic_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Constants<Scalar>& c) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
@@ -178,13 +263,21 @@ struct Model {
     const Scalar w0 = Scalar(2) * q(0) * qd(2) - Scalar(2) * qd(0) * q(2) - Scalar(2) * q(1) * qd(3) + qd(1) * Scalar(2) * q(3);
     const Scalar w1 = qd(1) * Scalar(2) * q(0) + Scalar(2) * q(2) * qd(3) - Scalar(2) * qd(0) * q(1) - Scalar(2) * q(3) * qd(2);
     const Scalar w2 = Scalar(2) * qd(0) * q(3) + qd(1) * Scalar(2) * q(2) - Scalar(2) * q(0) * qd(3) - Scalar(2) * q(1) * qd(2);
-    T = p.J2 * w0 * w0 * Scalar(0.5) + Scalar(0.5) * w1 * w1 * p.J3 + w2 * w2 * Scalar(0.5) * p.J1;
+    T = c.k6 * w0 * w0 + c.k7 * w1 * w1 + w2 * w2 * c.k8;
     return T;
+  }
+
+  /// T(q, qd, t)
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static Scalar kinetic_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Parameters<Scalar>& p) noexcept {
+    return kinetic_energy(t, q, qd, Constants<Scalar>(p));
   }
 
   /// V(q, t)
   template <class Scalar>
-  static Scalar potential_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p) noexcept {
+  static Scalar potential_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
@@ -192,9 +285,17 @@ struct Model {
     return V;
   }
 
+  /// V(q, t)
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static Scalar potential_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p) noexcept {
+    return potential_energy(t, q, Constants<Scalar>(p));
+  }
+
   /// the model's named outputs, in the order of output_names
   template <class Scalar>
-  static void outputs([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] OutputVector<Scalar>& y) noexcept {
+  static void outputs([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] OutputVector<Scalar>& y) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
@@ -217,10 +318,18 @@ struct Model {
     y(0) = Scalar(2) * qd(0) * q(3) + qd(1) * Scalar(2) * q(2) - Scalar(2) * q(0) * qd(3) - Scalar(2) * q(1) * qd(2);
     y(1) = Scalar(2) * q(0) * qd(2) - Scalar(2) * qd(0) * q(2) - Scalar(2) * q(1) * qd(3) + qd(1) * Scalar(2) * q(3);
     y(2) = -(qd(1) * Scalar(2) * q(0) + Scalar(2) * q(2) * qd(3) - Scalar(2) * qd(0) * q(1) - Scalar(2) * q(3) * qd(2));
-    y(3) = -(Scalar(4) * w0 * (w1 - w2) * p.J2 + (w4 + w5 + w7 + w8) * Scalar(2) * p.J1 * w9 - Scalar(4) * (w10 + w11) * w12 * p.J3);
-    y(4) = Scalar(4) * (w1 + w2) * p.J1 * w9 + (w4 + w13 + w5 + w6) * w0 * p.J2 * Scalar(2) - Scalar(4) * (w14 - w15) * w12 * p.J3;
-    y(5) = -(Scalar(2) * (w13 + w5 + w3 + w7) * w12 * p.J3 - Scalar(4) * w0 * p.J2 * (w14 + w15) - Scalar(4) * (w10 - w11) * p.J1 * w9);
+    y(3) = -(c.k2 * w0 * (w1 - w2) + (w4 + w5 + w7 + w8) * c.k4 * w9 - c.k1 * (w10 + w11) * w12);
+    y(4) = c.k0 * (w1 + w2) * w9 + (w4 + w13 + w5 + w6) * w0 * c.k5 - c.k1 * (w14 - w15) * w12;
+    y(5) = -(c.k3 * (w13 + w5 + w3 + w7) * w12 - c.k2 * w0 * (w14 + w15) - c.k0 * (w10 - w11) * w9);
     y(6) = sqrt(w5 + w3 + w6 + w8);
+  }
+
+  /// the model's named outputs, in the order of output_names
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static void outputs([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] OutputVector<Scalar>& y) noexcept {
+    outputs(t, q, qd, u, Constants<Scalar>(p), y);
   }
 };
 

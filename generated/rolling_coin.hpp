@@ -22,7 +22,7 @@ struct Model {
   static constexpr const char* name = "rolling_coin";
   static constexpr const char* description = "Thin disk (coin) rolling without slip on a plane: twist, lean, roll";
   static constexpr const char* generator_version = "0.1.0";
-  static constexpr const char* model_hash = "118d5a92b87d326f";
+  static constexpr const char* model_hash = "e26cba1f11d1881c";
   static constexpr std::array<const char*, nq> coordinate_names{{"x", "y", "psi", "theta", "phi"}};
   static constexpr std::array<const char*, nu> input_names{{}};
   static constexpr std::array<const char*, np> parameter_names{{"m", "r", "g"}};
@@ -50,27 +50,53 @@ struct Model {
     std::array<Scalar*, np> fields() noexcept { return {{&m, &r, &g}}; }
   };
 
+  /// The values of the functions below that depend on the parameters only, computed once per
+  /// parameter set. Immutable: for other parameters, build other Constants.
+  template <class Scalar>
+  class Constants {
+   public:
+    /// Computes every constant from a copy of the parameters.
+    explicit Constants(const Parameters<Scalar>& parameters) noexcept : p(parameters) {
+      using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
+      using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
+      using std::log; using std::abs; using std::pow;
+      const Scalar w0 = p.r * p.r;
+      k0 = w0 * Scalar(0.25) * p.m;
+      k1 = w0 * p.m * Scalar(0.5);
+      k2 = w0 * p.m;
+      k3 = p.g * p.r * p.m;
+      k4 = w0 * Scalar(0.125) * p.m;
+      k5 = p.m * Scalar(0.5);
+    }
+    /// The parameters these constants were computed from.
+    const Parameters<Scalar>& parameters() const noexcept { return p; }
+
+   private:
+    friend struct Model;
+    Parameters<Scalar> p;
+    Scalar k0, k1, k2, k3, k4, k5;
+  };
+
   /// M(q, t), symmetric positive (semi)definite
   template <class Scalar>
-  static void mass_matrix([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] MassMatrix<Scalar>& M) noexcept {
+  static void mass_matrix([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] MassMatrix<Scalar>& M) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
-    const Scalar w0 = p.r * p.r;
-    const Scalar w1 = cos(q(3));
-    const Scalar w2 = cos(q(4));
-    const Scalar w3 = w1 * w2;
-    const Scalar w4 = sin(q(4));
-    const Scalar w5 = w4 * w1;
-    const Scalar w6 = sin(q(3));
-    const Scalar w7 = w6 * w6;
-    M(0, 0) = p.m;
-    M(1, 1) = p.m;
-    M(2, 2) = w0 * Scalar(0.25) * p.m * w3 * w3 + w0 * Scalar(0.25) * p.m * w5 * w5 + w0 * p.m * Scalar(0.5) * w7;
-    M(2, 3) = w0 * Scalar(0.25) * p.m * w2 * w5 - w4 * w0 * Scalar(0.25) * w3 * p.m;
-    M(2, 4) = -(w0 * p.m * Scalar(0.5) * w6);
-    M(3, 3) = w0 * Scalar(0.25) * p.m * w2 * w2 + w0 * Scalar(0.25) * w4 * w4 * p.m + w0 * p.m * w7;
-    M(4, 4) = w0 * p.m * Scalar(0.5);
+    const Scalar w0 = cos(q(3));
+    const Scalar w1 = cos(q(4));
+    const Scalar w2 = w0 * w1;
+    const Scalar w3 = sin(q(4));
+    const Scalar w4 = w3 * w0;
+    const Scalar w5 = sin(q(3));
+    const Scalar w6 = w5 * w5;
+    M(0, 0) = c.p.m;
+    M(1, 1) = c.p.m;
+    M(2, 2) = c.k0 * w2 * w2 + c.k0 * w4 * w4 + c.k1 * w6;
+    M(2, 3) = c.k0 * w1 * w4 - w3 * c.k0 * w2;
+    M(2, 4) = -(c.k1 * w5);
+    M(3, 3) = c.k0 * w1 * w1 + c.k0 * w3 * w3 + c.k2 * w6;
+    M(4, 4) = c.k1;
     M(0, 1) = Scalar(0);
     M(0, 2) = Scalar(0);
     M(0, 3) = Scalar(0);
@@ -91,68 +117,82 @@ struct Model {
     M(4, 3) = Scalar(0);
   }
 
+  /// M(q, t), symmetric positive (semi)definite
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static void mass_matrix([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] MassMatrix<Scalar>& M) noexcept {
+    mass_matrix(t, q, Constants<Scalar>(p), M);
+  }
+
   /// F(q, qd, t, u): everything of Lagrange's equations except M qdd
   template <class Scalar>
-  static void forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] Vector<Scalar>& F) noexcept {
+  static void forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] Vector<Scalar>& F) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
     const Scalar w0 = sin(q(3));
     const Scalar w1 = w0 * qd(2);
     const Scalar w2 = w1 - qd(4);
-    const Scalar w3 = p.r * p.r;
-    const Scalar w4 = sin(q(4));
-    const Scalar w5 = cos(q(3));
-    const Scalar w6 = w5 * qd(2);
-    const Scalar w7 = cos(q(4));
-    const Scalar w8 = w4 * w6 + w7 * qd(3);
-    const Scalar w9 = w5 * w7;
-    const Scalar w10 = w1 * qd(3);
-    const Scalar w11 = w4 * qd(3) - w6 * w7;
-    const Scalar w12 = w4 * w10 + w11 * qd(4);
-    const Scalar w13 = w4 * w5;
-    const Scalar w14 = w10 * w7 + w8 * qd(4);
-    const Scalar w15 = w6 * qd(3);
-    F(2) = w12 * w3 * Scalar(0.25) * p.m * w13 - w2 * w3 * w8 * Scalar(0.25) * w9 * p.m + w3 * Scalar(0.25) * w9 * p.m * w14 - w3 * p.m * w15 * Scalar(0.5) * w0 - w2 * w3 * Scalar(0.25) * p.m * w11 * w13;
-    F(3) = p.g * p.r * p.m * w0 - w2 * w3 * Scalar(0.25) * p.m * w7 * w11 - qd(3) * qd(3) * w5 * w3 * p.m * w0 - w4 * w3 * Scalar(0.25) * p.m * w14 + w2 * w4 * w3 * w8 * Scalar(0.25) * p.m + w12 * w3 * Scalar(0.25) * p.m * w7;
-    F(4) = w3 * p.m * w15 * Scalar(0.5);
+    const Scalar w3 = sin(q(4));
+    const Scalar w4 = cos(q(3));
+    const Scalar w5 = w4 * qd(2);
+    const Scalar w6 = cos(q(4));
+    const Scalar w7 = w3 * w5 + w6 * qd(3);
+    const Scalar w8 = w4 * w6;
+    const Scalar w9 = w1 * qd(3);
+    const Scalar w10 = w3 * qd(3) - w5 * w6;
+    const Scalar w11 = w3 * w9 + w10 * qd(4);
+    const Scalar w12 = w3 * w4;
+    const Scalar w13 = w9 * w6 + w7 * qd(4);
+    const Scalar w14 = w5 * qd(3);
+    F(2) = w11 * c.k0 * w12 - w2 * c.k0 * w7 * w8 + c.k0 * w8 * w13 - c.k1 * w14 * w0 - w2 * c.k0 * w10 * w12;
+    F(3) = c.k3 * w0 - w2 * c.k0 * w6 * w10 - qd(3) * qd(3) * w4 * c.k2 * w0 - w3 * c.k0 * w13 + w2 * w3 * c.k0 * w7 + w11 * c.k0 * w6;
+    F(4) = c.k1 * w14;
     F(0) = Scalar(0);
     F(1) = Scalar(0);
   }
 
+  /// F(q, qd, t, u): everything of Lagrange's equations except M qdd
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static void forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] Vector<Scalar>& F) noexcept {
+    forcing(t, q, qd, u, Constants<Scalar>(p), F);
+  }
+
   /// M and F together, sharing their common subexpressions
   template <class Scalar>
-  static void mass_matrix_and_forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] MassMatrix<Scalar>& M, [[maybe_unused]] Vector<Scalar>& F) noexcept {
+  static void mass_matrix_and_forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] MassMatrix<Scalar>& M, [[maybe_unused]] Vector<Scalar>& F) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
-    const Scalar w0 = p.r * p.r;
-    const Scalar w1 = cos(q(3));
-    const Scalar w2 = cos(q(4));
-    const Scalar w3 = w1 * w2;
-    const Scalar w4 = sin(q(4));
-    const Scalar w5 = w4 * w1;
-    const Scalar w6 = sin(q(3));
-    const Scalar w7 = w6 * w6;
-    const Scalar w8 = w6 * qd(2);
-    const Scalar w9 = w8 - qd(4);
-    const Scalar w10 = w1 * qd(2);
-    const Scalar w11 = w4 * w10 + w2 * qd(3);
-    const Scalar w12 = w8 * qd(3);
-    const Scalar w13 = w4 * qd(3) - w10 * w2;
-    const Scalar w14 = w4 * w12 + w13 * qd(4);
-    const Scalar w15 = w12 * w2 + w11 * qd(4);
-    const Scalar w16 = w10 * qd(3);
-    M(0, 0) = p.m;
-    M(1, 1) = p.m;
-    M(2, 2) = w0 * Scalar(0.25) * p.m * w3 * w3 + w0 * Scalar(0.25) * p.m * w5 * w5 + w0 * p.m * Scalar(0.5) * w7;
-    M(2, 3) = w0 * Scalar(0.25) * p.m * w2 * w5 - w4 * w0 * Scalar(0.25) * w3 * p.m;
-    M(2, 4) = -(w0 * p.m * Scalar(0.5) * w6);
-    M(3, 3) = w0 * Scalar(0.25) * p.m * w2 * w2 + w0 * Scalar(0.25) * w4 * w4 * p.m + w0 * p.m * w7;
-    M(4, 4) = w0 * p.m * Scalar(0.5);
-    F(2) = w14 * w0 * Scalar(0.25) * p.m * w5 - w9 * w0 * w11 * Scalar(0.25) * w3 * p.m + w0 * Scalar(0.25) * w3 * p.m * w15 - w0 * p.m * w16 * Scalar(0.5) * w6 - w9 * w0 * Scalar(0.25) * p.m * w13 * w5;
-    F(3) = p.g * p.r * p.m * w6 - w9 * w0 * Scalar(0.25) * p.m * w2 * w13 - qd(3) * qd(3) * w1 * w0 * p.m * w6 - w4 * w0 * Scalar(0.25) * p.m * w15 + w9 * w4 * w0 * w11 * Scalar(0.25) * p.m + w14 * w0 * Scalar(0.25) * p.m * w2;
-    F(4) = w0 * p.m * w16 * Scalar(0.5);
+    const Scalar w0 = cos(q(3));
+    const Scalar w1 = cos(q(4));
+    const Scalar w2 = w0 * w1;
+    const Scalar w3 = sin(q(4));
+    const Scalar w4 = w3 * w0;
+    const Scalar w5 = sin(q(3));
+    const Scalar w6 = w5 * w5;
+    const Scalar w7 = w5 * qd(2);
+    const Scalar w8 = w7 - qd(4);
+    const Scalar w9 = w0 * qd(2);
+    const Scalar w10 = w3 * w9 + w1 * qd(3);
+    const Scalar w11 = w7 * qd(3);
+    const Scalar w12 = w3 * qd(3) - w9 * w1;
+    const Scalar w13 = w3 * w11 + w12 * qd(4);
+    const Scalar w14 = w11 * w1 + w10 * qd(4);
+    const Scalar w15 = w9 * qd(3);
+    M(0, 0) = c.p.m;
+    M(1, 1) = c.p.m;
+    M(2, 2) = c.k0 * w2 * w2 + c.k0 * w4 * w4 + c.k1 * w6;
+    M(2, 3) = c.k0 * w1 * w4 - w3 * c.k0 * w2;
+    M(2, 4) = -(c.k1 * w5);
+    M(3, 3) = c.k0 * w1 * w1 + c.k0 * w3 * w3 + c.k2 * w6;
+    M(4, 4) = c.k1;
+    F(2) = w13 * c.k0 * w4 - w8 * c.k0 * w10 * w2 + c.k0 * w2 * w14 - c.k1 * w15 * w5 - w8 * c.k0 * w12 * w4;
+    F(3) = c.k3 * w5 - w8 * c.k0 * w1 * w12 - qd(3) * qd(3) * w0 * c.k2 * w5 - w3 * c.k0 * w14 + w8 * w3 * c.k0 * w10 + w13 * c.k0 * w1;
+    F(4) = c.k1 * w15;
     M(0, 1) = Scalar(0);
     M(0, 2) = Scalar(0);
     M(0, 3) = Scalar(0);
@@ -175,9 +215,17 @@ struct Model {
     M(4, 3) = Scalar(0);
   }
 
+  /// M and F together, sharing their common subexpressions
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static void mass_matrix_and_forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] MassMatrix<Scalar>& M, [[maybe_unused]] Vector<Scalar>& F) noexcept {
+    mass_matrix_and_forcing(t, q, qd, u, Constants<Scalar>(p), M, F);
+  }
+
   /// Xi(q, t) of the Pfaffian constraints Xi qd + Xi_t = 0
   template <class Scalar>
-  static void constraint_jacobian([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintJacobian<Scalar>& Xi) noexcept {
+  static void constraint_jacobian([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] ConstraintJacobian<Scalar>& Xi) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
@@ -188,20 +236,28 @@ struct Model {
     const Scalar w4 = cos(q(4));
     const Scalar w5 = sin(q(4));
     Xi(0, 1) = Scalar(1);
-    Xi(0, 2) = -(p.r * w0 * w1);
-    Xi(0, 3) = -(w2 * p.r * w3);
-    Xi(0, 4) = -(w5 * (w4 * w3 * w0 - w5 * w1) * p.r - p.r * w4 * (w4 * w1 + w5 * w3 * w0));
+    Xi(0, 2) = -(c.p.r * w0 * w1);
+    Xi(0, 3) = -(w2 * c.p.r * w3);
+    Xi(0, 4) = -(w5 * (w4 * w3 * w0 - w5 * w1) * c.p.r - c.p.r * w4 * (w4 * w1 + w5 * w3 * w0));
     Xi(1, 0) = -Scalar(1);
-    Xi(1, 2) = -(p.r * w3 * w0);
-    Xi(1, 3) = w2 * p.r * w1;
-    Xi(1, 4) = -((w5 * w0 * w1 - w4 * w3) * p.r * w4 - w5 * p.r * (w4 * w0 * w1 + w5 * w3));
+    Xi(1, 2) = -(c.p.r * w3 * w0);
+    Xi(1, 3) = w2 * c.p.r * w1;
+    Xi(1, 4) = -((w5 * w0 * w1 - w4 * w3) * c.p.r * w4 - w5 * c.p.r * (w4 * w0 * w1 + w5 * w3));
     Xi(0, 0) = Scalar(0);
     Xi(1, 1) = Scalar(0);
   }
 
+  /// Xi(q, t) of the Pfaffian constraints Xi qd + Xi_t = 0
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static void constraint_jacobian([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintJacobian<Scalar>& Xi) noexcept {
+    constraint_jacobian(t, q, Constants<Scalar>(p), Xi);
+  }
+
   /// Xi_t(q, t)
   template <class Scalar>
-  static void constraint_rate_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintVector<Scalar>& Xi_t) noexcept {
+  static void constraint_rate_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] ConstraintVector<Scalar>& Xi_t) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
@@ -209,9 +265,17 @@ struct Model {
     Xi_t(1) = Scalar(0);
   }
 
+  /// Xi_t(q, t)
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static void constraint_rate_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintVector<Scalar>& Xi_t) noexcept {
+    constraint_rate_term(t, q, Constants<Scalar>(p), Xi_t);
+  }
+
   /// dXi/dt qd + dXi_t/dt, so that Xi qdd + b = 0
   template <class Scalar>
-  static void constraint_acceleration_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintVector<Scalar>& b) noexcept {
+  static void constraint_acceleration_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] ConstraintVector<Scalar>& b) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
@@ -221,51 +285,82 @@ struct Model {
     const Scalar w3 = sin(q(3));
     const Scalar w4 = sin(q(4));
     const Scalar w5 = cos(q(4));
-    b(0) = qd(3) * (p.r * w2 * w3 * qd(3) - w0 * p.r * w1 * qd(2)) + ((w4 * w3 * w1 - w5 * w2) * p.r * w5 * qd(4) - w0 * p.r * qd(3) * w1 - w4 * p.r * qd(4) * (w5 * w3 * w1 + w4 * w2) + p.r * w2 * w3 * qd(2)) * qd(2);
-    b(1) = -((w4 * (w5 * w2 * w3 - w4 * w1) * p.r * qd(4) + p.r * w3 * w1 * qd(2) + w0 * p.r * w2 * qd(3) - p.r * w5 * (w5 * w1 + w4 * w2 * w3) * qd(4)) * qd(2) + qd(3) * (w0 * p.r * w2 * qd(2) + p.r * w3 * qd(3) * w1));
+    b(0) = qd(3) * (c.p.r * w2 * w3 * qd(3) - w0 * c.p.r * w1 * qd(2)) + ((w4 * w3 * w1 - w5 * w2) * c.p.r * w5 * qd(4) - w0 * c.p.r * qd(3) * w1 - w4 * c.p.r * qd(4) * (w5 * w3 * w1 + w4 * w2) + c.p.r * w2 * w3 * qd(2)) * qd(2);
+    b(1) = -((w4 * (w5 * w2 * w3 - w4 * w1) * c.p.r * qd(4) + c.p.r * w3 * w1 * qd(2) + w0 * c.p.r * w2 * qd(3) - c.p.r * w5 * (w5 * w1 + w4 * w2 * w3) * qd(4)) * qd(2) + qd(3) * (w0 * c.p.r * w2 * qd(2) + c.p.r * w3 * qd(3) * w1));
+  }
+
+  /// dXi/dt qd + dXi_t/dt, so that Xi qdd + b = 0
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static void constraint_acceleration_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintVector<Scalar>& b) noexcept {
+    constraint_acceleration_term(t, q, qd, Constants<Scalar>(p), b);
   }
 
   /// phi(q, t) of the holonomic constraints
   template <class Scalar>
-  static void holonomic_residuals([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] HolonomicVector<Scalar>& phi) noexcept {
+  static void holonomic_residuals([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] HolonomicVector<Scalar>& phi) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
   }
 
+  /// phi(q, t) of the holonomic constraints
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static void holonomic_residuals([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] HolonomicVector<Scalar>& phi) noexcept {
+    holonomic_residuals(t, q, Constants<Scalar>(p), phi);
+  }
+
   /// T(q, qd, t)
   template <class Scalar>
-  static Scalar kinetic_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Parameters<Scalar>& p) noexcept {
+  static Scalar kinetic_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Constants<Scalar>& c) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
     Scalar T = Scalar(0);
     const Scalar w0 = sin(q(3));
     const Scalar w1 = w0 * qd(2) - qd(4);
-    const Scalar w2 = p.r * p.r;
-    const Scalar w3 = sin(q(4));
-    const Scalar w4 = cos(q(3)) * qd(2);
-    const Scalar w5 = cos(q(4));
-    const Scalar w6 = w3 * w4 + w5 * qd(3);
-    const Scalar w7 = w3 * qd(3) - w4 * w5;
-    T = w1 * w1 * w2 * Scalar(0.25) * p.m + w2 * Scalar(0.125) * p.m * w6 * w6 + qd(3) * qd(3) * w2 * p.m * Scalar(0.5) * w0 * w0 + w2 * Scalar(0.125) * p.m * w7 * w7 + p.m * Scalar(0.5) * qd(1) * qd(1) + qd(0) * qd(0) * p.m * Scalar(0.5);
+    const Scalar w2 = sin(q(4));
+    const Scalar w3 = cos(q(3)) * qd(2);
+    const Scalar w4 = cos(q(4));
+    const Scalar w5 = w2 * w3 + w4 * qd(3);
+    const Scalar w6 = w2 * qd(3) - w3 * w4;
+    T = w1 * w1 * c.k0 + c.k4 * w5 * w5 + qd(3) * qd(3) * c.k1 * w0 * w0 + c.k4 * w6 * w6 + c.k5 * qd(1) * qd(1) + qd(0) * qd(0) * c.k5;
     return T;
+  }
+
+  /// T(q, qd, t)
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static Scalar kinetic_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Parameters<Scalar>& p) noexcept {
+    return kinetic_energy(t, q, qd, Constants<Scalar>(p));
   }
 
   /// V(q, t)
   template <class Scalar>
-  static Scalar potential_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p) noexcept {
+  static Scalar potential_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
     Scalar V = Scalar(0);
-    V = p.g * cos(q(3)) * p.r * p.m;
+    V = c.k3 * cos(q(3));
     return V;
+  }
+
+  /// V(q, t)
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static Scalar potential_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p) noexcept {
+    return potential_energy(t, q, Constants<Scalar>(p));
   }
 
   /// the model's named outputs, in the order of output_names
   template <class Scalar>
-  static void outputs([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] OutputVector<Scalar>& y) noexcept {
+  static void outputs([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] OutputVector<Scalar>& y) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
@@ -273,16 +368,24 @@ struct Model {
     const Scalar w1 = sin(q(3));
     y(0) = q(0);
     y(1) = q(1);
-    y(2) = w0 * p.r;
+    y(2) = w0 * c.p.r;
     y(3) = qd(0);
     y(4) = qd(1);
-    y(5) = -(p.r * w1 * qd(3));
-    y(6) = -(p.r * w1 * cos(q(2)) - q(0));
-    y(7) = q(1) - p.r * sin(q(2)) * w1;
+    y(5) = -(c.p.r * w1 * qd(3));
+    y(6) = -(c.p.r * w1 * cos(q(2)) - q(0));
+    y(7) = q(1) - c.p.r * sin(q(2)) * w1;
     y(9) = -(w1 * qd(2) - qd(4));
     y(10) = qd(3);
     y(11) = w0 * qd(2);
     y(8) = Scalar(0);
+  }
+
+  /// the model's named outputs, in the order of output_names
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static void outputs([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] OutputVector<Scalar>& y) noexcept {
+    outputs(t, q, qd, u, Constants<Scalar>(p), y);
   }
 };
 

@@ -22,7 +22,7 @@ struct Model {
   static constexpr const char* name = "spacecraft_panel";
   static constexpr const char* description = "Spacecraft bus spinning about b3 with a solar panel hinged about b2 (notes Example 3.1)";
   static constexpr const char* generator_version = "0.1.0";
-  static constexpr const char* model_hash = "84806878d9b6bac3";
+  static constexpr const char* model_hash = "84c8f97ed7e9b2ce";
   static constexpr std::array<const char*, nq> coordinate_names{{"gamma", "theta"}};
   static constexpr std::array<const char*, nu> input_names{{"tau_b", "tau_p"}};
   static constexpr std::array<const char*, np> parameter_names{{"l_fh", "l_ef", "w_p", "t_p", "m_b", "J_b1", "J_b2", "J_b3", "m_p"}};
@@ -56,104 +56,189 @@ struct Model {
     std::array<Scalar*, np> fields() noexcept { return {{&l_fh, &l_ef, &w_p, &t_p, &m_b, &J_b1, &J_b2, &J_b3, &m_p}}; }
   };
 
+  /// The values of the functions below that depend on the parameters only, computed once per
+  /// parameter set. Immutable: for other parameters, build other Constants.
+  template <class Scalar>
+  class Constants {
+   public:
+    /// Computes every constant from a copy of the parameters.
+    explicit Constants(const Parameters<Scalar>& parameters) noexcept : p(parameters) {
+      using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
+      using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
+      using std::log; using std::abs; using std::pow;
+      const Scalar w0 = p.w_p * p.w_p;
+      const Scalar w1 = p.t_p * p.t_p;
+      const Scalar w2 = Scalar(0.08333333333333333) * p.m_p * w1;
+      const Scalar w3 = p.l_ef * p.l_ef;
+      const Scalar w4 = Scalar(0.3333333333333333) * w3 * p.m_p;
+      const Scalar w5 = p.l_fh * p.l_fh;
+      k0 = Scalar(0.08333333333333333) * p.m_p * w0;
+      k1 = w2;
+      k2 = w4;
+      k3 = p.J_b3 + w5 * p.m_p;
+      k4 = p.l_ef * Scalar(0.5) * p.m_p * p.l_fh;
+      k5 = w2 + w4;
+      k6 = p.m_p * Scalar(0.041666666666666664) * w1;
+      k7 = Scalar(0.5) * p.J_b3;
+      k8 = w5 * Scalar(0.5) * p.m_p;
+      k9 = Scalar(0.16666666666666666) * w3 * p.m_p;
+      k10 = p.m_p * w0 * Scalar(0.041666666666666664);
+    }
+    /// The parameters these constants were computed from.
+    const Parameters<Scalar>& parameters() const noexcept { return p; }
+
+   private:
+    friend struct Model;
+    Parameters<Scalar> p;
+    Scalar k0, k1, k2, k3, k4, k5, k6, k7, k8, k9;
+    Scalar k10;
+  };
+
   /// M(q, t), symmetric positive (semi)definite
   template <class Scalar>
-  static void mass_matrix([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] MassMatrix<Scalar>& M) noexcept {
+  static void mass_matrix([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] MassMatrix<Scalar>& M) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
-    const Scalar w0 = p.w_p * p.w_p;
-    const Scalar w1 = cos(q(1));
-    const Scalar w2 = w1 * w1;
-    const Scalar w3 = sin(q(1));
-    const Scalar w4 = w3 * w3;
-    const Scalar w5 = p.t_p * p.t_p;
-    const Scalar w6 = p.l_ef * p.l_ef;
-    M(0, 0) = Scalar(0.08333333333333333) * p.m_p * w0 * w2 + w4 * Scalar(0.08333333333333333) * p.m_p * w0 + p.J_b3 + Scalar(0.08333333333333333) * p.m_p * w2 * w5 + w4 * Scalar(0.3333333333333333) * w6 * p.m_p + p.l_fh * p.l_fh * p.m_p;
-    M(0, 1) = -(p.l_ef * w1 * Scalar(0.5) * p.m_p * p.l_fh);
-    M(1, 1) = Scalar(0.08333333333333333) * p.m_p * w5 + Scalar(0.3333333333333333) * w6 * p.m_p;
+    const Scalar w0 = cos(q(1));
+    const Scalar w1 = w0 * w0;
+    const Scalar w2 = sin(q(1));
+    const Scalar w3 = w2 * w2;
+    M(0, 0) = c.k0 * w1 + w3 * c.k0 + c.k3 + c.k1 * w1 + w3 * c.k2;
+    M(0, 1) = -(c.k4 * w0);
+    M(1, 1) = c.k5;
     M(1, 0) = M(0, 1);
+  }
+
+  /// M(q, t), symmetric positive (semi)definite
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static void mass_matrix([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] MassMatrix<Scalar>& M) noexcept {
+    mass_matrix(t, q, Constants<Scalar>(p), M);
   }
 
   /// F(q, qd, t, u): everything of Lagrange's equations except M qdd
   template <class Scalar>
-  static void forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] Vector<Scalar>& F) noexcept {
+  static void forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] Vector<Scalar>& F) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
     const Scalar w0 = cos(q(1));
     const Scalar w1 = sin(q(1));
     const Scalar w2 = w1 * qd(0);
-    const Scalar w3 = p.t_p * p.t_p;
-    const Scalar w4 = p.w_p * p.w_p;
-    const Scalar w5 = w0 * qd(0);
-    const Scalar w6 = p.l_ef * p.l_ef;
-    const Scalar w7 = qd(1) * w5;
-    const Scalar w8 = qd(1) * w2;
-    F(0) = qd(1) * w0 * Scalar(0.08333333333333333) * w2 * p.m_p * w3 - qd(1) * w0 * Scalar(0.08333333333333333) * w2 * p.m_p * w4 - qd(1) * w1 * w5 * Scalar(0.3333333333333333) * w6 * p.m_p - w7 * w1 * Scalar(0.08333333333333333) * p.m_p * w4 + w1 * qd(0) * qd(0) * p.l_ef * Scalar(0.5) * p.m_p * p.l_fh + w8 * w0 * Scalar(0.08333333333333333) * p.m_p * w3 + qd(1) * w1 * w5 * Scalar(0.08333333333333333) * p.m_p * w4 - p.l_ef * w5 * w0 * w2 * Scalar(0.5) * p.m_p * p.l_fh + w8 * w0 * Scalar(0.08333333333333333) * p.m_p * w4 - w2 * w2 * w1 * p.l_ef * Scalar(0.5) * p.m_p * p.l_fh - w1 * p.l_ef * Scalar(0.5) * p.m_p * p.l_fh * qd(1) * qd(1) - w7 * w1 * Scalar(0.3333333333333333) * w6 * p.m_p + u(0);
-    F(1) = -(w5 * Scalar(0.08333333333333333) * w2 * p.m_p * w3 - u(1) - w5 * Scalar(0.3333333333333333) * w6 * w2 * p.m_p);
+    const Scalar w3 = w0 * qd(0);
+    const Scalar w4 = qd(1) * w3;
+    const Scalar w5 = qd(1) * w2;
+    F(0) = qd(1) * w0 * c.k1 * w2 - qd(1) * w0 * c.k0 * w2 - qd(1) * w1 * w3 * c.k2 - w4 * w1 * c.k0 + w1 * qd(0) * qd(0) * c.k4 + w5 * w0 * c.k1 + qd(1) * w1 * w3 * c.k0 - c.k4 * w3 * w0 * w2 + w5 * w0 * c.k0 - w2 * w2 * w1 * c.k4 - w1 * c.k4 * qd(1) * qd(1) - w4 * w1 * c.k2 + u(0);
+    F(1) = -(w3 * c.k1 * w2 - u(1) - w3 * c.k2 * w2);
+  }
+
+  /// F(q, qd, t, u): everything of Lagrange's equations except M qdd
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static void forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] Vector<Scalar>& F) noexcept {
+    forcing(t, q, qd, u, Constants<Scalar>(p), F);
   }
 
   /// M and F together, sharing their common subexpressions
   template <class Scalar>
-  static void mass_matrix_and_forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] MassMatrix<Scalar>& M, [[maybe_unused]] Vector<Scalar>& F) noexcept {
+  static void mass_matrix_and_forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] MassMatrix<Scalar>& M, [[maybe_unused]] Vector<Scalar>& F) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
-    const Scalar w0 = p.w_p * p.w_p;
-    const Scalar w1 = cos(q(1));
-    const Scalar w2 = w1 * w1;
-    const Scalar w3 = sin(q(1));
-    const Scalar w4 = w3 * w3;
-    const Scalar w5 = p.t_p * p.t_p;
-    const Scalar w6 = p.l_ef * p.l_ef;
-    const Scalar w7 = w3 * qd(0);
-    const Scalar w8 = w1 * qd(0);
-    const Scalar w9 = qd(1) * w8;
-    const Scalar w10 = qd(1) * w7;
-    M(0, 0) = Scalar(0.08333333333333333) * p.m_p * w0 * w2 + w4 * Scalar(0.08333333333333333) * p.m_p * w0 + p.J_b3 + Scalar(0.08333333333333333) * p.m_p * w2 * w5 + w4 * Scalar(0.3333333333333333) * w6 * p.m_p + p.l_fh * p.l_fh * p.m_p;
-    M(0, 1) = -(p.l_ef * w1 * Scalar(0.5) * p.m_p * p.l_fh);
-    M(1, 1) = Scalar(0.08333333333333333) * p.m_p * w5 + Scalar(0.3333333333333333) * w6 * p.m_p;
-    F(0) = qd(1) * w1 * Scalar(0.08333333333333333) * w7 * p.m_p * w5 - qd(1) * w1 * Scalar(0.08333333333333333) * w7 * p.m_p * w0 - qd(1) * w3 * w8 * Scalar(0.3333333333333333) * w6 * p.m_p - w9 * w3 * Scalar(0.08333333333333333) * p.m_p * w0 + w3 * qd(0) * qd(0) * p.l_ef * Scalar(0.5) * p.m_p * p.l_fh + w10 * w1 * Scalar(0.08333333333333333) * p.m_p * w5 + qd(1) * w3 * w8 * Scalar(0.08333333333333333) * p.m_p * w0 - p.l_ef * w8 * w1 * w7 * Scalar(0.5) * p.m_p * p.l_fh + w10 * w1 * Scalar(0.08333333333333333) * p.m_p * w0 - w7 * w7 * w3 * p.l_ef * Scalar(0.5) * p.m_p * p.l_fh - w3 * p.l_ef * Scalar(0.5) * p.m_p * p.l_fh * qd(1) * qd(1) - w9 * w3 * Scalar(0.3333333333333333) * w6 * p.m_p + u(0);
-    F(1) = -(w8 * Scalar(0.08333333333333333) * w7 * p.m_p * w5 - u(1) - w8 * Scalar(0.3333333333333333) * w6 * w7 * p.m_p);
+    const Scalar w0 = cos(q(1));
+    const Scalar w1 = w0 * w0;
+    const Scalar w2 = sin(q(1));
+    const Scalar w3 = w2 * w2;
+    const Scalar w4 = w2 * qd(0);
+    const Scalar w5 = w0 * qd(0);
+    const Scalar w6 = qd(1) * w5;
+    const Scalar w7 = qd(1) * w4;
+    M(0, 0) = c.k0 * w1 + w3 * c.k0 + c.k3 + c.k1 * w1 + w3 * c.k2;
+    M(0, 1) = -(c.k4 * w0);
+    M(1, 1) = c.k5;
+    F(0) = qd(1) * w0 * c.k1 * w4 - qd(1) * w0 * c.k0 * w4 - qd(1) * w2 * w5 * c.k2 - w6 * w2 * c.k0 + w2 * qd(0) * qd(0) * c.k4 + w7 * w0 * c.k1 + qd(1) * w2 * w5 * c.k0 - c.k4 * w5 * w0 * w4 + w7 * w0 * c.k0 - w4 * w4 * w2 * c.k4 - w2 * c.k4 * qd(1) * qd(1) - w6 * w2 * c.k2 + u(0);
+    F(1) = -(w5 * c.k1 * w4 - u(1) - w5 * c.k2 * w4);
     M(1, 0) = M(0, 1);
+  }
+
+  /// M and F together, sharing their common subexpressions
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static void mass_matrix_and_forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] MassMatrix<Scalar>& M, [[maybe_unused]] Vector<Scalar>& F) noexcept {
+    mass_matrix_and_forcing(t, q, qd, u, Constants<Scalar>(p), M, F);
   }
 
   /// Xi(q, t) of the Pfaffian constraints Xi qd + Xi_t = 0
   template <class Scalar>
+  static void constraint_jacobian([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] ConstraintJacobian<Scalar>& Xi) noexcept {
+    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
+    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
+    using std::log; using std::abs; using std::pow;
+  }
+
+  /// Xi(q, t) of the Pfaffian constraints Xi qd + Xi_t = 0
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
   static void constraint_jacobian([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintJacobian<Scalar>& Xi) noexcept {
+    constraint_jacobian(t, q, Constants<Scalar>(p), Xi);
+  }
+
+  /// Xi_t(q, t)
+  template <class Scalar>
+  static void constraint_rate_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] ConstraintVector<Scalar>& Xi_t) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
   }
 
   /// Xi_t(q, t)
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
   template <class Scalar>
   static void constraint_rate_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintVector<Scalar>& Xi_t) noexcept {
+    constraint_rate_term(t, q, Constants<Scalar>(p), Xi_t);
+  }
+
+  /// dXi/dt qd + dXi_t/dt, so that Xi qdd + b = 0
+  template <class Scalar>
+  static void constraint_acceleration_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] ConstraintVector<Scalar>& b) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
   }
 
   /// dXi/dt qd + dXi_t/dt, so that Xi qdd + b = 0
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
   template <class Scalar>
   static void constraint_acceleration_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintVector<Scalar>& b) noexcept {
+    constraint_acceleration_term(t, q, qd, Constants<Scalar>(p), b);
+  }
+
+  /// phi(q, t) of the holonomic constraints
+  template <class Scalar>
+  static void holonomic_residuals([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] HolonomicVector<Scalar>& phi) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
   }
 
   /// phi(q, t) of the holonomic constraints
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
   template <class Scalar>
   static void holonomic_residuals([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] HolonomicVector<Scalar>& phi) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+    holonomic_residuals(t, q, Constants<Scalar>(p), phi);
   }
 
   /// T(q, qd, t)
   template <class Scalar>
-  static Scalar kinetic_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Parameters<Scalar>& p) noexcept {
+  static Scalar kinetic_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Constants<Scalar>& c) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
@@ -161,20 +246,25 @@ struct Model {
     const Scalar w0 = cos(q(1));
     const Scalar w1 = w0 * qd(0);
     const Scalar w2 = w1 * w1;
-    const Scalar w3 = p.t_p * p.t_p;
-    const Scalar w4 = qd(0) * qd(0);
-    const Scalar w5 = qd(1) * qd(1);
-    const Scalar w6 = sin(q(1)) * qd(0);
-    const Scalar w7 = w6 * w6;
-    const Scalar w8 = p.l_ef * p.l_ef;
-    const Scalar w9 = p.w_p * p.w_p;
-    T = w2 * p.m_p * Scalar(0.041666666666666664) * w3 + w4 * Scalar(0.5) * p.J_b3 + p.m_p * Scalar(0.041666666666666664) * w3 * w5 + p.l_fh * p.l_fh * w4 * Scalar(0.5) * p.m_p + w7 * Scalar(0.16666666666666666) * w8 * p.m_p - qd(1) * p.l_ef * w0 * Scalar(0.5) * qd(0) * p.m_p * p.l_fh + Scalar(0.16666666666666666) * w8 * p.m_p * w5 + w2 * p.m_p * w9 * Scalar(0.041666666666666664) + w7 * p.m_p * w9 * Scalar(0.041666666666666664);
+    const Scalar w3 = qd(0) * qd(0);
+    const Scalar w4 = qd(1) * qd(1);
+    const Scalar w5 = sin(q(1)) * qd(0);
+    const Scalar w6 = w5 * w5;
+    T = w2 * c.k6 + w3 * c.k7 + c.k6 * w4 + c.k8 * w3 + w6 * c.k9 - qd(1) * c.k4 * w0 * qd(0) + c.k9 * w4 + w2 * c.k10 + w6 * c.k10;
     return T;
+  }
+
+  /// T(q, qd, t)
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static Scalar kinetic_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Parameters<Scalar>& p) noexcept {
+    return kinetic_energy(t, q, qd, Constants<Scalar>(p));
   }
 
   /// V(q, t)
   template <class Scalar>
-  static Scalar potential_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p) noexcept {
+  static Scalar potential_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
@@ -182,9 +272,17 @@ struct Model {
     return V;
   }
 
+  /// V(q, t)
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static Scalar potential_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p) noexcept {
+    return potential_energy(t, q, Constants<Scalar>(p));
+  }
+
   /// the model's named outputs, in the order of output_names
   template <class Scalar>
-  static void outputs([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] OutputVector<Scalar>& y) noexcept {
+  static void outputs([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] OutputVector<Scalar>& y) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
@@ -192,15 +290,23 @@ struct Model {
     const Scalar w1 = cos(q(0));
     const Scalar w2 = sin(q(0));
     const Scalar w3 = cos(q(1));
-    y(0) = w0 * p.l_ef * w1 - w2 * p.l_fh;
-    y(1) = p.l_fh * w1 + w0 * p.l_ef * w2;
-    y(2) = p.l_ef * w3;
-    y(3) = -(w3 * qd(0) * p.l_fh - qd(1) * p.l_ef);
-    y(4) = w0 * p.l_ef * qd(0);
-    y(5) = -(w0 * qd(0) * p.l_fh);
+    y(0) = w0 * c.p.l_ef * w1 - w2 * c.p.l_fh;
+    y(1) = c.p.l_fh * w1 + w0 * c.p.l_ef * w2;
+    y(2) = c.p.l_ef * w3;
+    y(3) = -(w3 * qd(0) * c.p.l_fh - qd(1) * c.p.l_ef);
+    y(4) = w0 * c.p.l_ef * qd(0);
+    y(5) = -(w0 * qd(0) * c.p.l_fh);
     y(6) = -(w0 * qd(0));
     y(7) = qd(1);
     y(8) = w3 * qd(0);
+  }
+
+  /// the model's named outputs, in the order of output_names
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static void outputs([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] OutputVector<Scalar>& y) noexcept {
+    outputs(t, q, qd, u, Constants<Scalar>(p), y);
   }
 };
 

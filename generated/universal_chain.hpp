@@ -22,7 +22,7 @@ struct Model {
   static constexpr const char* name = "universal_chain";
   static constexpr const char* description = "3D chain of n uniform rods hanging from universal joints";
   static constexpr const char* generator_version = "0.1.0";
-  static constexpr const char* model_hash = "efc0aaa20084aead";
+  static constexpr const char* model_hash = "c986ade236eb79da";
   static constexpr std::array<const char*, nq> coordinate_names{{"alpha1", "beta1", "alpha2", "beta2", "alpha3", "beta3"}};
   static constexpr std::array<const char*, nu> input_names{{}};
   static constexpr std::array<const char*, np> parameter_names{{"m", "l", "rd", "g"}};
@@ -51,9 +51,35 @@ struct Model {
     std::array<Scalar*, np> fields() noexcept { return {{&m, &l, &rd, &g}}; }
   };
 
+  /// The values of the functions below that depend on the parameters only, computed once per
+  /// parameter set. Immutable: for other parameters, build other Constants.
+  template <class Scalar>
+  class Constants {
+   public:
+    /// Computes every constant from a copy of the parameters.
+    explicit Constants(const Parameters<Scalar>& parameters) noexcept : p(parameters) {
+      using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
+      using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
+      using std::log; using std::abs; using std::pow;
+      const Scalar w0 = p.rd * p.rd;
+      k0 = Scalar(0.08333333333333333) * p.m * (p.l * p.l + w0 * Scalar(3));
+      k1 = w0 * p.m * Scalar(0.5);
+      k2 = Scalar(0.5) * p.l;
+      k3 = p.g * p.m;
+      k4 = p.m * Scalar(0.5);
+    }
+    /// The parameters these constants were computed from.
+    const Parameters<Scalar>& parameters() const noexcept { return p; }
+
+   private:
+    friend struct Model;
+    Parameters<Scalar> p;
+    Scalar k0, k1, k2, k3, k4;
+  };
+
   /// M(q, t), symmetric positive (semi)definite
   template <class Scalar>
-  static void mass_matrix([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] MassMatrix<Scalar>& M) noexcept {
+  static void mass_matrix([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] MassMatrix<Scalar>& M) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
@@ -64,125 +90,122 @@ struct Model {
     const Scalar w4 = w2 * w3;
     const Scalar w5 = sin(q(3));
     const Scalar w6 = w0 * w1 - w4 * w5;
-    const Scalar w7 = p.rd * p.rd;
-    const Scalar w8 = p.l * p.l + w7 * Scalar(3);
-    const Scalar w9 = cos(q(0));
-    const Scalar w10 = sin(q(0));
-    const Scalar w11 = w1 * w10;
-    const Scalar w12 = sin(q(2));
-    const Scalar w13 = w11 * w12 - w9 * w3;
-    const Scalar w14 = -(w1 * p.l * w9);
-    const Scalar w15 = w2 * w10;
-    const Scalar w16 = w12 * w9 + w11 * w3;
-    const Scalar w17 = w0 * w15 + w16 * w5;
-    const Scalar w18 = w2 * w12;
-    const Scalar w19 = w13 * Scalar(0.5) * w6 * p.l + w14 + w17 * w18 * Scalar(0.5) * p.l;
-    const Scalar w20 = w1 * p.l * w10;
-    const Scalar w21 = w2 * w9;
-    const Scalar w22 = w1 * w9;
-    const Scalar w23 = w22 * w3 - w12 * w10;
-    const Scalar w24 = w0 * w21 + w5 * w23;
-    const Scalar w25 = w22 * w12 + w10 * w3;
-    const Scalar w26 = w20 + w18 * Scalar(0.5) * w24 * p.l + Scalar(0.5) * w6 * p.l * w25;
-    const Scalar w27 = w0 * w23 - w5 * w21;
-    const Scalar w28 = cos(q(4));
-    const Scalar w29 = sin(q(4));
-    const Scalar w30 = sin(q(5));
-    const Scalar w31 = cos(q(5));
-    const Scalar w32 = (w27 * w28 - w29 * w25) * w30 + w24 * w31;
-    const Scalar w33 = w1 * w5 + w4 * w0;
-    const Scalar w34 = w29 * w33 + w18 * w28;
-    const Scalar w35 = w29 * w18 - w33 * w28;
-    const Scalar w36 = w30 * w35 + w6 * w31;
-    const Scalar w37 = w29 * w27 + w28 * w25;
-    const Scalar w38 = w6 * p.l * w25 + w20 + w18 * w24 * p.l + Scalar(0.5) * w32 * p.l * w34 + w36 * Scalar(0.5) * p.l * w37;
-    const Scalar w39 = w0 * w16 - w15 * w5;
-    const Scalar w40 = w13 * w28 + w29 * w39;
-    const Scalar w41 = w17 * w31 - w30 * (w29 * w13 - w39 * w28);
-    const Scalar w42 = w40 * w36 * Scalar(0.5) * p.l + w17 * w18 * p.l + w14 + w13 * w6 * p.l + w41 * Scalar(0.5) * p.l * w34;
-    const Scalar w43 = w1 * Scalar(0.5) * p.l * w9;
-    const Scalar w44 = w1 * Scalar(0.5) * p.l * w10;
-    const Scalar w45 = w6 * w30 - w35 * w31;
-    const Scalar w46 = w12 * w5;
-    const Scalar w47 = w0 * w12;
-    const Scalar w48 = w47 * w28 + w29 * w3;
-    const Scalar w49 = w46 * w30 - w48 * w31;
-    const Scalar w50 = w7 * p.m * w49 * Scalar(0.5);
-    const Scalar w51 = w46 * w31 + w48 * w30;
-    const Scalar w52 = w28 * w3 - w29 * w47;
-    const Scalar w53 = p.l * w21;
-    const Scalar w54 = w51 * Scalar(0.5) * p.l * w37 + Scalar(0.5) * w32 * p.l * w52 + w53 + w24 * p.l * w3 + w46 * p.l * w25;
-    const Scalar w55 = w15 * p.l;
-    const Scalar w56 = w51 * w40 * Scalar(0.5) * p.l + w17 * p.l * w3 + w46 * w13 * p.l + w55 + w41 * Scalar(0.5) * p.l * w52;
-    const Scalar w57 = w51 * Scalar(0.08333333333333333) * p.m * w8;
-    const Scalar w58 = Scalar(0.5) * p.l * w21;
-    const Scalar w59 = w15 * Scalar(0.5) * p.l;
-    const Scalar w60 = Scalar(0.08333333333333333) * p.m * w52 * w8;
-    const Scalar w61 = w53 + Scalar(0.5) * w24 * p.l * w3 + w46 * Scalar(0.5) * p.l * w25;
-    const Scalar w62 = w46 * w13 * Scalar(0.5) * p.l + w17 * Scalar(0.5) * p.l * w3 + w55;
-    const Scalar w63 = Scalar(0.08333333333333333) * p.m * w8 * w3;
-    const Scalar w64 = w46 * Scalar(0.08333333333333333) * p.m * w8;
-    const Scalar w65 = w47 * w7 * p.m * Scalar(0.5);
-    const Scalar w66 = w28 * w5;
-    const Scalar w67 = w66 * w31 + w0 * w30;
-    const Scalar w68 = w7 * p.m * Scalar(0.5) * w67;
-    const Scalar w69 = w66 * w30 - w0 * w31;
-    const Scalar w70 = Scalar(0.08333333333333333) * p.m * w69 * w8;
-    const Scalar w71 = w0 * w13 * Scalar(0.5) * p.l;
-    const Scalar w72 = w0 * Scalar(0.5) * p.l * w25;
-    const Scalar w73 = w29 * w5;
-    const Scalar w74 = Scalar(0.08333333333333333) * p.m * w8 * w73;
-    const Scalar w75 = Scalar(0.5) * w32 * p.l * w73 - w69 * Scalar(0.5) * p.l * w37 + w0 * p.l * w25;
-    const Scalar w76 = w0 * w13 * p.l + w41 * Scalar(0.5) * p.l * w73 - w40 * w69 * Scalar(0.5) * p.l;
-    const Scalar w77 = w7 * p.m * Scalar(0.5) * w5;
-    const Scalar w78 = w0 * Scalar(0.08333333333333333) * p.m * w8;
-    const Scalar w79 = w29 * w30;
-    const Scalar w80 = w24 * p.l + w28 * Scalar(0.5) * w32 * p.l + Scalar(0.5) * p.l * w37 * w79;
-    const Scalar w81 = w41 * w28 * Scalar(0.5) * p.l + w17 * p.l + w40 * Scalar(0.5) * p.l * w79;
-    const Scalar w82 = Scalar(0.08333333333333333) * p.m * w28 * w8;
-    const Scalar w83 = w29 * w31;
-    const Scalar w84 = w83 * w7 * p.m * Scalar(0.5);
-    const Scalar w85 = Scalar(0.08333333333333333) * p.m * w8 * w79;
-    const Scalar w86 = Scalar(0.5) * w24 * p.l;
-    const Scalar w87 = w17 * Scalar(0.5) * p.l;
-    const Scalar w88 = Scalar(0.08333333333333333) * p.m * w8;
-    const Scalar w89 = w40 * Scalar(0.5) * p.l * w31;
-    const Scalar w90 = Scalar(0.5) * p.l * w37 * w31;
-    const Scalar w91 = Scalar(0.08333333333333333) * p.m * w8 * w31;
-    const Scalar w92 = w7 * p.m * Scalar(0.5) * w30;
-    const Scalar w93 = Scalar(0.5) * w32 * p.l;
-    const Scalar w94 = w41 * Scalar(0.5) * p.l;
-    const Scalar w95 = w1 * p.l;
-    const Scalar w96 = Scalar(0.5) * w6 * p.l * w3 + w95 - w46 * w18 * Scalar(0.5) * p.l;
-    const Scalar w97 = w1 * Scalar(0.5) * p.l;
-    const Scalar w98 = w95 + w6 * p.l * w3 - w46 * w18 * p.l - w51 * Scalar(0.5) * p.l * w34 + w36 * Scalar(0.5) * p.l * w52;
-    const Scalar w99 = w36 * Scalar(0.5) * p.l * w73 - w0 * w18 * p.l + w69 * Scalar(0.5) * p.l * w34;
-    const Scalar w100 = w0 * w18 * Scalar(0.5) * p.l;
-    const Scalar w101 = Scalar(0.5) * p.l * w34 * w79 - w6 * p.l - w36 * w28 * Scalar(0.5) * p.l;
-    const Scalar w102 = Scalar(0.5) * w6 * p.l;
-    const Scalar w103 = Scalar(0.5) * p.l * w34 * w31;
-    const Scalar w104 = w36 * Scalar(0.5) * p.l;
-    M(0, 0) = w6 * Scalar(0.08333333333333333) * p.m * w6 * w8 + w2 * w2 * w7 * p.m * Scalar(0.5) + p.m * (w19 * w19 + w26 * w26) + p.m * (w38 * w38 + w42 * w42) + w1 * w1 * Scalar(0.08333333333333333) * p.m * w8 + p.m * (w43 * w43 + w44 * w44) + Scalar(0.08333333333333333) * p.m * w8 * w34 * w34 + w18 * Scalar(0.08333333333333333) * w18 * p.m * w8 + w45 * w45 * w7 * p.m * Scalar(0.5) + Scalar(0.08333333333333333) * p.m * w36 * w8 * w36 + w7 * w33 * p.m * Scalar(0.5) * w33;
-    M(0, 1) = w50 * w45 + p.m * (w38 * w54 + w42 * w56) + w57 * w36 - p.m * (w59 * w43 - w58 * w44) + w60 * w34 + (w26 * w61 + w62 * w19) * p.m + w18 * w63 + w6 * w64 - w33 * w65;
-    M(0, 2) = w68 * w45 - w36 * w70 + p.m * (w71 * w19 + w26 * w72) + w74 * w34 + p.m * (w75 * w38 + w42 * w76) + w33 * w77 + w78 * w6;
-    M(0, 3) = (w38 * w80 + w42 * w81) * p.m + w82 * w34 - w45 * w84 + w85 * w36 + (w86 * w26 + w87 * w19) * p.m + w18 * w88;
-    M(0, 4) = p.m * (w42 * w89 + w38 * w90) + w36 * w91 + w45 * w92;
-    M(0, 5) = w34 * w88 + p.m * (w38 * w93 + w42 * w94);
-    M(1, 1) = w50 * w49 + w63 * w3 + (w62 * w62 + w61 * w61 + w96 * w96) * p.m + w60 * w52 + p.m * (w59 * w59 + w97 * w97 + w58 * w58) + w47 * w65 + w57 * w51 + p.m * (w98 * w98 + w56 * w56 + w54 * w54) + w46 * w64 + w88;
-    M(1, 2) = -(w51 * w70 - w46 * w78 + w47 * w77 - w68 * w49 - p.m * (w98 * w99 + w75 * w54 + w56 * w76) - w74 * w52 - (w72 * w61 + w71 * w62 - w96 * w100) * p.m);
-    M(1, 3) = w51 * w85 - (w98 * w101 - w54 * w80 - w81 * w56) * p.m - w49 * w84 + w88 * w3 + p.m * (w102 * w96 + w62 * w87 + w86 * w61) + w82 * w52;
-    M(1, 4) = w92 * w49 - (w103 * w98 - w56 * w89 - w54 * w90) * p.m + w51 * w91;
-    M(1, 5) = (w54 * w93 + w94 * w56 + w104 * w98) * p.m + w52 * w88;
-    M(2, 2) = w69 * w70 + w68 * w67 + p.m * (w100 * w100 + w72 * w72 + w71 * w71) + w78 * w0 + w74 * w73 + p.m * (w76 * w76 + w75 * w75 + w99 * w99) + w5 * w77;
-    M(2, 3) = -(w67 * w84 + p.m * (w102 * w100 - w71 * w87 - w86 * w72) - w82 * w73 - (w75 * w80 - w101 * w99 + w81 * w76) * p.m + w85 * w69);
-    M(2, 4) = w92 * w67 - w69 * w91 - p.m * (w103 * w99 - w75 * w90 - w76 * w89);
-    M(2, 5) = w88 * w73 + p.m * (w75 * w93 + w94 * w76 + w104 * w99);
-    M(3, 3) = w83 * w84 + w28 * w82 + p.m * (w87 * w87 + w86 * w86 + w102 * w102) + (w80 * w80 + w101 * w101 + w81 * w81) * p.m + w85 * w79 + w88;
-    M(3, 4) = w91 * w79 + p.m * (w81 * w89 + w80 * w90 + w103 * w101) - w83 * w92;
-    M(3, 5) = p.m * (w80 * w93 - w104 * w101 + w94 * w81) + w28 * w88;
-    M(4, 4) = w31 * w91 + (w89 * w89 + w90 * w90 + w103 * w103) * p.m + w92 * w30;
-    M(4, 5) = p.m * (w90 * w93 + w94 * w89 - w104 * w103);
-    M(5, 5) = (w94 * w94 + w93 * w93 + w104 * w104) * p.m + w88;
+    const Scalar w7 = cos(q(0));
+    const Scalar w8 = sin(q(0));
+    const Scalar w9 = w1 * w8;
+    const Scalar w10 = sin(q(2));
+    const Scalar w11 = w9 * w10 - w7 * w3;
+    const Scalar w12 = -(w1 * c.p.l * w7);
+    const Scalar w13 = w2 * w8;
+    const Scalar w14 = w10 * w7 + w9 * w3;
+    const Scalar w15 = w0 * w13 + w14 * w5;
+    const Scalar w16 = w2 * w10;
+    const Scalar w17 = w11 * c.k2 * w6 + w12 + w15 * w16 * c.k2;
+    const Scalar w18 = w1 * c.p.l * w8;
+    const Scalar w19 = w2 * w7;
+    const Scalar w20 = w1 * w7;
+    const Scalar w21 = w20 * w3 - w10 * w8;
+    const Scalar w22 = w0 * w19 + w5 * w21;
+    const Scalar w23 = w20 * w10 + w8 * w3;
+    const Scalar w24 = w18 + w16 * c.k2 * w22 + c.k2 * w6 * w23;
+    const Scalar w25 = w0 * w21 - w5 * w19;
+    const Scalar w26 = cos(q(4));
+    const Scalar w27 = sin(q(4));
+    const Scalar w28 = sin(q(5));
+    const Scalar w29 = cos(q(5));
+    const Scalar w30 = (w25 * w26 - w27 * w23) * w28 + w22 * w29;
+    const Scalar w31 = w1 * w5 + w4 * w0;
+    const Scalar w32 = w27 * w31 + w16 * w26;
+    const Scalar w33 = w27 * w16 - w31 * w26;
+    const Scalar w34 = w28 * w33 + w6 * w29;
+    const Scalar w35 = w27 * w25 + w26 * w23;
+    const Scalar w36 = w6 * c.p.l * w23 + w18 + w16 * w22 * c.p.l + c.k2 * w30 * w32 + w34 * c.k2 * w35;
+    const Scalar w37 = w0 * w14 - w13 * w5;
+    const Scalar w38 = w11 * w26 + w27 * w37;
+    const Scalar w39 = w15 * w29 - w28 * (w27 * w11 - w37 * w26);
+    const Scalar w40 = w38 * w34 * c.k2 + w15 * w16 * c.p.l + w12 + w11 * w6 * c.p.l + w39 * c.k2 * w32;
+    const Scalar w41 = w1 * c.k2 * w7;
+    const Scalar w42 = w1 * c.k2 * w8;
+    const Scalar w43 = w6 * w28 - w33 * w29;
+    const Scalar w44 = w10 * w5;
+    const Scalar w45 = w0 * w10;
+    const Scalar w46 = w45 * w26 + w27 * w3;
+    const Scalar w47 = w44 * w28 - w46 * w29;
+    const Scalar w48 = c.k1 * w47;
+    const Scalar w49 = w44 * w29 + w46 * w28;
+    const Scalar w50 = w26 * w3 - w27 * w45;
+    const Scalar w51 = c.p.l * w19;
+    const Scalar w52 = w49 * c.k2 * w35 + c.k2 * w30 * w50 + w51 + w22 * c.p.l * w3 + w44 * c.p.l * w23;
+    const Scalar w53 = w13 * c.p.l;
+    const Scalar w54 = w49 * w38 * c.k2 + w15 * c.p.l * w3 + w44 * w11 * c.p.l + w53 + w39 * c.k2 * w50;
+    const Scalar w55 = w49 * c.k0;
+    const Scalar w56 = c.k2 * w19;
+    const Scalar w57 = w13 * c.k2;
+    const Scalar w58 = c.k0 * w50;
+    const Scalar w59 = w51 + c.k2 * w22 * w3 + w44 * c.k2 * w23;
+    const Scalar w60 = w44 * w11 * c.k2 + w15 * c.k2 * w3 + w53;
+    const Scalar w61 = c.k0 * w3;
+    const Scalar w62 = w44 * c.k0;
+    const Scalar w63 = w45 * c.k1;
+    const Scalar w64 = w26 * w5;
+    const Scalar w65 = w64 * w29 + w0 * w28;
+    const Scalar w66 = c.k1 * w65;
+    const Scalar w67 = w64 * w28 - w0 * w29;
+    const Scalar w68 = c.k0 * w67;
+    const Scalar w69 = w0 * w11 * c.k2;
+    const Scalar w70 = w0 * c.k2 * w23;
+    const Scalar w71 = w27 * w5;
+    const Scalar w72 = c.k0 * w71;
+    const Scalar w73 = c.k2 * w30 * w71 - w67 * c.k2 * w35 + w0 * c.p.l * w23;
+    const Scalar w74 = w0 * w11 * c.p.l + w39 * c.k2 * w71 - w38 * w67 * c.k2;
+    const Scalar w75 = c.k1 * w5;
+    const Scalar w76 = w0 * c.k0;
+    const Scalar w77 = w27 * w28;
+    const Scalar w78 = w22 * c.p.l + w26 * c.k2 * w30 + c.k2 * w35 * w77;
+    const Scalar w79 = w39 * w26 * c.k2 + w15 * c.p.l + w38 * c.k2 * w77;
+    const Scalar w80 = c.k0 * w26;
+    const Scalar w81 = w27 * w29;
+    const Scalar w82 = w81 * c.k1;
+    const Scalar w83 = c.k0 * w77;
+    const Scalar w84 = c.k2 * w22;
+    const Scalar w85 = w15 * c.k2;
+    const Scalar w86 = w38 * c.k2 * w29;
+    const Scalar w87 = c.k2 * w35 * w29;
+    const Scalar w88 = c.k0 * w29;
+    const Scalar w89 = c.k1 * w28;
+    const Scalar w90 = c.k2 * w30;
+    const Scalar w91 = w39 * c.k2;
+    const Scalar w92 = w1 * c.p.l;
+    const Scalar w93 = c.k2 * w6 * w3 + w92 - w44 * w16 * c.k2;
+    const Scalar w94 = w1 * c.k2;
+    const Scalar w95 = w92 + w6 * c.p.l * w3 - w44 * w16 * c.p.l - w49 * c.k2 * w32 + w34 * c.k2 * w50;
+    const Scalar w96 = w34 * c.k2 * w71 - w0 * w16 * c.p.l + w67 * c.k2 * w32;
+    const Scalar w97 = w0 * w16 * c.k2;
+    const Scalar w98 = c.k2 * w32 * w77 - w6 * c.p.l - w34 * w26 * c.k2;
+    const Scalar w99 = c.k2 * w6;
+    const Scalar w100 = c.k2 * w32 * w29;
+    const Scalar w101 = w34 * c.k2;
+    M(0, 0) = w6 * c.k0 * w6 + w2 * w2 * c.k1 + c.p.m * (w17 * w17 + w24 * w24) + c.p.m * (w36 * w36 + w40 * w40) + w1 * w1 * c.k0 + c.p.m * (w41 * w41 + w42 * w42) + c.k0 * w32 * w32 + w16 * c.k0 * w16 + w43 * w43 * c.k1 + c.k0 * w34 * w34 + c.k1 * w31 * w31;
+    M(0, 1) = w48 * w43 + c.p.m * (w36 * w52 + w40 * w54) + w55 * w34 - c.p.m * (w57 * w41 - w56 * w42) + w58 * w32 + (w24 * w59 + w60 * w17) * c.p.m + w16 * w61 + w6 * w62 - w31 * w63;
+    M(0, 2) = w66 * w43 - w34 * w68 + c.p.m * (w69 * w17 + w24 * w70) + w72 * w32 + c.p.m * (w73 * w36 + w40 * w74) + w31 * w75 + w76 * w6;
+    M(0, 3) = (w36 * w78 + w40 * w79) * c.p.m + w80 * w32 - w43 * w82 + w83 * w34 + (w84 * w24 + w85 * w17) * c.p.m + w16 * c.k0;
+    M(0, 4) = c.p.m * (w40 * w86 + w36 * w87) + w34 * w88 + w43 * w89;
+    M(0, 5) = w32 * c.k0 + c.p.m * (w36 * w90 + w40 * w91);
+    M(1, 1) = w48 * w47 + w61 * w3 + (w60 * w60 + w59 * w59 + w93 * w93) * c.p.m + w58 * w50 + c.p.m * (w57 * w57 + w94 * w94 + w56 * w56) + w45 * w63 + w55 * w49 + c.p.m * (w95 * w95 + w54 * w54 + w52 * w52) + w44 * w62 + c.k0;
+    M(1, 2) = -(w49 * w68 - w44 * w76 + w45 * w75 - w66 * w47 - c.p.m * (w95 * w96 + w73 * w52 + w54 * w74) - w72 * w50 - (w70 * w59 + w69 * w60 - w93 * w97) * c.p.m);
+    M(1, 3) = w49 * w83 - (w95 * w98 - w52 * w78 - w79 * w54) * c.p.m - w47 * w82 + w61 + c.p.m * (w99 * w93 + w60 * w85 + w84 * w59) + w80 * w50;
+    M(1, 4) = w89 * w47 - (w100 * w95 - w54 * w86 - w52 * w87) * c.p.m + w49 * w88;
+    M(1, 5) = (w52 * w90 + w91 * w54 + w101 * w95) * c.p.m + w50 * c.k0;
+    M(2, 2) = w67 * w68 + w66 * w65 + c.p.m * (w97 * w97 + w70 * w70 + w69 * w69) + w76 * w0 + w72 * w71 + c.p.m * (w74 * w74 + w73 * w73 + w96 * w96) + w5 * w75;
+    M(2, 3) = -(w65 * w82 + c.p.m * (w99 * w97 - w69 * w85 - w84 * w70) - w80 * w71 - (w73 * w78 - w98 * w96 + w79 * w74) * c.p.m + w83 * w67);
+    M(2, 4) = w89 * w65 - w67 * w88 - c.p.m * (w100 * w96 - w73 * w87 - w74 * w86);
+    M(2, 5) = w72 + c.p.m * (w73 * w90 + w91 * w74 + w101 * w96);
+    M(3, 3) = w81 * w82 + w26 * w80 + c.p.m * (w85 * w85 + w84 * w84 + w99 * w99) + (w78 * w78 + w98 * w98 + w79 * w79) * c.p.m + w83 * w77 + c.k0;
+    M(3, 4) = w88 * w77 + c.p.m * (w79 * w86 + w78 * w87 + w100 * w98) - w81 * w89;
+    M(3, 5) = c.p.m * (w78 * w90 - w101 * w98 + w91 * w79) + w26 * c.k0;
+    M(4, 4) = w29 * w88 + (w86 * w86 + w87 * w87 + w100 * w100) * c.p.m + w89 * w28;
+    M(4, 5) = c.p.m * (w87 * w90 + w91 * w86 - w101 * w100);
+    M(5, 5) = (w91 * w91 + w90 * w90 + w101 * w101) * c.p.m + c.k0;
     M(1, 0) = M(0, 1);
     M(2, 0) = M(0, 2);
     M(3, 0) = M(0, 3);
@@ -200,15 +223,23 @@ struct Model {
     M(5, 4) = M(4, 5);
   }
 
+  /// M(q, t), symmetric positive (semi)definite
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static void mass_matrix([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] MassMatrix<Scalar>& M) noexcept {
+    mass_matrix(t, q, Constants<Scalar>(p), M);
+  }
+
   /// F(q, qd, t, u): everything of Lagrange's equations except M qdd
   template <class Scalar>
-  static void forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] Vector<Scalar>& F) noexcept {
+  static void forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] Vector<Scalar>& F) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
     const Scalar w0 = cos(q(1));
     const Scalar w1 = sin(q(0));
-    const Scalar w2 = w0 * p.l * w1;
+    const Scalar w2 = w0 * c.p.l * w1;
     const Scalar w3 = sin(q(1));
     const Scalar w4 = sin(q(2));
     const Scalar w5 = w3 * w4;
@@ -223,141 +254,147 @@ struct Model {
     const Scalar w14 = w3 * w11;
     const Scalar w15 = w6 * w0 - w14 * w9;
     const Scalar w16 = w10 * w4 + w1 * w11;
-    const Scalar w17 = w2 + w5 * Scalar(0.5) * w13 * p.l + Scalar(0.5) * w15 * p.l * w16;
-    const Scalar w18 = p.rd * p.rd;
-    const Scalar w19 = w3 * qd(0);
-    const Scalar w20 = w18 * p.m * w19 * Scalar(0.5);
-    const Scalar w21 = p.l * p.l + w18 * Scalar(3);
-    const Scalar w22 = qd(1) * Scalar(0.08333333333333333) * p.m * w21;
-    const Scalar w23 = qd(1) * w19;
-    const Scalar w24 = w0 * qd(0);
-    const Scalar w25 = w24 + qd(2);
-    const Scalar w26 = qd(1) * w4 - w19 * w11;
-    const Scalar w27 = w6 * w25 + w9 * w26;
-    const Scalar w28 = qd(4) + w27;
-    const Scalar w29 = cos(q(5));
-    const Scalar w30 = sin(q(5));
-    const Scalar w31 = sin(q(4));
-    const Scalar w32 = w19 * w4 + qd(1) * w11;
-    const Scalar w33 = w32 + qd(3);
-    const Scalar w34 = cos(q(4));
-    const Scalar w35 = w6 * w26 - w25 * w9;
-    const Scalar w36 = w31 * w33 + w34 * w35;
-    const Scalar w37 = w28 * w29 + w30 * w36;
-    const Scalar w38 = w37 * Scalar(0.08333333333333333) * p.m * w21;
-    const Scalar w39 = w29 * w36 - w30 * w28;
-    const Scalar w40 = w39 * w18 * p.m * Scalar(0.5);
-    const Scalar w41 = qd(1) * w24;
-    const Scalar w42 = w32 * qd(2) - w41 * w11;
-    const Scalar w43 = w6 * w42 - qd(3) * w27 + w23 * w9;
-    const Scalar w44 = w26 * qd(2) - w41 * w4;
-    const Scalar w45 = w31 * w43 + w44 * w34 + qd(4) * w36;
-    const Scalar w46 = w37 * w40 - w38 * w39 - w45 * Scalar(0.08333333333333333) * p.m * w21;
-    const Scalar w47 = w0 * w9 + w14 * w6;
-    const Scalar w48 = w31 * w47 + w5 * w34;
-    const Scalar w49 = w24 * Scalar(0.08333333333333333) * p.m * w21;
-    const Scalar w50 = w18 * p.m * Scalar(0.5) * w35;
-    const Scalar w51 = Scalar(0.08333333333333333) * p.m * w21 * w27;
-    const Scalar w52 = w44 * Scalar(0.08333333333333333) * p.m * w21 - w27 * w50 + w51 * w35;
-    const Scalar w53 = w6 * w12 - w9 * w8;
-    const Scalar w54 = w53 * w34 - w31 * w16;
-    const Scalar w55 = w54 * w30 + w13 * w29;
-    const Scalar w56 = w31 * w5 - w47 * w34;
-    const Scalar w57 = w30 * w56 + w15 * w29;
-    const Scalar w58 = w31 * w53 + w34 * w16;
-    const Scalar w59 = w15 * p.l * w16 + w2 + w5 * w13 * p.l + Scalar(0.5) * w55 * p.l * w48 + w57 * Scalar(0.5) * p.l * w58;
-    const Scalar w60 = w31 * w35 - w34 * w33;
-    const Scalar w61 = w60 * qd(4) - w34 * w43 + w31 * w44;
-    const Scalar w62 = w23 * w6 - qd(3) * w35 - w9 * w42;
-    const Scalar w63 = w30 * w61 - w39 * qd(5) + w62 * w29;
-    const Scalar w64 = qd(5) - w60;
-    const Scalar w65 = Scalar(0.08333333333333333) * p.m * w21 * w64;
-    const Scalar w66 = w39 * w65 - w63 * Scalar(0.08333333333333333) * p.m * w21 - w64 * w40;
-    const Scalar w67 = Scalar(0.5) * p.l * w27;
-    const Scalar w68 = Scalar(0.5) * p.l * w33;
-    const Scalar w69 = w67 * w27 + w68 * w33;
-    const Scalar w70 = w0 * w1;
-    const Scalar w71 = w4 * w7 + w70 * w11;
-    const Scalar w72 = w3 * w1;
-    const Scalar w73 = w6 * w71 - w72 * w9;
-    const Scalar w74 = w6 * w72 + w71 * w9;
-    const Scalar w75 = w44 * p.l;
-    const Scalar w76 = Scalar(2) * w67 * w35 + w75;
-    const Scalar w77 = qd(1) * p.l;
-    const Scalar w78 = w23 * p.l;
-    const Scalar w79 = w19 * w77 + w78;
-    const Scalar w80 = w24 * p.l;
-    const Scalar w81 = qd(1) * w77 + w80 * w24;
-    const Scalar w82 = w79 * w7 + w72 * w80 * w19 + w81 * w70;
-    const Scalar w83 = w70 * w4 - w7 * w11;
-    const Scalar w84 = p.l * w62;
-    const Scalar w85 = w84 - Scalar(2) * w68 * w35;
-    const Scalar w86 = w69 * w73 - w74 * Scalar(0.5) * w76 + w82 - w83 * w85 * Scalar(0.5);
-    const Scalar w87 = -(w0 * p.l * w7);
-    const Scalar w88 = w79 * w1 - w80 * w19 * w8 - w10 * w81;
-    const Scalar w89 = w85 * Scalar(0.5) * w16 + Scalar(0.5) * w13 * w76 + w88 - w69 * w53;
-    const Scalar w90 = Scalar(0.08333333333333333) * p.m * w21 * w33;
-    const Scalar w91 = w18 * p.m * Scalar(0.5) * w43 - w90 * w27 + w51 * w33;
-    const Scalar w92 = w0 * Scalar(0.5) * p.l * w1;
-    const Scalar w93 = qd(1) * Scalar(0.5) * p.l;
-    const Scalar w94 = w24 * Scalar(0.5) * p.l;
-    const Scalar w95 = qd(1) * w93 + w24 * w94;
-    const Scalar w96 = w78 + Scalar(2) * w19 * w93;
-    const Scalar w97 = w10 * w95 - w96 * Scalar(0.5) * w1 + w19 * w94 * w8;
-    const Scalar w98 = w70 * w95 + w72 * w19 * w94 + w96 * Scalar(0.5) * w7;
-    const Scalar w99 = p.l * w33;
-    const Scalar w100 = p.l * w27;
-    const Scalar w101 = w99 * w33 + w27 * w100;
-    const Scalar w102 = w35 * w100 + w75;
-    const Scalar w103 = w84 - w99 * w35;
-    const Scalar w104 = w37 * Scalar(0.5) * p.l;
-    const Scalar w105 = w104 * w39 * Scalar(2) + w45 * p.l;
-    const Scalar w106 = Scalar(0.5) * p.l * w64;
-    const Scalar w107 = w37 * w104 + w106 * w64;
-    const Scalar w108 = w39 * Scalar(2) * w106 - w63 * p.l;
-    const Scalar w109 = w13 * w102 - w53 * w101 + w103 * w16 + w88 + Scalar(0.5) * w55 * w105 - w107 * (w54 * w29 - w30 * w13) - w108 * Scalar(0.5) * w58;
-    const Scalar w110 = w83 * w34 + w31 * w73;
-    const Scalar w111 = w31 * w83 - w73 * w34;
-    const Scalar w112 = w74 * w29 - w30 * w111;
-    const Scalar w113 = (w74 * w30 + w111 * w29) * w107 - w110 * w108 * Scalar(0.5) + w112 * Scalar(0.5) * w105 + w74 * w102 + w83 * w103 - w82 - w73 * w101;
-    const Scalar w114 = Scalar(0.08333333333333333) * p.m * w62 * w21 - w90 * w35 + w50 * w33;
-    const Scalar w115 = w15 * w30 - w56 * w29;
-    const Scalar w116 = w38 * w64 - w37 * w65 - w18 * p.m * Scalar(0.5) * (w37 * qd(5) - w30 * w62 + w61 * w29);
-    const Scalar w117 = w6 * w4;
-    const Scalar w118 = w4 * w9;
-    const Scalar w119 = w117 * w34 + w31 * w11;
-    const Scalar w120 = w118 * w29 + w119 * w30;
-    const Scalar w121 = w34 * w11 - w31 * w117;
-    const Scalar w122 = p.l * w8;
-    const Scalar w123 = w120 * Scalar(0.5) * p.l * w58 + Scalar(0.5) * w55 * p.l * w121 + w122 + w13 * p.l * w11 + w118 * p.l * w16;
-    const Scalar w124 = Scalar(0.5) * p.l * w8;
-    const Scalar w125 = w0 * p.l;
-    const Scalar w126 = w3 * w81 - w80 * w0 * w19;
-    const Scalar w127 = w108 * Scalar(0.5) * w48 + w107 * w115 + w57 * Scalar(0.5) * w105 + w47 * w101 - w5 * w103 + w15 * w102 + w126;
-    const Scalar w128 = w72 * p.l;
-    const Scalar w129 = w122 + Scalar(0.5) * w13 * p.l * w11 + w118 * Scalar(0.5) * p.l * w16;
-    const Scalar w130 = Scalar(0.5) * w15 * w76 - w5 * w85 * Scalar(0.5) + w69 * w47 + w126;
-    const Scalar w131 = w6 * Scalar(0.5) * p.l * w16;
-    const Scalar w132 = w34 * w9;
-    const Scalar w133 = w132 * w30 - w6 * w29;
-    const Scalar w134 = w31 * w9;
-    const Scalar w135 = Scalar(0.5) * w55 * p.l * w134 - w133 * Scalar(0.5) * p.l * w58 + w6 * p.l * w16;
-    const Scalar w136 = Scalar(0.5) * w13 * p.l;
-    const Scalar w137 = w31 * w30;
-    const Scalar w138 = w13 * p.l + w34 * Scalar(0.5) * w55 * p.l + Scalar(0.5) * p.l * w58 * w137;
-    const Scalar w139 = Scalar(0.5) * p.l * w58 * w29;
-    const Scalar w140 = Scalar(0.5) * w55 * p.l;
-    F(0) = -(p.g * p.m * w17 + w0 * (qd(1) * w20 - w22 * w19 - w23 * Scalar(0.08333333333333333) * p.m * w21) + w46 * w48 - w3 * (qd(1) * w49 - w24 * w22 - w41 * w18 * p.m * Scalar(0.5)) - w52 * w5 + p.g * w59 * p.m + w57 * w66 - p.m * (w17 * w89 - w86 * (w83 * Scalar(0.5) * w15 * p.l + w87 + w74 * w5 * Scalar(0.5) * p.l)) - w47 * w91 + p.g * p.m * w92 - p.m * (w0 * Scalar(0.5) * p.l * w7 * w98 - w92 * w97) - (w59 * w109 + (w110 * w57 * Scalar(0.5) * p.l + w74 * w5 * p.l + w87 + w83 * w15 * p.l + w112 * Scalar(0.5) * p.l * w48) * w113) * p.m - w114 * w15 - w115 * w116);
-    F(1) = w116 * (w118 * w30 - w119 * w29) - w117 * w91 - p.g * p.m * w123 + w52 * w11 - p.g * p.m * w124 + p.m * (w123 * w109 + (w125 + w15 * p.l * w11 - w118 * w5 * p.l - w120 * Scalar(0.5) * p.l * w48 + w57 * Scalar(0.5) * p.l * w121) * w127 + (w120 * w110 * Scalar(0.5) * p.l + w74 * p.l * w11 + w118 * w83 * p.l + w128 + w112 * Scalar(0.5) * p.l * w121) * w113) - w120 * w66 + w118 * w114 - p.g * p.m * w129 + w24 * w20 - w19 * w49 - w121 * w46 + p.m * (w89 * w129 - w86 * (w118 * w83 * Scalar(0.5) * p.l + w74 * Scalar(0.5) * p.l * w11 + w128) + (Scalar(0.5) * w15 * p.l * w11 + w125 - w118 * w5 * Scalar(0.5) * p.l) * w130) - p.m * (w72 * Scalar(0.5) * p.l * w98 + w124 * w97 + w0 * Scalar(0.5) * p.l * (w0 * w19 * w94 - w3 * w95));
-    F(2) = -(p.g * p.m * w131 - (w135 * w109 + w113 * (w6 * w83 * p.l + w112 * Scalar(0.5) * p.l * w134 - w110 * w133 * Scalar(0.5) * p.l) + w127 * (w57 * Scalar(0.5) * p.l * w134 - w6 * w5 * p.l + w133 * Scalar(0.5) * p.l * w48)) * p.m + w46 * w134 - w116 * (w132 * w29 + w6 * w30) + p.g * w135 * p.m - w6 * w114 - w133 * w66 - w9 * w91 + p.m * (w6 * w5 * Scalar(0.5) * p.l * w130 - w89 * w131 + w86 * w6 * w83 * Scalar(0.5) * p.l));
-    F(3) = w52 - w31 * w29 * w116 - w136 * p.g * p.m + p.m * (Scalar(0.5) * w15 * p.l * w130 - w86 * w74 * Scalar(0.5) * p.l + w136 * w89) - w34 * w46 - p.g * p.m * w138 - w66 * w137 + p.m * (w138 * w109 - (Scalar(0.5) * p.l * w48 * w137 - w15 * p.l - w57 * w34 * Scalar(0.5) * p.l) * w127 + (w112 * w34 * Scalar(0.5) * p.l + w74 * p.l + w110 * Scalar(0.5) * p.l * w137) * w113);
-    F(4) = -((Scalar(0.5) * p.l * w48 * w29 * w127 - w113 * w110 * Scalar(0.5) * p.l * w29 - w139 * w109) * p.m + w66 * w29 - w116 * w30 + p.g * p.m * w139);
-    F(5) = -(p.g * p.m * w140 + w46 - (w57 * Scalar(0.5) * p.l * w127 + w112 * Scalar(0.5) * p.l * w113 + w109 * w140) * p.m);
+    const Scalar w17 = w2 + w5 * c.k2 * w13 + c.k2 * w15 * w16;
+    const Scalar w18 = w3 * qd(0);
+    const Scalar w19 = c.k1 * w18;
+    const Scalar w20 = qd(1) * c.k0;
+    const Scalar w21 = qd(1) * w18;
+    const Scalar w22 = w0 * qd(0);
+    const Scalar w23 = w22 + qd(2);
+    const Scalar w24 = qd(1) * w4 - w18 * w11;
+    const Scalar w25 = w6 * w23 + w9 * w24;
+    const Scalar w26 = qd(4) + w25;
+    const Scalar w27 = cos(q(5));
+    const Scalar w28 = sin(q(5));
+    const Scalar w29 = sin(q(4));
+    const Scalar w30 = w18 * w4 + qd(1) * w11;
+    const Scalar w31 = w30 + qd(3);
+    const Scalar w32 = cos(q(4));
+    const Scalar w33 = w6 * w24 - w23 * w9;
+    const Scalar w34 = w29 * w31 + w32 * w33;
+    const Scalar w35 = w26 * w27 + w28 * w34;
+    const Scalar w36 = w35 * c.k0;
+    const Scalar w37 = w27 * w34 - w28 * w26;
+    const Scalar w38 = w37 * c.k1;
+    const Scalar w39 = qd(1) * w22;
+    const Scalar w40 = w30 * qd(2) - w39 * w11;
+    const Scalar w41 = w6 * w40 - qd(3) * w25 + w21 * w9;
+    const Scalar w42 = w24 * qd(2) - w39 * w4;
+    const Scalar w43 = w29 * w41 + w42 * w32 + qd(4) * w34;
+    const Scalar w44 = w35 * w38 - w36 * w37 - w43 * c.k0;
+    const Scalar w45 = w0 * w9 + w14 * w6;
+    const Scalar w46 = w29 * w45 + w5 * w32;
+    const Scalar w47 = w22 * c.k0;
+    const Scalar w48 = c.k1 * w33;
+    const Scalar w49 = c.k0 * w25;
+    const Scalar w50 = w42 * c.k0 - w25 * w48 + w49 * w33;
+    const Scalar w51 = w6 * w12 - w9 * w8;
+    const Scalar w52 = w51 * w32 - w29 * w16;
+    const Scalar w53 = w52 * w28 + w13 * w27;
+    const Scalar w54 = w29 * w5 - w45 * w32;
+    const Scalar w55 = w28 * w54 + w15 * w27;
+    const Scalar w56 = w29 * w51 + w32 * w16;
+    const Scalar w57 = w15 * c.p.l * w16 + w2 + w5 * w13 * c.p.l + c.k2 * w53 * w46 + w55 * c.k2 * w56;
+    const Scalar w58 = w29 * w33 - w32 * w31;
+    const Scalar w59 = w58 * qd(4) - w32 * w41 + w29 * w42;
+    const Scalar w60 = w21 * w6 - qd(3) * w33 - w9 * w40;
+    const Scalar w61 = w28 * w59 - w37 * qd(5) + w60 * w27;
+    const Scalar w62 = qd(5) - w58;
+    const Scalar w63 = c.k0 * w62;
+    const Scalar w64 = w37 * w63 - w61 * c.k0 - w62 * w38;
+    const Scalar w65 = c.k2 * w25;
+    const Scalar w66 = c.k2 * w31;
+    const Scalar w67 = w65 * w25 + w66 * w31;
+    const Scalar w68 = w0 * w1;
+    const Scalar w69 = w4 * w7 + w68 * w11;
+    const Scalar w70 = w3 * w1;
+    const Scalar w71 = w6 * w69 - w70 * w9;
+    const Scalar w72 = w6 * w70 + w69 * w9;
+    const Scalar w73 = w42 * c.p.l;
+    const Scalar w74 = Scalar(2) * w65 * w33 + w73;
+    const Scalar w75 = qd(1) * c.p.l;
+    const Scalar w76 = w21 * c.p.l;
+    const Scalar w77 = w18 * w75 + w76;
+    const Scalar w78 = w22 * c.p.l;
+    const Scalar w79 = qd(1) * w75 + w78 * w22;
+    const Scalar w80 = w77 * w7 + w70 * w78 * w18 + w79 * w68;
+    const Scalar w81 = w68 * w4 - w7 * w11;
+    const Scalar w82 = c.p.l * w60;
+    const Scalar w83 = w82 - Scalar(2) * w66 * w33;
+    const Scalar w84 = w67 * w71 - w72 * Scalar(0.5) * w74 + w80 - w81 * w83 * Scalar(0.5);
+    const Scalar w85 = -(w0 * c.p.l * w7);
+    const Scalar w86 = w77 * w1 - w78 * w18 * w8 - w10 * w79;
+    const Scalar w87 = w83 * Scalar(0.5) * w16 + Scalar(0.5) * w13 * w74 + w86 - w67 * w51;
+    const Scalar w88 = c.k0 * w31;
+    const Scalar w89 = c.k1 * w41 - w88 * w25 + w49 * w31;
+    const Scalar w90 = w0 * c.k2 * w1;
+    const Scalar w91 = qd(1) * c.k2;
+    const Scalar w92 = w22 * c.k2;
+    const Scalar w93 = qd(1) * w91 + w22 * w92;
+    const Scalar w94 = w76 + Scalar(2) * w18 * w91;
+    const Scalar w95 = w10 * w93 - w94 * Scalar(0.5) * w1 + w18 * w92 * w8;
+    const Scalar w96 = w68 * w93 + w70 * w18 * w92 + w94 * Scalar(0.5) * w7;
+    const Scalar w97 = c.p.l * w31;
+    const Scalar w98 = c.p.l * w25;
+    const Scalar w99 = w97 * w31 + w25 * w98;
+    const Scalar w100 = w33 * w98 + w73;
+    const Scalar w101 = w82 - w97 * w33;
+    const Scalar w102 = w35 * c.k2;
+    const Scalar w103 = w102 * w37 * Scalar(2) + w43 * c.p.l;
+    const Scalar w104 = c.k2 * w62;
+    const Scalar w105 = w35 * w102 + w104 * w62;
+    const Scalar w106 = w37 * Scalar(2) * w104 - w61 * c.p.l;
+    const Scalar w107 = w13 * w100 - w51 * w99 + w101 * w16 + w86 + Scalar(0.5) * w53 * w103 - w105 * (w52 * w27 - w28 * w13) - w106 * Scalar(0.5) * w56;
+    const Scalar w108 = w81 * w32 + w29 * w71;
+    const Scalar w109 = w29 * w81 - w71 * w32;
+    const Scalar w110 = w72 * w27 - w28 * w109;
+    const Scalar w111 = (w72 * w28 + w109 * w27) * w105 - w108 * w106 * Scalar(0.5) + w110 * Scalar(0.5) * w103 + w72 * w100 + w81 * w101 - w80 - w71 * w99;
+    const Scalar w112 = c.k0 * w60 - w88 * w33 + w48 * w31;
+    const Scalar w113 = w15 * w28 - w54 * w27;
+    const Scalar w114 = w36 * w62 - w35 * w63 - c.k1 * (w35 * qd(5) - w28 * w60 + w59 * w27);
+    const Scalar w115 = w6 * w4;
+    const Scalar w116 = w4 * w9;
+    const Scalar w117 = w115 * w32 + w29 * w11;
+    const Scalar w118 = w116 * w27 + w117 * w28;
+    const Scalar w119 = w32 * w11 - w29 * w115;
+    const Scalar w120 = c.p.l * w8;
+    const Scalar w121 = w118 * c.k2 * w56 + c.k2 * w53 * w119 + w120 + w13 * c.p.l * w11 + w116 * c.p.l * w16;
+    const Scalar w122 = c.k2 * w8;
+    const Scalar w123 = w0 * c.p.l;
+    const Scalar w124 = w3 * w79 - w78 * w0 * w18;
+    const Scalar w125 = w106 * Scalar(0.5) * w46 + w105 * w113 + w55 * Scalar(0.5) * w103 + w45 * w99 - w5 * w101 + w15 * w100 + w124;
+    const Scalar w126 = w70 * c.p.l;
+    const Scalar w127 = w120 + c.k2 * w13 * w11 + w116 * c.k2 * w16;
+    const Scalar w128 = Scalar(0.5) * w15 * w74 - w5 * w83 * Scalar(0.5) + w67 * w45 + w124;
+    const Scalar w129 = w6 * c.k2 * w16;
+    const Scalar w130 = w32 * w9;
+    const Scalar w131 = w130 * w28 - w6 * w27;
+    const Scalar w132 = w29 * w9;
+    const Scalar w133 = c.k2 * w53 * w132 - w131 * c.k2 * w56 + w6 * c.p.l * w16;
+    const Scalar w134 = c.k2 * w13;
+    const Scalar w135 = w29 * w28;
+    const Scalar w136 = w13 * c.p.l + w32 * c.k2 * w53 + c.k2 * w56 * w135;
+    const Scalar w137 = c.k2 * w56 * w27;
+    const Scalar w138 = c.k2 * w53;
+    F(0) = -(c.k3 * w17 + w0 * (qd(1) * w19 - w20 * w18 - w21 * c.k0) + w44 * w46 - w3 * (qd(1) * w47 - w22 * w20 - w39 * c.k1) - w50 * w5 + c.k3 * w57 + w55 * w64 - c.p.m * (w17 * w87 - w84 * (w81 * c.k2 * w15 + w85 + w72 * w5 * c.k2)) - w45 * w89 + c.k3 * w90 - c.p.m * (w0 * c.k2 * w7 * w96 - w90 * w95) - (w57 * w107 + (w108 * w55 * c.k2 + w72 * w5 * c.p.l + w85 + w81 * w15 * c.p.l + w110 * c.k2 * w46) * w111) * c.p.m - w112 * w15 - w113 * w114);
+    F(1) = w114 * (w116 * w28 - w117 * w27) - w115 * w89 - c.k3 * w121 + w50 * w11 - c.k3 * w122 + c.p.m * (w121 * w107 + (w123 + w15 * c.p.l * w11 - w116 * w5 * c.p.l - w118 * c.k2 * w46 + w55 * c.k2 * w119) * w125 + (w118 * w108 * c.k2 + w72 * c.p.l * w11 + w116 * w81 * c.p.l + w126 + w110 * c.k2 * w119) * w111) - w118 * w64 + w116 * w112 - c.k3 * w127 + w22 * w19 - w18 * w47 - w119 * w44 + c.p.m * (w87 * w127 - w84 * (w116 * w81 * c.k2 + w72 * c.k2 * w11 + w126) + (c.k2 * w15 * w11 + w123 - w116 * w5 * c.k2) * w128) - c.p.m * (w70 * c.k2 * w96 + w122 * w95 + w0 * c.k2 * (w0 * w18 * w92 - w3 * w93));
+    F(2) = -(c.k3 * w129 - (w133 * w107 + w111 * (w6 * w81 * c.p.l + w110 * c.k2 * w132 - w108 * w131 * c.k2) + w125 * (w55 * c.k2 * w132 - w6 * w5 * c.p.l + w131 * c.k2 * w46)) * c.p.m + w44 * w132 - w114 * (w130 * w27 + w6 * w28) + c.k3 * w133 - w6 * w112 - w131 * w64 - w9 * w89 + c.p.m * (w6 * w5 * c.k2 * w128 - w87 * w129 + w84 * w6 * w81 * c.k2));
+    F(3) = w50 - w29 * w27 * w114 - w134 * c.k3 + c.p.m * (c.k2 * w15 * w128 - w84 * w72 * c.k2 + w134 * w87) - w32 * w44 - c.k3 * w136 - w64 * w135 + c.p.m * (w136 * w107 - (c.k2 * w46 * w135 - w15 * c.p.l - w55 * w32 * c.k2) * w125 + (w110 * w32 * c.k2 + w72 * c.p.l + w108 * c.k2 * w135) * w111);
+    F(4) = -((c.k2 * w46 * w27 * w125 - w111 * w108 * c.k2 * w27 - w137 * w107) * c.p.m + w64 * w27 - w114 * w28 + c.k3 * w137);
+    F(5) = -(c.k3 * w138 + w44 - (w55 * c.k2 * w125 + w110 * c.k2 * w111 + w107 * w138) * c.p.m);
+  }
+
+  /// F(q, qd, t, u): everything of Lagrange's equations except M qdd
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static void forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] Vector<Scalar>& F) noexcept {
+    forcing(t, q, qd, u, Constants<Scalar>(p), F);
   }
 
   /// M and F together, sharing their common subexpressions
   template <class Scalar>
-  static void mass_matrix_and_forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] MassMatrix<Scalar>& M, [[maybe_unused]] Vector<Scalar>& F) noexcept {
+  static void mass_matrix_and_forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] MassMatrix<Scalar>& M, [[maybe_unused]] Vector<Scalar>& F) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
@@ -368,208 +405,205 @@ struct Model {
     const Scalar w4 = w2 * w3;
     const Scalar w5 = sin(q(3));
     const Scalar w6 = w0 * w1 - w4 * w5;
-    const Scalar w7 = p.rd * p.rd;
-    const Scalar w8 = p.l * p.l + w7 * Scalar(3);
-    const Scalar w9 = cos(q(0));
-    const Scalar w10 = sin(q(0));
-    const Scalar w11 = w1 * w10;
-    const Scalar w12 = sin(q(2));
-    const Scalar w13 = w11 * w12 - w9 * w3;
-    const Scalar w14 = -(w1 * p.l * w9);
-    const Scalar w15 = w2 * w10;
-    const Scalar w16 = w12 * w9 + w11 * w3;
-    const Scalar w17 = w0 * w15 + w16 * w5;
-    const Scalar w18 = w2 * w12;
-    const Scalar w19 = w13 * Scalar(0.5) * w6 * p.l + w14 + w17 * w18 * Scalar(0.5) * p.l;
-    const Scalar w20 = w1 * p.l * w10;
-    const Scalar w21 = w2 * w9;
-    const Scalar w22 = w1 * w9;
-    const Scalar w23 = w22 * w3 - w12 * w10;
-    const Scalar w24 = w0 * w21 + w5 * w23;
-    const Scalar w25 = w22 * w12 + w10 * w3;
-    const Scalar w26 = w20 + w18 * Scalar(0.5) * w24 * p.l + Scalar(0.5) * w6 * p.l * w25;
-    const Scalar w27 = w0 * w23 - w5 * w21;
-    const Scalar w28 = cos(q(4));
-    const Scalar w29 = sin(q(4));
-    const Scalar w30 = w27 * w28 - w29 * w25;
-    const Scalar w31 = sin(q(5));
-    const Scalar w32 = cos(q(5));
-    const Scalar w33 = w30 * w31 + w24 * w32;
-    const Scalar w34 = w1 * w5 + w4 * w0;
-    const Scalar w35 = w29 * w34 + w18 * w28;
-    const Scalar w36 = w29 * w18 - w34 * w28;
-    const Scalar w37 = w31 * w36 + w6 * w32;
-    const Scalar w38 = w29 * w27 + w28 * w25;
-    const Scalar w39 = w6 * p.l * w25 + w20 + w18 * w24 * p.l + Scalar(0.5) * w33 * p.l * w35 + w37 * Scalar(0.5) * p.l * w38;
-    const Scalar w40 = w0 * w16 - w15 * w5;
-    const Scalar w41 = w13 * w28 + w29 * w40;
-    const Scalar w42 = w29 * w13 - w40 * w28;
-    const Scalar w43 = w17 * w32 - w31 * w42;
-    const Scalar w44 = w41 * w37 * Scalar(0.5) * p.l + w17 * w18 * p.l + w14 + w13 * w6 * p.l + w43 * Scalar(0.5) * p.l * w35;
-    const Scalar w45 = w1 * Scalar(0.5) * p.l * w9;
-    const Scalar w46 = w1 * Scalar(0.5) * p.l * w10;
-    const Scalar w47 = w6 * w31 - w36 * w32;
-    const Scalar w48 = w12 * w5;
-    const Scalar w49 = w0 * w12;
-    const Scalar w50 = w49 * w28 + w29 * w3;
-    const Scalar w51 = w48 * w31 - w50 * w32;
-    const Scalar w52 = w7 * p.m * w51 * Scalar(0.5);
-    const Scalar w53 = w48 * w32 + w50 * w31;
-    const Scalar w54 = w28 * w3 - w29 * w49;
-    const Scalar w55 = p.l * w21;
-    const Scalar w56 = w53 * Scalar(0.5) * p.l * w38 + Scalar(0.5) * w33 * p.l * w54 + w55 + w24 * p.l * w3 + w48 * p.l * w25;
-    const Scalar w57 = w15 * p.l;
-    const Scalar w58 = w53 * w41 * Scalar(0.5) * p.l + w17 * p.l * w3 + w48 * w13 * p.l + w57 + w43 * Scalar(0.5) * p.l * w54;
-    const Scalar w59 = w53 * Scalar(0.08333333333333333) * p.m * w8;
-    const Scalar w60 = Scalar(0.5) * p.l * w21;
-    const Scalar w61 = w15 * Scalar(0.5) * p.l;
-    const Scalar w62 = Scalar(0.08333333333333333) * p.m * w54 * w8;
-    const Scalar w63 = w55 + Scalar(0.5) * w24 * p.l * w3 + w48 * Scalar(0.5) * p.l * w25;
-    const Scalar w64 = w48 * w13 * Scalar(0.5) * p.l + w17 * Scalar(0.5) * p.l * w3 + w57;
-    const Scalar w65 = Scalar(0.08333333333333333) * p.m * w8 * w3;
-    const Scalar w66 = w48 * Scalar(0.08333333333333333) * p.m * w8;
-    const Scalar w67 = w49 * w7 * p.m * Scalar(0.5);
-    const Scalar w68 = w28 * w5;
-    const Scalar w69 = w68 * w32 + w0 * w31;
-    const Scalar w70 = w7 * p.m * Scalar(0.5) * w69;
-    const Scalar w71 = w68 * w31 - w0 * w32;
-    const Scalar w72 = Scalar(0.08333333333333333) * p.m * w71 * w8;
-    const Scalar w73 = w0 * w13 * Scalar(0.5) * p.l;
-    const Scalar w74 = w0 * Scalar(0.5) * p.l * w25;
-    const Scalar w75 = w29 * w5;
-    const Scalar w76 = Scalar(0.08333333333333333) * p.m * w8 * w75;
-    const Scalar w77 = Scalar(0.5) * w33 * p.l * w75 - w71 * Scalar(0.5) * p.l * w38 + w0 * p.l * w25;
-    const Scalar w78 = w0 * w13 * p.l + w43 * Scalar(0.5) * p.l * w75 - w41 * w71 * Scalar(0.5) * p.l;
-    const Scalar w79 = w7 * p.m * Scalar(0.5) * w5;
-    const Scalar w80 = w0 * Scalar(0.08333333333333333) * p.m * w8;
-    const Scalar w81 = w29 * w31;
-    const Scalar w82 = w24 * p.l + w28 * Scalar(0.5) * w33 * p.l + Scalar(0.5) * p.l * w38 * w81;
-    const Scalar w83 = w43 * w28 * Scalar(0.5) * p.l + w17 * p.l + w41 * Scalar(0.5) * p.l * w81;
-    const Scalar w84 = Scalar(0.08333333333333333) * p.m * w28 * w8;
-    const Scalar w85 = w29 * w32;
-    const Scalar w86 = w85 * w7 * p.m * Scalar(0.5);
-    const Scalar w87 = Scalar(0.08333333333333333) * p.m * w8 * w81;
-    const Scalar w88 = Scalar(0.5) * w24 * p.l;
-    const Scalar w89 = w17 * Scalar(0.5) * p.l;
-    const Scalar w90 = Scalar(0.08333333333333333) * p.m * w8;
-    const Scalar w91 = w41 * Scalar(0.5) * p.l * w32;
-    const Scalar w92 = Scalar(0.5) * p.l * w38 * w32;
-    const Scalar w93 = Scalar(0.08333333333333333) * p.m * w8 * w32;
-    const Scalar w94 = w7 * p.m * Scalar(0.5) * w31;
-    const Scalar w95 = Scalar(0.5) * w33 * p.l;
-    const Scalar w96 = w43 * Scalar(0.5) * p.l;
-    const Scalar w97 = w1 * p.l;
-    const Scalar w98 = Scalar(0.5) * w6 * p.l * w3 + w97 - w48 * w18 * Scalar(0.5) * p.l;
-    const Scalar w99 = w1 * Scalar(0.5) * p.l;
-    const Scalar w100 = w97 + w6 * p.l * w3 - w48 * w18 * p.l - w53 * Scalar(0.5) * p.l * w35 + w37 * Scalar(0.5) * p.l * w54;
-    const Scalar w101 = w37 * Scalar(0.5) * p.l * w75 - w0 * w18 * p.l + w71 * Scalar(0.5) * p.l * w35;
-    const Scalar w102 = w0 * w18 * Scalar(0.5) * p.l;
-    const Scalar w103 = Scalar(0.5) * p.l * w35 * w81 - w6 * p.l - w37 * w28 * Scalar(0.5) * p.l;
-    const Scalar w104 = Scalar(0.5) * w6 * p.l;
-    const Scalar w105 = Scalar(0.5) * p.l * w35 * w32;
-    const Scalar w106 = w37 * Scalar(0.5) * p.l;
-    const Scalar w107 = w2 * qd(0);
-    const Scalar w108 = w7 * p.m * w107 * Scalar(0.5);
-    const Scalar w109 = qd(1) * Scalar(0.08333333333333333) * p.m * w8;
-    const Scalar w110 = qd(1) * w107;
-    const Scalar w111 = w1 * qd(0);
-    const Scalar w112 = w111 + qd(2);
-    const Scalar w113 = qd(1) * w12 - w107 * w3;
-    const Scalar w114 = w0 * w112 + w5 * w113;
-    const Scalar w115 = qd(4) + w114;
-    const Scalar w116 = w107 * w12 + qd(1) * w3;
-    const Scalar w117 = w116 + qd(3);
-    const Scalar w118 = w0 * w113 - w112 * w5;
-    const Scalar w119 = w29 * w117 + w28 * w118;
-    const Scalar w120 = w115 * w32 + w31 * w119;
-    const Scalar w121 = w120 * Scalar(0.08333333333333333) * p.m * w8;
-    const Scalar w122 = w32 * w119 - w31 * w115;
-    const Scalar w123 = w122 * w7 * p.m * Scalar(0.5);
-    const Scalar w124 = qd(1) * w111;
-    const Scalar w125 = w116 * qd(2) - w124 * w3;
-    const Scalar w126 = w0 * w125 - qd(3) * w114 + w110 * w5;
-    const Scalar w127 = w113 * qd(2) - w124 * w12;
-    const Scalar w128 = w29 * w126 + w127 * w28 + qd(4) * w119;
-    const Scalar w129 = w120 * w123 - w121 * w122 - w128 * Scalar(0.08333333333333333) * p.m * w8;
-    const Scalar w130 = w111 * Scalar(0.08333333333333333) * p.m * w8;
-    const Scalar w131 = w7 * p.m * Scalar(0.5) * w118;
-    const Scalar w132 = Scalar(0.08333333333333333) * p.m * w8 * w114;
-    const Scalar w133 = w127 * Scalar(0.08333333333333333) * p.m * w8 - w114 * w131 + w132 * w118;
-    const Scalar w134 = w29 * w118 - w28 * w117;
-    const Scalar w135 = w134 * qd(4) - w28 * w126 + w29 * w127;
-    const Scalar w136 = w110 * w0 - qd(3) * w118 - w5 * w125;
-    const Scalar w137 = w31 * w135 - w122 * qd(5) + w136 * w32;
-    const Scalar w138 = qd(5) - w134;
-    const Scalar w139 = Scalar(0.08333333333333333) * p.m * w8 * w138;
-    const Scalar w140 = w122 * w139 - w137 * Scalar(0.08333333333333333) * p.m * w8 - w138 * w123;
-    const Scalar w141 = Scalar(0.5) * p.l * w114;
-    const Scalar w142 = Scalar(0.5) * p.l * w117;
-    const Scalar w143 = w141 * w114 + w142 * w117;
-    const Scalar w144 = w127 * p.l;
-    const Scalar w145 = Scalar(2) * w141 * w118 + w144;
-    const Scalar w146 = qd(1) * p.l;
-    const Scalar w147 = w110 * p.l;
-    const Scalar w148 = w107 * w146 + w147;
-    const Scalar w149 = w111 * p.l;
-    const Scalar w150 = qd(1) * w146 + w149 * w111;
-    const Scalar w151 = w148 * w9 + w15 * w149 * w107 + w150 * w11;
-    const Scalar w152 = p.l * w136;
-    const Scalar w153 = w152 - Scalar(2) * w142 * w118;
-    const Scalar w154 = w143 * w40 - w17 * Scalar(0.5) * w145 + w151 - w13 * w153 * Scalar(0.5);
-    const Scalar w155 = w148 * w10 - w149 * w107 * w21 - w22 * w150;
-    const Scalar w156 = w153 * Scalar(0.5) * w25 + Scalar(0.5) * w24 * w145 + w155 - w143 * w27;
-    const Scalar w157 = Scalar(0.08333333333333333) * p.m * w8 * w117;
-    const Scalar w158 = w7 * p.m * Scalar(0.5) * w126 - w157 * w114 + w132 * w117;
-    const Scalar w159 = qd(1) * Scalar(0.5) * p.l;
-    const Scalar w160 = w111 * Scalar(0.5) * p.l;
-    const Scalar w161 = qd(1) * w159 + w111 * w160;
-    const Scalar w162 = w147 + Scalar(2) * w107 * w159;
-    const Scalar w163 = w22 * w161 - w162 * Scalar(0.5) * w10 + w107 * w160 * w21;
-    const Scalar w164 = w11 * w161 + w15 * w107 * w160 + w162 * Scalar(0.5) * w9;
-    const Scalar w165 = p.l * w117;
-    const Scalar w166 = p.l * w114;
-    const Scalar w167 = w165 * w117 + w114 * w166;
-    const Scalar w168 = w118 * w166 + w144;
-    const Scalar w169 = w152 - w165 * w118;
-    const Scalar w170 = w120 * Scalar(0.5) * p.l;
-    const Scalar w171 = w170 * w122 * Scalar(2) + w128 * p.l;
-    const Scalar w172 = Scalar(0.5) * p.l * w138;
-    const Scalar w173 = w120 * w170 + w172 * w138;
-    const Scalar w174 = w122 * Scalar(2) * w172 - w137 * p.l;
-    const Scalar w175 = w24 * w168 - w27 * w167 + w169 * w25 + w155 + Scalar(0.5) * w33 * w171 - w173 * (w30 * w32 - w31 * w24) - w174 * Scalar(0.5) * w38;
-    const Scalar w176 = (w17 * w31 + w42 * w32) * w173 - w41 * w174 * Scalar(0.5) + w43 * Scalar(0.5) * w171 + w17 * w168 + w13 * w169 - w151 - w40 * w167;
-    const Scalar w177 = Scalar(0.08333333333333333) * p.m * w136 * w8 - w157 * w118 + w131 * w117;
-    const Scalar w178 = w121 * w138 - w120 * w139 - w7 * p.m * Scalar(0.5) * (w120 * qd(5) - w31 * w136 + w135 * w32);
-    const Scalar w179 = w2 * w150 - w149 * w1 * w107;
-    const Scalar w180 = w174 * Scalar(0.5) * w35 + w173 * w47 + w37 * Scalar(0.5) * w171 + w34 * w167 - w18 * w169 + w6 * w168 + w179;
-    const Scalar w181 = Scalar(0.5) * w6 * w145 - w18 * w153 * Scalar(0.5) + w143 * w34 + w179;
-    M(0, 0) = w6 * Scalar(0.08333333333333333) * p.m * w6 * w8 + w2 * w2 * w7 * p.m * Scalar(0.5) + p.m * (w19 * w19 + w26 * w26) + p.m * (w39 * w39 + w44 * w44) + w1 * w1 * Scalar(0.08333333333333333) * p.m * w8 + p.m * (w45 * w45 + w46 * w46) + Scalar(0.08333333333333333) * p.m * w8 * w35 * w35 + w18 * Scalar(0.08333333333333333) * w18 * p.m * w8 + w47 * w47 * w7 * p.m * Scalar(0.5) + Scalar(0.08333333333333333) * p.m * w37 * w8 * w37 + w7 * w34 * p.m * Scalar(0.5) * w34;
-    M(0, 1) = w52 * w47 + p.m * (w39 * w56 + w44 * w58) + w59 * w37 - p.m * (w61 * w45 - w60 * w46) + w62 * w35 + (w26 * w63 + w64 * w19) * p.m + w18 * w65 + w6 * w66 - w34 * w67;
-    M(0, 2) = w70 * w47 - w37 * w72 + p.m * (w73 * w19 + w26 * w74) + w76 * w35 + p.m * (w77 * w39 + w44 * w78) + w34 * w79 + w80 * w6;
-    M(0, 3) = (w39 * w82 + w44 * w83) * p.m + w84 * w35 - w47 * w86 + w87 * w37 + (w88 * w26 + w89 * w19) * p.m + w18 * w90;
-    M(0, 4) = p.m * (w44 * w91 + w39 * w92) + w37 * w93 + w47 * w94;
-    M(0, 5) = w35 * w90 + p.m * (w39 * w95 + w44 * w96);
-    M(1, 1) = w52 * w51 + w65 * w3 + (w64 * w64 + w63 * w63 + w98 * w98) * p.m + w62 * w54 + p.m * (w61 * w61 + w99 * w99 + w60 * w60) + w49 * w67 + w59 * w53 + p.m * (w100 * w100 + w58 * w58 + w56 * w56) + w48 * w66 + w90;
-    M(1, 2) = -(w53 * w72 - w48 * w80 + w49 * w79 - w70 * w51 - p.m * (w100 * w101 + w77 * w56 + w58 * w78) - w76 * w54 - (w74 * w63 + w73 * w64 - w98 * w102) * p.m);
-    M(1, 3) = w53 * w87 - (w100 * w103 - w56 * w82 - w83 * w58) * p.m - w51 * w86 + w90 * w3 + p.m * (w104 * w98 + w64 * w89 + w88 * w63) + w84 * w54;
-    M(1, 4) = w94 * w51 - (w105 * w100 - w58 * w91 - w56 * w92) * p.m + w53 * w93;
-    M(1, 5) = (w56 * w95 + w96 * w58 + w106 * w100) * p.m + w54 * w90;
-    M(2, 2) = w71 * w72 + w70 * w69 + p.m * (w102 * w102 + w74 * w74 + w73 * w73) + w80 * w0 + w76 * w75 + p.m * (w78 * w78 + w77 * w77 + w101 * w101) + w5 * w79;
-    M(2, 3) = -(w69 * w86 + p.m * (w104 * w102 - w73 * w89 - w88 * w74) - w84 * w75 - (w77 * w82 - w103 * w101 + w83 * w78) * p.m + w87 * w71);
-    M(2, 4) = w94 * w69 - w71 * w93 - p.m * (w105 * w101 - w77 * w92 - w78 * w91);
-    M(2, 5) = w90 * w75 + p.m * (w77 * w95 + w96 * w78 + w106 * w101);
-    M(3, 3) = w85 * w86 + w28 * w84 + p.m * (w89 * w89 + w88 * w88 + w104 * w104) + (w82 * w82 + w103 * w103 + w83 * w83) * p.m + w87 * w81 + w90;
-    M(3, 4) = w93 * w81 + p.m * (w83 * w91 + w82 * w92 + w105 * w103) - w85 * w94;
-    M(3, 5) = p.m * (w82 * w95 - w106 * w103 + w96 * w83) + w28 * w90;
-    M(4, 4) = w32 * w93 + (w91 * w91 + w92 * w92 + w105 * w105) * p.m + w94 * w31;
-    M(4, 5) = p.m * (w92 * w95 + w96 * w91 - w106 * w105);
-    M(5, 5) = (w96 * w96 + w95 * w95 + w106 * w106) * p.m + w90;
-    F(0) = -(p.g * p.m * w26 + w1 * (qd(1) * w108 - w109 * w107 - w110 * Scalar(0.08333333333333333) * p.m * w8) + w129 * w35 - w2 * (qd(1) * w130 - w111 * w109 - w124 * w7 * p.m * Scalar(0.5)) - w133 * w18 + p.g * w39 * p.m + w37 * w140 - p.m * (w26 * w156 - w154 * w19) - w34 * w158 + p.g * p.m * w46 - p.m * (w45 * w164 - w46 * w163) - (w39 * w175 + w44 * w176) * p.m - w177 * w6 - w47 * w178);
-    F(1) = w178 * w51 - w49 * w158 - p.g * p.m * w56 + w133 * w3 - p.g * p.m * w60 + p.m * (w56 * w175 + w100 * w180 + w58 * w176) - w53 * w140 + w48 * w177 - p.g * p.m * w63 + w111 * w108 - w107 * w130 - w54 * w129 + p.m * (w156 * w63 - w154 * w64 + w98 * w181) - p.m * (w61 * w164 + w60 * w163 + w99 * (w1 * w107 * w160 - w2 * w161));
-    F(2) = -(p.g * p.m * w74 - (w77 * w175 + w176 * w78 + w180 * w101) * p.m + w129 * w75 - w178 * w69 + p.g * w77 * p.m - w0 * w177 - w71 * w140 - w5 * w158 + p.m * (w102 * w181 - w156 * w74 + w154 * w73));
-    F(3) = w133 - w85 * w178 - w88 * p.g * p.m + p.m * (w104 * w181 - w154 * w89 + w88 * w156) - w28 * w129 - p.g * p.m * w82 - w140 * w81 + p.m * (w82 * w175 - w103 * w180 + w83 * w176);
-    F(4) = -((w105 * w180 - w176 * w91 - w92 * w175) * p.m + w140 * w32 - w178 * w31 + p.g * p.m * w92);
-    F(5) = -(p.g * p.m * w95 + w129 - (w106 * w180 + w96 * w176 + w175 * w95) * p.m);
+    const Scalar w7 = cos(q(0));
+    const Scalar w8 = sin(q(0));
+    const Scalar w9 = w1 * w8;
+    const Scalar w10 = sin(q(2));
+    const Scalar w11 = w9 * w10 - w7 * w3;
+    const Scalar w12 = -(w1 * c.p.l * w7);
+    const Scalar w13 = w2 * w8;
+    const Scalar w14 = w10 * w7 + w9 * w3;
+    const Scalar w15 = w0 * w13 + w14 * w5;
+    const Scalar w16 = w2 * w10;
+    const Scalar w17 = w11 * c.k2 * w6 + w12 + w15 * w16 * c.k2;
+    const Scalar w18 = w1 * c.p.l * w8;
+    const Scalar w19 = w2 * w7;
+    const Scalar w20 = w1 * w7;
+    const Scalar w21 = w20 * w3 - w10 * w8;
+    const Scalar w22 = w0 * w19 + w5 * w21;
+    const Scalar w23 = w20 * w10 + w8 * w3;
+    const Scalar w24 = w18 + w16 * c.k2 * w22 + c.k2 * w6 * w23;
+    const Scalar w25 = w0 * w21 - w5 * w19;
+    const Scalar w26 = cos(q(4));
+    const Scalar w27 = sin(q(4));
+    const Scalar w28 = w25 * w26 - w27 * w23;
+    const Scalar w29 = sin(q(5));
+    const Scalar w30 = cos(q(5));
+    const Scalar w31 = w28 * w29 + w22 * w30;
+    const Scalar w32 = w1 * w5 + w4 * w0;
+    const Scalar w33 = w27 * w32 + w16 * w26;
+    const Scalar w34 = w27 * w16 - w32 * w26;
+    const Scalar w35 = w29 * w34 + w6 * w30;
+    const Scalar w36 = w27 * w25 + w26 * w23;
+    const Scalar w37 = w6 * c.p.l * w23 + w18 + w16 * w22 * c.p.l + c.k2 * w31 * w33 + w35 * c.k2 * w36;
+    const Scalar w38 = w0 * w14 - w13 * w5;
+    const Scalar w39 = w11 * w26 + w27 * w38;
+    const Scalar w40 = w27 * w11 - w38 * w26;
+    const Scalar w41 = w15 * w30 - w29 * w40;
+    const Scalar w42 = w39 * w35 * c.k2 + w15 * w16 * c.p.l + w12 + w11 * w6 * c.p.l + w41 * c.k2 * w33;
+    const Scalar w43 = w1 * c.k2 * w7;
+    const Scalar w44 = w1 * c.k2 * w8;
+    const Scalar w45 = w6 * w29 - w34 * w30;
+    const Scalar w46 = w10 * w5;
+    const Scalar w47 = w0 * w10;
+    const Scalar w48 = w47 * w26 + w27 * w3;
+    const Scalar w49 = w46 * w29 - w48 * w30;
+    const Scalar w50 = c.k1 * w49;
+    const Scalar w51 = w46 * w30 + w48 * w29;
+    const Scalar w52 = w26 * w3 - w27 * w47;
+    const Scalar w53 = c.p.l * w19;
+    const Scalar w54 = w51 * c.k2 * w36 + c.k2 * w31 * w52 + w53 + w22 * c.p.l * w3 + w46 * c.p.l * w23;
+    const Scalar w55 = w13 * c.p.l;
+    const Scalar w56 = w51 * w39 * c.k2 + w15 * c.p.l * w3 + w46 * w11 * c.p.l + w55 + w41 * c.k2 * w52;
+    const Scalar w57 = w51 * c.k0;
+    const Scalar w58 = c.k2 * w19;
+    const Scalar w59 = w13 * c.k2;
+    const Scalar w60 = c.k0 * w52;
+    const Scalar w61 = w53 + c.k2 * w22 * w3 + w46 * c.k2 * w23;
+    const Scalar w62 = w46 * w11 * c.k2 + w15 * c.k2 * w3 + w55;
+    const Scalar w63 = c.k0 * w3;
+    const Scalar w64 = w46 * c.k0;
+    const Scalar w65 = w47 * c.k1;
+    const Scalar w66 = w26 * w5;
+    const Scalar w67 = w66 * w30 + w0 * w29;
+    const Scalar w68 = c.k1 * w67;
+    const Scalar w69 = w66 * w29 - w0 * w30;
+    const Scalar w70 = c.k0 * w69;
+    const Scalar w71 = w0 * w11 * c.k2;
+    const Scalar w72 = w0 * c.k2 * w23;
+    const Scalar w73 = w27 * w5;
+    const Scalar w74 = c.k0 * w73;
+    const Scalar w75 = c.k2 * w31 * w73 - w69 * c.k2 * w36 + w0 * c.p.l * w23;
+    const Scalar w76 = w0 * w11 * c.p.l + w41 * c.k2 * w73 - w39 * w69 * c.k2;
+    const Scalar w77 = c.k1 * w5;
+    const Scalar w78 = w0 * c.k0;
+    const Scalar w79 = w27 * w29;
+    const Scalar w80 = w22 * c.p.l + w26 * c.k2 * w31 + c.k2 * w36 * w79;
+    const Scalar w81 = w41 * w26 * c.k2 + w15 * c.p.l + w39 * c.k2 * w79;
+    const Scalar w82 = c.k0 * w26;
+    const Scalar w83 = w27 * w30;
+    const Scalar w84 = w83 * c.k1;
+    const Scalar w85 = c.k0 * w79;
+    const Scalar w86 = c.k2 * w22;
+    const Scalar w87 = w15 * c.k2;
+    const Scalar w88 = w39 * c.k2 * w30;
+    const Scalar w89 = c.k2 * w36 * w30;
+    const Scalar w90 = c.k0 * w30;
+    const Scalar w91 = c.k1 * w29;
+    const Scalar w92 = c.k2 * w31;
+    const Scalar w93 = w41 * c.k2;
+    const Scalar w94 = w1 * c.p.l;
+    const Scalar w95 = c.k2 * w6 * w3 + w94 - w46 * w16 * c.k2;
+    const Scalar w96 = w1 * c.k2;
+    const Scalar w97 = w94 + w6 * c.p.l * w3 - w46 * w16 * c.p.l - w51 * c.k2 * w33 + w35 * c.k2 * w52;
+    const Scalar w98 = w35 * c.k2 * w73 - w0 * w16 * c.p.l + w69 * c.k2 * w33;
+    const Scalar w99 = w0 * w16 * c.k2;
+    const Scalar w100 = c.k2 * w33 * w79 - w6 * c.p.l - w35 * w26 * c.k2;
+    const Scalar w101 = c.k2 * w6;
+    const Scalar w102 = c.k2 * w33 * w30;
+    const Scalar w103 = w35 * c.k2;
+    const Scalar w104 = w2 * qd(0);
+    const Scalar w105 = c.k1 * w104;
+    const Scalar w106 = qd(1) * c.k0;
+    const Scalar w107 = qd(1) * w104;
+    const Scalar w108 = w1 * qd(0);
+    const Scalar w109 = w108 + qd(2);
+    const Scalar w110 = qd(1) * w10 - w104 * w3;
+    const Scalar w111 = w0 * w109 + w5 * w110;
+    const Scalar w112 = qd(4) + w111;
+    const Scalar w113 = w104 * w10 + qd(1) * w3;
+    const Scalar w114 = w113 + qd(3);
+    const Scalar w115 = w0 * w110 - w109 * w5;
+    const Scalar w116 = w27 * w114 + w26 * w115;
+    const Scalar w117 = w112 * w30 + w29 * w116;
+    const Scalar w118 = w117 * c.k0;
+    const Scalar w119 = w30 * w116 - w29 * w112;
+    const Scalar w120 = w119 * c.k1;
+    const Scalar w121 = qd(1) * w108;
+    const Scalar w122 = w113 * qd(2) - w121 * w3;
+    const Scalar w123 = w0 * w122 - qd(3) * w111 + w107 * w5;
+    const Scalar w124 = w110 * qd(2) - w121 * w10;
+    const Scalar w125 = w27 * w123 + w124 * w26 + qd(4) * w116;
+    const Scalar w126 = w117 * w120 - w118 * w119 - w125 * c.k0;
+    const Scalar w127 = w108 * c.k0;
+    const Scalar w128 = c.k1 * w115;
+    const Scalar w129 = c.k0 * w111;
+    const Scalar w130 = w124 * c.k0 - w111 * w128 + w129 * w115;
+    const Scalar w131 = w27 * w115 - w26 * w114;
+    const Scalar w132 = w131 * qd(4) - w26 * w123 + w27 * w124;
+    const Scalar w133 = w107 * w0 - qd(3) * w115 - w5 * w122;
+    const Scalar w134 = w29 * w132 - w119 * qd(5) + w133 * w30;
+    const Scalar w135 = qd(5) - w131;
+    const Scalar w136 = c.k0 * w135;
+    const Scalar w137 = w119 * w136 - w134 * c.k0 - w135 * w120;
+    const Scalar w138 = c.k2 * w111;
+    const Scalar w139 = c.k2 * w114;
+    const Scalar w140 = w138 * w111 + w139 * w114;
+    const Scalar w141 = w124 * c.p.l;
+    const Scalar w142 = Scalar(2) * w138 * w115 + w141;
+    const Scalar w143 = qd(1) * c.p.l;
+    const Scalar w144 = w107 * c.p.l;
+    const Scalar w145 = w104 * w143 + w144;
+    const Scalar w146 = w108 * c.p.l;
+    const Scalar w147 = qd(1) * w143 + w146 * w108;
+    const Scalar w148 = w145 * w7 + w13 * w146 * w104 + w147 * w9;
+    const Scalar w149 = c.p.l * w133;
+    const Scalar w150 = w149 - Scalar(2) * w139 * w115;
+    const Scalar w151 = w140 * w38 - w15 * Scalar(0.5) * w142 + w148 - w11 * w150 * Scalar(0.5);
+    const Scalar w152 = w145 * w8 - w146 * w104 * w19 - w20 * w147;
+    const Scalar w153 = w150 * Scalar(0.5) * w23 + Scalar(0.5) * w22 * w142 + w152 - w140 * w25;
+    const Scalar w154 = c.k0 * w114;
+    const Scalar w155 = c.k1 * w123 - w154 * w111 + w129 * w114;
+    const Scalar w156 = qd(1) * c.k2;
+    const Scalar w157 = w108 * c.k2;
+    const Scalar w158 = qd(1) * w156 + w108 * w157;
+    const Scalar w159 = w144 + Scalar(2) * w104 * w156;
+    const Scalar w160 = w20 * w158 - w159 * Scalar(0.5) * w8 + w104 * w157 * w19;
+    const Scalar w161 = w9 * w158 + w13 * w104 * w157 + w159 * Scalar(0.5) * w7;
+    const Scalar w162 = c.p.l * w114;
+    const Scalar w163 = c.p.l * w111;
+    const Scalar w164 = w162 * w114 + w111 * w163;
+    const Scalar w165 = w115 * w163 + w141;
+    const Scalar w166 = w149 - w162 * w115;
+    const Scalar w167 = w117 * c.k2;
+    const Scalar w168 = w167 * w119 * Scalar(2) + w125 * c.p.l;
+    const Scalar w169 = c.k2 * w135;
+    const Scalar w170 = w117 * w167 + w169 * w135;
+    const Scalar w171 = w119 * Scalar(2) * w169 - w134 * c.p.l;
+    const Scalar w172 = w22 * w165 - w25 * w164 + w166 * w23 + w152 + Scalar(0.5) * w31 * w168 - w170 * (w28 * w30 - w29 * w22) - w171 * Scalar(0.5) * w36;
+    const Scalar w173 = (w15 * w29 + w40 * w30) * w170 - w39 * w171 * Scalar(0.5) + w41 * Scalar(0.5) * w168 + w15 * w165 + w11 * w166 - w148 - w38 * w164;
+    const Scalar w174 = c.k0 * w133 - w154 * w115 + w128 * w114;
+    const Scalar w175 = w118 * w135 - w117 * w136 - c.k1 * (w117 * qd(5) - w29 * w133 + w132 * w30);
+    const Scalar w176 = w2 * w147 - w146 * w1 * w104;
+    const Scalar w177 = w171 * Scalar(0.5) * w33 + w170 * w45 + w35 * Scalar(0.5) * w168 + w32 * w164 - w16 * w166 + w6 * w165 + w176;
+    const Scalar w178 = Scalar(0.5) * w6 * w142 - w16 * w150 * Scalar(0.5) + w140 * w32 + w176;
+    M(0, 0) = w6 * c.k0 * w6 + w2 * w2 * c.k1 + c.p.m * (w17 * w17 + w24 * w24) + c.p.m * (w37 * w37 + w42 * w42) + w1 * w1 * c.k0 + c.p.m * (w43 * w43 + w44 * w44) + c.k0 * w33 * w33 + w16 * c.k0 * w16 + w45 * w45 * c.k1 + c.k0 * w35 * w35 + c.k1 * w32 * w32;
+    M(0, 1) = w50 * w45 + c.p.m * (w37 * w54 + w42 * w56) + w57 * w35 - c.p.m * (w59 * w43 - w58 * w44) + w60 * w33 + (w24 * w61 + w62 * w17) * c.p.m + w16 * w63 + w6 * w64 - w32 * w65;
+    M(0, 2) = w68 * w45 - w35 * w70 + c.p.m * (w71 * w17 + w24 * w72) + w74 * w33 + c.p.m * (w75 * w37 + w42 * w76) + w32 * w77 + w78 * w6;
+    M(0, 3) = (w37 * w80 + w42 * w81) * c.p.m + w82 * w33 - w45 * w84 + w85 * w35 + (w86 * w24 + w87 * w17) * c.p.m + w16 * c.k0;
+    M(0, 4) = c.p.m * (w42 * w88 + w37 * w89) + w35 * w90 + w45 * w91;
+    M(0, 5) = w33 * c.k0 + c.p.m * (w37 * w92 + w42 * w93);
+    M(1, 1) = w50 * w49 + w63 * w3 + (w62 * w62 + w61 * w61 + w95 * w95) * c.p.m + w60 * w52 + c.p.m * (w59 * w59 + w96 * w96 + w58 * w58) + w47 * w65 + w57 * w51 + c.p.m * (w97 * w97 + w56 * w56 + w54 * w54) + w46 * w64 + c.k0;
+    M(1, 2) = -(w51 * w70 - w46 * w78 + w47 * w77 - w68 * w49 - c.p.m * (w97 * w98 + w75 * w54 + w56 * w76) - w74 * w52 - (w72 * w61 + w71 * w62 - w95 * w99) * c.p.m);
+    M(1, 3) = w51 * w85 - (w97 * w100 - w54 * w80 - w81 * w56) * c.p.m - w49 * w84 + w63 + c.p.m * (w101 * w95 + w62 * w87 + w86 * w61) + w82 * w52;
+    M(1, 4) = w91 * w49 - (w102 * w97 - w56 * w88 - w54 * w89) * c.p.m + w51 * w90;
+    M(1, 5) = (w54 * w92 + w93 * w56 + w103 * w97) * c.p.m + w52 * c.k0;
+    M(2, 2) = w69 * w70 + w68 * w67 + c.p.m * (w99 * w99 + w72 * w72 + w71 * w71) + w78 * w0 + w74 * w73 + c.p.m * (w76 * w76 + w75 * w75 + w98 * w98) + w5 * w77;
+    M(2, 3) = -(w67 * w84 + c.p.m * (w101 * w99 - w71 * w87 - w86 * w72) - w82 * w73 - (w75 * w80 - w100 * w98 + w81 * w76) * c.p.m + w85 * w69);
+    M(2, 4) = w91 * w67 - w69 * w90 - c.p.m * (w102 * w98 - w75 * w89 - w76 * w88);
+    M(2, 5) = w74 + c.p.m * (w75 * w92 + w93 * w76 + w103 * w98);
+    M(3, 3) = w83 * w84 + w26 * w82 + c.p.m * (w87 * w87 + w86 * w86 + w101 * w101) + (w80 * w80 + w100 * w100 + w81 * w81) * c.p.m + w85 * w79 + c.k0;
+    M(3, 4) = w90 * w79 + c.p.m * (w81 * w88 + w80 * w89 + w102 * w100) - w83 * w91;
+    M(3, 5) = c.p.m * (w80 * w92 - w103 * w100 + w93 * w81) + w26 * c.k0;
+    M(4, 4) = w30 * w90 + (w88 * w88 + w89 * w89 + w102 * w102) * c.p.m + w91 * w29;
+    M(4, 5) = c.p.m * (w89 * w92 + w93 * w88 - w103 * w102);
+    M(5, 5) = (w93 * w93 + w92 * w92 + w103 * w103) * c.p.m + c.k0;
+    F(0) = -(c.k3 * w24 + w1 * (qd(1) * w105 - w106 * w104 - w107 * c.k0) + w126 * w33 - w2 * (qd(1) * w127 - w108 * w106 - w121 * c.k1) - w130 * w16 + c.k3 * w37 + w35 * w137 - c.p.m * (w24 * w153 - w151 * w17) - w32 * w155 + c.k3 * w44 - c.p.m * (w43 * w161 - w44 * w160) - (w37 * w172 + w42 * w173) * c.p.m - w174 * w6 - w45 * w175);
+    F(1) = w175 * w49 - w47 * w155 - c.k3 * w54 + w130 * w3 - c.k3 * w58 + c.p.m * (w54 * w172 + w97 * w177 + w56 * w173) - w51 * w137 + w46 * w174 - c.k3 * w61 + w108 * w105 - w104 * w127 - w52 * w126 + c.p.m * (w153 * w61 - w151 * w62 + w95 * w178) - c.p.m * (w59 * w161 + w58 * w160 + w96 * (w1 * w104 * w157 - w2 * w158));
+    F(2) = -(c.k3 * w72 - (w75 * w172 + w173 * w76 + w177 * w98) * c.p.m + w126 * w73 - w175 * w67 + c.k3 * w75 - w0 * w174 - w69 * w137 - w5 * w155 + c.p.m * (w99 * w178 - w153 * w72 + w151 * w71));
+    F(3) = w130 - w83 * w175 - w86 * c.k3 + c.p.m * (w101 * w178 - w151 * w87 + w86 * w153) - w26 * w126 - c.k3 * w80 - w137 * w79 + c.p.m * (w80 * w172 - w100 * w177 + w81 * w173);
+    F(4) = -((w102 * w177 - w173 * w88 - w89 * w172) * c.p.m + w137 * w30 - w175 * w29 + c.k3 * w89);
+    F(5) = -(c.k3 * w92 + w126 - (w103 * w177 + w93 * w173 + w172 * w92) * c.p.m);
     M(1, 0) = M(0, 1);
     M(2, 0) = M(0, 2);
     M(3, 0) = M(0, 3);
@@ -587,41 +621,81 @@ struct Model {
     M(5, 4) = M(4, 5);
   }
 
+  /// M and F together, sharing their common subexpressions
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static void mass_matrix_and_forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] MassMatrix<Scalar>& M, [[maybe_unused]] Vector<Scalar>& F) noexcept {
+    mass_matrix_and_forcing(t, q, qd, u, Constants<Scalar>(p), M, F);
+  }
+
   /// Xi(q, t) of the Pfaffian constraints Xi qd + Xi_t = 0
   template <class Scalar>
+  static void constraint_jacobian([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] ConstraintJacobian<Scalar>& Xi) noexcept {
+    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
+    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
+    using std::log; using std::abs; using std::pow;
+  }
+
+  /// Xi(q, t) of the Pfaffian constraints Xi qd + Xi_t = 0
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
   static void constraint_jacobian([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintJacobian<Scalar>& Xi) noexcept {
+    constraint_jacobian(t, q, Constants<Scalar>(p), Xi);
+  }
+
+  /// Xi_t(q, t)
+  template <class Scalar>
+  static void constraint_rate_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] ConstraintVector<Scalar>& Xi_t) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
   }
 
   /// Xi_t(q, t)
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
   template <class Scalar>
   static void constraint_rate_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintVector<Scalar>& Xi_t) noexcept {
+    constraint_rate_term(t, q, Constants<Scalar>(p), Xi_t);
+  }
+
+  /// dXi/dt qd + dXi_t/dt, so that Xi qdd + b = 0
+  template <class Scalar>
+  static void constraint_acceleration_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] ConstraintVector<Scalar>& b) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
   }
 
   /// dXi/dt qd + dXi_t/dt, so that Xi qdd + b = 0
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
   template <class Scalar>
   static void constraint_acceleration_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintVector<Scalar>& b) noexcept {
+    constraint_acceleration_term(t, q, qd, Constants<Scalar>(p), b);
+  }
+
+  /// phi(q, t) of the holonomic constraints
+  template <class Scalar>
+  static void holonomic_residuals([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] HolonomicVector<Scalar>& phi) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
   }
 
   /// phi(q, t) of the holonomic constraints
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
   template <class Scalar>
   static void holonomic_residuals([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] HolonomicVector<Scalar>& phi) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+    holonomic_residuals(t, q, Constants<Scalar>(p), phi);
   }
 
   /// T(q, qd, t)
   template <class Scalar>
-  static Scalar kinetic_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Parameters<Scalar>& p) noexcept {
+  static Scalar kinetic_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Constants<Scalar>& c) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
@@ -632,7 +706,7 @@ struct Model {
     const Scalar w3 = sin(q(1));
     const Scalar w4 = sin(q(0));
     const Scalar w5 = w3 * w4;
-    const Scalar w6 = w1 * p.l * w2 - qd(1) * w5 * p.l;
+    const Scalar w6 = w1 * c.p.l * w2 - qd(1) * w5 * c.p.l;
     const Scalar w7 = cos(q(2));
     const Scalar w8 = w0 * w4;
     const Scalar w9 = sin(q(2));
@@ -646,47 +720,53 @@ struct Model {
     const Scalar w17 = w9 * w2 + w8 * w7;
     const Scalar w18 = w11 * w5 + w17 * w13;
     const Scalar w19 = w14 * w9 + qd(1) * w7 + qd(3);
-    const Scalar w20 = w6 - w10 * Scalar(0.5) * p.l * w16 - w18 * Scalar(0.5) * p.l * w19;
-    const Scalar w21 = qd(1) * w0 * p.l;
+    const Scalar w20 = w6 - w10 * c.k2 * w16 - w18 * c.k2 * w19;
+    const Scalar w21 = qd(1) * w0 * c.p.l;
     const Scalar w22 = w3 * w9;
     const Scalar w23 = w3 * w7;
     const Scalar w24 = w11 * w0 - w23 * w13;
-    const Scalar w25 = w21 - w22 * Scalar(0.5) * p.l * w16 + Scalar(0.5) * w24 * p.l * w19;
+    const Scalar w25 = w21 - w22 * c.k2 * w16 + c.k2 * w24 * w19;
     const Scalar w26 = w3 * w2;
     const Scalar w27 = w0 * w2;
     const Scalar w28 = w27 * w7 - w9 * w4;
     const Scalar w29 = w11 * w26 + w13 * w28;
-    const Scalar w30 = w1 * p.l * w4 + qd(1) * p.l * w26;
+    const Scalar w30 = w1 * c.p.l * w4 + qd(1) * c.p.l * w26;
     const Scalar w31 = w27 * w9 + w4 * w7;
-    const Scalar w32 = Scalar(0.5) * w29 * p.l * w19 + w30 + Scalar(0.5) * p.l * w31 * w16;
-    const Scalar w33 = p.rd * p.rd;
-    const Scalar w34 = p.l * p.l + w33 * Scalar(3);
-    const Scalar w35 = qd(4) + w16;
-    const Scalar w36 = cos(q(5));
-    const Scalar w37 = sin(q(5));
-    const Scalar w38 = sin(q(4));
-    const Scalar w39 = cos(q(4));
-    const Scalar w40 = w11 * w15 - w12 * w13;
-    const Scalar w41 = w38 * w19 + w39 * w40;
-    const Scalar w42 = w35 * w36 + w37 * w41;
-    const Scalar w43 = w11 * w17 - w5 * w13;
-    const Scalar w44 = qd(5) - (w38 * w40 - w39 * w19);
-    const Scalar w45 = w6 - w10 * p.l * w16 - w18 * p.l * w19 - (w18 * w36 - w37 * (w38 * w10 - w43 * w39)) * Scalar(0.5) * p.l * w44 - w42 * (w10 * w39 + w38 * w43) * Scalar(0.5) * p.l;
-    const Scalar w46 = w0 * w13 + w23 * w11;
-    const Scalar w47 = w22 * p.l * w16 - w21 - w24 * p.l * w19 - (w37 * (w38 * w22 - w46 * w39) + w24 * w36) * Scalar(0.5) * p.l * w44 + w42 * Scalar(0.5) * p.l * (w38 * w46 + w22 * w39);
-    const Scalar w48 = w11 * w28 - w13 * w26;
-    const Scalar w49 = p.l * w31 * w16 + w30 + w29 * p.l * w19 + w42 * Scalar(0.5) * p.l * (w38 * w48 + w39 * w31) + Scalar(0.5) * ((w48 * w39 - w38 * w31) * w37 + w29 * w36) * p.l * w44;
-    const Scalar w50 = w36 * w41 - w37 * w35;
-    const Scalar w51 = qd(1) * w0 * Scalar(0.5) * p.l;
-    const Scalar w52 = w1 * Scalar(0.5) * p.l * w2 - qd(1) * w5 * Scalar(0.5) * p.l;
-    const Scalar w53 = qd(1) * Scalar(0.5) * p.l * w26 + w1 * Scalar(0.5) * p.l * w4;
-    T = p.m * Scalar(0.5) * (w20 * w20 + w25 * w25 + w32 * w32) + w1 * Scalar(0.5) * w1 * Scalar(0.08333333333333333) * p.m * w34 + w42 * w42 * Scalar(0.08333333333333333) * p.m * w34 * Scalar(0.5) + Scalar(0.08333333333333333) * p.m * w34 * w19 * Scalar(0.5) * w19 + p.m * Scalar(0.5) * (w45 * w45 + w47 * w47 + w49 * w49) + Scalar(0.5) * w40 * w33 * p.m * Scalar(0.5) * w40 + w50 * Scalar(0.5) * w50 * w33 * p.m * Scalar(0.5) + qd(1) * qd(1) * Scalar(0.08333333333333333) * p.m * w34 * Scalar(0.5) + p.m * Scalar(0.5) * (w51 * w51 + w52 * w52 + w53 * w53) + Scalar(0.08333333333333333) * p.m * w34 * w16 * Scalar(0.5) * w16 + Scalar(0.5) * w44 * Scalar(0.08333333333333333) * p.m * w34 * w44 + w14 * Scalar(0.5) * w33 * p.m * w14 * Scalar(0.5);
+    const Scalar w32 = c.k2 * w29 * w19 + w30 + c.k2 * w31 * w16;
+    const Scalar w33 = qd(4) + w16;
+    const Scalar w34 = cos(q(5));
+    const Scalar w35 = sin(q(5));
+    const Scalar w36 = sin(q(4));
+    const Scalar w37 = cos(q(4));
+    const Scalar w38 = w11 * w15 - w12 * w13;
+    const Scalar w39 = w36 * w19 + w37 * w38;
+    const Scalar w40 = w33 * w34 + w35 * w39;
+    const Scalar w41 = w11 * w17 - w5 * w13;
+    const Scalar w42 = qd(5) - (w36 * w38 - w37 * w19);
+    const Scalar w43 = w6 - w10 * c.p.l * w16 - w18 * c.p.l * w19 - (w18 * w34 - w35 * (w36 * w10 - w41 * w37)) * c.k2 * w42 - w40 * (w10 * w37 + w36 * w41) * c.k2;
+    const Scalar w44 = w0 * w13 + w23 * w11;
+    const Scalar w45 = w22 * c.p.l * w16 - w21 - w24 * c.p.l * w19 - (w35 * (w36 * w22 - w44 * w37) + w24 * w34) * c.k2 * w42 + w40 * c.k2 * (w36 * w44 + w22 * w37);
+    const Scalar w46 = w11 * w28 - w13 * w26;
+    const Scalar w47 = c.p.l * w31 * w16 + w30 + w29 * c.p.l * w19 + w40 * c.k2 * (w36 * w46 + w37 * w31) + c.k2 * ((w46 * w37 - w36 * w31) * w35 + w29 * w34) * w42;
+    const Scalar w48 = w34 * w39 - w35 * w33;
+    const Scalar w49 = qd(1) * w0 * c.k2;
+    const Scalar w50 = w1 * c.k2 * w2 - qd(1) * w5 * c.k2;
+    const Scalar w51 = qd(1) * c.k2 * w26 + w1 * c.k2 * w4;
+    T = c.k4 * (w20 * w20 + w25 * w25 + w32 * w32) + w1 * Scalar(0.5) * w1 * c.k0 + w40 * w40 * c.k0 * Scalar(0.5) + c.k0 * w19 * Scalar(0.5) * w19 + c.k4 * (w43 * w43 + w45 * w45 + w47 * w47) + Scalar(0.5) * w38 * c.k1 * w38 + w48 * Scalar(0.5) * w48 * c.k1 + qd(1) * qd(1) * c.k0 * Scalar(0.5) + c.k4 * (w49 * w49 + w50 * w50 + w51 * w51) + c.k0 * w16 * Scalar(0.5) * w16 + Scalar(0.5) * w42 * c.k0 * w42 + w14 * Scalar(0.5) * c.k1 * w14;
     return T;
+  }
+
+  /// T(q, qd, t)
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static Scalar kinetic_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Parameters<Scalar>& p) noexcept {
+    return kinetic_energy(t, q, qd, Constants<Scalar>(p));
   }
 
   /// V(q, t)
   template <class Scalar>
-  static Scalar potential_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p) noexcept {
+  static Scalar potential_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
@@ -701,14 +781,22 @@ struct Model {
     const Scalar w7 = sin(q(3));
     const Scalar w8 = sin(q(1)) * w0;
     const Scalar w9 = w2 * w6 - w7 * w8;
-    const Scalar w10 = w1 * p.l;
-    V = -(p.g * p.m * w1 * Scalar(0.5) * p.l + p.g * (w9 * Scalar(0.5) * p.l + w10) * p.m + p.g * p.m * (w9 * p.l + w10 + Scalar(0.5) * p.l * ((w9 * cos(q(4)) - sin(q(4)) * (w1 * w4 + w5 * w3)) * cos(q(5)) - sin(q(5)) * (w2 * w8 + w7 * w6))));
+    const Scalar w10 = w1 * c.p.l;
+    V = -(c.k3 * w1 * c.k2 + c.k3 * (w9 * c.k2 + w10) + c.k3 * (w9 * c.p.l + w10 + c.k2 * ((w9 * cos(q(4)) - sin(q(4)) * (w1 * w4 + w5 * w3)) * cos(q(5)) - sin(q(5)) * (w2 * w8 + w7 * w6))));
     return V;
+  }
+
+  /// V(q, t)
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static Scalar potential_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p) noexcept {
+    return potential_energy(t, q, Constants<Scalar>(p));
   }
 
   /// the model's named outputs, in the order of output_names
   template <class Scalar>
-  static void outputs([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] OutputVector<Scalar>& y) noexcept {
+  static void outputs([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] OutputVector<Scalar>& y) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
@@ -733,30 +821,38 @@ struct Model {
     const Scalar w18 = w7 * w4 - w1 * w0 * w9;
     const Scalar w19 = w15 * w18 - w1 * w11 * w17;
     const Scalar w20 = w1 * w11 * w15 + w18 * w17;
-    const Scalar w21 = qd(1) * p.l * w4 + qd(1) * w6 * p.l;
-    const Scalar w22 = w1 * p.l * qd(2) - w8 * p.l * qd(2);
+    const Scalar w21 = qd(1) * c.p.l * w4 + qd(1) * w6 * c.p.l;
+    const Scalar w22 = w1 * c.p.l * qd(2) - w8 * c.p.l * qd(2);
     const Scalar w23 = w10 * w1 * w9 + w3 * w11;
     const Scalar w24 = w3 * w2 * w4 - w1 * w5;
     const Scalar w25 = w1 * w3 * w2 + w4 * w5;
     const Scalar w26 = w25 * w9 - w10 * w2 * w11;
-    const Scalar w27 = p.l * qd(3) + w3 * p.l * qd(3) * w5;
-    const Scalar w28 = qd(1) * w1 * p.l * w9 - qd(1) * p.l * w12 + qd(1) * p.l;
+    const Scalar w27 = c.p.l * qd(3) + w3 * c.p.l * qd(3) * w5;
+    const Scalar w28 = qd(1) * w1 * c.p.l * w9 - qd(1) * c.p.l * w12 + qd(1) * c.p.l;
     const Scalar w29 = w1 * w7 + w0 * w4 * w9;
-    const Scalar w30 = w16 * qd(0) * p.l - w1 * qd(0) * w11 * p.l;
+    const Scalar w30 = w16 * qd(0) * c.p.l - w1 * qd(0) * w11 * c.p.l;
     const Scalar w31 = w10 * w1 * w11 - w3 * w9;
     const Scalar w32 = w10 * w7 * w4 - w0 * w23;
-    const Scalar w33 = qd(0) * p.l * w18 - w0 * qd(0) * p.l + qd(0) * p.l * w14;
+    const Scalar w33 = qd(0) * c.p.l * w18 - w0 * qd(0) * c.p.l + qd(0) * c.p.l * w14;
     const Scalar w34 = w10 * w2 * w9 + w25 * w11;
     const Scalar w35 = w26 * w0 - w24 * w7;
-    y(0) = -(w7 * p.l - (w7 * w12 - w0 * w6) * p.l + w13 * p.l);
-    y(1) = -(p.l * (w14 * w15 + w16 * w17) - w0 * p.l * w15 + w19 * p.l);
-    y(2) = p.l * w20 - w0 * p.l * w17 + p.l * (w14 * w17 - w16 * w15);
-    y(3) = w21 * w7 + w7 * w22 * w11 + p.l * (w7 * w23 + w10 * w0 * w4) * qd(4) * w5 + qd(5) * p.l * (w24 * w0 + w7 * w26) + w13 * w2 * p.l * qd(3) - w27 * (w1 * w0 - w7 * w4 * w9) + w10 * w7 * p.l * w5 * w9 * qd(2) - w0 * w28;
-    y(4) = -(w27 * (w15 * w29 + w11 * w4 * w17) + w21 * w0 * w15 - w30 * w15 - (w32 * w15 - w31 * w17) * p.l * qd(4) * w5 - w19 * w2 * p.l * qd(3) + w33 * w17 + (w34 * w17 + w15 * w35) * qd(5) * p.l + w22 * (w0 * w11 * w15 - w17 * w9) + w10 * p.l * (w11 * w17 + w0 * w15 * w9) * w5 * qd(2) + w7 * w15 * w28);
-    y(5) = w27 * (w29 * w17 - w11 * w15 * w4) - w2 * p.l * qd(3) * w20 + w7 * w28 * w17 + w21 * w0 * w17 - w30 * w17 + w22 * (w0 * w11 * w17 + w15 * w9) - w33 * w15 - w10 * (w11 * w15 - w0 * w17 * w9) * p.l * w5 * qd(2) - (w15 * w34 - w35 * w17) * qd(5) * p.l - p.l * (w32 * w17 + w15 * w31) * qd(4) * w5;
+    y(0) = -(w7 * c.p.l - (w7 * w12 - w0 * w6) * c.p.l + w13 * c.p.l);
+    y(1) = -(c.p.l * (w14 * w15 + w16 * w17) - w0 * c.p.l * w15 + w19 * c.p.l);
+    y(2) = c.p.l * w20 - w0 * c.p.l * w17 + c.p.l * (w14 * w17 - w16 * w15);
+    y(3) = w21 * w7 + w7 * w22 * w11 + c.p.l * (w7 * w23 + w10 * w0 * w4) * qd(4) * w5 + qd(5) * c.p.l * (w24 * w0 + w7 * w26) + w13 * w2 * c.p.l * qd(3) - w27 * (w1 * w0 - w7 * w4 * w9) + w10 * w7 * c.p.l * w5 * w9 * qd(2) - w0 * w28;
+    y(4) = -(w27 * (w15 * w29 + w11 * w4 * w17) + w21 * w0 * w15 - w30 * w15 - (w32 * w15 - w31 * w17) * c.p.l * qd(4) * w5 - w19 * w2 * c.p.l * qd(3) + w33 * w17 + (w34 * w17 + w15 * w35) * qd(5) * c.p.l + w22 * (w0 * w11 * w15 - w17 * w9) + w10 * c.p.l * (w11 * w17 + w0 * w15 * w9) * w5 * qd(2) + w7 * w15 * w28);
+    y(5) = w27 * (w29 * w17 - w11 * w15 * w4) - w2 * c.p.l * qd(3) * w20 + w7 * w28 * w17 + w21 * w0 * w17 - w30 * w17 + w22 * (w0 * w11 * w17 + w15 * w9) - w33 * w15 - w10 * (w11 * w15 - w0 * w17 * w9) * c.p.l * w5 * qd(2) - (w15 * w34 - w35 * w17) * qd(5) * c.p.l - c.p.l * (w32 * w17 + w15 * w31) * qd(4) * w5;
     y(6) = -w7;
     y(7) = w0 * w15;
     y(8) = -(w0 * w17);
+  }
+
+  /// the model's named outputs, in the order of output_names
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static void outputs([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] OutputVector<Scalar>& y) noexcept {
+    outputs(t, q, qd, u, Constants<Scalar>(p), y);
   }
 };
 

@@ -124,6 +124,16 @@ TEST(CppPrinter, TargetsAreEntriesOfTheOutputArguments) {
   EXPECT_EQ(cpp_target({Array::input_matrix, 1, 0}), "B_u(1, 0)");
   EXPECT_EQ(cpp_target({Array::acceleration_constraint_by_q, 0, 3}), "S_q(0, 3)");
   EXPECT_EQ(cpp_target({Array::acceleration_constraint_by_qd, 1, 1}), "S_qd(1, 1)");
+  EXPECT_EQ(cpp_target({Array::constants, 3, 0}), "k3");
+}
+
+TEST(CppPrinter, InsideTheConstantsOverloadsConstantsAndParametersAreReadFromTheConstants) {
+  CppPrintOptions options = with_parameters();
+  options.parameters = "c.p";
+  ir::Program r{{var(VariableKind::constant, 2), q(0), op(Op::multiply, {0, 1}), p(1), op(Op::add, {2, 3})},
+                {{y(0), 4}}};
+  EXPECT_EQ(print_cpp(r, options), "    y(0) = c.k2 * q(0) + c.p.m;\n");
+  EXPECT_EQ(cpp_variable({VariableKind::constant, 7}, options), "c.k7");
 }
 
 }  // namespace

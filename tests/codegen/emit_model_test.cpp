@@ -83,6 +83,10 @@ TEST(EmitModel, EveryFunctionDeclaresEveryCallsCmathFunction) {
       "    using std::log; using std::abs; using std::pow;\n";
   std::size_t functions = 0;
   for (std::size_t at = h.find("noexcept {\n"); at != std::string::npos; at = h.find("noexcept {\n", at + 1)) {
+    // the overloads taking Parameters only forward to those taking the Constants
+    if (h.compare(h.find('\n', at + 11) - 2, 2, ");") == 0 &&
+        h.substr(at, h.find('\n', at + 11) - at).find("Constants<Scalar>(p)") != std::string::npos)
+      continue;
     ++functions;
     EXPECT_EQ(h.compare(at + 11, declarations.size(), declarations), 0) << h.substr(at, 400);
   }
@@ -180,6 +184,39 @@ TEST(EmitModel, StatisticsShowSharingReducesOperations) {
   EXPECT_TRUE(found);
 }
 
+TEST(EmitModel, StatisticsListTheConstantsApartFromTheWorkPerCall) {
+  const Model model = parse_model(pendulum_on_cart, "cart.eom");
+  const EmittedModel e = emit_model(model, derive_equations(model));
+  ASSERT_FALSE(e.statistics.empty());
+  // int * g and _hidden * g of the potential forces, at least
+  EXPECT_EQ(e.statistics.front().function, constants_statistics_name);
+  EXPECT_GE(e.statistics.front().optimized.multiplications, 2u);
+  EmitOptions baseline;
+  baseline.share_subexpressions = false;
+  const EmittedModel unshared = emit_model(model, derive_equations(model), baseline);
+  EXPECT_EQ(unshared.statistics.front().optimized.total(), 0u);
+}
+
+TEST(EmitModel, EveryFunctionTakesTheConstantsAndTheParametersOverloadForwardsToIt) {
+  const std::string h = generate(pendulum_on_cart);
+  EXPECT_NE(h.find("  template <class Scalar>\n  class Constants {\n"), std::string::npos);
+  EXPECT_NE(h.find("explicit Constants(const Parameters<Scalar>& parameters) noexcept : p(parameters) {"),
+            std::string::npos);
+  EXPECT_NE(h.find("static void mass_matrix_and_forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const "
+                   "Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const "
+                   "Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c,"),
+            std::string::npos);
+  EXPECT_NE(h.find("    mass_matrix_and_forcing(t, q, qd, u, Constants<Scalar>(p), M, F);\n"), std::string::npos);
+  EXPECT_NE(h.find("    return kinetic_energy(t, q, qd, Constants<Scalar>(p));\n"), std::string::npos);
+  // the overload doing the work comes first: the first definition a text search finds
+  EXPECT_LT(h.find("Constants<Scalar>& c, [[maybe_unused]] MassMatrix<Scalar>& M, [[maybe_unused]] Vector<Scalar>& F"),
+            h.find("Parameters<Scalar>& p, [[maybe_unused]] MassMatrix<Scalar>& M, [[maybe_unused]] Vector<Scalar>& F"));
+  // per call, parameters are read from the copy the Constants hold (only their constructor reads p)
+  const std::string after_constants = h.substr(h.find("  };\n", h.find("class Constants {")));
+  EXPECT_NE(after_constants.find("c.p.l"), std::string::npos);
+  EXPECT_EQ(after_constants.find(" p.l * "), std::string::npos);
+}
+
 // the text of each generated function ("\n  /// doc ... \n  }\n"), in order
 std::vector<std::string> functions_of(const std::string& header) {
   const std::string opening = "\n  template <class Scalar>\n  static ";
@@ -198,7 +235,7 @@ TEST(EmitModel, AGivenLinearizationAddsItsFunctionsAndChangesNoOther) {
     const std::string plain = emit_model(model, eom).header;
     const std::string linearized = emit_model(model, eom, linearize_symbolic(model, eom)).header;
     const std::vector<std::string> functions = functions_of(plain);
-    ASSERT_EQ(functions.size(), 10u) << name;
+    ASSERT_EQ(functions.size(), 20u) << name;  // each function taking Constants, then Parameters
     for (const std::string& f : functions) EXPECT_NE(linearized.find(f), std::string::npos) << name << f;
     EXPECT_EQ(plain.find("linearization"), std::string::npos) << name;
     EXPECT_NE(linearized.find("static void linearization_terms("), std::string::npos) << name;
@@ -210,18 +247,19 @@ TEST(EmitModel, AGivenLinearizationAddsItsFunctionsAndChangesNoOther) {
 }
 
 // linearization_terms() as eomgen emitted it when it computed the linearization itself
-// (f09668f), then as the derivation in local frames gave it; when the derivation, the lowering or
-// the printer changes on purpose, take the new hashes
+// (f09668f), then as the local-frame derivation gave it with its parameter-only values read from
+// the Constants; when the derivation, the lowering or the printer changes on purpose, take the new
+// hashes
 TEST(EmitModel, LinearizationTermsAreThoseEmittedWhenEmissionLinearizedItself) {
-  const std::pair<const char*, std::uint64_t> expected[] = {{"double_pendulum", 0xbcc0a3592e292796ull},
-                                                            {"rolling_coin", 0x4a43191c7cbd8a5eull}};
+  const std::pair<const char*, std::uint64_t> expected[] = {{"double_pendulum", 0x443a34fea68aeaa1ull},
+                                                            {"rolling_coin", 0xe85d66ea1b58ec87ull}};
   for (const auto& [name, hash] : expected) {
     const Model model = load_model(testing::shipped_model_path(name));
     const ModelEquations eom = derive_equations(model);
     const EmittedModel emitted = emit_model(model, eom, linearize_symbolic(model, eom), {"eomgen_models", name});
     std::string terms;
     for (const std::string& f : functions_of(emitted.header))
-      if (f.find("static void linearization_terms(") != std::string::npos) terms = f;
+      if (f.find("static void linearization_terms(") != std::string::npos && terms.empty()) terms = f;
     EXPECT_EQ(content_hash(terms), hash) << name << terms;
     EXPECT_EQ(emitted.statistics.back().function, "linearization_terms") << name;
   }

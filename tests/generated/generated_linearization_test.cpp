@@ -241,6 +241,24 @@ TEST(GeneratedLinearization, AllocatesNothing) {
   EXPECT_EQ(eigen_assert_failures, 0);
 }
 
+// the runtime's algorithms take the Constants as they take the Parameters, with the same numbers
+template <class Model>
+void expect_same_through_constants(const OperatingPoint<Model>& x) {
+  const typename Model::template Parameters<double> p{};
+  const typename Model::template Constants<double> c(p);
+  eomrt::LinearizationWorkspace<Model, double> by_parameters, by_constants;
+  ASSERT_EQ(eomrt::linearization<Model>(p, by_parameters, 0.0, x.q, x.qd, x.u), eomrt::DynamicsStatus::ok);
+  ASSERT_EQ(eomrt::linearization<Model>(c, by_constants, 0.0, x.q, x.qd, x.u), eomrt::DynamicsStatus::ok);
+  EXPECT_EQ(by_parameters.A, by_constants.A) << Model::name;
+  EXPECT_EQ(by_parameters.B, by_constants.B) << Model::name;
+  EXPECT_EQ(by_parameters.dynamics.qdd, by_constants.dynamics.qdd) << Model::name;
+}
+
+TEST(GeneratedLinearization, TheConstantsGiveWhatTheParametersGive) {
+  expect_same_through_constants(at<eomgen_models::cart_pole::Model>({{"theta", 0.7}, {"theta_dot", 1.3}, {"u", 0.8}}));
+  expect_same_through_constants(at<eomgen_models::rolling_coin::Model>({{"theta", 0.2}, {"phi_dot", 30.0}}));
+}
+
 TEST(GeneratedLinearization, SingularMassMatrixIsReported) {
   // 3-1-3 angles are singular with the top upright (theta = 0)
   using Model = eomgen_models::heavy_top::Model;

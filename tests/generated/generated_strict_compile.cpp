@@ -43,8 +43,22 @@ bool evaluates_finitely() {
   Model::holonomic_residuals(t, q, p, phi);
   Model::outputs(t, q, qd, u, p, y);
   const Scalar energy = Model::kinetic_energy(t, q, qd, p) + Model::potential_energy(t, q, p);
+  // and every overload taking the Constants
+  const typename Model::template Constants<Scalar> c(p);
+  typename Model::template MassMatrix<Scalar> Mc;
+  typename Model::template Vector<Scalar> Fc;
+  Model::mass_matrix(t, q, c, Mc);
+  Model::forcing(t, q, qd, u, c, Fc);
+  Model::mass_matrix_and_forcing(t, q, qd, u, c, Mc, Fc);
+  Model::constraint_jacobian(t, q, c, Xi);
+  Model::constraint_rate_term(t, q, c, Xi_t);
+  Model::constraint_acceleration_term(t, q, qd, c, b);
+  Model::holonomic_residuals(t, q, c, phi);
+  Model::outputs(t, q, qd, u, c, y);
+  const Scalar energy_c = Model::kinetic_energy(t, q, qd, c) + Model::potential_energy(t, q, c);
   return M.allFinite() && F.allFinite() && Xi.allFinite() && Xi_t.allFinite() && b.allFinite() &&
-         phi.allFinite() && y.allFinite() && energy == energy && (M - M.transpose()).norm() == Scalar(0);
+         phi.allFinite() && y.allFinite() && energy == energy && (M - M.transpose()).norm() == Scalar(0) &&
+         Mc == M && Fc == F && energy_c == energy;
 }
 
 template <class... Models>

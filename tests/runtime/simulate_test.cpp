@@ -38,6 +38,75 @@ SimulationOptions<Scalar> options(Integrator method, Scalar t_end) {
   return o;
 }
 
+// qdd = -(k / m) q with k / m computed once per parameter set in its Constants, counting how
+// often Constants are built and how often a function is called with the Parameters
+struct CountingOscillator : testing::Unconstrained<1> {
+  static constexpr int nq = 1, nu = 0;
+  inline static int constants_built = 0, calls_with_parameters = 0;
+  template <class S>
+  using V = Eigen::Matrix<S, 1, 1>;
+  template <class S>
+  struct Parameters {
+    S m = S(2), k = S(8);
+  };
+  template <class S>
+  class Constants {
+   public:
+    explicit Constants(const Parameters<S>& parameters) noexcept
+        : p(parameters), k_over_m(parameters.k / parameters.m) {
+      ++constants_built;
+    }
+    const Parameters<S>& parameters() const noexcept { return p; }
+    Parameters<S> p;
+    S k_over_m;
+  };
+  template <class S>
+  static void mass_matrix_and_forcing(const S&, const V<S>& q, const V<S>&, const Eigen::Matrix<S, 0, 1>&,
+                                      const Constants<S>& c, V<S>& M, V<S>& F) {
+    M(0) = 1;
+    F(0) = -c.k_over_m * q(0);
+  }
+  template <class S>
+  static void mass_matrix_and_forcing(const S& t, const V<S>& q, const V<S>& qd, const Eigen::Matrix<S, 0, 1>& u,
+                                      const Parameters<S>& p, V<S>& M, V<S>& F) {
+    ++calls_with_parameters;
+    mass_matrix_and_forcing(t, q, qd, u, Constants<S>(p), M, F);
+  }
+  template <class S>
+  static S kinetic_energy(const S&, const V<S>&, const V<S>& qd, const Constants<S>&) {
+    return qd(0) * qd(0) / 2;
+  }
+  template <class S>
+  static S kinetic_energy(const S& t, const V<S>& q, const V<S>& qd, const Parameters<S>& p) {
+    ++calls_with_parameters;
+    return kinetic_energy(t, q, qd, Constants<S>(p));
+  }
+  template <class S>
+  static S potential_energy(const S&, const V<S>& q, const Constants<S>& c) {
+    return c.k_over_m * q(0) * q(0) / 2;
+  }
+  template <class S>
+  static S potential_energy(const S& t, const V<S>& q, const Parameters<S>& p) {
+    ++calls_with_parameters;
+    return potential_energy(t, q, Constants<S>(p));
+  }
+};
+
+TEST(Simulate, AModelWithConstantsIsEvaluatedThroughConstantsBuiltOnce) {
+  static_assert(has_constants_v<CountingOscillator> && !has_constants_v<Oscillator>);
+  CountingOscillator::constants_built = CountingOscillator::calls_with_parameters = 0;
+  const SimulationResult<CountingOscillator, double> r = simulate<CountingOscillator>(
+      CountingOscillator::Parameters<double>{}, State<CountingOscillator>(1.0, 0.0),
+      options(Integrator::rk4, 1.0));
+  ASSERT_EQ(r.status, SimulationStatus::ok);
+  EXPECT_EQ(r.steps, 1000);
+  EXPECT_EQ(CountingOscillator::constants_built, 1);
+  EXPECT_EQ(CountingOscillator::calls_with_parameters, 0);
+  // q = cos(omega t), omega^2 = k / m = 4
+  EXPECT_NEAR(r.x(0), std::cos(2.0), 1e-11);
+  EXPECT_NEAR(r.x(1), -2 * std::sin(2.0), 1e-11);
+}
+
 TEST(Simulate, SamplesLandExactlyOnTheGridWhateverTheStep) {
   for (const Integrator method : {Integrator::euler, Integrator::rk4, Integrator::dormand_prince}) {
     SCOPED_TRACE(to_string(method));

@@ -136,6 +136,7 @@ const char* cpp_argument_name(ir::VariableKind kind) {
     case ir::VariableKind::parameter: return "p";
     case ir::VariableKind::acceleration: return "qdd";
     case ir::VariableKind::multiplier: return "lambda";
+    case ir::VariableKind::constant: return "c";
   }
   EOMGEN_UNREACHABLE("an ir::VariableKind value that is not an enumerator");
 }
@@ -156,6 +157,7 @@ const char* cpp_array_name(ir::Array array) {
     case ir::Array::input_matrix: return "B_u";
     case ir::Array::acceleration_constraint_by_q: return "S_q";
     case ir::Array::acceleration_constraint_by_qd: return "S_qd";
+    case ir::Array::constants: return "k";
   }
   EOMGEN_UNREACHABLE("an ir::Array value that is not an enumerator");
 }
@@ -167,7 +169,9 @@ std::string cpp_variable(const ir::Variable& variable, const CppPrintOptions& op
       return name;
     case ir::VariableKind::parameter:
       assert(variable.index < options.parameter_names.size());
-      return fmt::format("{}.{}", name, cpp_identifier(options.parameter_names.at(variable.index)));
+      return fmt::format("{}.{}", options.parameters, cpp_identifier(options.parameter_names.at(variable.index)));
+    case ir::VariableKind::constant:
+      return fmt::format("{}.k{}", name, variable.index);
     case ir::VariableKind::coordinate:
     case ir::VariableKind::rate:
     case ir::VariableKind::input:
@@ -180,6 +184,8 @@ std::string cpp_variable(const ir::Variable& variable, const CppPrintOptions& op
 
 std::string cpp_target(const ir::Target& target) {
   const char* name = cpp_array_name(target.array);
+  // a constant is a named member of the Constants, not an entry of an array
+  if (target.array == ir::Array::constants) return fmt::format("{}{}", name, target.row);
   const std::size_t rank = ir::rank(target.array);
   if (rank == 0) return name;
   if (rank == 1) return fmt::format("{}({})", name, target.row);

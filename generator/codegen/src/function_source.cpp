@@ -9,6 +9,8 @@
 #include <iterator>
 #include <set>
 
+#include "eomgen/codegen/parameter_constants.hpp"
+
 namespace eomgen {
 namespace {
 
@@ -36,6 +38,8 @@ const char* array_type(Array array) {
     case Array::kinetic_energy:
     case Array::potential_energy:
       return "Scalar";
+    case Array::constants:
+      break;  // members of the Constants, never an argument
   }
   EOMGEN_UNREACHABLE("an ir::Array value that is not an enumerator");
 }
@@ -48,6 +52,7 @@ std::string input_declaration(VariableKind kind) {
     case VariableKind::parameter: return fmt::format("const Parameters<Scalar>& {}", name);
     case VariableKind::input: return fmt::format("const Inputs<Scalar>& {}", name);
     case VariableKind::multiplier: return fmt::format("const ConstraintVector<Scalar>& {}", name);
+    case VariableKind::constant: return fmt::format("const Constants<Scalar>& {}", name);
     case VariableKind::coordinate:
     case VariableKind::rate:
     case VariableKind::acceleration:
@@ -56,11 +61,13 @@ std::string input_declaration(VariableKind kind) {
   EOMGEN_UNREACHABLE("an ir::VariableKind value that is not an enumerator");
 }
 
-// every argument may go unused in a particular model (M of a pendulum ignores t)
-std::string signature(const FunctionSpec& f) {
+// every argument may go unused in a particular model (M of a pendulum ignores t); `parameters`
+// is how the function takes the parameters: as Parameters (p) or as their Constants (c)
+std::string signature(const FunctionSpec& f, VariableKind parameters) {
   assert(std::is_sorted(f.reads.begin(), f.reads.end()));  // t, q, qd, u, p, qdd, lambda
   std::vector<std::string> declarations;
-  for (VariableKind kind : f.reads) declarations.push_back(input_declaration(kind));
+  for (VariableKind kind : f.reads)
+    declarations.push_back(input_declaration(kind == VariableKind::parameter ? parameters : kind));
   if (!returns_scalar(f))
     for (Array array : f.writes) declarations.push_back(fmt::format("{}<Scalar>& {}", array_type(array), cpp_array_name(array)));
   std::string s;
@@ -79,13 +86,58 @@ std::string math_using_declarations(const std::string& indent) {
   return s;
 }
 
+// the overload taking Parameters: it builds their Constants for this one call
+std::string forwarding_source(const FunctionSpec& f, const CppPrintOptions& print) {
+  const bool scalar = returns_scalar(f);
+  std::string arguments;
+  for (VariableKind kind : f.reads)
+    arguments += std::string(arguments.empty() ? "" : ", ") +
+                 (kind == VariableKind::parameter ? "Constants<Scalar>(p)" : cpp_argument_name(kind));
+  if (!scalar)
+    for (Array array : f.writes) arguments += std::string(", ") + cpp_array_name(array);
+  return fmt::format(
+      "\n  /// {}\n  /// From the parameters: computes their Constants for this call alone (to evaluate\n"
+      "  /// repeatedly, build the Constants once and call the overload above).\n  template <class Scalar>\n"
+      "  static {} {}({}) noexcept {{\n{}{}{}({});\n  }}\n",
+      f.doc, scalar ? "Scalar" : "void", f.name, signature(f, VariableKind::parameter), print.indent,
+      scalar ? "return " : "", f.name, arguments);
+}
+
+// `Scalar k0, k1, ...;`, ten to a line
+std::string constant_members(std::size_t count) {
+  std::string s;
+  for (std::size_t k = 0; k < count; ++k)
+    s += fmt::format("{}k{}{}", k % 10 == 0 ? "    Scalar " : ", ", k, k % 10 == 9 || k + 1 == count ? ";\n" : "");
+  return s;
+}
+
 }  // namespace
+
+std::string constants_source(const ir::Program& constants, const CppPrintOptions& print) {
+  std::string s =
+      "\n  /// The values of the functions below that depend on the parameters only, computed once per\n"
+      "  /// parameter set. Immutable: for other parameters, build other Constants.\n"
+      "  template <class Scalar>\n  class Constants {\n   public:\n"
+      "    /// Computes every constant from a copy of the parameters.\n"
+      "    explicit Constants(const Parameters<Scalar>& parameters) noexcept : p(parameters) {";
+  if (constants.outputs.empty()) {
+    s += "}\n";
+  } else {
+    CppPrintOptions body = print;
+    body.indent += "  ";
+    s += "\n" + math_using_declarations(body.indent) + print_cpp(constants, body) + "    }\n";
+  }
+  s += "    /// The parameters these constants were computed from.\n"
+       "    const Parameters<Scalar>& parameters() const noexcept { return p; }\n\n"
+       "   private:\n    friend struct Model;\n    Parameters<Scalar> p;\n";
+  return s + constant_members(constants.outputs.size()) + "  };\n";
+}
 
 std::string function_source(const FunctionSpec& f, const ir::Program& program, const CppPrintOptions& print) {
   const bool scalar = returns_scalar(f);
   const std::string result = scalar ? cpp_target(f.targets.front().target) : std::string();
   std::string code = fmt::format("\n  /// {}\n  template <class Scalar>\n  static {} {}({}) noexcept {{\n", f.doc,
-                                 scalar ? "Scalar" : "void", f.name, signature(f));
+                                 scalar ? "Scalar" : "void", f.name, signature(f, VariableKind::constant));
   code += math_using_declarations(print.indent);
   if (scalar) code += fmt::format("{}Scalar {} = Scalar(0);\n", print.indent, result);
   code += print_cpp(program, print);
@@ -99,7 +151,7 @@ std::string function_source(const FunctionSpec& f, const ir::Program& program, c
     code += fmt::format("{}{} = {};\n", print.indent, cpp_target(target),
                         computed.count(source) ? cpp_target(source) : "Scalar(0)");
   if (scalar) code += fmt::format("{}return {};\n", print.indent, result);
-  return code + "  }\n";
+  return code + "  }\n" + forwarding_source(f, print);
 }
 
 EmittedFunctions emit_functions(const std::vector<FunctionSpec>& table,
@@ -108,11 +160,19 @@ EmittedFunctions emit_functions(const std::vector<FunctionSpec>& table,
   std::vector<std::vector<LoweringTarget>> targets;
   for (const FunctionSpec& f : table) targets.push_back(f.targets);
   const std::vector<ir::Program> programs = lower_functions(targets, intermediates, variables);
+  // the baseline without sharing keeps every value where it is used
+  const ConstantSplit split = print.share_subexpressions ? split_constants(programs) : ConstantSplit{{}, programs};
   EmittedFunctions emitted;
+  emitted.statistics.push_back({constants_statistics_name, ir::count_operations_without_sharing(split.constants),
+                                ir::count_operations(split.constants)});
+  emitted.source = constants_source(split.constants, print);
+  // inside the per-call functions the parameters are the copy held by the Constants
+  CppPrintOptions per_call = print;
+  per_call.parameters = std::string(cpp_argument_name(VariableKind::constant)) + ".p";
   for (std::size_t k = 0; k < table.size(); ++k) {
-    emitted.statistics.push_back(
-        {table[k].name, ir::count_operations_without_sharing(programs[k]), ir::count_operations(programs[k])});
-    emitted.source += function_source(table[k], programs[k], print);
+    emitted.statistics.push_back({table[k].name, ir::count_operations_without_sharing(programs[k]),
+                                  ir::count_operations(split.per_call[k])});
+    emitted.source += function_source(table[k], split.per_call[k], per_call);
   }
   return emitted;
 }

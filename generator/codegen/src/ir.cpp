@@ -68,6 +68,7 @@ std::size_t rank(Array array) {
     case Array::constraint_acceleration_term:
     case Array::holonomic_residuals:
     case Array::outputs:
+    case Array::constants:
       return 1;
     case Array::mass_matrix:
     case Array::constraint_jacobian:

@@ -10,7 +10,7 @@ namespace eomrt {
 
 /// Accelerations and multipliers from the KKT system; M may be singular where the KKT matrix
 /// is not (a quaternion attitude).
-/// \param[in]  p      parameters
+/// \param[in]  p      parameters, or their Constants (model_traits.hpp) to evaluate repeatedly
 /// \param[out] ws     workspace; ws.qdd (dim nq) and ws.lambda (dim nc) receive the result,
 ///                    and the evaluated terms stay in ws (M, F, Xi, b, residuals)
 /// \param[in]  t      time
@@ -20,13 +20,16 @@ namespace eomrt {
 /// \return ok; non_finite if a term or the result is not finite; singular_kkt_matrix if the
 ///         KKT matrix is singular (dependent constraints, or M singular on the constraint);
 ///         singular_mass_matrix for an unconstrained model whose M is singular
-template <class Model, class Scalar>
-DynamicsStatus forward_dynamics_kkt(const typename ModelTypes<Model, Scalar>::Parameters& p,
+template <class Model, class Scalar,
+          class ParametersOrConstants = typename ModelTypes<Model, Scalar>::Parameters>
+DynamicsStatus forward_dynamics_kkt(const ParametersOrConstants& p,
                                     DynamicsWorkspace<Model, Scalar>& ws, const Scalar& t,
                                     const typename ModelTypes<Model, Scalar>::Coordinates& q,
                                     const typename ModelTypes<Model, Scalar>::Coordinates& qd,
                                     const typename ModelTypes<Model, Scalar>::Inputs& u,
                                     const Baumgarte<Scalar>& stab = {}) {
+  static_assert(is_parameter_argument_v<Model, Scalar, ParametersOrConstants>,
+                "eomrt: p must be the model's Parameters or its Constants");
   const DynamicsStatus status = evaluate_dynamics_terms(p, ws, t, q, qd, u, stab);
   if (status != DynamicsStatus::ok) return status;
   if constexpr (Model::nc == 0) {

@@ -66,7 +66,7 @@ SpeedPartition<Model> declared_speed_partition() {
 
 /// Accelerations and multipliers by the null-space method; same results as forward_dynamics_kkt
 /// wherever both are regular.
-/// \param[in]  p          parameters
+/// \param[in]  p          parameters, or their Constants (model_traits.hpp) to evaluate repeatedly
 /// \param[out] ws         workspace; ws.qdd (dim nq) and ws.lambda (dim nc) receive the result,
 ///                        ws.solvers.upsilon the basis used (nq x (nq - nc)), and
 ///                        ws.declared_basis_used whether it was the partition's
@@ -78,13 +78,16 @@ SpeedPartition<Model> declared_speed_partition() {
 /// \return ok; non_finite if a term or the result is not finite; singular_constraint_jacobian
 ///         if Xi lost rank; singular_mass_matrix if Upsilon^T M Upsilon (or, for an
 ///         unconstrained model, M) is not positive definite
-template <class Model, class Scalar>
+template <class Model, class Scalar,
+          class ParametersOrConstants = typename ModelTypes<Model, Scalar>::Parameters>
 DynamicsStatus forward_dynamics_null_space(
-    const typename ModelTypes<Model, Scalar>::Parameters& p, DynamicsWorkspace<Model, Scalar>& ws,
+    const ParametersOrConstants& p, DynamicsWorkspace<Model, Scalar>& ws,
     const Scalar& t, const typename ModelTypes<Model, Scalar>::Coordinates& q,
     const typename ModelTypes<Model, Scalar>::Coordinates& qd,
     const typename ModelTypes<Model, Scalar>::Inputs& u, const Baumgarte<Scalar>& stab = {},
     const SpeedPartition<Model>* partition = nullptr) {
+  static_assert(is_parameter_argument_v<Model, Scalar, ParametersOrConstants>,
+                "eomrt: p must be the model's Parameters or its Constants");
   const DynamicsStatus status = evaluate_dynamics_terms(p, ws, t, q, qd, u, stab);
   if (status != DynamicsStatus::ok) return status;
   if constexpr (Model::nc == 0) {

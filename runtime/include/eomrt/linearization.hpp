@@ -92,23 +92,24 @@ void first_order_form(const KktSystem<Scalar, nq, nc>& kkt, const LinearizationT
 
 namespace detail {
 
-template <class Model, class Scalar, class = void>
+// linearization_terms taking P as its parameter argument (Parameters or Constants)
+template <class Model, class Scalar, class P, class = void>
 struct has_linearization_terms : std::false_type {};
-template <class Model, class Scalar>
-struct has_linearization_terms<Model, Scalar, std::enable_if_t<Model::nc == 0, void_t<decltype(Model::linearization_terms(
+template <class Model, class Scalar, class P>
+struct has_linearization_terms<Model, Scalar, P, std::enable_if_t<Model::nc == 0, void_t<decltype(Model::linearization_terms(
     std::declval<const Scalar&>(), std::declval<const typename ModelTypes<Model, Scalar>::Coordinates&>(),
     std::declval<const typename ModelTypes<Model, Scalar>::Coordinates&>(),
     std::declval<const typename ModelTypes<Model, Scalar>::Inputs&>(),
-    std::declval<const typename ModelTypes<Model, Scalar>::Parameters&>(),
+    std::declval<const P&>(),
     std::declval<const typename ModelTypes<Model, Scalar>::Coordinates&>(),
     std::declval<Eigen::Matrix<Scalar, Model::nq, Model::nq>&>(), std::declval<Eigen::Matrix<Scalar, Model::nq, Model::nq>&>(),
     std::declval<Eigen::Matrix<Scalar, Model::nq, Model::nu>&>()))>>> : std::true_type {};
-template <class Model, class Scalar>
-struct has_linearization_terms<Model, Scalar, std::enable_if_t<(Model::nc > 0), void_t<decltype(Model::linearization_terms(
+template <class Model, class Scalar, class P>
+struct has_linearization_terms<Model, Scalar, P, std::enable_if_t<(Model::nc > 0), void_t<decltype(Model::linearization_terms(
     std::declval<const Scalar&>(), std::declval<const typename ModelTypes<Model, Scalar>::Coordinates&>(),
     std::declval<const typename ModelTypes<Model, Scalar>::Coordinates&>(),
     std::declval<const typename ModelTypes<Model, Scalar>::Inputs&>(),
-    std::declval<const typename ModelTypes<Model, Scalar>::Parameters&>(),
+    std::declval<const P&>(),
     std::declval<const typename ModelTypes<Model, Scalar>::Coordinates&>(),
     std::declval<const typename ModelTypes<Model, Scalar>::ConstraintVector&>(),
     std::declval<Eigen::Matrix<Scalar, Model::nq, Model::nq>&>(), std::declval<Eigen::Matrix<Scalar, Model::nq, Model::nq>&>(),
@@ -136,7 +137,7 @@ struct LinearizationWorkspace {
 
 /// The second-order form M dqdd + D dqd + K dq = B_u du of an unconstrained model about
 /// (t, q, qd, u), K taken at the point's accelerations qdd0 = M^-1 F (zero at an equilibrium).
-/// \param[in]  p      parameters
+/// \param[in]  p      parameters, or their Constants (model_traits.hpp) to evaluate repeatedly
 /// \param[out] ws     ws.dynamics.M, ws.terms.K, ws.terms.D, ws.terms.B_u; qdd0 in
 ///                    ws.dynamics.qdd and the Cholesky factor of M in ws.dynamics.mass_llt
 /// \param[in]  t      time
@@ -144,15 +145,18 @@ struct LinearizationWorkspace {
 /// \param[in]  u      inputs (dim nu)
 /// \return ok; singular_mass_matrix if M is not (numerically) positive definite; non_finite if
 ///         M, F, qdd0 or a term is not finite
-template <class Model, class Scalar>
-DynamicsStatus second_order_linearization(const typename ModelTypes<Model, Scalar>::Parameters& p,
+template <class Model, class Scalar,
+          class ParametersOrConstants = typename ModelTypes<Model, Scalar>::Parameters>
+DynamicsStatus second_order_linearization(const ParametersOrConstants& p,
                                           LinearizationWorkspace<Model, Scalar>& ws, const Scalar& t,
                                           const typename ModelTypes<Model, Scalar>::Coordinates& q,
                                           const typename ModelTypes<Model, Scalar>::Coordinates& qd,
                                           const typename ModelTypes<Model, Scalar>::Inputs& u) noexcept {
+  static_assert(is_parameter_argument_v<Model, Scalar, ParametersOrConstants>,
+                "eomrt: p must be the model's Parameters or its Constants");
   static_assert(Model::nc == 0,
                 "second_order_linearization: the model has constraints; use linearization (the KKT form)");
-  static_assert(detail::has_linearization_terms<Model, Scalar>::value,
+  static_assert(detail::has_linearization_terms<Model, Scalar, ParametersOrConstants>::value,
                 "eomrt model: linearization needs linearization_terms; generate with --linearization");
   const DynamicsStatus status = forward_dynamics_unconstrained<Model>(p, ws.dynamics, t, q, qd, u);
   if (status != DynamicsStatus::ok) return status;
@@ -163,7 +167,7 @@ DynamicsStatus second_order_linearization(const typename ModelTypes<Model, Scala
 
 /// A and B of dx' = A dx + B du, x = [q; qd], about (t, q, qd, u), from exact derivatives; for
 /// a constrained model those of the KKT accelerations (without stabilization) on the full state.
-/// \param[in]  p      parameters
+/// \param[in]  p      parameters, or their Constants (model_traits.hpp) to evaluate repeatedly
 /// \param[out] ws     ws.A (2 nq x 2 nq) and ws.B (2 nq x nu) receive the result; the terms and
 ///                    the point's forward dynamics stay in ws.terms and ws.dynamics
 /// \param[in]  t      time
@@ -171,13 +175,16 @@ DynamicsStatus second_order_linearization(const typename ModelTypes<Model, Scala
 /// \param[in]  u      inputs (dim nu)
 /// \return ok; singular_mass_matrix (unconstrained) or singular_kkt_matrix (constrained) where
 ///         the point's dynamics are singular; non_finite if a term, A or B is not finite
-template <class Model, class Scalar>
-DynamicsStatus linearization(const typename ModelTypes<Model, Scalar>::Parameters& p,
+template <class Model, class Scalar,
+          class ParametersOrConstants = typename ModelTypes<Model, Scalar>::Parameters>
+DynamicsStatus linearization(const ParametersOrConstants& p,
                              LinearizationWorkspace<Model, Scalar>& ws, const Scalar& t,
                              const typename ModelTypes<Model, Scalar>::Coordinates& q,
                              const typename ModelTypes<Model, Scalar>::Coordinates& qd,
                              const typename ModelTypes<Model, Scalar>::Inputs& u) noexcept {
-  static_assert(detail::has_linearization_terms<Model, Scalar>::value,
+  static_assert(is_parameter_argument_v<Model, Scalar, ParametersOrConstants>,
+                "eomrt: p must be the model's Parameters or its Constants");
+  static_assert(detail::has_linearization_terms<Model, Scalar, ParametersOrConstants>::value,
                 "eomrt model: linearization needs linearization_terms; generate with --linearization");
   if constexpr (Model::nc == 0) {
     const DynamicsStatus status = second_order_linearization<Model>(p, ws, t, q, qd, u);

@@ -17,6 +17,13 @@
 /// with the fixed-size Eigen argument types of ModelTypes below, and optionally
 ///   static constexpr int ny + outputs(t, q, qd, u, p, y)      named outputs
 ///   static constexpr int ni + std::array<int, ni> independent_speeds   for the null-space method
+///   template <class S> class Constants    the parameter-only values, computed once per
+///                                         parameter set: explicit Constants(const Parameters<S>&),
+///                                         parameters() returning the copy it was built from, and
+///                                         every function above taking it in place of p
+/// A model with Constants is evaluated with them wherever the runtime evaluates it repeatedly
+/// for one parameter set (simulate); the algorithms taking p accept either (a braced {} stands
+/// for default Parameters, as it always did).
 /// The equations are M(q) qdd = F + Xi^T lambda with Xi qd + Xi_t = 0 and, at acceleration
 /// level, Xi qdd + b = 0 (docs/conventions.md).
 #include <Eigen/Core>
@@ -49,6 +56,21 @@ template <class...>
 using void_t = void;
 
 template <class Model, class Scalar, class = void>
+struct has_constants : std::false_type {};
+template <class Model, class Scalar>
+struct has_constants<Model, Scalar, void_t<typename Model::template Constants<Scalar>>>
+    : std::true_type {};
+
+template <class Model, class Scalar, bool = has_constants<Model, Scalar>::value>
+struct parameter_set {
+  using type = typename Model::template Parameters<Scalar>;
+};
+template <class Model, class Scalar>
+struct parameter_set<Model, Scalar, true> {
+  using type = typename Model::template Constants<Scalar>;
+};
+
+template <class Model, class Scalar, class = void>
 struct has_outputs : std::false_type {};
 template <class Model, class Scalar>
 struct has_outputs<Model, Scalar,
@@ -68,53 +90,92 @@ template <class Model>
 struct has_independent_speeds<Model, void_t<decltype(Model::ni), decltype(Model::independent_speeds)>>
     : std::bool_constant<(Model::ni > 0)> {};
 
-template <class Model, class Scalar, class = void>
+// the functions of the contract taking P as their parameter argument (Parameters or Constants)
+template <class Model, class Scalar, class P, class = void>
 struct meets_model_contract : std::false_type {};
-template <class Model, class Scalar>
+template <class Model, class Scalar, class P>
 struct meets_model_contract<
-    Model, Scalar,
+    Model, Scalar, P,
     void_t<decltype(Model::holonomic_rows),
            decltype(Model::mass_matrix_and_forcing(
                std::declval<const Scalar&>(),
                std::declval<const typename ModelTypes<Model, Scalar>::Coordinates&>(),
                std::declval<const typename ModelTypes<Model, Scalar>::Coordinates&>(),
                std::declval<const typename ModelTypes<Model, Scalar>::Inputs&>(),
-               std::declval<const typename ModelTypes<Model, Scalar>::Parameters&>(),
+               std::declval<const P&>(),
                std::declval<typename ModelTypes<Model, Scalar>::MassMatrix&>(),
                std::declval<typename ModelTypes<Model, Scalar>::Coordinates&>())),
            decltype(Model::constraint_jacobian(
                std::declval<const Scalar&>(),
                std::declval<const typename ModelTypes<Model, Scalar>::Coordinates&>(),
-               std::declval<const typename ModelTypes<Model, Scalar>::Parameters&>(),
+               std::declval<const P&>(),
                std::declval<typename ModelTypes<Model, Scalar>::ConstraintJacobian&>())),
            decltype(Model::constraint_rate_term(
                std::declval<const Scalar&>(),
                std::declval<const typename ModelTypes<Model, Scalar>::Coordinates&>(),
-               std::declval<const typename ModelTypes<Model, Scalar>::Parameters&>(),
+               std::declval<const P&>(),
                std::declval<typename ModelTypes<Model, Scalar>::ConstraintVector&>())),
            decltype(Model::constraint_acceleration_term(
                std::declval<const Scalar&>(),
                std::declval<const typename ModelTypes<Model, Scalar>::Coordinates&>(),
                std::declval<const typename ModelTypes<Model, Scalar>::Coordinates&>(),
-               std::declval<const typename ModelTypes<Model, Scalar>::Parameters&>(),
+               std::declval<const P&>(),
                std::declval<typename ModelTypes<Model, Scalar>::ConstraintVector&>())),
            decltype(Model::holonomic_residuals(
                std::declval<const Scalar&>(),
                std::declval<const typename ModelTypes<Model, Scalar>::Coordinates&>(),
-               std::declval<const typename ModelTypes<Model, Scalar>::Parameters&>(),
+               std::declval<const P&>(),
                std::declval<typename ModelTypes<Model, Scalar>::HolonomicVector&>())),
            decltype(Scalar(Model::kinetic_energy(
                std::declval<const Scalar&>(),
                std::declval<const typename ModelTypes<Model, Scalar>::Coordinates&>(),
                std::declval<const typename ModelTypes<Model, Scalar>::Coordinates&>(),
-               std::declval<const typename ModelTypes<Model, Scalar>::Parameters&>()))),
+               std::declval<const P&>()))),
            decltype(Scalar(Model::potential_energy(
                std::declval<const Scalar&>(),
                std::declval<const typename ModelTypes<Model, Scalar>::Coordinates&>(),
-               std::declval<const typename ModelTypes<Model, Scalar>::Parameters&>())))>>
+               std::declval<const P&>())))>>
     : std::true_type {};
 
+// Constants built explicitly from Parameters, giving them back
+template <class Model, class Scalar, class = void>
+struct constants_are_built_from_parameters : std::false_type {};
+template <class Model, class Scalar>
+struct constants_are_built_from_parameters<
+    Model, Scalar,
+    std::enable_if_t<std::is_same_v<
+        decltype(std::declval<const typename Model::template Constants<Scalar>&>().parameters()),
+        const typename Model::template Parameters<Scalar>&>>>
+    : std::bool_constant<
+          std::is_constructible_v<typename Model::template Constants<Scalar>,
+                                  const typename Model::template Parameters<Scalar>&> &&
+          !std::is_convertible_v<const typename Model::template Parameters<Scalar>&,
+                                 typename Model::template Constants<Scalar>>> {};
+
 }  // namespace detail
+
+/// True when the model computes its parameter-only values once per parameter set (Constants).
+template <class Model, class Scalar = double>
+inline constexpr bool has_constants_v = detail::has_constants<Model, Scalar>::value;
+
+/// What the runtime evaluates a model with for one parameter set: Model::Constants<Scalar>
+/// (the parameter-only values computed once) where the model has them, else its Parameters.
+template <class Model, class Scalar>
+using ParameterSet = typename detail::parameter_set<Model, Scalar>::type;
+
+/// True for the types the model's functions take as their parameter argument: its Parameters
+/// and, if it has them, its Constants.
+template <class Model, class Scalar, class P>
+inline constexpr bool is_parameter_argument_v =
+    std::is_same_v<P, typename Model::template Parameters<Scalar>> ||
+    std::is_same_v<P, ParameterSet<Model, Scalar>>;
+
+/// The ParameterSet of parameters p: Constants(p), or a copy of p for a model without Constants.
+template <class Model, class Scalar>
+ParameterSet<Model, Scalar> make_parameter_set(
+    const typename Model::template Parameters<Scalar>& p) noexcept {
+  return ParameterSet<Model, Scalar>(p);
+}
 
 /// True when the model provides named outputs (ny and outputs()).
 template <class Model, class Scalar = double>
@@ -138,11 +199,20 @@ constexpr bool check_model() {
   static_assert(Model::nh >= 0 && Model::nh <= Model::nc, "eomrt model: 0 <= nh <= nc expected");
   static_assert(std::is_default_constructible_v<typename ModelTypes<Model, Scalar>::Parameters>,
                 "eomrt model: Parameters<Scalar> must be default-constructible");
-  static_assert(detail::meets_model_contract<Model, Scalar>::value,
+  static_assert(detail::meets_model_contract<Model, Scalar,
+                                             typename ModelTypes<Model, Scalar>::Parameters>::value,
                 "eomrt model: expected holonomic_rows and static mass_matrix_and_forcing, "
                 "constraint_jacobian, constraint_rate_term, constraint_acceleration_term, "
                 "holonomic_residuals, kinetic_energy and potential_energy with the argument "
                 "types of eomrt::ModelTypes (see model_traits.hpp)");
+  if constexpr (has_constants_v<Model, Scalar>) {
+    static_assert(detail::constants_are_built_from_parameters<Model, Scalar>::value,
+                  "eomrt model: Constants<Scalar> must have an explicit constructor from "
+                  "Parameters<Scalar> and parameters() returning const Parameters<Scalar>&");
+    static_assert(detail::meets_model_contract<Model, Scalar, ParameterSet<Model, Scalar>>::value,
+                  "eomrt model: a model with Constants must offer every function of the contract "
+                  "taking them in place of the Parameters (see model_traits.hpp)");
+  }
   return true;
 }
 

@@ -173,7 +173,9 @@ struct SimulationContext {
   using Types = ModelTypes<Model, Scalar>;
   static constexpr int nq = Model::nq;
 
-  const typename Types::Parameters& p;
+  /// the parameters' Constants, computed once for the whole run (a copy of the parameters for
+  /// a model without them)
+  const ParameterSet<Model, Scalar> p;
   const SimulationOptions<Scalar>& options;
   InputFn& input;
   DynamicsWorkspace<Model, Scalar> ws;
@@ -184,7 +186,7 @@ struct SimulationContext {
 
   SimulationContext(const typename Types::Parameters& p_, const SimulationOptions<Scalar>& o,
                     InputFn& in, const SpeedPartition<Model>* part)
-      : p(p_), options(o), input(in), partition(part) {
+      : p(make_parameter_set<Model, Scalar>(p_)), options(o), input(in), partition(part) {
     q.setZero();
     qd.setZero();
     u.setZero();
@@ -452,7 +454,8 @@ void march_adaptive(const EmbeddedTableau<S>& pair, SimulationContext<Model, Sca
 }  // namespace detail
 
 /// Simulates a model from (t0, x0) to t_end.
-/// \param[in] p         parameters
+/// \param[in] p         parameters; a model with Constants is evaluated through Constants built
+///                      once from them (make_parameter_set)
 /// \param[in] x0        initial state [q0; qd0] (dim 2 nq); with projection on, it is first
 ///                      projected onto the constraints
 /// \param[in] options   integrator, span, solver, stabilization, sampling

@@ -23,16 +23,19 @@ struct ConstraintResiduals {
 };
 
 /// Evaluates the constraint residuals at (t, q, qd).
-/// \param[in]  p      parameters
+/// \param[in]  p      parameters, or their Constants (model_traits.hpp) to evaluate repeatedly
 /// \param[out] ws     workspace; ws.phi, ws.Xi, ws.Xi_t, ws.velocity_residual are overwritten
 /// \param[in]  t      time
 /// \param[in]  q, qd  coordinates and rates (dim nq)
 /// \return the largest residuals (zero for an unconstrained model)
-template <class Model, class Scalar>
+template <class Model, class Scalar,
+          class ParametersOrConstants = typename ModelTypes<Model, Scalar>::Parameters>
 ConstraintResiduals<Scalar> constraint_residuals(
-    const typename ModelTypes<Model, Scalar>::Parameters& p, DynamicsWorkspace<Model, Scalar>& ws,
+    const ParametersOrConstants& p, DynamicsWorkspace<Model, Scalar>& ws,
     const Scalar& t, const typename ModelTypes<Model, Scalar>::Coordinates& q,
     const typename ModelTypes<Model, Scalar>::Coordinates& qd) {
+  static_assert(is_parameter_argument_v<Model, Scalar, ParametersOrConstants>,
+                "eomrt: p must be the model's Parameters or its Constants");
   ConstraintResiduals<Scalar> r;
   if constexpr (Model::nc > 0) {
     Model::constraint_jacobian(t, q, p, ws.Xi);
@@ -49,19 +52,22 @@ ConstraintResiduals<Scalar> constraint_residuals(
 }
 
 /// Projects q onto phi(q, t) = 0 (holonomic constraints only), then qd onto Xi qd + Xi_t = 0.
-/// \param[in]     p               parameters
+/// \param[in]     p               parameters, or their Constants (model_traits.hpp)
 /// \param[out]    ws              workspace (scratch; ws.Xi etc. hold the final evaluation)
 /// \param[in]     t               time
 /// \param[in,out] q, qd           coordinates and rates (dim nq), corrected in place
 /// \param[in]     max_iterations  Newton iterations allowed for the positions
 /// \return ok; singular_constraint_jacobian if Xi Xi^T is singular; non_finite if a term is
 ///         not finite; projection_failed if the positions did not converge
-template <class Model, class Scalar>
-DynamicsStatus project_onto_constraints(const typename ModelTypes<Model, Scalar>::Parameters& p,
+template <class Model, class Scalar,
+          class ParametersOrConstants = typename ModelTypes<Model, Scalar>::Parameters>
+DynamicsStatus project_onto_constraints(const ParametersOrConstants& p,
                                         DynamicsWorkspace<Model, Scalar>& ws, const Scalar& t,
                                         typename ModelTypes<Model, Scalar>::Coordinates& q,
                                         typename ModelTypes<Model, Scalar>::Coordinates& qd,
                                         int max_iterations = 8) {
+  static_assert(is_parameter_argument_v<Model, Scalar, ParametersOrConstants>,
+                "eomrt: p must be the model's Parameters or its Constants");
   if constexpr (Model::nc == 0) {
     return DynamicsStatus::ok;
   } else {

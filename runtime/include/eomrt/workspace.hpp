@@ -99,7 +99,7 @@ struct DynamicsWorkspace {
 
 /// Evaluates the model's terms at (t, q, qd, u): M, F, and for a constrained model Xi, Xi_t, b,
 /// phi, the residual Xi qd + Xi_t and the stabilized right side r of Xi qdd = r.
-/// \param[in]  p      parameters
+/// \param[in]  p      parameters, or their Constants (model_traits.hpp) to evaluate repeatedly
 /// \param[out] ws     ws.M, ws.F, ws.Xi, ws.Xi_t, ws.b, ws.phi, ws.velocity_residual,
 ///                    ws.constraint_rhs
 /// \param[in]  t      time
@@ -107,13 +107,16 @@ struct DynamicsWorkspace {
 /// \param[in]  u      inputs (dim nu)
 /// \param[in]  stab   Baumgarte terms (zero: none)
 /// \return ok, or non_finite if any evaluated entry is NaN or infinite
-template <class Model, class Scalar>
-DynamicsStatus evaluate_dynamics_terms(const typename ModelTypes<Model, Scalar>::Parameters& p,
+template <class Model, class Scalar,
+          class ParametersOrConstants = typename ModelTypes<Model, Scalar>::Parameters>
+DynamicsStatus evaluate_dynamics_terms(const ParametersOrConstants& p,
                                        DynamicsWorkspace<Model, Scalar>& ws, const Scalar& t,
                                        const typename ModelTypes<Model, Scalar>::Coordinates& q,
                                        const typename ModelTypes<Model, Scalar>::Coordinates& qd,
                                        const typename ModelTypes<Model, Scalar>::Inputs& u,
                                        const Baumgarte<Scalar>& stab) {
+  static_assert(is_parameter_argument_v<Model, Scalar, ParametersOrConstants>,
+                "eomrt: p must be the model's Parameters or its Constants");
   Model::mass_matrix_and_forcing(t, q, qd, u, p, ws.M, ws.F);
   if (!ws.M.allFinite() || !ws.F.allFinite()) return DynamicsStatus::non_finite;
   if constexpr (Model::nc > 0) {

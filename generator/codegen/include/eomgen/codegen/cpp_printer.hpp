@@ -17,6 +17,8 @@ struct CppPrintOptions {
   bool share_subexpressions = true;
   /// the model's parameter names, in order: parameter k is read as p.<cpp_identifier(name k)>
   std::vector<std::string> parameter_names;
+  /// the object parameters are read from: the argument p, or the copy c.p inside a Constants
+  std::string parameters = "p";
 };
 
 /// Statements computing every output of the program: shared values become
@@ -26,15 +28,17 @@ std::string print_cpp(const ir::Program& program, const CppPrintOptions& options
 /// A double as a C++ literal wrapped in the scalar type: "Scalar(0.5)", "Scalar(2)".
 std::string cpp_number(double value, const std::string& scalar);
 
-/// The argument of a generated function that holds variables of this kind: "q", "qd", "p", ...
+/// The argument of a generated function that holds variables of this kind: "q", "qd", "p",
+/// "c" (the Constants), ...
 const char* cpp_argument_name(ir::VariableKind kind);
 /// The argument (or, for a scalar, the local) that holds an array: "M", "F", "T", "S_q", ...
 const char* cpp_array_name(ir::Array array);
 
-/// How a generated function reads a variable: "t", "q(0)", "lambda(1)", "p.m".
+/// How a generated function reads a variable: "t", "q(0)", "lambda(1)", "p.m" (with
+/// options.parameters "p"), "c.k3".
 /// \pre a parameter's index is below options.parameter_names.size()
 std::string cpp_variable(const ir::Variable& variable, const CppPrintOptions& options);
-/// The lvalue of a target: "M(0, 1)", "F(2)", "T".
+/// The lvalue of a target: "M(0, 1)", "F(2)", "T", "k3" (a member of the Constants).
 std::string cpp_target(const ir::Target& target);
 
 }  // namespace eomgen

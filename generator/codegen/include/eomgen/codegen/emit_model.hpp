@@ -26,8 +26,12 @@ struct FunctionStatistics {
   ir::OperationCounts optimized;    // the emitted straight-line code
 };
 
+/// The name of the statistics of the Constants: the operations done once per parameter set.
+inline constexpr const char* constants_statistics_name = "Constants (per parameter set)";
+
 struct EmittedModel {
   std::string header;
+  /// the Constants first (constants_statistics_name), then each function's operations per call
   std::vector<FunctionStatistics> statistics;
 };
 

@@ -84,6 +84,7 @@ enum class VariableKind {
   parameter,     // the model's parameter number `index`
   acceleration,  // qdd(index), given to the linearization's terms
   multiplier,    // lambda(index), given to the linearization's terms
+  constant,      // the per-parameter-set constant number `index` (parameter_constants.hpp)
 };
 
 /// One input value of a generated function, named symbolically (the printer spells it).
@@ -113,6 +114,7 @@ enum class Array {
   input_matrix,                   // B_u = dF/du
   acceleration_constraint_by_q,   // S_q = dS/dq of S = Xi qdd + b
   acceleration_constraint_by_qd,  // S_qd = dS/dqd
+  constants,                      // the per-parameter-set constants, computed once by Constants
 };
 
 /// 0 for a scalar, 1 for a vector, 2 for a matrix.
