@@ -36,7 +36,6 @@ matrix stacked(const matrix& top, const matrix& bottom) {
 // the part of its acceleration at qdd = 0 that Phi_i does not carry over from the parent.
 struct Joint {
   matrix E;      // C_{f_i f_p}
-  matrix r;      // r^{c_i c_p} resolved in f_p
   matrix phi;    // Phi_i, 6x6
   matrix S;      // 6 x |J(i)|
   matrix omega;  // omega_i, in f_i
@@ -67,52 +66,52 @@ class ArticulatedBody {
  private:
   const Link* parent(std::size_t i) const { return links_[i].parent ? &links_[*links_[i].parent] : nullptr; }
 
-  ex time_rate(const ex& e) const { return vars_.time_derivative(e); }
-  ex rate_at_zero_acceleration(const ex& e) const { return vars_.without_accelerations(time_rate(e)); }
+  ex rate_at_zero_acceleration(const ex& e) const {
+    return vars_.without_accelerations(vars_.time_derivative(e));
+  }
   ex rate_partial(const ex& e, std::size_t k) const {
     return e.diff(GiNaC::ex_to<GiNaC::symbol>(ex(vars_.coordinates()[k].qd)));
   }
 
-  // the relative kinematics come from the plain functions: they involve only J(i)
+  // The relative kinematics come from the plain functions: they involve only J(i). Resolved in
+  // f_i, where the joint's own terms are usually given, they need no trigonometric identities.
   Joint joint(std::size_t i) {
     const Link& link = links_[i];
     const Link* p = parent(i);
     const FrameId fp = p ? p->frame : s_.inertial_frame();
     const matrix omega_p = p ? joints_[*link.parent].omega : matrix(3, 1);
+    const Vector r = position(s_, link.centre, p ? p->centre : s_.origin());
+    const Vector r_rate = time_derivative(s_, r, fp);
+    const matrix v_rel = resolve(s_, r_rate, link.frame);
+    const matrix a_rel = map_entries(resolve(s_, time_derivative(s_, r_rate, fp), link.frame),
+                                     [&](const ex& e) { return vars_.without_accelerations(e); });
+    const matrix w_rel = resolve(s_, angular_velocity(s_, link.frame, fp), link.frame);
     Joint j;
     j.E = z_.bind(dcm(s_, link.frame, fp));
-    const matrix r = resolve(s_, position(s_, link.centre, p ? p->centre : s_.origin()), fp);
-    const matrix r_rate = map_entries(r, [&](const ex& e) { return time_rate(e); });
-    const matrix w_rel = resolve(s_, angular_velocity(s_, link.frame, fp), link.frame);
-    j.r = z_.bind(r);
-    j.phi = spatial_transform(j.E, j.r);
+    const matrix r_i = z_.bind(resolve(s_, r, link.frame));
+    j.phi = spatial_transform(j.E, r_i);
     j.S = matrix(6, static_cast<unsigned>(link.joint.size()));
-    for (unsigned c = 0; c < link.joint.size(); ++c) {
-      const matrix v = j.E.mul(map_entries(r_rate, [&](const ex& e) { return rate_partial(e, link.joint[c]); }));
+    for (unsigned c = 0; c < link.joint.size(); ++c)
       for (unsigned row = 0; row < 3; ++row) {
         j.S(row, c) = z_.bind(rate_partial(w_rel(row, 0), link.joint[c]));
-        j.S(row + 3, c) = z_.bind(v(row, 0));
+        j.S(row + 3, c) = z_.bind(rate_partial(v_rel(row, 0), link.joint[c]));
       }
-    }
     // omega_i = E omega_p + omega_rel
-    const matrix w_carried = z_.bind(j.E.mul(omega_p));
+    const matrix w = z_.bind(j.E.mul(omega_p));
     const matrix w_rel_bound = z_.bind(w_rel);
-    j.omega = z_.bind(w_carried.add(w_rel_bound));
-    // alpha: d(omega_rel)/dt + (E omega_p) x omega_rel; a: E (w x (w x r) + 2 w x r' + r'') with w = omega_p
+    j.omega = z_.bind(w.add(w_rel_bound));
+    // alpha: d(omega_rel)/dt + w x omega_rel; a: w x (w x r) + 2 w x v_rel + a_rel, w = E omega_p
     const matrix alpha = map_entries(w_rel, [&](const ex& e) { return rate_at_zero_acceleration(e); })
-                             .add(cross3(w_carried, w_rel_bound));
-    const matrix r_rate_bound = z_.bind(r_rate);
-    const matrix w_x_r = z_.bind(cross3(omega_p, j.r));
-    const matrix a = cross3(omega_p, w_x_r)
-                         .add(cross3(omega_p, r_rate_bound).mul_scalar(2))
-                         .add(map_entries(r_rate, [&](const ex& e) { return rate_at_zero_acceleration(e); }));
-    j.zeta = z_.bind(stacked(alpha, j.E.mul(a)));
+                             .add(cross3(w, w_rel_bound));
+    const matrix w_x_r = z_.bind(cross3(w, r_i));
+    const matrix a = cross3(w, w_x_r).add(cross3(w, z_.bind(v_rel)).mul_scalar(2)).add(a_rel);
+    j.zeta = z_.bind(stacked(alpha, a));
     return j;
   }
 
-  // Phi = [[E, 0], [-E r^x, E]]
-  matrix spatial_transform(const matrix& E, const matrix& r) {
-    const matrix B = z_.bind(E.mul(cross_matrix(r)).mul_scalar(-1));
+  // Phi = [[E, 0], [-E r^x, E]] with r in f_p, that is [[E, 0], [-r_i^x E, E]] with r_i = E r
+  matrix spatial_transform(const matrix& E, const matrix& r_i) {
+    const matrix B = z_.bind(cross_matrix(r_i).mul(E).mul_scalar(-1));
     matrix phi(6, 6);
     for (unsigned i = 0; i < 3; ++i)
       for (unsigned j = 0; j < 3; ++j) {
