@@ -1,6 +1,7 @@
 // Every shipped model's generated header against the symbolic equations it came from, at
 // random states, to 1e-12 relative. The headers are generated at build time by
 // eomgen_add_model(), so this also exercises the CMake function.
+#include <Eigen/Cholesky>
 #include <Eigen/LU>
 #include <gtest/gtest.h>
 
@@ -106,6 +107,13 @@ void check_against_symbolic() {
     // the combined function shares differently, so only rounding may differ
     EXPECT_LE((M - M2).norm(), 1e-13 * (1 + M.norm()));
     EXPECT_LE((F - F2).norm(), 1e-13 * (1 + F.norm()));
+    // the articulated-body forward dynamics against M^-1 F of the generated M and F
+    if constexpr (Model::has_forward_dynamics) {
+      typename Model::template Vector<double> qdd;
+      EXPECT_TRUE(Model::forward_dynamics(t, q, qd, u, p, qdd));
+      const typename Model::template Vector<double> expected = M.llt().solve(F);
+      EXPECT_TRUE(eomgen::testing::matrices_near_relative(qdd, expected, 1e-11)) << "forward_dynamics";
+    }
     typename Model::template ConstraintJacobian<double> Xi;
     typename Model::template ConstraintVector<double> Xi_t, b;
     typename Model::template HolonomicVector<double> phi;
@@ -154,6 +162,15 @@ void check_against_symbolic() {
     }
   }
 }
+
+// trees without constraints have forward_dynamics(); the rest keep M and F only
+static_assert(eomgen_models::planar_chain::Model::has_forward_dynamics);
+static_assert(eomgen_models::universal_chain::Model::has_forward_dynamics);
+static_assert(eomgen_models::cart_pole::Model::has_forward_dynamics);
+static_assert(eomgen_models::double_pendulum::Model::has_forward_dynamics);
+static_assert(eomgen_models::spring_mass_damper::Model::has_forward_dynamics);
+static_assert(!eomgen_models::cartesian_pendulum::Model::has_forward_dynamics);
+static_assert(!eomgen_models::rolling_coin::Model::has_forward_dynamics);
 
 TEST(GeneratedModel, EveryModelRunsInDoubleAndFloatFromAStrictlyCompiledUnit) {
   EXPECT_TRUE(generated_models_failing_in_double_or_float().empty());

@@ -22,7 +22,10 @@ const char* array_type(Array array) {
     case Array::stiffness:
     case Array::damping:
       return "MassMatrix";
-    case Array::forcing: return "Vector";
+    case Array::forcing:
+    case Array::accelerations:
+      return "Vector";
+    case Array::pivots: EOMGEN_UNREACHABLE("the pivots are local to forward_dynamics, never an argument");
     case Array::constraint_jacobian:
     case Array::acceleration_constraint_by_q:
     case Array::acceleration_constraint_by_qd:
@@ -79,15 +82,35 @@ std::string math_using_declarations(const std::string& indent) {
   return s;
 }
 
+std::size_t pivot_count(const FunctionSpec& f) {
+  return static_cast<std::size_t>(std::count_if(f.targets.begin(), f.targets.end(), [](const LoweringTarget& t) {
+    return t.target.array == Array::pivots;
+  }));
+}
+
+// M is positive definite exactly when every pivot is; NaN fails both tests
+std::string regularity_check(const FunctionSpec& f, std::size_t pivots, const std::string& indent) {
+  std::string s = fmt::format("{}bool regular = true;\n", indent);
+  if (pivots > 0)
+    s += fmt::format("{}for (int k = 0; k < {}; ++k) regular = regular && pivot(k) > Scalar(0);\n", indent, pivots);
+  s += fmt::format("{}using std::isfinite;\n", indent);
+  for (Array array : f.writes)
+    s += fmt::format("{}for (int k = 0; k < {}.size(); ++k) regular = regular && isfinite({}(k));\n", indent,
+                     cpp_array_name(array), cpp_array_name(array));
+  return s + fmt::format("{}return regular;\n", indent);
+}
+
 }  // namespace
 
 std::string function_source(const FunctionSpec& f, const ir::Program& program, const CppPrintOptions& print) {
   const bool scalar = returns_scalar(f);
   const std::string result = scalar ? cpp_target(f.targets.front().target) : std::string();
   std::string code = fmt::format("\n  /// {}\n  template <class Scalar>\n  static {} {}({}) noexcept {{\n", f.doc,
-                                 scalar ? "Scalar" : "void", f.name, signature(f));
+                                 scalar ? "Scalar" : f.returns_regularity ? "bool" : "void", f.name, signature(f));
   code += math_using_declarations(print.indent);
   if (scalar) code += fmt::format("{}Scalar {} = Scalar(0);\n", print.indent, result);
+  const std::size_t pivots = pivot_count(f);
+  if (pivots > 0) code += fmt::format("{}Eigen::Matrix<Scalar, {}, 1> pivot;\n", print.indent, pivots);
   code += print_cpp(program, print);
   // structural zeros are written as zeros, not computed
   std::set<ir::Target> computed;
@@ -99,6 +122,7 @@ std::string function_source(const FunctionSpec& f, const ir::Program& program, c
     code += fmt::format("{}{} = {};\n", print.indent, cpp_target(target),
                         computed.count(source) ? cpp_target(source) : "Scalar(0)");
   if (scalar) code += fmt::format("{}return {};\n", print.indent, result);
+  if (f.returns_regularity) code += regularity_check(f, pivots, print.indent);
   return code + "  }\n";
 }
 

@@ -68,6 +68,8 @@ std::size_t rank(Array array) {
     case Array::constraint_acceleration_term:
     case Array::holonomic_residuals:
     case Array::outputs:
+    case Array::accelerations:
+    case Array::pivots:
       return 1;
     case Array::mass_matrix:
     case Array::constraint_jacobian:

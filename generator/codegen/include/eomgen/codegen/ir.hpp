@@ -113,6 +113,8 @@ enum class Array {
   input_matrix,                   // B_u = dF/du
   acceleration_constraint_by_q,   // S_q = dS/dq of S = Xi qdd + b
   acceleration_constraint_by_qd,  // S_qd = dS/dqd
+  accelerations,                  // qdd of the generated forward dynamics
+  pivots,                         // the forward dynamics' pivots: a local array, checked, not returned
 };
 
 /// 0 for a scalar, 1 for a vector, 2 for a matrix.
