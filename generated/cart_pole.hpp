@@ -22,7 +22,7 @@ struct Model {
   static constexpr const char* name = "cart_pole";
   static constexpr const char* description = "Cart-pole: a uniform rod hinged on a cart pushed along a rail";
   static constexpr const char* generator_version = "0.1.0";
-  static constexpr const char* model_hash = "c1963a60e3c76383";
+  static constexpr const char* model_hash = "932df813e8df17f7";
   static constexpr std::array<const char*, nq> coordinate_names{{"x", "theta"}};
   static constexpr std::array<const char*, nu> input_names{{"u"}};
   static constexpr std::array<const char*, np> parameter_names{{"mc", "mp", "l", "rp", "g"}};
@@ -31,6 +31,7 @@ struct Model {
   static constexpr std::array<int, nh> holonomic_rows{{}};  // row of Xi of each entry of phi
   static constexpr std::array<int, ni> independent_speeds{{}};  // their coordinate indices
   static constexpr std::array<const char*, ny> output_names{{"cart_position", "tip_1", "tip_2", "tip_3", "tip_velocity_1", "tip_velocity_2", "tip_velocity_3"}};
+  static constexpr bool has_forward_dynamics = true;  // forward_dynamics(), without M
 
   template <class Scalar> using Vector = Eigen::Matrix<Scalar, nq, 1>;
   template <class Scalar> using Inputs = Eigen::Matrix<Scalar, nu, 1>;
@@ -172,6 +173,33 @@ struct Model {
     y(5) = -(qd(1) * w0 * p.l);
     y(3) = Scalar(0);
     y(6) = Scalar(0);
+  }
+
+  /// qdd of M qdd = F by the articulated-body algorithm; false if M is not positive definite (a pivot is not positive) or qdd is not finite
+  template <class Scalar>
+  static bool forward_dynamics([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] Vector<Scalar>& qdd) noexcept {
+    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
+    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
+    using std::log; using std::abs; using std::pow;
+    Eigen::Matrix<Scalar, 2, 1> pivot;
+    const Scalar w0 = p.mp * Scalar(0.5) * p.l;
+    const Scalar w1 = (p.rp * p.rp * Scalar(3) + p.l * p.l) * Scalar(0.08333333333333333) * p.mp + Scalar(0.5) * p.l * w0;
+    const Scalar w2 = sin(q(1));
+    const Scalar w3 = cos(q(1));
+    const Scalar w4 = Scalar(1) / w1 * w0;
+    const Scalar w5 = p.mp - w4 * w0;
+    const Scalar w6 = w2 * w2 * p.mp + w3 * w3 * w5 + p.mc;
+    const Scalar w7 = Scalar(1) / w6;
+    const Scalar w8 = p.g * (w2 * w5 * w3 - w2 * w3 * p.mp) * w7 + (w2 * p.mp * Scalar(0.5) * p.l * qd(1) * qd(1) - u(0)) * w7;
+    pivot(0) = w1;
+    pivot(1) = w6;
+    qdd(0) = -w8;
+    qdd(1) = w4 * (p.g * w2 - w3 * w8);
+    bool regular = true;
+    for (int k = 0; k < 2; ++k) regular = regular && pivot(k) > Scalar(0);
+    using std::isfinite;
+    for (int k = 0; k < qdd.size(); ++k) regular = regular && isfinite(qdd(k));
+    return regular;
   }
 };
 

@@ -22,7 +22,7 @@ struct Model {
   static constexpr const char* name = "double_pendulum";
   static constexpr const char* description = "Planar double pendulum: two point masses on massless rods, relative angles";
   static constexpr const char* generator_version = "0.1.0";
-  static constexpr const char* model_hash = "a4330621e88feaef";
+  static constexpr const char* model_hash = "5c4c106eb70e518e";
   static constexpr std::array<const char*, nq> coordinate_names{{"theta1", "theta2"}};
   static constexpr std::array<const char*, nu> input_names{{}};
   static constexpr std::array<const char*, np> parameter_names{{"m1", "m2", "l1", "l2", "g"}};
@@ -31,6 +31,7 @@ struct Model {
   static constexpr std::array<int, nh> holonomic_rows{{}};  // row of Xi of each entry of phi
   static constexpr std::array<int, ni> independent_speeds{{}};  // their coordinate indices
   static constexpr std::array<const char*, ny> output_names{{"elbow_1", "elbow_2", "elbow_3", "tip_1", "tip_2", "tip_3", "tip_velocity_1", "tip_velocity_2", "tip_velocity_3", "absolute_angle2"}};
+  static constexpr bool has_forward_dynamics = true;  // forward_dynamics(), without M
 
   template <class Scalar> using Vector = Eigen::Matrix<Scalar, nq, 1>;
   template <class Scalar> using Inputs = Eigen::Matrix<Scalar, nu, 1>;
@@ -225,6 +226,39 @@ struct Model {
     y(2) = Scalar(0);
     y(5) = Scalar(0);
     y(8) = Scalar(0);
+  }
+
+  /// qdd of M qdd = F by the articulated-body algorithm; false if M is not positive definite (a pivot is not positive) or qdd is not finite
+  template <class Scalar>
+  static bool forward_dynamics([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] Vector<Scalar>& qdd) noexcept {
+    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
+    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
+    using std::log; using std::abs; using std::pow;
+    Eigen::Matrix<Scalar, 2, 1> pivot;
+    const Scalar w0 = p.l2 * p.m2;
+    const Scalar w1 = p.l2 * w0;
+    const Scalar w2 = cos(q(1));
+    const Scalar w3 = Scalar(1) / w1 * w0;
+    const Scalar w4 = w3 * w0 - p.m2;
+    const Scalar w5 = w4 * w2;
+    const Scalar w6 = sin(q(1));
+    const Scalar w7 = w5 * p.l2;
+    const Scalar w8 = w7 - p.l1 * (p.m1 + w6 * w6 * p.m2 - w2 * w5);
+    const Scalar w9 = p.l1 * w8 + p.l2 * w4 * p.l2 + p.l1 * w7;
+    const Scalar w10 = Scalar(1) / w9;
+    const Scalar w11 = p.g * sin(q(0));
+    const Scalar w12 = p.g * cos(q(0)) + p.l1 * qd(0) * qd(0);
+    const Scalar w13 = w6 * w4;
+    const Scalar w14 = w10 * w8 * w11 + w12 * (w13 * p.l2 + p.l1 * (w6 * w2 * p.m2 + w13 * w2)) * w10 + w10 * p.l1 * w6 * (Scalar(2) * qd(1) * p.l2 * qd(0) + qd(0) * p.l2 * qd(0) + p.l2 * qd(1) * qd(1)) * p.m2;
+    pivot(0) = w1;
+    pivot(1) = -w9;
+    qdd(0) = -w14;
+    qdd(1) = w3 * (w14 * p.l2 - w6 * w12 + w2 * (w14 * p.l1 - w11));
+    bool regular = true;
+    for (int k = 0; k < 2; ++k) regular = regular && pivot(k) > Scalar(0);
+    using std::isfinite;
+    for (int k = 0; k < qdd.size(); ++k) regular = regular && isfinite(qdd(k));
+    return regular;
   }
 };
 

@@ -22,7 +22,7 @@ struct Model {
   static constexpr const char* name = "simple_pendulum";
   static constexpr const char* description = "Simple pendulum: a point mass on a massless rod in a vertical plane";
   static constexpr const char* generator_version = "0.1.0";
-  static constexpr const char* model_hash = "080c2340af28b876";
+  static constexpr const char* model_hash = "ac289bc7b690d8ed";
   static constexpr std::array<const char*, nq> coordinate_names{{"theta"}};
   static constexpr std::array<const char*, nu> input_names{{}};
   static constexpr std::array<const char*, np> parameter_names{{"m", "l", "g"}};
@@ -31,6 +31,7 @@ struct Model {
   static constexpr std::array<int, nh> holonomic_rows{{}};  // row of Xi of each entry of phi
   static constexpr std::array<int, ni> independent_speeds{{}};  // their coordinate indices
   static constexpr std::array<const char*, ny> output_names{{"bob_pos_1", "bob_pos_2", "bob_pos_3", "bob_vel_1", "bob_vel_2", "bob_vel_3", "height"}};
+  static constexpr bool has_forward_dynamics = true;  // forward_dynamics(), without M
 
   template <class Scalar> using Vector = Eigen::Matrix<Scalar, nq, 1>;
   template <class Scalar> using Inputs = Eigen::Matrix<Scalar, nu, 1>;
@@ -161,6 +162,24 @@ struct Model {
     y(6) = w2;
     y(2) = Scalar(0);
     y(5) = Scalar(0);
+  }
+
+  /// qdd of M qdd = F by the articulated-body algorithm; false if M is not positive definite (a pivot is not positive) or qdd is not finite
+  template <class Scalar>
+  static bool forward_dynamics([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] Vector<Scalar>& qdd) noexcept {
+    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
+    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
+    using std::log; using std::abs; using std::pow;
+    Eigen::Matrix<Scalar, 1, 1> pivot;
+    const Scalar w0 = p.m * p.l;
+    const Scalar w1 = p.l * w0;
+    pivot(0) = w1;
+    qdd(0) = -(Scalar(1) / w1 * w0 * p.g * sin(q(0)));
+    bool regular = true;
+    for (int k = 0; k < 1; ++k) regular = regular && pivot(k) > Scalar(0);
+    using std::isfinite;
+    for (int k = 0; k < qdd.size(); ++k) regular = regular && isfinite(qdd(k));
+    return regular;
   }
 };
 

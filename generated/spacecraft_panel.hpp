@@ -22,7 +22,7 @@ struct Model {
   static constexpr const char* name = "spacecraft_panel";
   static constexpr const char* description = "Spacecraft bus spinning about b3 with a solar panel hinged about b2 (notes Example 3.1)";
   static constexpr const char* generator_version = "0.1.0";
-  static constexpr const char* model_hash = "4375cc83f3f3038c";
+  static constexpr const char* model_hash = "41ec992b34327e1a";
   static constexpr std::array<const char*, nq> coordinate_names{{"gamma", "theta"}};
   static constexpr std::array<const char*, nu> input_names{{"tau_b", "tau_p"}};
   static constexpr std::array<const char*, np> parameter_names{{"l_fh", "l_ef", "w_p", "t_p", "m_b", "J_b1", "J_b2", "J_b3", "m_p"}};
@@ -31,6 +31,7 @@ struct Model {
   static constexpr std::array<int, nh> holonomic_rows{{}};  // row of Xi of each entry of phi
   static constexpr std::array<int, ni> independent_speeds{{}};  // their coordinate indices
   static constexpr std::array<const char*, ny> output_names{{"tip_position_1", "tip_position_2", "tip_position_3", "tip_velocity_1", "tip_velocity_2", "tip_velocity_3", "omega_panel_1", "omega_panel_2", "omega_panel_3"}};
+  static constexpr bool has_forward_dynamics = true;  // forward_dynamics(), without M
 
   template <class Scalar> using Vector = Eigen::Matrix<Scalar, nq, 1>;
   template <class Scalar> using Inputs = Eigen::Matrix<Scalar, nu, 1>;
@@ -250,6 +251,52 @@ struct Model {
     y(6) = -(w0 * qd(0));
     y(7) = qd(1);
     y(8) = w3 * qd(0);
+  }
+
+  /// qdd of M qdd = F by the articulated-body algorithm; false if M is not positive definite (a pivot is not positive) or qdd is not finite
+  template <class Scalar>
+  static bool forward_dynamics([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] Vector<Scalar>& qdd) noexcept {
+    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
+    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
+    using std::log; using std::abs; using std::pow;
+    Eigen::Matrix<Scalar, 2, 1> pivot;
+    const Scalar w0 = p.l_ef * p.l_ef;
+    const Scalar w1 = p.t_p * p.t_p;
+    const Scalar w2 = w0 + w1;
+    const Scalar w3 = p.l_ef * Scalar(0.5) * p.m_p;
+    const Scalar w4 = w2 * Scalar(0.08333333333333333) * p.m_p + p.l_ef * Scalar(0.5) * w3;
+    const Scalar w5 = sin(q(1));
+    const Scalar w6 = w5 * p.l_ef * Scalar(0.5);
+    const Scalar w7 = cos(q(1));
+    const Scalar w8 = w7 * p.l_fh;
+    const Scalar w9 = Scalar(1) / w4;
+    const Scalar w10 = w9 * w3;
+    const Scalar w11 = p.m_p - w3 * w10;
+    const Scalar w12 = p.w_p * p.w_p;
+    const Scalar w13 = w12 + w1;
+    const Scalar w14 = Scalar(0.08333333333333333) * w13 * p.m_p;
+    const Scalar w15 = w0 + w12;
+    const Scalar w16 = Scalar(0.08333333333333333) * w15 * p.m_p;
+    const Scalar w17 = w5 * p.l_fh;
+    const Scalar w18 = p.J_b3 + p.m_p * w6 * w6 + w8 * w8 * w11 + w14 * w7 * w7 + w5 * w16 * w5 + p.m_p * w17 * w17;
+    const Scalar w19 = w7 * qd(0);
+    const Scalar w20 = w5 * qd(0);
+    const Scalar w21 = p.l_ef * w20 * Scalar(0.5);
+    const Scalar w22 = w19 * w21;
+    const Scalar w23 = w19 * Scalar(0.08333333333333333) * w13 * p.m_p;
+    const Scalar w24 = Scalar(0.08333333333333333) * w20 * w15 * p.m_p;
+    const Scalar w25 = w20 * w23 - w19 * w24 - u(1);
+    const Scalar w26 = qd(1) * w2 * Scalar(0.08333333333333333) * p.m_p;
+    const Scalar w27 = (w8 * (w11 * w22 + w25 * w10) - w7 * (qd(1) * w20 * w14 + w20 * w26 - qd(1) * w24) + (w20 * w21 + p.l_ef * Scalar(0.5) * qd(1) * qd(1)) * p.m_p * w17 - w6 * (w20 * p.l_fh * w20 - qd(1) * p.l_ef * Scalar(0.5) * w19 * Scalar(2) + w19 * w19 * p.l_fh) * p.m_p - w5 * (qd(1) * w23 - w19 * w26 - qd(1) * w19 * w16) - u(0)) * Scalar(1) / w18;
+    pivot(0) = w4;
+    pivot(1) = w18;
+    qdd(0) = -w27;
+    qdd(1) = -((w27 * w8 - w22) * w10 + w25 * w9);
+    bool regular = true;
+    for (int k = 0; k < 2; ++k) regular = regular && pivot(k) > Scalar(0);
+    using std::isfinite;
+    for (int k = 0; k < qdd.size(); ++k) regular = regular && isfinite(qdd(k));
+    return regular;
   }
 };
 

@@ -22,7 +22,7 @@ struct Model {
   static constexpr const char* name = "spring_mass_damper";
   static constexpr const char* description = "Nonlinear spring-mass-damper of the notes' equation (A.14): m q'' + d q' + (k1 + k2 q^2) q = 0";
   static constexpr const char* generator_version = "0.1.0";
-  static constexpr const char* model_hash = "211b42ad09f64b9a";
+  static constexpr const char* model_hash = "571d2d9eb68a4b39";
   static constexpr std::array<const char*, nq> coordinate_names{{"q"}};
   static constexpr std::array<const char*, nu> input_names{{}};
   static constexpr std::array<const char*, np> parameter_names{{"m", "d", "k1", "k2"}};
@@ -31,6 +31,7 @@ struct Model {
   static constexpr std::array<int, nh> holonomic_rows{{}};  // row of Xi of each entry of phi
   static constexpr std::array<int, ni> independent_speeds{{}};  // their coordinate indices
   static constexpr std::array<const char*, ny> output_names{{"spring_force", "damper_force", "lyapunov"}};
+  static constexpr bool has_forward_dynamics = true;  // forward_dynamics(), without M
 
   template <class Scalar> using Vector = Eigen::Matrix<Scalar, nq, 1>;
   template <class Scalar> using Inputs = Eigen::Matrix<Scalar, nu, 1>;
@@ -144,6 +145,22 @@ struct Model {
     y(0) = -(q(0) * (w0 * p.k2 + p.k1));
     y(1) = -(qd(0) * p.d);
     y(2) = p.k1 * w0 * Scalar(0.5) + Scalar(0.25) * p.k2 * w0 * w0 + qd(0) * qd(0) * p.m * Scalar(0.5);
+  }
+
+  /// qdd of M qdd = F by the articulated-body algorithm; false if M is not positive definite (a pivot is not positive) or qdd is not finite
+  template <class Scalar>
+  static bool forward_dynamics([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] Vector<Scalar>& qdd) noexcept {
+    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
+    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
+    using std::log; using std::abs; using std::pow;
+    Eigen::Matrix<Scalar, 1, 1> pivot;
+    pivot(0) = p.m;
+    qdd(0) = -((qd(0) * p.d + p.k2 * q(0) * q(0) * q(0) + p.k1 * q(0)) * Scalar(1) / p.m);
+    bool regular = true;
+    for (int k = 0; k < 1; ++k) regular = regular && pivot(k) > Scalar(0);
+    using std::isfinite;
+    for (int k = 0; k < qdd.size(); ++k) regular = regular && isfinite(qdd(k));
+    return regular;
   }
 };
 
