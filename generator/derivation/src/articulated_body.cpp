@@ -21,6 +21,19 @@ matrix map_entries(const matrix& m, const std::function<ex(const ex&)>& f) {
 
 matrix cross3(const matrix& u, const matrix& v) { return cross_matrix(u).mul(v); }
 
+// rows first..first+2 of a 6x1 column
+matrix block(const matrix& v, unsigned first) {
+  return matrix(3, 1, GiNaC::lst{v(first, 0), v(first + 1, 0), v(first + 2, 0)});
+}
+
+// the 3x3 block of a 6x6 matrix at (row, column)
+matrix sub_block(const matrix& m, unsigned row, unsigned column) {
+  matrix out(3, 3);
+  for (unsigned r = 0; r < 3; ++r)
+    for (unsigned c = 0; c < 3; ++c) out(r, c) = m(row + r, column + c);
+  return out;
+}
+
 // (top; bottom) of two 3x1 columns
 matrix stacked(const matrix& top, const matrix& bottom) {
   matrix out(6, 1);
@@ -36,7 +49,7 @@ matrix stacked(const matrix& top, const matrix& bottom) {
 // the part of its acceleration at qdd = 0 that Phi_i does not carry over from the parent.
 struct Joint {
   matrix E;      // C_{f_i f_p}
-  matrix phi;    // Phi_i, 6x6
+  matrix r;      // r^{c_i c_p} resolved in f_i: Phi_i = [[1, 0], [-r^x, 1]] diag(E, E)
   matrix S;      // 6 x |J(i)|
   matrix omega;  // omega_i, in f_i
   matrix zeta;   // 6x1
@@ -89,7 +102,7 @@ class ArticulatedBody {
     Joint j;
     j.E = z_.bind(dcm(s_, link.frame, fp));
     const matrix r_i = z_.bind(resolve(s_, r, link.frame));
-    j.phi = spatial_transform(j.E, r_i);
+    j.r = r_i;
     j.S = matrix(6, static_cast<unsigned>(link.joint.size()));
     for (unsigned c = 0; c < link.joint.size(); ++c)
       for (unsigned row = 0; row < 3; ++row) {
@@ -109,17 +122,38 @@ class ArticulatedBody {
     return j;
   }
 
-  // Phi = [[E, 0], [-E r^x, E]] with r in f_p, that is [[E, 0], [-r_i^x E, E]] with r_i = E r
-  matrix spatial_transform(const matrix& E, const matrix& r_i) {
-    const matrix B = z_.bind(cross_matrix(r_i).mul(E).mul_scalar(-1));
-    matrix phi(6, 6);
-    for (unsigned i = 0; i < 3; ++i)
-      for (unsigned j = 0; j < 3; ++j) {
-        phi(i, j) = E(i, j);
-        phi(i + 3, j + 3) = E(i, j);
-        phi(i + 3, j) = B(i, j);
+  // Phi (alpha; a) = (w; E a + w x r) with w = E alpha
+  matrix motion_to_link(const Joint& j, const matrix& A) {
+    const matrix w = z_.bind(j.E.mul(block(A, 0)));
+    return stacked(w, j.E.mul(block(A, 3)).add(cross3(w, j.r)));
+  }
+
+  // Phi^T (n; f) = (E^T (n + r x f); E^T f)
+  matrix force_to_parent(const Joint& j, const matrix& F) {
+    const matrix f = z_.bind(block(F, 3));
+    const matrix Et = j.E.transpose();
+    return stacked(Et.mul(block(F, 0).add(cross3(j.r, f))), Et.mul(f));
+  }
+
+  // Phi^T Ia Phi as a shift to c_p in f_i, then a rotation into f_p: with Ia = [[A, B], [B^T, C]]
+  // and R = r^x, the shift gives [[A - B R + R H^T, H], [H^T, C]], H = B + R C
+  matrix inertia_to_parent(const Joint& j, const matrix& Ia) {
+    const matrix R = cross_matrix(j.r);
+    const matrix A = sub_block(Ia, 0, 0), B = sub_block(Ia, 0, 3), C = sub_block(Ia, 3, 3);
+    const matrix H = z_.bind(B.add(R.mul(C)));
+    const matrix K = A.sub(B.mul(R)).add(R.mul(H.transpose()));
+    const matrix Et = j.E.transpose();
+    const matrix top = congruence(j.E, bind_symmetric(K)), bottom = congruence(j.E, C);
+    const matrix corner = z_.bind(Et.mul(z_.bind(H.mul(j.E))));
+    matrix out(6, 6);
+    for (unsigned r = 0; r < 3; ++r)
+      for (unsigned c = 0; c < 3; ++c) {
+        out(r, c) = top(r, c);
+        out(r + 3, c + 3) = bottom(r, c);
+        out(r, c + 3) = corner(r, c);
+        out(c + 3, r) = corner(r, c);
       }
-    return phi;
+    return out;
   }
 
   // M_i = diag(J_i, m_i 1) and b_i = (omega x J omega; 0)
@@ -219,8 +253,8 @@ class ArticulatedBody {
       if (!links_[i].parent) continue;
       pa = z_.bind(pa.add(Ia.mul(j.zeta)));
       const std::size_t p = *links_[i].parent;
-      IA_[p] = IA_[p].add(congruence(j.phi, Ia));
-      pA_[p] = pA_[p].add(j.phi.transpose().mul(pa));
+      IA_[p] = IA_[p].add(inertia_to_parent(j, Ia));
+      pA_[p] = pA_[p].add(force_to_parent(j, pa));
     }
   }
 
@@ -238,7 +272,7 @@ class ArticulatedBody {
       const Joint& j = joints_[i];
       const std::size_t k = j.S.cols();
       if (k == 0 && !has_children[i]) continue;
-      const matrix A_prime = z_.bind(j.phi.mul(links_[i].parent ? A[*links_[i].parent] : ground).add(j.zeta));
+      const matrix A_prime = z_.bind(motion_to_link(j, links_[i].parent ? A[*links_[i].parent] : ground).add(j.zeta));
       matrix qdd(k, 1);
       if (k > 0) {
         const Pivoting& f = pivoting_[i];
