@@ -22,7 +22,7 @@ struct Model {
   static constexpr const char* name = "bead_on_hoop";
   static constexpr const char* description = "Bead sliding on a hoop turning at a constant rate about its vertical diameter";
   static constexpr const char* generator_version = "0.1.0";
-  static constexpr const char* model_hash = "3a4f1283c619c0ed";
+  static constexpr const char* model_hash = "ea7536c701ac5fc3";
   static constexpr std::array<const char*, nq> coordinate_names{{"theta"}};
   static constexpr std::array<const char*, nu> input_names{{}};
   static constexpr std::array<const char*, np> parameter_names{{"m", "R", "Omega", "g"}};
@@ -31,6 +31,7 @@ struct Model {
   static constexpr std::array<int, nh> holonomic_rows{{}};  // row of Xi of each entry of phi
   static constexpr std::array<int, ni> independent_speeds{{}};  // their coordinate indices
   static constexpr std::array<const char*, ny> output_names{{"bead_pos_1", "bead_pos_2", "bead_pos_3", "bead_vel_1", "bead_vel_2", "bead_vel_3", "relative_equilibrium"}};
+  static constexpr bool has_forward_dynamics = true;  // forward_dynamics(), without M
 
   template <class Scalar> using Vector = Eigen::Matrix<Scalar, nq, 1>;
   template <class Scalar> using Inputs = Eigen::Matrix<Scalar, nu, 1>;
@@ -63,13 +64,15 @@ struct Model {
       using std::log; using std::abs; using std::pow;
       const Scalar w0 = p.R * p.R;
       const Scalar w1 = p.Omega * p.Omega;
+      const Scalar w2 = p.R * w1;
       k0 = w0 * p.m;
       k1 = w0 * p.m * w1;
       k2 = p.g * p.m * p.R;
       k3 = w0 * p.m * Scalar(0.5);
       k4 = w0 * p.m * Scalar(0.5) * w1;
       k5 = p.Omega * p.R;
-      k6 = acos(p.g / (p.R * w1));
+      k6 = acos(p.g / w2);
+      k7 = w2;
     }
     /// The parameters these constants were computed from.
     const Parameters<Scalar>& parameters() const noexcept { return p; }
@@ -77,7 +80,7 @@ struct Model {
    private:
     friend struct Model;
     Parameters<Scalar> p;
-    Scalar k0, k1, k2, k3, k4, k5, k6;
+    Scalar k0, k1, k2, k3, k4, k5, k6, k7;
   };
 
   /// M(q, t), symmetric positive (semi)definite
@@ -269,6 +272,39 @@ struct Model {
   template <class Scalar>
   static void outputs([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] OutputVector<Scalar>& y) noexcept {
     outputs(t, q, qd, u, Constants<Scalar>(p), y);
+  }
+
+  /// qdd of M qdd = F by the articulated-body algorithm; false if M is not positive definite (a pivot is not positive) or qdd is not finite
+  template <class Scalar>
+  static bool forward_dynamics([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] Vector<Scalar>& qdd) noexcept {
+    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
+    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
+    using std::log; using std::abs; using std::pow;
+    Eigen::Matrix<Scalar, 1, 1> pivot;
+    const Scalar w0 = cos(q(0));
+    const Scalar w1 = c.p.R * w0;
+    const Scalar w2 = w1 * c.p.m;
+    const Scalar w3 = sin(q(0));
+    const Scalar w4 = w3 * c.p.R;
+    const Scalar w5 = w4 * c.p.m;
+    const Scalar w6 = w1 * w2 + w4 * w5;
+    const Scalar w7 = Scalar(1) / w6;
+    const Scalar w8 = qd(0) * qd(0);
+    pivot(0) = w6;
+    qdd(0) = -(w7 * w5 * (c.p.g + w8 * c.p.R * w0) - w7 * w2 * (w8 * w3 * c.p.R + w3 * c.k7));
+    bool regular = true;
+    for (int k = 0; k < 1; ++k) regular = regular && pivot(k) > Scalar(0);
+    using std::isfinite;
+    for (int k = 0; k < qdd.size(); ++k) regular = regular && isfinite(qdd(k));
+    return regular;
+  }
+
+  /// qdd of M qdd = F by the articulated-body algorithm; false if M is not positive definite (a pivot is not positive) or qdd is not finite
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static bool forward_dynamics([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] Vector<Scalar>& qdd) noexcept {
+    return forward_dynamics(t, q, qd, u, Constants<Scalar>(p), qdd);
   }
 };
 

@@ -22,7 +22,7 @@ struct Model {
   static constexpr const char* name = "cart_pole";
   static constexpr const char* description = "Cart-pole: a uniform rod hinged on a cart pushed along a rail";
   static constexpr const char* generator_version = "0.1.0";
-  static constexpr const char* model_hash = "74d93d325a8bf15c";
+  static constexpr const char* model_hash = "0427cc5cc0587a2d";
   static constexpr std::array<const char*, nq> coordinate_names{{"x", "theta"}};
   static constexpr std::array<const char*, nu> input_names{{"u"}};
   static constexpr std::array<const char*, np> parameter_names{{"mc", "mp", "l", "rp", "g"}};
@@ -31,6 +31,7 @@ struct Model {
   static constexpr std::array<int, nh> holonomic_rows{{}};  // row of Xi of each entry of phi
   static constexpr std::array<int, ni> independent_speeds{{}};  // their coordinate indices
   static constexpr std::array<const char*, ny> output_names{{"cart_position", "tip_1", "tip_2", "tip_3", "tip_velocity_1", "tip_velocity_2", "tip_velocity_3"}};
+  static constexpr bool has_forward_dynamics = true;  // forward_dynamics(), without M
 
   template <class Scalar> using Vector = Eigen::Matrix<Scalar, nq, 1>;
   template <class Scalar> using Inputs = Eigen::Matrix<Scalar, nu, 1>;
@@ -62,16 +63,23 @@ struct Model {
       using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
       using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
       using std::log; using std::abs; using std::pow;
-      const Scalar w0 = p.rp * p.rp;
-      const Scalar w1 = p.l * p.l;
-      k0 = p.mp * Scalar(0.5) * p.l;
+      const Scalar w0 = p.mp * Scalar(0.5) * p.l;
+      const Scalar w1 = p.rp * p.rp;
+      const Scalar w2 = p.l * p.l;
+      const Scalar w3 = (w1 * Scalar(3) + w2) * Scalar(0.08333333333333333) * p.mp + Scalar(0.5) * p.l * w0;
+      const Scalar w4 = Scalar(1) / w3 * w0;
+      k0 = w0;
       k1 = p.mp + p.mc;
-      k2 = Scalar(0.25) * p.mp * w0 + Scalar(0.3333333333333333) * p.mp * w1;
+      k2 = Scalar(0.25) * p.mp * w1 + Scalar(0.3333333333333333) * p.mp * w2;
       k3 = p.g * p.mp * Scalar(0.5) * p.l;
       k4 = p.mp * Scalar(0.5);
       k5 = Scalar(0.5) * p.mc;
-      k6 = Scalar(0.125) * p.mp * w0;
-      k7 = Scalar(0.16666666666666666) * p.mp * w1;
+      k6 = Scalar(0.125) * p.mp * w1;
+      k7 = Scalar(0.16666666666666666) * p.mp * w2;
+      k8 = p.mp - w4 * w0;
+      k9 = Scalar(0.5) * p.l;
+      k10 = w4;
+      k11 = w3;
     }
     /// The parameters these constants were computed from.
     const Parameters<Scalar>& parameters() const noexcept { return p; }
@@ -79,7 +87,8 @@ struct Model {
    private:
     friend struct Model;
     Parameters<Scalar> p;
-    Scalar k0, k1, k2, k3, k4, k5, k6, k7;
+    Scalar k0, k1, k2, k3, k4, k5, k6, k7, k8, k9;
+    Scalar k10, k11;
   };
 
   /// M(q, t), symmetric positive (semi)definite
@@ -271,6 +280,37 @@ struct Model {
   template <class Scalar>
   static void outputs([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] OutputVector<Scalar>& y) noexcept {
     outputs(t, q, qd, u, Constants<Scalar>(p), y);
+  }
+
+  /// qdd of M qdd = F by the articulated-body algorithm; false if M is not positive definite (a pivot is not positive) or qdd is not finite
+  template <class Scalar>
+  static bool forward_dynamics([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] Vector<Scalar>& qdd) noexcept {
+    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
+    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
+    using std::log; using std::abs; using std::pow;
+    Eigen::Matrix<Scalar, 2, 1> pivot;
+    const Scalar w0 = sin(q(1));
+    const Scalar w1 = cos(q(1));
+    const Scalar w2 = w0 * w0 * c.p.mp + w1 * w1 * c.k8 + c.p.mc;
+    const Scalar w3 = Scalar(1) / w2;
+    const Scalar w4 = c.p.g * (w0 * c.k8 * w1 - w0 * w1 * c.p.mp) * w3 + (w0 * c.p.mp * c.k9 * qd(1) * qd(1) - u(0)) * w3;
+    pivot(0) = c.k11;
+    pivot(1) = w2;
+    qdd(0) = -w4;
+    qdd(1) = c.k10 * (c.p.g * w0 - w1 * w4);
+    bool regular = true;
+    for (int k = 0; k < 2; ++k) regular = regular && pivot(k) > Scalar(0);
+    using std::isfinite;
+    for (int k = 0; k < qdd.size(); ++k) regular = regular && isfinite(qdd(k));
+    return regular;
+  }
+
+  /// qdd of M qdd = F by the articulated-body algorithm; false if M is not positive definite (a pivot is not positive) or qdd is not finite
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static bool forward_dynamics([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] Vector<Scalar>& qdd) noexcept {
+    return forward_dynamics(t, q, qd, u, Constants<Scalar>(p), qdd);
   }
 };
 

@@ -22,7 +22,7 @@ struct Model {
   static constexpr const char* name = "double_pendulum";
   static constexpr const char* description = "Planar double pendulum: two point masses on massless rods, relative angles";
   static constexpr const char* generator_version = "0.1.0";
-  static constexpr const char* model_hash = "fac535b51858d561";
+  static constexpr const char* model_hash = "87b74200f2dc544b";
   static constexpr std::array<const char*, nq> coordinate_names{{"theta1", "theta2"}};
   static constexpr std::array<const char*, nu> input_names{{}};
   static constexpr std::array<const char*, np> parameter_names{{"m1", "m2", "l1", "l2", "g"}};
@@ -31,6 +31,7 @@ struct Model {
   static constexpr std::array<int, nh> holonomic_rows{{}};  // row of Xi of each entry of phi
   static constexpr std::array<int, ni> independent_speeds{{}};  // their coordinate indices
   static constexpr std::array<const char*, ny> output_names{{"elbow_1", "elbow_2", "elbow_3", "tip_1", "tip_2", "tip_3", "tip_velocity_1", "tip_velocity_2", "tip_velocity_3", "absolute_angle2"}};
+  static constexpr bool has_forward_dynamics = true;  // forward_dynamics(), without M
 
   template <class Scalar> using Vector = Eigen::Matrix<Scalar, nq, 1>;
   template <class Scalar> using Inputs = Eigen::Matrix<Scalar, nu, 1>;
@@ -65,6 +66,11 @@ struct Model {
       const Scalar w0 = p.l2 * p.l2;
       const Scalar w1 = w0 * p.m2;
       const Scalar w2 = p.l1 * p.l1;
+      const Scalar w3 = p.l2 * p.m2;
+      const Scalar w4 = p.l2 * w3;
+      const Scalar w5 = Scalar(1) / w4 * w3;
+      const Scalar w6 = w5 * w3 - p.m2;
+      const Scalar w7 = w6 * p.l2;
       k0 = p.l1 * Scalar(2) * p.l2 * p.m2;
       k1 = w1 + p.m1 * w2 + p.m2 * w2;
       k2 = p.l1 * p.l2 * p.m2;
@@ -75,6 +81,11 @@ struct Model {
       k7 = Scalar(0.5) * p.m2 * w2;
       k8 = w0 * Scalar(0.5) * p.m2;
       k9 = p.m1 * Scalar(0.5) * w2;
+      k10 = w7;
+      k11 = p.l2 * w7;
+      k12 = w6;
+      k13 = w5;
+      k14 = w4;
     }
     /// The parameters these constants were computed from.
     const Parameters<Scalar>& parameters() const noexcept { return p; }
@@ -83,6 +94,7 @@ struct Model {
     friend struct Model;
     Parameters<Scalar> p;
     Scalar k0, k1, k2, k3, k4, k5, k6, k7, k8, k9;
+    Scalar k10, k11, k12, k13, k14;
   };
 
   /// M(q, t), symmetric positive (semi)definite
@@ -295,6 +307,41 @@ struct Model {
   template <class Scalar>
   static void outputs([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] OutputVector<Scalar>& y) noexcept {
     outputs(t, q, qd, u, Constants<Scalar>(p), y);
+  }
+
+  /// qdd of M qdd = F by the articulated-body algorithm; false if M is not positive definite (a pivot is not positive) or qdd is not finite
+  template <class Scalar>
+  static bool forward_dynamics([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] Vector<Scalar>& qdd) noexcept {
+    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
+    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
+    using std::log; using std::abs; using std::pow;
+    Eigen::Matrix<Scalar, 2, 1> pivot;
+    const Scalar w0 = cos(q(1));
+    const Scalar w1 = w0 * c.k10;
+    const Scalar w2 = sin(q(1));
+    const Scalar w3 = w1 - c.p.l1 * (c.p.m1 + w2 * w2 * c.p.m2 - w0 * c.k12 * w0);
+    const Scalar w4 = c.k11 + c.p.l1 * w1 + c.p.l1 * w3;
+    const Scalar w5 = Scalar(1) / w4;
+    const Scalar w6 = c.p.g * cos(q(0)) + c.p.l1 * qd(0) * qd(0);
+    const Scalar w7 = c.p.g * sin(q(0));
+    const Scalar w8 = (w2 * c.k10 + c.p.l1 * (w2 * w0 * c.p.m2 + w2 * c.k12 * w0)) * w5 * w6 + w5 * c.p.l1 * w2 * (Scalar(2) * qd(1) * c.p.l2 * qd(0) + qd(0) * c.p.l2 * qd(0) + c.p.l2 * qd(1) * qd(1)) * c.p.m2 + w3 * w5 * w7;
+    pivot(0) = c.k14;
+    pivot(1) = -w4;
+    qdd(0) = -w8;
+    qdd(1) = c.k13 * (w0 * (c.p.l1 * w8 - w7) - w2 * w6 + c.p.l2 * w8);
+    bool regular = true;
+    for (int k = 0; k < 2; ++k) regular = regular && pivot(k) > Scalar(0);
+    using std::isfinite;
+    for (int k = 0; k < qdd.size(); ++k) regular = regular && isfinite(qdd(k));
+    return regular;
+  }
+
+  /// qdd of M qdd = F by the articulated-body algorithm; false if M is not positive definite (a pivot is not positive) or qdd is not finite
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static bool forward_dynamics([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] Vector<Scalar>& qdd) noexcept {
+    return forward_dynamics(t, q, qd, u, Constants<Scalar>(p), qdd);
   }
 };
 

@@ -22,7 +22,7 @@ struct Model {
   static constexpr const char* name = "heavy_top";
   static constexpr const char* description = "Heavy symmetric top spinning on a fixed pivot at its tip, 3-1-3 Euler angles";
   static constexpr const char* generator_version = "0.1.0";
-  static constexpr const char* model_hash = "5b3881166e4c0043";
+  static constexpr const char* model_hash = "bf7ac28b997736c8";
   static constexpr std::array<const char*, nq> coordinate_names{{"psi", "theta", "phi"}};
   static constexpr std::array<const char*, nu> input_names{{}};
   static constexpr std::array<const char*, np> parameter_names{{"m", "l", "J1", "J3", "g"}};
@@ -31,6 +31,7 @@ struct Model {
   static constexpr std::array<int, nh> holonomic_rows{{}};  // row of Xi of each entry of phi
   static constexpr std::array<int, ni> independent_speeds{{}};  // their coordinate indices
   static constexpr std::array<const char*, ny> output_names{{"centre_position_1", "centre_position_2", "centre_position_3", "omega_1", "omega_2", "omega_3", "axis_1", "axis_2", "axis_3", "height"}};
+  static constexpr bool has_forward_dynamics = true;  // forward_dynamics(), without M
 
   template <class Scalar> using Vector = Eigen::Matrix<Scalar, nq, 1>;
   template <class Scalar> using Inputs = Eigen::Matrix<Scalar, nu, 1>;
@@ -329,6 +330,86 @@ struct Model {
   template <class Scalar>
   static void outputs([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] OutputVector<Scalar>& y) noexcept {
     outputs(t, q, qd, u, Constants<Scalar>(p), y);
+  }
+
+  /// qdd of M qdd = F by the articulated-body algorithm; false if M is not positive definite (a pivot is not positive) or qdd is not finite
+  template <class Scalar>
+  static bool forward_dynamics([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] Vector<Scalar>& qdd) noexcept {
+    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
+    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
+    using std::log; using std::abs; using std::pow;
+    Eigen::Matrix<Scalar, 3, 1> pivot;
+    const Scalar w0 = sin(q(1));
+    const Scalar w1 = sin(q(2));
+    const Scalar w2 = w0 * w1 * c.p.l;
+    const Scalar w3 = w2 * c.p.m;
+    const Scalar w4 = cos(q(2));
+    const Scalar w5 = w0 * c.p.l * w4;
+    const Scalar w6 = w5 * c.p.m;
+    const Scalar w7 = w0 * w4;
+    const Scalar w8 = w7 * c.p.J1;
+    const Scalar w9 = w0 * w1;
+    const Scalar w10 = w9 * c.p.J1;
+    const Scalar w11 = cos(q(1));
+    const Scalar w12 = w11 * c.p.J3;
+    const Scalar w13 = w3 * w2 + w5 * w6 + w7 * w8 + w9 * w10 + w11 * w12;
+    const Scalar w14 = w1 * c.p.l;
+    const Scalar w15 = c.p.m * w14;
+    const Scalar w16 = c.p.J1 * w4;
+    const Scalar w17 = w1 * c.p.J1;
+    const Scalar w18 = c.p.l * w4;
+    const Scalar w19 = c.p.m * w18;
+    const Scalar w20 = w5 * w15 - w9 * w16 + w7 * w17 - w2 * w19;
+    const Scalar w21 = Scalar(1) / w13;
+    const Scalar w22 = w20 * w21;
+    const Scalar w23 = w22 * w20 - (w19 * w18 + w16 * w4 + w14 * w15 + w1 * w17);
+    const Scalar w24 = Scalar(1) / w23;
+    const Scalar w25 = w22 * w12;
+    const Scalar w26 = w24 * w25;
+    const Scalar w27 = w21 * w12;
+    const Scalar w28 = w27 * w12 - w26 * w25 - c.p.J3;
+    const Scalar w29 = qd(1) * w4 + w0 * qd(0) * w1;
+    const Scalar w30 = w29 * qd(2) - qd(1) * w11 * qd(0) * w4;
+    const Scalar w31 = w0 * qd(0) * w4 - qd(1) * w1;
+    const Scalar w32 = w31 * qd(2) + qd(1) * w11 * qd(0) * w1;
+    const Scalar w33 = w22 * w10 + w16;
+    const Scalar w34 = Scalar(1) / w28;
+    const Scalar w35 = w11 * qd(0) + qd(2);
+    const Scalar w36 = w31 * w35 * c.p.l - w31 * c.p.l * qd(2) - qd(1) * w11 * qd(0) * w1 * c.p.l + w7 * c.p.g;
+    const Scalar w37 = w3 * w22 + w19;
+    const Scalar w38 = qd(1) * w0 * qd(0);
+    const Scalar w39 = w22 * w6 - w15;
+    const Scalar w40 = c.p.g * w9 + w35 * c.p.l * w29 - c.p.l * w29 * qd(2) + qd(1) * w11 * qd(0) * c.p.l * w4;
+    const Scalar w41 = w22 * w8 - w17;
+    const Scalar w42 = w31 * c.p.J1;
+    const Scalar w43 = c.p.J1 * w29;
+    const Scalar w44 = w42 * w29 - w43 * w31;
+    const Scalar w45 = w35 * c.p.J3;
+    const Scalar w46 = w29 * w45 - w43 * w35;
+    const Scalar w47 = w42 * w35 - w31 * w45;
+    const Scalar w48 = w7 * w46 - w44 * w11 + w9 * w47;
+    const Scalar w49 = w47 * w4 - w1 * w46 + w22 * w48;
+    const Scalar w50 = (w33 * w26 - w27 * w10) * w34 * w32 + w36 * w34 * (w3 * w27 - w26 * w37) + w38 * w34 * w28 - w34 * (w27 * w6 - w39 * w26) * w40 - w30 * w34 * (w41 * w26 - w27 * w8) + w34 * (w44 - w26 * w49 + w27 * w48);
+    const Scalar w51 = w41 * w24 * w30 + w36 * w24 * w37 - w40 * w24 * w39 + w26 * w38 + w24 * w49 - w26 * w50 - w24 * w33 * w32;
+    pivot(0) = w13;
+    pivot(1) = -w23;
+    pivot(2) = -w28;
+    qdd(0) = -(w21 * w10 * w32 - w8 * w21 * w30 + w27 * w50 - w3 * w21 * w36 + w51 * w22 + w40 * w6 * w21 - w27 * w38 - w21 * w48);
+    qdd(1) = -w51;
+    qdd(2) = w50;
+    bool regular = true;
+    for (int k = 0; k < 3; ++k) regular = regular && pivot(k) > Scalar(0);
+    using std::isfinite;
+    for (int k = 0; k < qdd.size(); ++k) regular = regular && isfinite(qdd(k));
+    return regular;
+  }
+
+  /// qdd of M qdd = F by the articulated-body algorithm; false if M is not positive definite (a pivot is not positive) or qdd is not finite
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static bool forward_dynamics([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] Vector<Scalar>& qdd) noexcept {
+    return forward_dynamics(t, q, qd, u, Constants<Scalar>(p), qdd);
   }
 };
 

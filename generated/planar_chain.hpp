@@ -22,7 +22,7 @@ struct Model {
   static constexpr const char* name = "planar_chain";
   static constexpr const char* description = "Planar chain of n uniform rods with relative joint angles (n-link pendulum)";
   static constexpr const char* generator_version = "0.1.0";
-  static constexpr const char* model_hash = "a563a2cc631d31d5";
+  static constexpr const char* model_hash = "70a88fffb479c40a";
   static constexpr std::array<const char*, nq> coordinate_names{{"q1", "q2", "q3", "q4"}};
   static constexpr std::array<const char*, nu> input_names{{}};
   static constexpr std::array<const char*, np> parameter_names{{"m", "l", "rd", "g"}};
@@ -31,6 +31,7 @@ struct Model {
   static constexpr std::array<int, nh> holonomic_rows{{}};  // row of Xi of each entry of phi
   static constexpr std::array<int, ni> independent_speeds{{}};  // their coordinate indices
   static constexpr std::array<const char*, ny> output_names{{"tip_1", "tip_2", "tip_3", "tip_velocity_1", "tip_velocity_2", "tip_velocity_3"}};
+  static constexpr bool has_forward_dynamics = true;  // forward_dynamics(), without M
 
   template <class Scalar> using Vector = Eigen::Matrix<Scalar, nq, 1>;
   template <class Scalar> using Inputs = Eigen::Matrix<Scalar, nu, 1>;
@@ -64,6 +65,13 @@ struct Model {
       const Scalar w0 = p.l * p.l;
       const Scalar w1 = p.rd * p.rd;
       const Scalar w2 = p.m * w0 * Scalar(1.6666666666666667);
+      const Scalar w3 = p.m * Scalar(0.5) * p.l;
+      const Scalar w4 = Scalar(0.08333333333333333) * p.m * (w0 + w1 * Scalar(3));
+      const Scalar w5 = Scalar(0.5) * p.l * w3 + w4;
+      const Scalar w6 = Scalar(1) / w5;
+      const Scalar w7 = w6 * w3;
+      const Scalar w8 = w6 * w4;
+      const Scalar w9 = -w4;
       k0 = p.m * w0 * Scalar(3);
       k1 = p.m * w0;
       k2 = p.m * Scalar(5) * w0;
@@ -83,6 +91,15 @@ struct Model {
       k16 = Scalar(1.1666666666666667) * p.m * w0;
       k17 = p.m * Scalar(0.16666666666666666) * w0;
       k18 = p.m * Scalar(0.6666666666666666) * w0;
+      k19 = Scalar(0.5) * p.l;
+      k20 = w7 * w4;
+      k21 = w7 * w3 - p.m;
+      k22 = w8 * w4 + w9;
+      k23 = w9;
+      k24 = w4;
+      k25 = w7;
+      k26 = w8;
+      k27 = w5;
     }
     /// The parameters these constants were computed from.
     const Parameters<Scalar>& parameters() const noexcept { return p; }
@@ -91,7 +108,8 @@ struct Model {
     friend struct Model;
     Parameters<Scalar> p;
     Scalar k0, k1, k2, k3, k4, k5, k6, k7, k8, k9;
-    Scalar k10, k11, k12, k13, k14, k15, k16, k17, k18;
+    Scalar k10, k11, k12, k13, k14, k15, k16, k17, k18, k19;
+    Scalar k20, k21, k22, k23, k24, k25, k26, k27;
   };
 
   /// M(q, t), symmetric positive (semi)definite
@@ -431,6 +449,136 @@ struct Model {
   template <class Scalar>
   static void outputs([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] OutputVector<Scalar>& y) noexcept {
     outputs(t, q, qd, u, Constants<Scalar>(p), y);
+  }
+
+  /// qdd of M qdd = F by the articulated-body algorithm; false if M is not positive definite (a pivot is not positive) or qdd is not finite
+  template <class Scalar>
+  static bool forward_dynamics([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] Vector<Scalar>& qdd) noexcept {
+    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
+    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
+    using std::log; using std::abs; using std::pow;
+    Eigen::Matrix<Scalar, 4, 1> pivot;
+    const Scalar w0 = cos(q(3));
+    const Scalar w1 = w0 * c.k19 + c.k19;
+    const Scalar w2 = c.k20 + c.k21 * w1;
+    const Scalar w3 = sin(q(3));
+    const Scalar w4 = c.k19 * w3;
+    const Scalar w5 = c.p.m * w4;
+    const Scalar w6 = c.k20 * w1 + w1 * w2 + c.k22 - w5 * w4 + c.k23;
+    const Scalar w7 = w0 * w2 - w3 * w5;
+    const Scalar w8 = w6 + c.k19 * w7;
+    const Scalar w9 = c.p.m + w3 * c.p.m * w3 - w0 * w0 * c.k21;
+    const Scalar w10 = -w7;
+    const Scalar w11 = w9 * c.k19 + w10;
+    const Scalar w12 = c.k19 * w11 - w8;
+    const Scalar w13 = sin(q(2));
+    const Scalar w14 = c.k19 * w13;
+    const Scalar w15 = w0 * c.p.m;
+    const Scalar w16 = w3 * c.k21;
+    const Scalar w17 = w3 * w15 + w0 * w16;
+    const Scalar w18 = Scalar(1) / w12;
+    const Scalar w19 = w3 * w2 + w0 * w5;
+    const Scalar w20 = w19 + c.k19 * w17;
+    const Scalar w21 = w18 * w20;
+    const Scalar w22 = w21 * w11 - w17;
+    const Scalar w23 = w18 * w11;
+    const Scalar w24 = w9 - w23 * w11;
+    const Scalar w25 = cos(q(2));
+    const Scalar w26 = c.k19 * w25 + c.k19;
+    const Scalar w27 = w10 + w23 * w8;
+    const Scalar w28 = w14 * w22 - w24 * w26 - w27;
+    const Scalar w29 = -c.p.m;
+    const Scalar w30 = w3 * w16 - w0 * w15 + w29 + w20 * w21;
+    const Scalar w31 = w19 + w21 * w8;
+    const Scalar w32 = w30 * w14 + w26 * w22 - w31;
+    const Scalar w33 = w28 * w25 + w32 * w13;
+    const Scalar w34 = w25 * w22;
+    const Scalar w35 = w13 * w22;
+    const Scalar w36 = w13 * (w30 * w13 + w34) + (w35 - w24 * w25) * w25 + w29;
+    const Scalar w37 = w33 + w36 * c.k19;
+    const Scalar w38 = w18 * w8;
+    const Scalar w39 = c.k23 + w32 * w14 + w38 * w8 + w6 + w28 * w26 - w31 * w14 - w26 * w27;
+    const Scalar w40 = w39 + w33 * c.k19;
+    const Scalar w41 = c.k19 * w37 + w40;
+    const Scalar w42 = cos(q(1));
+    const Scalar w43 = Scalar(1) / w41;
+    const Scalar w44 = w37 * w43;
+    const Scalar w45 = w36 - w44 * w37;
+    const Scalar w46 = c.k19 + w42 * c.k19;
+    const Scalar w47 = w33 - w44 * w40;
+    const Scalar w48 = sin(q(1));
+    const Scalar w49 = w48 * c.k19;
+    const Scalar w50 = w34 + w24 * w13;
+    const Scalar w51 = w35 - w30 * w25;
+    const Scalar w52 = w13 * w51 - w50 * w25;
+    const Scalar w53 = w32 * w25 - w28 * w13;
+    const Scalar w54 = c.k19 * w52 - w53;
+    const Scalar w55 = w54 * w43;
+    const Scalar w56 = w52 - w55 * w37;
+    const Scalar w57 = w49 * w56 - w45 * w46 - w47;
+    const Scalar w58 = c.p.m + w51 * w25 + w13 * w50 + w55 * w54;
+    const Scalar w59 = w55 * w40 + w53;
+    const Scalar w60 = w58 * w49 - w59 + w46 * w56;
+    const Scalar w61 = w42 * w57 + w60 * w48;
+    const Scalar w62 = w42 * w56;
+    const Scalar w63 = w48 * w56;
+    const Scalar w64 = w61 + c.k19 * (w48 * (w62 + w58 * w48) - w42 * (w45 * w42 - w63) + c.p.m);
+    const Scalar w65 = w40 * w43;
+    const Scalar w66 = w64 * c.k19 + w61 * c.k19 + w60 * w49 - w59 * w49 - w46 * w47 - (w39 - w65 * w40) + w46 * w57 + c.k24;
+    const Scalar w67 = qd(1) + qd(0);
+    const Scalar w68 = w67 * w14 * w67;
+    const Scalar w69 = w67 + qd(2);
+    const Scalar w70 = c.p.m * (c.k19 * qd(3) * w69 * Scalar(2) + w69 * w69 * w1 + qd(3) * qd(3) * c.k19);
+    const Scalar w71 = w69 * w4 * w69;
+    const Scalar w72 = w71 * c.k21;
+    const Scalar w73 = w70 * w3 + w0 * w72;
+    const Scalar w74 = w70 * w4 + w71 * c.k20 + w1 * w72;
+    const Scalar w75 = w73 * c.k19 + w74;
+    const Scalar w76 = w67 * w26 * w67 + Scalar(2) * c.k19 * qd(2) * w67 + c.k19 * qd(2) * qd(2);
+    const Scalar w77 = w21 * w75 - (w70 * w0 - w3 * w72) - w68 * w22 + w30 * w76;
+    const Scalar w78 = w24 * w68 + w76 * w22 + w23 * w75 - w73;
+    const Scalar w79 = w68 * w27 - w75 * w38 - w74 - w76 * w31 + w77 * w14 + w26 * w78;
+    const Scalar w80 = w13 * w77 + w25 * w78;
+    const Scalar w81 = w79 + w80 * c.k19;
+    const Scalar w82 = qd(0) * w49 * qd(0);
+    const Scalar w83 = w46 * qd(0) * qd(0) + c.k19 * qd(1) * qd(1) + Scalar(2) * qd(0) * qd(1) * c.k19;
+    const Scalar w84 = w81 * w55 - (w13 * w78 - w77 * w25) + w82 * w56 - w58 * w83;
+    const Scalar w85 = w80 - w83 * w56 - w81 * w44 - w82 * w45;
+    const Scalar w86 = Scalar(1) / w66;
+    const Scalar w87 = c.p.g * sin(q(0));
+    const Scalar w88 = c.p.g * cos(q(0)) + qd(0) * qd(0) * c.k19;
+    const Scalar w89 = (w84 * w49 + w85 * w46 - (w81 * w65 + w82 * w47 - w83 * w59 - w79) + (w84 * w48 + w85 * w42) * c.k19) * w86 + w64 * w86 * w87 + (w48 * w57 - w60 * w42 + (w48 * (w63 - w58 * w42) - w42 * (w62 + w48 * w45)) * c.k19) * w86 * w88;
+    const Scalar w90 = c.k19 * w89 - w87;
+    const Scalar w91 = w83 + w49 * w89 + w48 * w90 + w42 * w88;
+    const Scalar w92 = w82 - w46 * w89 - w42 * w90 + w48 * w88;
+    const Scalar w93 = w55 * w91 + w92 * w44 - w81 * w43 - w65 * w89;
+    const Scalar w94 = w93 + w89;
+    const Scalar w95 = w92 - w93 * c.k19;
+    const Scalar w96 = w91 * w25 + w94 * w14 - w95 * w13 + w76;
+    const Scalar w97 = w94 * w26 - w13 * w91 - w95 * w25 - w68;
+    const Scalar w98 = w96 * w21 - w94 * w38 + w18 * w75 + w23 * w97;
+    const Scalar w99 = w94 - w98;
+    pivot(0) = c.k27;
+    pivot(1) = w12;
+    pivot(2) = -w41;
+    pivot(3) = w66;
+    qdd(0) = -w89;
+    qdd(1) = -w93;
+    qdd(2) = w98;
+    qdd(3) = w99 * c.k26 - c.k25 * (w0 * (c.k19 * w98 - w97) - w99 * w1 + w71 + w96 * w3);
+    bool regular = true;
+    for (int k = 0; k < 4; ++k) regular = regular && pivot(k) > Scalar(0);
+    using std::isfinite;
+    for (int k = 0; k < qdd.size(); ++k) regular = regular && isfinite(qdd(k));
+    return regular;
+  }
+
+  /// qdd of M qdd = F by the articulated-body algorithm; false if M is not positive definite (a pivot is not positive) or qdd is not finite
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static bool forward_dynamics([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] Vector<Scalar>& qdd) noexcept {
+    return forward_dynamics(t, q, qd, u, Constants<Scalar>(p), qdd);
   }
 };
 

@@ -22,7 +22,7 @@ struct Model {
   static constexpr const char* name = "spacecraft_panel";
   static constexpr const char* description = "Spacecraft bus spinning about b3 with a solar panel hinged about b2 (notes Example 3.1)";
   static constexpr const char* generator_version = "0.1.0";
-  static constexpr const char* model_hash = "84c8f97ed7e9b2ce";
+  static constexpr const char* model_hash = "690fe914602156c1";
   static constexpr std::array<const char*, nq> coordinate_names{{"gamma", "theta"}};
   static constexpr std::array<const char*, nu> input_names{{"tau_b", "tau_p"}};
   static constexpr std::array<const char*, np> parameter_names{{"l_fh", "l_ef", "w_p", "t_p", "m_b", "J_b1", "J_b2", "J_b3", "m_p"}};
@@ -31,6 +31,7 @@ struct Model {
   static constexpr std::array<int, nh> holonomic_rows{{}};  // row of Xi of each entry of phi
   static constexpr std::array<int, ni> independent_speeds{{}};  // their coordinate indices
   static constexpr std::array<const char*, ny> output_names{{"tip_position_1", "tip_position_2", "tip_position_3", "tip_velocity_1", "tip_velocity_2", "tip_velocity_3", "omega_panel_1", "omega_panel_2", "omega_panel_3"}};
+  static constexpr bool has_forward_dynamics = true;  // forward_dynamics(), without M
 
   template <class Scalar> using Vector = Eigen::Matrix<Scalar, nq, 1>;
   template <class Scalar> using Inputs = Eigen::Matrix<Scalar, nu, 1>;
@@ -72,6 +73,15 @@ struct Model {
       const Scalar w3 = p.l_ef * p.l_ef;
       const Scalar w4 = Scalar(0.3333333333333333) * w3 * p.m_p;
       const Scalar w5 = p.l_fh * p.l_fh;
+      const Scalar w6 = (w3 + w1) * Scalar(0.08333333333333333) * p.m_p;
+      const Scalar w7 = p.l_ef * Scalar(0.5) * p.m_p;
+      const Scalar w8 = p.l_ef * Scalar(0.5) * w7;
+      const Scalar w9 = w6 + w8;
+      const Scalar w10 = Scalar(0.08333333333333333) * (w3 + w0) * p.m_p;
+      const Scalar w11 = Scalar(0.08333333333333333) * (w0 + w1) * p.m_p;
+      const Scalar w12 = Scalar(1) / w9;
+      const Scalar w13 = w12 * w7;
+      const Scalar w14 = p.m_p - w7 * w13;
       k0 = Scalar(0.08333333333333333) * p.m_p * w0;
       k1 = w2;
       k2 = w4;
@@ -83,6 +93,17 @@ struct Model {
       k8 = w5 * Scalar(0.5) * p.m_p;
       k9 = Scalar(0.16666666666666666) * w3 * p.m_p;
       k10 = p.m_p * w0 * Scalar(0.041666666666666664);
+      k11 = w8 + p.l_fh * p.m_p * p.l_fh + w10;
+      k12 = w11 + p.l_fh * w14 * p.l_fh;
+      k13 = w10;
+      k14 = w6;
+      k15 = w11;
+      k16 = p.l_ef * Scalar(0.5);
+      k17 = Scalar(2) * p.l_fh;
+      k18 = w14;
+      k19 = w13;
+      k20 = w12;
+      k21 = w9;
     }
     /// The parameters these constants were computed from.
     const Parameters<Scalar>& parameters() const noexcept { return p; }
@@ -91,7 +112,8 @@ struct Model {
     friend struct Model;
     Parameters<Scalar> p;
     Scalar k0, k1, k2, k3, k4, k5, k6, k7, k8, k9;
-    Scalar k10;
+    Scalar k10, k11, k12, k13, k14, k15, k16, k17, k18, k19;
+    Scalar k20, k21;
   };
 
   /// M(q, t), symmetric positive (semi)definite
@@ -307,6 +329,44 @@ struct Model {
   template <class Scalar>
   static void outputs([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] OutputVector<Scalar>& y) noexcept {
     outputs(t, q, qd, u, Constants<Scalar>(p), y);
+  }
+
+  /// qdd of M qdd = F by the articulated-body algorithm; false if M is not positive definite (a pivot is not positive) or qdd is not finite
+  template <class Scalar>
+  static bool forward_dynamics([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] Vector<Scalar>& qdd) noexcept {
+    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
+    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
+    using std::log; using std::abs; using std::pow;
+    Eigen::Matrix<Scalar, 2, 1> pivot;
+    const Scalar w0 = sin(q(1));
+    const Scalar w1 = cos(q(1));
+    const Scalar w2 = w0 * w0 * c.k11 + c.k12 * w1 * w1 + c.p.J_b3;
+    const Scalar w3 = w1 * qd(0);
+    const Scalar w4 = qd(1) * c.k14;
+    const Scalar w5 = w3 * c.k15;
+    const Scalar w6 = w0 * qd(0);
+    const Scalar w7 = c.k16 * w6;
+    const Scalar w8 = c.k13 * w6;
+    const Scalar w9 = w3 * w7;
+    const Scalar w10 = w6 * w5 - w3 * w8 - u(1);
+    const Scalar w11 = Scalar(1) / w2 * (u(0) - (w0 * Scalar(0.5) * (c.k17 * (w6 * w7 + c.k16 * qd(1) * qd(1)) * c.p.m_p - Scalar(2) * (qd(1) * w5 - w3 * w4 - qd(1) * w3 * c.k13) - c.p.l_ef * (w6 * c.p.l_fh * w6 - qd(1) * c.k16 * w3 * Scalar(2) + w3 * w3 * c.p.l_fh) * c.p.m_p) + w1 * ((c.k18 * w9 + w10 * c.k19) * c.p.l_fh - (qd(1) * w6 * c.k15 + w6 * w4 - qd(1) * w8))));
+    pivot(0) = c.k21;
+    pivot(1) = w2;
+    qdd(0) = w11;
+    qdd(1) = (c.p.l_fh * w11 * w1 + w9) * c.k19 - w10 * c.k20;
+    bool regular = true;
+    for (int k = 0; k < 2; ++k) regular = regular && pivot(k) > Scalar(0);
+    using std::isfinite;
+    for (int k = 0; k < qdd.size(); ++k) regular = regular && isfinite(qdd(k));
+    return regular;
+  }
+
+  /// qdd of M qdd = F by the articulated-body algorithm; false if M is not positive definite (a pivot is not positive) or qdd is not finite
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static bool forward_dynamics([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] Vector<Scalar>& qdd) noexcept {
+    return forward_dynamics(t, q, qd, u, Constants<Scalar>(p), qdd);
   }
 };
 

@@ -22,7 +22,7 @@ struct Model {
   static constexpr const char* name = "spherical_pendulum";
   static constexpr const char* description = "Spherical pendulum: a point mass on a massless rod with a ball-joint pivot";
   static constexpr const char* generator_version = "0.1.0";
-  static constexpr const char* model_hash = "5885e1de3c8efda0";
+  static constexpr const char* model_hash = "b58d5c3ea9fbc5e6";
   static constexpr std::array<const char*, nq> coordinate_names{{"theta", "phi"}};
   static constexpr std::array<const char*, nu> input_names{{}};
   static constexpr std::array<const char*, np> parameter_names{{"m", "l", "g"}};
@@ -31,6 +31,7 @@ struct Model {
   static constexpr std::array<int, nh> holonomic_rows{{}};  // row of Xi of each entry of phi
   static constexpr std::array<int, ni> independent_speeds{{}};  // their coordinate indices
   static constexpr std::array<const char*, ny> output_names{{"bob_pos_1", "bob_pos_2", "bob_pos_3", "bob_vel_1", "bob_vel_2", "bob_vel_3", "height", "angular_momentum_vertical"}};
+  static constexpr bool has_forward_dynamics = true;  // forward_dynamics(), without M
 
   template <class Scalar> using Vector = Eigen::Matrix<Scalar, nq, 1>;
   template <class Scalar> using Inputs = Eigen::Matrix<Scalar, nu, 1>;
@@ -65,6 +66,7 @@ struct Model {
       k1 = p.g * p.m * p.l;
       k2 = Scalar(2) * p.m * w0;
       k3 = p.m * Scalar(0.5) * w0;
+      k4 = Scalar(2) * p.l;
     }
     /// The parameters these constants were computed from.
     const Parameters<Scalar>& parameters() const noexcept { return p; }
@@ -72,7 +74,7 @@ struct Model {
    private:
     friend struct Model;
     Parameters<Scalar> p;
-    Scalar k0, k1, k2, k3;
+    Scalar k0, k1, k2, k3, k4;
   };
 
   /// M(q, t), symmetric positive (semi)definite
@@ -276,6 +278,42 @@ struct Model {
   template <class Scalar>
   static void outputs([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] OutputVector<Scalar>& y) noexcept {
     outputs(t, q, qd, u, Constants<Scalar>(p), y);
+  }
+
+  /// qdd of M qdd = F by the articulated-body algorithm; false if M is not positive definite (a pivot is not positive) or qdd is not finite
+  template <class Scalar>
+  static bool forward_dynamics([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] Vector<Scalar>& qdd) noexcept {
+    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
+    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
+    using std::log; using std::abs; using std::pow;
+    Eigen::Matrix<Scalar, 2, 1> pivot;
+    const Scalar w0 = sin(q(0));
+    const Scalar w1 = c.p.l * w0;
+    const Scalar w2 = c.p.m * w1;
+    const Scalar w3 = w2 * w1;
+    const Scalar w4 = cos(q(0));
+    const Scalar w5 = c.p.l * w4;
+    const Scalar w6 = w5 * c.p.m;
+    const Scalar w7 = w3 + w6 * w5;
+    const Scalar w8 = qd(0) * qd(0);
+    const Scalar w9 = Scalar(1) / w7;
+    pivot(0) = w7;
+    pivot(1) = w3;
+    qdd(0) = (c.p.l * w0 * qd(1) * qd(1) + w8 * c.p.l * w0) * w6 * w9 - w9 * w2 * (c.p.g + w8 * c.p.l * w4);
+    qdd(1) = -(qd(1) * c.k4 * qd(0) * w4 * w2 * Scalar(1) / w3);
+    bool regular = true;
+    for (int k = 0; k < 2; ++k) regular = regular && pivot(k) > Scalar(0);
+    using std::isfinite;
+    for (int k = 0; k < qdd.size(); ++k) regular = regular && isfinite(qdd(k));
+    return regular;
+  }
+
+  /// qdd of M qdd = F by the articulated-body algorithm; false if M is not positive definite (a pivot is not positive) or qdd is not finite
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar>
+  static bool forward_dynamics([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] Vector<Scalar>& qdd) noexcept {
+    return forward_dynamics(t, q, qd, u, Constants<Scalar>(p), qdd);
   }
 };
 

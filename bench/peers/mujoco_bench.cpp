@@ -101,6 +101,8 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "our forward dynamics failed\n");
         return 1;
       }
+      // a model with forward_dynamics() is solved without M and F: evaluate them to compare
+      Model::mass_matrix_and_forcing(t, Q[k], QD[k], u, p, ws.M, ws.F);
       Mat Mt = ws.M.transpose();  // row-major view of ours, to compare with full[]
       std::vector<double> negbias(nq);
       for (int i = 0; i < nq; ++i) negbias[i] = -d->qfrc_bias[i];

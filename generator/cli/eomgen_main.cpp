@@ -180,6 +180,8 @@ void run_generate(const Options& o) {
   // peer should compare), not the program's start-up
   const std::string stats =
       o.stats ? statistics_table(emitted.statistics) + resolution_line(eom) +
+                    (emitted.no_forward_dynamics.empty() ? std::string()
+                                                         : "no forward_dynamics: " + emitted.no_forward_dynamics + "\n") +
                     fmt::format("time [ms]: parse {:.3f}, derive {:.3f}, emit {:.3f}\n", milliseconds(loaded - start),
                                 milliseconds(derived - loaded), milliseconds(clock::now() - derived))
               : std::string();

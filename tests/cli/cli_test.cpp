@@ -335,6 +335,12 @@ TEST_F(Cli, GenerateStatsPrintsOperationCountsAndTimes) {
   EXPECT_THAT(stats.out, ::testing::ContainsRegex("time \\[ms\\]: parse [0-9.]+, derive [0-9.]+, emit [0-9.]+\n"));
   // the header itself does not depend on --stats
   EXPECT_EQ(slurp(dir_ / "dp.hpp"), eomgen("generate " + quote(dp)).out);
+  // a tree has forward_dynamics among the counts; a constrained model says why it has none
+  EXPECT_THAT(stats.out, ::testing::ContainsRegex("\nforward_dynamics +[0-9]+"));
+  const std::string cp = model("cp.eom", cartesian_pendulum);
+  const Outcome constrained = eomgen("generate --stats -o " + quote((dir_ / "cp.hpp").string()) + " " + quote(cp));
+  ASSERT_EQ(constrained.status, 0) << constrained.err;
+  EXPECT_THAT(constrained.out, HasSubstr("no forward_dynamics: the model has constraints\n"));
 }
 
 TEST_F(Cli, GenerateLinearizationAddsTheFunctionsOnlyWhenAsked) {
@@ -346,7 +352,7 @@ TEST_F(Cli, GenerateLinearizationAddsTheFunctionsOnlyWhenAsked) {
   // only the model's terms: the solves are the runtime's (eomrt/linearization.hpp)
   EXPECT_THAT(linearized.out, HasSubstr("static void linearization_terms("));
   EXPECT_THAT(linearized.out, HasSubstr("eomrt::second_order_linearization<Model>"));
-  EXPECT_THAT(linearized.out, Not(HasSubstr("static bool")));
+  EXPECT_THAT(linearized.out, Not(HasSubstr("static bool linearization")));
   EXPECT_EQ(eomgen("generate --linearization " + quote(dp)).out, linearized.out);  // byte-identical
   // a constrained model gets the KKT form, with the multipliers among the terms' arguments
   const Outcome constrained = eomgen("generate --linearization " + quote(cp));

@@ -90,9 +90,34 @@ TEST(EmitModel, EveryFunctionDeclaresEveryCallsCmathFunction) {
     ++functions;
     EXPECT_EQ(h.compare(at + 11, declarations.size(), declarations), 0) << h.substr(at, 400);
   }
-  EXPECT_EQ(functions, 10u);
+  EXPECT_EQ(functions, 11u);  // forward_dynamics included: the pendulum on a cart is a tree
   for (const ir::CallOp& call : ir::call_ops)
     EXPECT_NE(declarations.find("using std::" + std::string(call.cpp_name) + ";"), std::string::npos) << call.cpp_name;
+}
+
+// a tree without constraints gets forward_dynamics(), which checks the pivots and qdd; a
+// constrained model says why it has none
+TEST(EmitModel, ForwardDynamicsForTreesAndAReasonOtherwise) {
+  const Model tree = load_model(testing::shipped_model_path("double_pendulum"));
+  const EmittedModel emitted = emit_model(tree, derive_equations(tree));
+  EXPECT_TRUE(emitted.no_forward_dynamics.empty());
+  const std::string& h = emitted.header;
+  EXPECT_NE(h.find("static constexpr bool has_forward_dynamics = true;"), std::string::npos);
+  EXPECT_NE(h.find("static bool forward_dynamics([[maybe_unused]] const Scalar& t, [[maybe_unused]] const "
+                   "Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const "
+                   "Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] "
+                   "Vector<Scalar>& qdd) noexcept {"),
+            std::string::npos);
+  EXPECT_NE(h.find("    Eigen::Matrix<Scalar, 2, 1> pivot;\n"), std::string::npos);
+  EXPECT_NE(h.find("    for (int k = 0; k < 2; ++k) regular = regular && pivot(k) > Scalar(0);\n"), std::string::npos);
+  EXPECT_NE(h.find("    for (int k = 0; k < qdd.size(); ++k) regular = regular && isfinite(qdd(k));\n"
+                   "    return regular;\n"),
+            std::string::npos);
+  const Model coin = load_model(testing::shipped_model_path("rolling_coin"));
+  const EmittedModel constrained = emit_model(coin, derive_equations(coin));
+  EXPECT_EQ(constrained.no_forward_dynamics, "the model has constraints");
+  EXPECT_NE(constrained.header.find("static constexpr bool has_forward_dynamics = false;"), std::string::npos);
+  EXPECT_EQ(constrained.header.find("static bool forward_dynamics("), std::string::npos);
 }
 
 TEST(EmitModel, MetadataAndSizes) {
@@ -229,13 +254,15 @@ std::vector<std::string> functions_of(const std::string& header) {
 }
 
 TEST(EmitModel, AGivenLinearizationAddsItsFunctionsAndChangesNoOther) {
-  for (const char* name : {"double_pendulum", "rolling_coin"}) {
+  // the double pendulum has forward_dynamics, the rolling coin (constrained) has not
+  for (const auto& [name, count] : {std::pair<const char*, std::size_t>{"double_pendulum", 22u}, {"rolling_coin", 20u}}) {
     const Model model = load_model(testing::shipped_model_path(name));
     const ModelEquations eom = derive_equations(model);
     const std::string plain = emit_model(model, eom).header;
     const std::string linearized = emit_model(model, eom, linearize_symbolic(model, eom)).header;
     const std::vector<std::string> functions = functions_of(plain);
-    ASSERT_EQ(functions.size(), 20u) << name;  // each function taking Constants, then Parameters
+    // each function taking Constants, then Parameters
+    ASSERT_EQ(functions.size(), count) << name;
     for (const std::string& f : functions) EXPECT_NE(linearized.find(f), std::string::npos) << name << f;
     EXPECT_EQ(plain.find("linearization"), std::string::npos) << name;
     EXPECT_NE(linearized.find("static void linearization_terms("), std::string::npos) << name;

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <set>
 #include <string>
 
@@ -43,6 +44,19 @@ TEST(IrCallOps, EveryCallCountsAsOneCall) {
     EXPECT_EQ(c.calls, 1u) << call.cpp_name;
     EXPECT_EQ(c.total(), 1u) << call.cpp_name;
   }
+}
+
+// x_{k+1} = x_k + x_k seventy times: 2^70 - 1 additions as a tree, more than a count holds
+TEST(IrOperationCounts, CountsWithoutSharingSaturateInsteadOfWrappingAround) {
+  ir::Program p;
+  p.instructions.push_back({Op::number, {}, 2.0, {}});
+  for (std::size_t k = 0; k < 70; ++k) p.instructions.push_back({Op::add, {k, k}, 0.0, {}});
+  p.outputs.push_back({{ir::Array::outputs, 0, 0}, 70});
+  const std::uint64_t most = std::numeric_limits<std::uint64_t>::max();
+  EXPECT_EQ(ir::count_operations(p).additions, 70u);
+  const ir::OperationCounts tree = ir::count_operations_without_sharing(p);
+  EXPECT_EQ(tree.additions, most);
+  EXPECT_EQ(tree.total(), most);
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 // random states, to 1e-12 relative, and its overloads taking Constants against those taking
 // Parameters. The headers are generated at build time by
 // eomgen_add_model(), so this also exercises the CMake function.
+#include <Eigen/Cholesky>
 #include <Eigen/LU>
 #include <gtest/gtest.h>
 
@@ -107,6 +108,13 @@ void check_against_symbolic() {
     // the combined function shares differently, so only rounding may differ
     EXPECT_LE((M - M2).norm(), 1e-13 * (1 + M.norm()));
     EXPECT_LE((F - F2).norm(), 1e-13 * (1 + F.norm()));
+    // the articulated-body forward dynamics against M^-1 F of the generated M and F
+    if constexpr (Model::has_forward_dynamics) {
+      typename Model::template Vector<double> qdd;
+      EXPECT_TRUE(Model::forward_dynamics(t, q, qd, u, p, qdd));
+      const typename Model::template Vector<double> expected = M.llt().solve(F);
+      EXPECT_TRUE(eomgen::testing::matrices_near_relative(qdd, expected, 1e-11)) << "forward_dynamics";
+    }
     typename Model::template ConstraintJacobian<double> Xi;
     typename Model::template ConstraintVector<double> Xi_t, b;
     typename Model::template HolonomicVector<double> phi;
@@ -210,6 +218,11 @@ void check_constants_overloads() {
     const Eigen::Vector2d energies(Model::kinetic_energy(t, q, qd, p), Model::potential_energy(t, q, p));
     const Eigen::Vector2d energies_c(Model::kinetic_energy(t, q, qd, c), Model::potential_energy(t, q, c));
     EXPECT_TRUE(same_bits(energies, energies_c)) << Model::name;
+    if constexpr (Model::has_forward_dynamics) {
+      typename Model::template Vector<double> qdd, qdd_c;
+      EXPECT_EQ(Model::forward_dynamics(t, q, qd, u, p, qdd), Model::forward_dynamics(t, q, qd, u, c, qdd_c));
+      EXPECT_TRUE(same_bits(qdd, qdd_c)) << Model::name;
+    }
     // the copy: changing p afterwards changes nothing the Constants give
     auto copy = c.parameters();
     for (std::size_t k = 0; k < fields.size(); ++k) EXPECT_EQ(*copy.fields()[k], *fields[k]) << Model::name;
@@ -261,6 +274,15 @@ TEST(GeneratedModel, ConstantsBuiltFromChangedParametersGiveTheNewValues) {
   EXPECT_EQ(before.parameters().g, 9.81);
   EXPECT_EQ(after.parameters().g, 1.62);
 }
+
+// trees without constraints have forward_dynamics(); the rest keep M and F only
+static_assert(eomgen_models::planar_chain::Model::has_forward_dynamics);
+static_assert(eomgen_models::universal_chain::Model::has_forward_dynamics);
+static_assert(eomgen_models::cart_pole::Model::has_forward_dynamics);
+static_assert(eomgen_models::double_pendulum::Model::has_forward_dynamics);
+static_assert(eomgen_models::spring_mass_damper::Model::has_forward_dynamics);
+static_assert(!eomgen_models::cartesian_pendulum::Model::has_forward_dynamics);
+static_assert(!eomgen_models::rolling_coin::Model::has_forward_dynamics);
 
 TEST(GeneratedModel, EveryModelRunsInDoubleAndFloatFromAStrictlyCompiledUnit) {
   EXPECT_TRUE(generated_models_failing_in_double_or_float().empty());

@@ -56,6 +56,15 @@ bool evaluates_finitely() {
   Model::holonomic_residuals(t, q, c, phi);
   Model::outputs(t, q, qd, u, c, y);
   const Scalar energy_c = Model::kinetic_energy(t, q, qd, c) + Model::potential_energy(t, q, c);
+  // the generated forward dynamics solves M qdd = F to the scalar's rounding
+  if constexpr (Model::has_forward_dynamics) {
+    typename Model::template Vector<Scalar> qdd;
+    if (!Model::forward_dynamics(t, q, qd, u, p, qdd)) return false;
+    typename Model::template Vector<Scalar> qdd_c;
+    if (!Model::forward_dynamics(t, q, qd, u, c, qdd_c) || !(qdd_c == qdd)) return false;
+    const Scalar scale = Scalar(1) + F.norm() + M.norm() * qdd.norm();
+    if ((M * qdd - F).norm() > Scalar(1000) * Eigen::NumTraits<Scalar>::epsilon() * scale) return false;
+  }
   return M.allFinite() && F.allFinite() && Xi.allFinite() && Xi_t.allFinite() && b.allFinite() &&
          phi.allFinite() && y.allFinite() && energy == energy && (M - M.transpose()).norm() == Scalar(0) &&
          Mc == M && Fc == F && energy_c == energy;

@@ -144,6 +144,26 @@ TEST(ForwardDynamics, UnconstrainedOscillatorFollowsHookesLawWithItsInput) {
   EXPECT_DOUBLE_EQ(ws.qdd(0), (-8.0 * 0.5 + 3.0) / 2.0);
 }
 
+static_assert(has_forward_dynamics_v<testing::OscillatorWithForwardDynamics> && !has_forward_dynamics_v<Oscillator>);
+
+// the model's forward_dynamics() replaces M and F and the Cholesky solve: ws.M is not touched
+TEST(ForwardDynamics, UnconstrainedModelWithItsOwnForwardDynamicsUsesItAndReportsItsFailure) {
+  using Model = testing::OscillatorWithForwardDynamics;
+  Model::Parameters<double> p;
+  ModelTypes<Model, double>::Inputs u;
+  u << 3.0;
+  ModelTypes<Model, double>::Coordinates q, qd;
+  q << 0.5;
+  qd << -2.0;
+  DynamicsWorkspace<Model, double> ws;
+  ws.M(0, 0) = -7.0;
+  ASSERT_EQ(forward_dynamics_unconstrained<Model>(p, ws, 0.0, q, qd, u), DynamicsStatus::ok);
+  EXPECT_DOUBLE_EQ(ws.qdd(0), (-8.0 * 0.5 + 3.0) / 2.0);
+  EXPECT_EQ(ws.M(0, 0), -7.0);
+  p.m = -2.0;
+  EXPECT_EQ(forward_dynamics_unconstrained<Model>(p, ws, 0.0, q, qd, u), DynamicsStatus::singular_mass_matrix);
+}
+
 TEST(ForwardDynamics, PendulumAtThePivotHasDependentConstraintsAndEveryMethodSaysSo) {
   const CartesianPendulum::Parameters<double> p;
   const ModelTypes<CartesianPendulum, double>::Inputs u;

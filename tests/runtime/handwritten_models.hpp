@@ -97,6 +97,16 @@ struct Oscillator : Unconstrained<1> {
   }
 };
 
+/// The oscillator with its own forward dynamics, as a generated tree has (false when m <= 0).
+struct OscillatorWithForwardDynamics : Oscillator {
+  template <class S>
+  static bool forward_dynamics(const S&, const V<S>& q, const V<S>&, const Eigen::Matrix<S, nu, 1>& u,
+                               const Parameters<S>& p, V<S>& qdd) {
+    qdd(0) = (-p.k * q(0) + u(0)) / p.m;
+    return p.m > S(0);
+  }
+};
+
 /// A mass described redundantly by two coordinates, T = m (xd1 + xd2)^2 / 2 (M of rank 1, as
 /// for a quaternion), pulled by a spring k (x1 + x2) and tied by the constraint x1 - x2 = 0
 /// (Constrained) or not at all (the unconstrained variant, whose M is singular).

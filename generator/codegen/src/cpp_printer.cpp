@@ -158,6 +158,8 @@ const char* cpp_array_name(ir::Array array) {
     case ir::Array::acceleration_constraint_by_q: return "S_q";
     case ir::Array::acceleration_constraint_by_qd: return "S_qd";
     case ir::Array::constants: return "k";
+    case ir::Array::accelerations: return "qdd";
+    case ir::Array::pivots: return "pivot";
   }
   EOMGEN_UNREACHABLE("an ir::Array value that is not an enumerator");
 }

@@ -6,6 +6,7 @@
 
 #include "eomgen/base/error.hpp"
 #include "eomgen/codegen/cpp_printer.hpp"
+#include "eomgen/derivation/articulated_body.hpp"
 #include "eomgen/derivation/linearization.hpp"
 #include "function_source.hpp"
 #include "function_table.hpp"
@@ -38,15 +39,18 @@ EmittedModel emit(const Model& model, const ModelEquations& eom, const SymbolicL
   CppPrintOptions print;
   print.share_subexpressions = options.share_subexpressions;
   for (const Parameter& p : model.system.variables().parameters()) print.parameter_names.push_back(p.name);
-  const std::vector<FunctionSpec> table = function_table(eom, linearization);
+  const std::variant<ForwardDynamics, std::string> derived = derive_forward_dynamics(model.system);
+  const ForwardDynamics* forward = std::get_if<ForwardDynamics>(&derived);
+  const std::vector<FunctionSpec> table = function_table(eom, linearization, forward);
   std::vector<const Subexpressions*> intermediates{&eom.subexpressions};
   if (linearization) intermediates.push_back(&linearization->derivatives);
+  if (forward) intermediates.push_back(&forward->subexpressions);
   EmittedFunctions functions =
       emit_functions(table, intermediates, bind_variables(model, linearization, print), print);
   if (linearization) functions.source += linearization_source(eom.constraint_count > 0);
   const std::uint64_t hash = model_fingerprint(model, table, functions.source);
-  return {assemble_header(model, eom, functions.source, hash, linearization != nullptr, options),
-          std::move(functions.statistics)};
+  return {assemble_header(model, eom, functions.source, hash, linearization != nullptr, forward != nullptr, options),
+          std::move(functions.statistics), forward ? std::string() : std::get<std::string>(derived)};
 }
 
 }  // namespace

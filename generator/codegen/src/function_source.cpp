@@ -24,7 +24,10 @@ const char* array_type(Array array) {
     case Array::stiffness:
     case Array::damping:
       return "MassMatrix";
-    case Array::forcing: return "Vector";
+    case Array::forcing:
+    case Array::accelerations:
+      return "Vector";
+    case Array::pivots: EOMGEN_UNREACHABLE("the pivots are local to forward_dynamics, never an argument");
     case Array::constraint_jacobian:
     case Array::acceleration_constraint_by_q:
     case Array::acceleration_constraint_by_qd:
@@ -88,7 +91,7 @@ std::string math_using_declarations(const std::string& indent) {
 
 // the overload taking Parameters: it builds their Constants for this one call
 std::string forwarding_source(const FunctionSpec& f, const CppPrintOptions& print) {
-  const bool scalar = returns_scalar(f);
+  const bool scalar = returns_scalar(f), returns = scalar || f.returns_regularity;
   std::string arguments;
   for (VariableKind kind : f.reads)
     arguments += std::string(arguments.empty() ? "" : ", ") +
@@ -99,8 +102,8 @@ std::string forwarding_source(const FunctionSpec& f, const CppPrintOptions& prin
       "\n  /// {}\n  /// From the parameters: computes their Constants for this call alone (to evaluate\n"
       "  /// repeatedly, build the Constants once and call the overload above).\n  template <class Scalar>\n"
       "  static {} {}({}) noexcept {{\n{}{}{}({});\n  }}\n",
-      f.doc, scalar ? "Scalar" : "void", f.name, signature(f, VariableKind::parameter), print.indent,
-      scalar ? "return " : "", f.name, arguments);
+      f.doc, scalar ? "Scalar" : f.returns_regularity ? "bool" : "void", f.name, signature(f, VariableKind::parameter),
+      print.indent, returns ? "return " : "", f.name, arguments);
 }
 
 // `Scalar k0, k1, ...;`, ten to a line
@@ -109,6 +112,24 @@ std::string constant_members(std::size_t count) {
   for (std::size_t k = 0; k < count; ++k)
     s += fmt::format("{}k{}{}", k % 10 == 0 ? "    Scalar " : ", ", k, k % 10 == 9 || k + 1 == count ? ";\n" : "");
   return s;
+}
+
+std::size_t pivot_count(const FunctionSpec& f) {
+  return static_cast<std::size_t>(std::count_if(f.targets.begin(), f.targets.end(), [](const LoweringTarget& t) {
+    return t.target.array == Array::pivots;
+  }));
+}
+
+// M is positive definite exactly when every pivot is; NaN fails both tests
+std::string regularity_check(const FunctionSpec& f, std::size_t pivots, const std::string& indent) {
+  std::string s = fmt::format("{}bool regular = true;\n", indent);
+  if (pivots > 0)
+    s += fmt::format("{}for (int k = 0; k < {}; ++k) regular = regular && pivot(k) > Scalar(0);\n", indent, pivots);
+  s += fmt::format("{}using std::isfinite;\n", indent);
+  for (Array array : f.writes)
+    s += fmt::format("{}for (int k = 0; k < {}.size(); ++k) regular = regular && isfinite({}(k));\n", indent,
+                     cpp_array_name(array), cpp_array_name(array));
+  return s + fmt::format("{}return regular;\n", indent);
 }
 
 }  // namespace
@@ -137,9 +158,12 @@ std::string function_source(const FunctionSpec& f, const ir::Program& program, c
   const bool scalar = returns_scalar(f);
   const std::string result = scalar ? cpp_target(f.targets.front().target) : std::string();
   std::string code = fmt::format("\n  /// {}\n  template <class Scalar>\n  static {} {}({}) noexcept {{\n", f.doc,
-                                 scalar ? "Scalar" : "void", f.name, signature(f, VariableKind::constant));
+                                 scalar ? "Scalar" : f.returns_regularity ? "bool" : "void", f.name,
+                                 signature(f, VariableKind::constant));
   code += math_using_declarations(print.indent);
   if (scalar) code += fmt::format("{}Scalar {} = Scalar(0);\n", print.indent, result);
+  const std::size_t pivots = pivot_count(f);
+  if (pivots > 0) code += fmt::format("{}Eigen::Matrix<Scalar, {}, 1> pivot;\n", print.indent, pivots);
   code += print_cpp(program, print);
   // structural zeros are written as zeros, not computed
   std::set<ir::Target> computed;
@@ -151,6 +175,7 @@ std::string function_source(const FunctionSpec& f, const ir::Program& program, c
     code += fmt::format("{}{} = {};\n", print.indent, cpp_target(target),
                         computed.count(source) ? cpp_target(source) : "Scalar(0)");
   if (scalar) code += fmt::format("{}return {};\n", print.indent, result);
+  if (f.returns_regularity) code += regularity_check(f, pivots, print.indent);
   return code + "  }\n" + forwarding_source(f, print);
 }
 

@@ -1,5 +1,6 @@
 #include "function_table.hpp"
 
+#include "eomgen/derivation/articulated_body.hpp"
 #include "eomgen/derivation/linearization.hpp"
 
 namespace eomgen {
@@ -80,6 +81,18 @@ void add_energies_and_outputs(std::vector<FunctionSpec>& table, const ModelEquat
   table.insert(table.end(), {kinetic, potential, outputs});
 }
 
+// qdd without M, for a tree without constraints; the pivots come first, as they are computed
+FunctionSpec forward_dynamics(const ForwardDynamics& fd) {
+  FunctionSpec f = function("forward_dynamics",
+                            "qdd of M qdd = F by the articulated-body algorithm; false if M is not positive "
+                            "definite (a pivot is not positive) or qdd is not finite",
+                            states_and_inputs, {Array::accelerations});
+  for (std::size_t k = 0; k < fd.pivots.size(); ++k) f.targets.push_back({{Array::pivots, k, 0}, fd.pivots[k]});
+  add_vector(f, Array::accelerations, fd.accelerations);
+  f.returns_regularity = true;
+  return f;
+}
+
 // the model-specific terms of the generated linearization() (linearization_source.hpp)
 FunctionSpec linearization_terms(const SymbolicLinearization& linearization, bool constrained) {
   FunctionSpec f = function("linearization_terms",
@@ -102,11 +115,13 @@ FunctionSpec linearization_terms(const SymbolicLinearization& linearization, boo
 
 }  // namespace
 
-std::vector<FunctionSpec> function_table(const ModelEquations& eom, const SymbolicLinearization* linearization) {
+std::vector<FunctionSpec> function_table(const ModelEquations& eom, const SymbolicLinearization* linearization,
+                                         const ForwardDynamics* forward) {
   std::vector<FunctionSpec> table;
   add_dynamics(table, eom);
   add_constraints(table, eom);
   add_energies_and_outputs(table, eom);
+  if (forward) table.push_back(forward_dynamics(*forward));
   if (linearization) table.push_back(linearization_terms(*linearization, eom.constraint_count > 0));
   return table;
 }

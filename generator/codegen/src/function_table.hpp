@@ -12,6 +12,7 @@
 namespace eomgen {
 
 struct SymbolicLinearization;
+struct ForwardDynamics;
 
 /// One generated function (a static member of the generated Model).
 struct FunctionSpec {
@@ -25,11 +26,16 @@ struct FunctionSpec {
   std::vector<LoweringTarget> targets;
   /// entries copied after the body (first = second): the lower triangle of M
   std::vector<std::pair<ir::Target, ir::Target>> mirrors;
+  /// returns whether every entry of Array::pivots among the targets (held in a local array) is
+  /// positive and every entry it writes finite: forward_dynamics
+  bool returns_regularity = false;
 };
 
-/// The functions of every model, then, if `linearization` is given (linearize_symbolic of the
-/// same model and equations), linearization_terms.
-std::vector<FunctionSpec> function_table(const ModelEquations& equations, const SymbolicLinearization* linearization);
+/// The functions of every model, then forward_dynamics if `forward_dynamics` is given
+/// (derive_forward_dynamics of the same model), then, if `linearization` is given
+/// (linearize_symbolic of the same model and equations), linearization_terms.
+std::vector<FunctionSpec> function_table(const ModelEquations& equations, const SymbolicLinearization* linearization,
+                                         const ForwardDynamics* forward_dynamics = nullptr);
 
 /// True if the function returns its single scalar output instead of writing arguments.
 bool returns_scalar(const FunctionSpec& function);

@@ -53,12 +53,15 @@ std::uint64_t model_fingerprint(const Model& model, const std::vector<FunctionSp
 }
 
 std::string assemble_header(const Model& model, const ModelEquations& eom, const std::string& functions,
-                            std::uint64_t model_hash, bool linearized, const EmitOptions& options) {
+                            std::uint64_t model_hash, bool linearized, bool forward_dynamics,
+                            const EmitOptions& options) {
   const std::string outer = cpp_identifier(options.outer_namespace), inner = cpp_identifier(model.name);
   std::string h = preamble(model, options);
   h += fmt::format("namespace {} {{\nnamespace {} {{\n\n", outer, inner);
   h += "struct Model {\n";
-  h += metadata_source(model, eom, model_hash) + "\n";
+  h += metadata_source(model, eom, model_hash);
+  h += fmt::format("  static constexpr bool has_forward_dynamics = {};  // forward_dynamics(), without M\n\n",
+                   forward_dynamics);
   h += type_aliases(linearized) + "\n";
   h += parameters_source(model);
   h += functions;

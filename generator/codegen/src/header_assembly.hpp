@@ -15,8 +15,10 @@ std::uint64_t model_fingerprint(const Model& model, const std::vector<FunctionSp
                                 const std::string& functions);
 
 /// The header: banner, includes, namespaces, and the Model struct with its metadata, type
-/// aliases, Parameters and `functions` (the member functions' source).
+/// aliases, Parameters and `functions` (the member functions' source); `forward_dynamics` says
+/// whether the functions include forward_dynamics().
 std::string assemble_header(const Model& model, const ModelEquations& equations, const std::string& functions,
-                            std::uint64_t model_hash, bool linearized, const EmitOptions& options);
+                            std::uint64_t model_hash, bool linearized, bool forward_dynamics,
+                            const EmitOptions& options);
 
 }  // namespace eomgen

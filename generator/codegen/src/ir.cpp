@@ -49,10 +49,10 @@ void add_own(const Instruction& in, OperationCounts& c) {
 }
 
 OperationCounts plus(OperationCounts a, const OperationCounts& b) {
-  a.additions += b.additions;
-  a.multiplications += b.multiplications;
-  a.divisions += b.divisions;
-  a.calls += b.calls;
+  a.additions = saturating_sum(a.additions, b.additions);
+  a.multiplications = saturating_sum(a.multiplications, b.multiplications);
+  a.divisions = saturating_sum(a.divisions, b.divisions);
+  a.calls = saturating_sum(a.calls, b.calls);
   return a;
 }
 
@@ -69,6 +69,8 @@ std::size_t rank(Array array) {
     case Array::holonomic_residuals:
     case Array::outputs:
     case Array::constants:
+    case Array::accelerations:
+    case Array::pivots:
       return 1;
     case Array::mass_matrix:
     case Array::constraint_jacobian:

@@ -158,7 +158,9 @@ DynamicsStatus second_order_linearization(const ParametersOrConstants& p,
                 "second_order_linearization: the model has constraints; use linearization (the KKT form)");
   static_assert(detail::has_linearization_terms<Model, Scalar, ParametersOrConstants>::value,
                 "eomrt model: linearization needs linearization_terms; generate with --linearization");
-  const DynamicsStatus status = forward_dynamics_unconstrained<Model>(p, ws.dynamics, t, q, qd, u);
+  // the factor of M solves for A and B below, so M is factorized even where the model has its
+  // own forward_dynamics()
+  const DynamicsStatus status = detail::forward_dynamics_by_mass_matrix<Model>(p, ws.dynamics, t, q, qd, u);
   if (status != DynamicsStatus::ok) return status;
   Model::linearization_terms(t, q, qd, u, p, ws.dynamics.qdd, ws.terms.K, ws.terms.D, ws.terms.B_u);
   return ws.terms.K.allFinite() && ws.terms.D.allFinite() && ws.terms.B_u.allFinite() ? DynamicsStatus::ok

@@ -17,6 +17,9 @@
 /// with the fixed-size Eigen argument types of ModelTypes below, and optionally
 ///   static constexpr int ny + outputs(t, q, qd, u, p, y)      named outputs
 ///   static constexpr int ni + std::array<int, ni> independent_speeds   for the null-space method
+///   template <class S> static bool forward_dynamics(t, q, qd, u, p, qdd)   qdd of M qdd = F
+///                                         without M (false: M not positive definite or qdd not
+///                                         finite); generated for trees without constraints
 ///   template <class S> class Constants    the parameter-only values, computed once per
 ///                                         parameter set: explicit Constants(const Parameters<S>&),
 ///                                         parameters() returning the copy it was built from, and
@@ -83,6 +86,20 @@ struct has_outputs<Model, Scalar,
                               std::declval<const typename ModelTypes<Model, Scalar>::Parameters&>(),
                               std::declval<Eigen::Matrix<Scalar, Model::ny, 1>&>()))>>
     : std::true_type {};
+
+template <class Model, class Scalar, class = void>
+struct has_forward_dynamics : std::false_type {};
+template <class Model, class Scalar>
+struct has_forward_dynamics<
+    Model, Scalar,
+    std::enable_if_t<std::is_convertible_v<
+        decltype(Model::forward_dynamics(std::declval<const Scalar&>(),
+                                         std::declval<const typename ModelTypes<Model, Scalar>::Coordinates&>(),
+                                         std::declval<const typename ModelTypes<Model, Scalar>::Coordinates&>(),
+                                         std::declval<const typename ModelTypes<Model, Scalar>::Inputs&>(),
+                                         std::declval<const typename ModelTypes<Model, Scalar>::Parameters&>(),
+                                         std::declval<typename ModelTypes<Model, Scalar>::Coordinates&>())),
+        bool>>> : std::true_type {};
 
 template <class Model, class = void>
 struct has_independent_speeds : std::false_type {};
@@ -180,6 +197,11 @@ ParameterSet<Model, Scalar> make_parameter_set(
 /// True when the model provides named outputs (ny and outputs()).
 template <class Model, class Scalar = double>
 inline constexpr bool has_outputs_v = detail::has_outputs<Model, Scalar>::value;
+
+/// True when the model computes qdd itself (forward_dynamics(), e.g. by the articulated-body
+/// algorithm), so that forward_dynamics_unconstrained need not factorize M.
+template <class Model, class Scalar = double>
+inline constexpr bool has_forward_dynamics_v = detail::has_forward_dynamics<Model, Scalar>::value;
 
 /// True when the model declares independent speeds for the null-space method (ni > 0).
 template <class Model>

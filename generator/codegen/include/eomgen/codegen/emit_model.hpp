@@ -33,10 +33,12 @@ struct EmittedModel {
   std::string header;
   /// the Constants first (constants_statistics_name), then each function's operations per call
   std::vector<FunctionStatistics> statistics;
+  /// why the header has no forward_dynamics() (constraints, not a tree), empty if it has one
+  std::string no_forward_dynamics;
 };
 
 /// The header of a model: its metadata and the functions of its equations (M, F, Xi, Xi_t, b,
-/// phi, T, V and the outputs).
+/// phi, T, V and the outputs), and forward_dynamics() when derive_forward_dynamics gives one.
 /// \throws EmitError if an expression cannot be printed, or if model.independent_speeds is neither
 ///         empty nor nq - nc distinct coordinate indices.
 EmittedModel emit_model(const Model& model, const ModelEquations& equations, const EmitOptions& options = {});

@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <iterator>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -115,6 +116,8 @@ enum class Array {
   acceleration_constraint_by_q,   // S_q = dS/dq of S = Xi qdd + b
   acceleration_constraint_by_qd,  // S_qd = dS/dqd
   constants,                      // the per-parameter-set constants, computed once by Constants
+  accelerations,                  // qdd of the generated forward dynamics
+  pivots,                         // the forward dynamics' pivots: a local array, checked, not returned
 };
 
 /// 0 for a scalar, 1 for a vector, 2 for a matrix.
@@ -153,14 +156,22 @@ struct Program {
   std::vector<Assignment> outputs;
 };
 
+/// a + b, or the largest count where that does not fit: a graph written out as a tree (the
+/// articulated-body algorithm's, say) can need more than 2^64 operations
+constexpr std::uint64_t saturating_sum(std::uint64_t a, std::uint64_t b) {
+  return a > std::numeric_limits<std::uint64_t>::max() - b ? std::numeric_limits<std::uint64_t>::max() : a + b;
+}
+
 /// Floating-point operations of a program; an n-ary sum counts n - 1 additions
-/// (subtractions included), a negation counts as an addition.
+/// (subtractions included), a negation counts as an addition. Counts saturate at 2^64 - 1.
 struct OperationCounts {
   std::uint64_t additions = 0;
   std::uint64_t multiplications = 0;
   std::uint64_t divisions = 0;
   std::uint64_t calls = 0;  // sqrt, sin, cos, pow, ...
-  std::uint64_t total() const { return additions + multiplications + divisions + calls; }
+  std::uint64_t total() const {
+    return saturating_sum(saturating_sum(additions, multiplications), saturating_sum(divisions, calls));
+  }
 };
 
 /// Operations of the program as it is (each instruction once).
