@@ -32,6 +32,7 @@ struct Model {
   static constexpr std::array<int, ni> independent_speeds{{}};  // their coordinate indices
   static constexpr std::array<const char*, ny> output_names{{"bob_vel_1", "bob_vel_2", "bob_vel_3", "angle", "length_error"}};
   static constexpr bool has_forward_dynamics = false;  // forward_dynamics(), without M
+  static constexpr bool prefers_forward_dynamics = false;  // fewer operations than M, F and their Cholesky solve
 
   template <class Scalar> using Vector = Eigen::Matrix<Scalar, nq, 1>;
   template <class Scalar> using Inputs = Eigen::Matrix<Scalar, nu, 1>;

@@ -32,6 +32,7 @@ struct Model {
   static constexpr std::array<int, ni> independent_speeds{{0, 2}};  // their coordinate indices
   static constexpr std::array<const char*, ny> output_names{{"heading_1", "heading_2", "heading_3", "speed", "side_slip"}};
   static constexpr bool has_forward_dynamics = false;  // forward_dynamics(), without M
+  static constexpr bool prefers_forward_dynamics = false;  // fewer operations than M, F and their Cholesky solve
 
   template <class Scalar> using Vector = Eigen::Matrix<Scalar, nq, 1>;
   template <class Scalar> using Inputs = Eigen::Matrix<Scalar, nu, 1>;

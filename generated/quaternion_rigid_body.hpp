@@ -32,6 +32,7 @@ struct Model {
   static constexpr std::array<int, ni> independent_speeds{{}};  // their coordinate indices
   static constexpr std::array<const char*, ny> output_names{{"omega_1", "omega_2", "omega_3", "angular_momentum_1", "angular_momentum_2", "angular_momentum_3", "quaternion_norm"}};
   static constexpr bool has_forward_dynamics = false;  // forward_dynamics(), without M
+  static constexpr bool prefers_forward_dynamics = false;  // fewer operations than M, F and their Cholesky solve
 
   template <class Scalar> using Vector = Eigen::Matrix<Scalar, nq, 1>;
   template <class Scalar> using Inputs = Eigen::Matrix<Scalar, nu, 1>;

@@ -32,6 +32,7 @@ struct Model {
   static constexpr std::array<int, ni> independent_speeds{{2, 3, 4}};  // their coordinate indices
   static constexpr std::array<const char*, ny> output_names{{"centre_1", "centre_2", "centre_3", "centre_velocity_1", "centre_velocity_2", "centre_velocity_3", "contact_1", "contact_2", "contact_3", "omega_1", "omega_2", "omega_3"}};
   static constexpr bool has_forward_dynamics = false;  // forward_dynamics(), without M
+  static constexpr bool prefers_forward_dynamics = false;  // fewer operations than M, F and their Cholesky solve
 
   template <class Scalar> using Vector = Eigen::Matrix<Scalar, nq, 1>;
   template <class Scalar> using Inputs = Eigen::Matrix<Scalar, nu, 1>;

@@ -77,6 +77,8 @@ int main(int argc, char** argv) {
   std::printf("RESULT nq %d\n", nq);
 
   const Model::Parameters<double> p;  // the model's defaults = the MJCF's values
+  // the parameter-only values, computed once as a controller would (every timed call takes them)
+  const Model::Constants<double> c(p);
   const Model::Inputs<double> u = Model::Inputs<double>::Zero();
   const double t = 0;
 
@@ -181,17 +183,17 @@ int main(int argc, char** argv) {
   std::vector<Op> ops = {
       {"ours_MF", "ours: mass_matrix_and_forcing (M, F)",
        [&](int k) {
-         Model::mass_matrix_and_forcing(t, Q[k], QD[k], u, p, M, F);
+         Model::mass_matrix_and_forcing(t, Q[k], QD[k], u, c, M, F);
          g_sink = g_sink + M(nq - 1, 0) + F(0);
        }},
-      {"ours_fd", "ours: eomrt::forward_dynamics_unconstrained (M, F, LLT, pivot check, solve)",
+      {"ours_fd", "ours: eomrt::forward_dynamics_unconstrained (forward_dynamics() where the model prefers it, else M, F, LLT, pivot check, solve)",
        [&](int k) {
-         eomrt::forward_dynamics_unconstrained<Model, double>(p, ws, t, Q[k], QD[k], u);
+         eomrt::forward_dynamics_unconstrained<Model, double>(c, ws, t, Q[k], QD[k], u);
          g_sink = g_sink + ws.qdd(0);
        }},
       {"ours_fd_raw", "ours: M, F + Eigen LLT solve (no singularity check)",
        [&](int k) {
-         Model::mass_matrix_and_forcing(t, Q[k], QD[k], u, p, M, F);
+         Model::mass_matrix_and_forcing(t, Q[k], QD[k], u, c, M, F);
          llt.compute(M);
          qdd = llt.solve(F);
          g_sink = g_sink + qdd(0);
@@ -299,7 +301,7 @@ int main(int argc, char** argv) {
   auto rhs_fd = [&](double tt, const State& xs, State& dx) {
     q2 = xs.head<nq>();
     qd2 = xs.tail<nq>();
-    const bool ok = eomrt::forward_dynamics_unconstrained<Model, double>(p, ws_loop, tt, q2, qd2, u) ==
+    const bool ok = eomrt::forward_dynamics_unconstrained<Model, double>(c, ws_loop, tt, q2, qd2, u) ==
                     eomrt::DynamicsStatus::ok;
     dx.head<nq>() = qd2;
     dx.tail<nq>() = ws_loop.qdd;
@@ -308,7 +310,7 @@ int main(int argc, char** argv) {
   auto rhs_raw = [&](double tt, const State& xs, State& dx) {
     q2 = xs.head<nq>();
     qd2 = xs.tail<nq>();
-    Model::mass_matrix_and_forcing(tt, q2, qd2, u, p, M2, F2);
+    Model::mass_matrix_and_forcing(tt, q2, qd2, u, c, M2, F2);
     llt2.compute(M2);
     dx.head<nq>() = qd2;
     dx.tail<nq>() = llt2.solve(F2);

@@ -1,6 +1,7 @@
 // Header assembly: identifiers that cannot inject code, byte-identical output, metadata.
 #include "eomgen/codegen/emit_model.hpp"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <vector>
@@ -251,6 +252,26 @@ std::vector<std::string> functions_of(const std::string& header) {
     functions.push_back(header.substr(start, end + 5 - start));
   }
   return functions;
+}
+
+// forward_dynamics() grows linearly with a chain, M, F and their Cholesky solve like its cube (or
+// faster): the header prefers the first only where it takes fewer operations
+TEST(EmitModel, ForwardDynamicsIsPreferredOnlyWhereItTakesFewerOperations) {
+  for (double n : {2.0, 16.0}) {
+    const Model model = load_model(testing::shipped_model_path("planar_chain"), {{"n", n}});
+    const EmittedModel emitted = emit_model(model, derive_equations(model));
+    ASSERT_TRUE(emitted.no_forward_dynamics.empty()) << n;
+    const double size = n, fd = emitted.forward_dynamics_operations;
+    double mf = 0;
+    for (const FunctionStatistics& s : emitted.statistics)
+      if (s.function == "mass_matrix_and_forcing") mf = double(s.optimized.total());
+    EXPECT_EQ(emitted.mass_matrix_path_operations, mf + size * size * size / 3 + 2 * size * size + size) << n;
+    EXPECT_EQ(emitted.prefers_forward_dynamics, fd < emitted.mass_matrix_path_operations) << n;
+    EXPECT_EQ(emitted.prefers_forward_dynamics, n > 2) << n << ": " << fd << " against " << mf;
+    const std::string line = fmt::format("static constexpr bool prefers_forward_dynamics = {};",
+                                         emitted.prefers_forward_dynamics);
+    EXPECT_NE(emitted.header.find(line), std::string::npos) << n;
+  }
 }
 
 TEST(EmitModel, AGivenLinearizationAddsItsFunctionsAndChangesNoOther) {

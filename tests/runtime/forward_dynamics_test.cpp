@@ -145,6 +145,25 @@ TEST(ForwardDynamics, UnconstrainedOscillatorFollowsHookesLawWithItsInput) {
 }
 
 static_assert(has_forward_dynamics_v<testing::OscillatorWithForwardDynamics> && !has_forward_dynamics_v<Oscillator>);
+static_assert(uses_forward_dynamics_v<testing::OscillatorWithForwardDynamics> && !uses_forward_dynamics_v<Oscillator>);
+static_assert(has_forward_dynamics_v<testing::OscillatorPreferringMassMatrix> &&
+              !uses_forward_dynamics_v<testing::OscillatorPreferringMassMatrix>);
+
+// a model that has forward_dynamics() but prefers M and F is solved through M: ws.M is evaluated
+TEST(ForwardDynamics, ModelPreferringTheMassMatrixIsSolvedThroughIt) {
+  using Model = testing::OscillatorPreferringMassMatrix;
+  Model::Parameters<double> p;
+  ModelTypes<Model, double>::Inputs u;
+  u << 3.0;
+  ModelTypes<Model, double>::Coordinates q, qd;
+  q << 0.5;
+  qd << -2.0;
+  DynamicsWorkspace<Model, double> ws;
+  ws.M(0, 0) = -7.0;
+  ASSERT_EQ(forward_dynamics_unconstrained<Model>(p, ws, 0.0, q, qd, u), DynamicsStatus::ok);
+  EXPECT_DOUBLE_EQ(ws.qdd(0), (-8.0 * 0.5 + 3.0) / 2.0);
+  EXPECT_EQ(ws.M(0, 0), 2.0);  // m
+}
 
 // the model's forward_dynamics() replaces M and F and the Cholesky solve: ws.M is not touched
 TEST(ForwardDynamics, UnconstrainedModelWithItsOwnForwardDynamicsUsesItAndReportsItsFailure) {

@@ -107,6 +107,12 @@ struct OscillatorWithForwardDynamics : Oscillator {
   }
 };
 
+/// The same, declaring that M, F and a Cholesky solve are cheaper than its forward_dynamics()
+/// (as a generated small model does): the runtime keeps the mass-matrix path.
+struct OscillatorPreferringMassMatrix : OscillatorWithForwardDynamics {
+  static constexpr bool prefers_forward_dynamics = false;
+};
+
 /// A mass described redundantly by two coordinates, T = m (xd1 + xd2)^2 / 2 (M of rank 1, as
 /// for a quaternion), pulled by a spring k (x1 + x2) and tied by the constraint x1 - x2 = 0
 /// (Constrained) or not at all (the unconstrained variant, whose M is singular).

@@ -32,6 +32,24 @@ void check_independent_speeds(const Model& model, const ModelEquations& eom) {
                                   "indices below nq = {}", model.name, i, independent[i], n));
 }
 
+// operations per call of the named function (0 when the table has none)
+double operations_of(const std::vector<FunctionStatistics>& statistics, const std::string& name) {
+  for (const FunctionStatistics& s : statistics)
+    if (s.function == name) return double(s.optimized.total());
+  return 0;
+}
+
+// Forward dynamics two ways: the articulated-body recursion, or M and F with the runtime's
+// Cholesky factorization (n^3/6 multiply-adds), its two triangular solves and its pivot test.
+// Small models are cheaper the second way, long chains the first.
+void compare_forward_dynamics(EmittedModel& emitted, std::size_t n) {
+  const double size = double(n);
+  emitted.forward_dynamics_operations = operations_of(emitted.statistics, "forward_dynamics");
+  emitted.mass_matrix_path_operations = operations_of(emitted.statistics, "mass_matrix_and_forcing") +
+                                        size * size * size / 3 + 2 * size * size + size;
+  emitted.prefers_forward_dynamics = emitted.forward_dynamics_operations < emitted.mass_matrix_path_operations;
+}
+
 // the function table lowered and printed, then the generic linearization() and the header
 EmittedModel emit(const Model& model, const ModelEquations& eom, const SymbolicLinearization* linearization,
                   const EmitOptions& options) {
@@ -49,8 +67,15 @@ EmittedModel emit(const Model& model, const ModelEquations& eom, const SymbolicL
       emit_functions(table, intermediates, bind_variables(model, linearization, print), print);
   if (linearization) functions.source += linearization_source(eom.constraint_count > 0);
   const std::uint64_t hash = model_fingerprint(model, table, functions.source);
-  return {assemble_header(model, eom, functions.source, hash, linearization != nullptr, forward != nullptr, options),
-          std::move(functions.statistics), forward ? std::string() : std::get<std::string>(derived)};
+  EmittedModel emitted;
+  emitted.statistics = std::move(functions.statistics);
+  if (forward)
+    compare_forward_dynamics(emitted, eom.coordinate_count);
+  else
+    emitted.no_forward_dynamics = std::get<std::string>(derived);
+  emitted.header = assemble_header(model, eom, functions.source, hash, linearization != nullptr,
+                                   ForwardDynamicsChoice{forward != nullptr, emitted.prefers_forward_dynamics}, options);
+  return emitted;
 }
 
 }  // namespace

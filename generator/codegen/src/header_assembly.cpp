@@ -53,15 +53,18 @@ std::uint64_t model_fingerprint(const Model& model, const std::vector<FunctionSp
 }
 
 std::string assemble_header(const Model& model, const ModelEquations& eom, const std::string& functions,
-                            std::uint64_t model_hash, bool linearized, bool forward_dynamics,
+                            std::uint64_t model_hash, bool linearized, ForwardDynamicsChoice forward_dynamics,
                             const EmitOptions& options) {
   const std::string outer = cpp_identifier(options.outer_namespace), inner = cpp_identifier(model.name);
   std::string h = preamble(model, options);
   h += fmt::format("namespace {} {{\nnamespace {} {{\n\n", outer, inner);
   h += "struct Model {\n";
   h += metadata_source(model, eom, model_hash);
-  h += fmt::format("  static constexpr bool has_forward_dynamics = {};  // forward_dynamics(), without M\n\n",
-                   forward_dynamics);
+  h += fmt::format("  static constexpr bool has_forward_dynamics = {};  // forward_dynamics(), without M\n",
+                   forward_dynamics.emitted);
+  h += fmt::format("  static constexpr bool prefers_forward_dynamics = {};  // fewer operations than M, F and "
+                   "their Cholesky solve\n\n",
+                   forward_dynamics.preferred);
   h += type_aliases(linearized) + "\n";
   h += parameters_source(model);
   h += functions;

@@ -14,11 +14,16 @@ namespace eomgen {
 std::uint64_t model_fingerprint(const Model& model, const std::vector<FunctionSpec>& table,
                                 const std::string& functions);
 
+/// Whether the functions include forward_dynamics(), and whether the runtime should take it
+/// rather than M, F and a Cholesky solve.
+struct ForwardDynamicsChoice {
+  bool emitted = false, preferred = false;
+};
+
 /// The header: banner, includes, namespaces, and the Model struct with its metadata, type
-/// aliases, Parameters and `functions` (the member functions' source); `forward_dynamics` says
-/// whether the functions include forward_dynamics().
+/// aliases, Parameters and `functions` (the member functions' source).
 std::string assemble_header(const Model& model, const ModelEquations& equations, const std::string& functions,
-                            std::uint64_t model_hash, bool linearized, bool forward_dynamics,
+                            std::uint64_t model_hash, bool linearized, ForwardDynamicsChoice forward_dynamics,
                             const EmitOptions& options);
 
 }  // namespace eomgen

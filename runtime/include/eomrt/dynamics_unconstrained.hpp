@@ -36,7 +36,8 @@ DynamicsStatus forward_dynamics_by_mass_matrix(
 }  // namespace detail
 
 /// Accelerations of a model without constraints, M(q, t) qdd = F(q, qd, t, u): by the model's
-/// own forward_dynamics() when it has one (linear in the number of bodies for a generated tree),
+/// own forward_dynamics() when it has one and prefers it (uses_forward_dynamics_v: linear in the
+/// number of bodies for a generated tree, and preferred where that takes fewer operations),
 /// otherwise by the Cholesky factorization of M.
 /// \param[in]  p      parameters, or their Constants (model_traits.hpp) to evaluate repeatedly
 /// \param[out] ws     workspace; ws.qdd receives the result. ws.M and ws.F receive the evaluated
@@ -61,7 +62,7 @@ DynamicsStatus forward_dynamics_unconstrained(
   static_assert(Model::nc == 0,
                 "forward_dynamics_unconstrained: the model has constraints; use "
                 "forward_dynamics_kkt or forward_dynamics_null_space");
-  if constexpr (has_forward_dynamics_v<Model, Scalar>) {
+  if constexpr (uses_forward_dynamics_v<Model, Scalar>) {
     return Model::forward_dynamics(t, q, qd, u, p, ws.qdd) ? DynamicsStatus::ok
                                                             : DynamicsStatus::singular_mass_matrix;
   } else {

@@ -101,6 +101,13 @@ struct has_forward_dynamics<
                                          std::declval<typename ModelTypes<Model, Scalar>::Coordinates&>())),
         bool>>> : std::true_type {};
 
+// a model without prefers_forward_dynamics that has forward_dynamics() prefers it
+template <class Model, class = void>
+struct prefers_forward_dynamics : std::true_type {};
+template <class Model>
+struct prefers_forward_dynamics<Model, void_t<decltype(Model::prefers_forward_dynamics)>>
+    : std::bool_constant<Model::prefers_forward_dynamics> {};
+
 template <class Model, class = void>
 struct has_independent_speeds : std::false_type {};
 template <class Model>
@@ -202,6 +209,13 @@ inline constexpr bool has_outputs_v = detail::has_outputs<Model, Scalar>::value;
 /// algorithm), so that forward_dynamics_unconstrained need not factorize M.
 template <class Model, class Scalar = double>
 inline constexpr bool has_forward_dynamics_v = detail::has_forward_dynamics<Model, Scalar>::value;
+
+/// True when forward_dynamics_unconstrained takes the model's forward_dynamics(): it has one, and
+/// does not declare `static constexpr bool prefers_forward_dynamics = false` (a generated model
+/// says false where M, F and a Cholesky solve take fewer operations, as for small models).
+template <class Model, class Scalar = double>
+inline constexpr bool uses_forward_dynamics_v =
+    has_forward_dynamics_v<Model, Scalar> && detail::prefers_forward_dynamics<Model>::value;
 
 /// True when the model declares independent speeds for the null-space method (ni > 0).
 template <class Model>

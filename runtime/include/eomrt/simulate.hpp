@@ -114,8 +114,9 @@ struct Sample {
   const typename Types::Coordinates& q;        ///< coordinates (dim nq)
   const typename Types::Coordinates& qd;       ///< rates (dim nq)
   const typename Types::Inputs& u;             ///< inputs (dim nu)
-  /// ws.qdd, ws.lambda, ws.M, ... at this state; for a model with forward_dynamics() and no
-  /// constraints only ws.qdd (forward_dynamics_unconstrained does not evaluate M and F then)
+  /// ws.qdd, ws.lambda, ws.M, ... at this state; for a model that uses its forward_dynamics()
+  /// (uses_forward_dynamics_v) only ws.qdd: forward_dynamics_unconstrained does not evaluate M
+  /// and F then
   const DynamicsWorkspace<Model, Scalar>& ws;
   ConstraintResiduals<Scalar> residuals;       ///< after stabilization
   Scalar kinetic_energy;                       ///< T
