@@ -22,7 +22,7 @@ struct Model {
   static constexpr const char* name = "cart_pole";
   static constexpr const char* description = "Cart-pole: a uniform rod hinged on a cart pushed along a rail";
   static constexpr const char* generator_version = "0.1.0";
-  static constexpr const char* model_hash = "0427cc5cc0587a2d";
+  static constexpr const char* model_hash = "72cea493be6d44ac";
   static constexpr std::array<const char*, nq> coordinate_names{{"x", "theta"}};
   static constexpr std::array<const char*, nu> input_names{{"u"}};
   static constexpr std::array<const char*, np> parameter_names{{"mc", "mp", "l", "rp", "g"}};
@@ -64,23 +64,22 @@ struct Model {
       using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
       using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
       using std::log; using std::abs; using std::pow;
-      const Scalar w0 = p.mp * Scalar(0.5) * p.l;
-      const Scalar w1 = p.rp * p.rp;
-      const Scalar w2 = p.l * p.l;
-      const Scalar w3 = (w1 * Scalar(3) + w2) * Scalar(0.08333333333333333) * p.mp + Scalar(0.5) * p.l * w0;
-      const Scalar w4 = Scalar(1) / w3 * w0;
-      k0 = w0;
-      k1 = p.mp + p.mc;
-      k2 = Scalar(0.25) * p.mp * w1 + Scalar(0.3333333333333333) * p.mp * w2;
+      const Scalar w0 = p.mp + p.mc;
+      const Scalar w1 = p.mp * Scalar(0.5) * p.l;
+      const Scalar w2 = p.rp * p.rp;
+      const Scalar w3 = p.l * p.l;
+      const Scalar w4 = (w2 * Scalar(3) + w3) * Scalar(0.08333333333333333) * p.mp + Scalar(0.5) * p.l * w1;
+      const Scalar w5 = Scalar(1) / w4 * w1;
+      k0 = w1;
+      k1 = w0;
+      k2 = Scalar(0.25) * p.mp * w2 + Scalar(0.3333333333333333) * p.mp * w3;
       k3 = p.g * p.mp * Scalar(0.5) * p.l;
-      k4 = p.mp * Scalar(0.5);
-      k5 = Scalar(0.5) * p.mc;
-      k6 = Scalar(0.125) * p.mp * w1;
-      k7 = Scalar(0.16666666666666666) * p.mp * w2;
-      k8 = p.mp - w4 * w0;
-      k9 = Scalar(0.5) * p.l;
-      k10 = w4;
-      k11 = w3;
+      k4 = Scalar(0.041666666666666664) * (Scalar(4) * p.mp * w3 + p.mp * w2 * Scalar(3));
+      k5 = w0 * Scalar(0.5);
+      k6 = p.mp - w5 * w1;
+      k7 = Scalar(0.5) * p.l;
+      k8 = w5;
+      k9 = w4;
     }
     /// The parameters these constants were computed from.
     const Parameters<Scalar>& parameters() const noexcept { return p; }
@@ -89,7 +88,6 @@ struct Model {
     friend struct Model;
     Parameters<Scalar> p;
     Scalar k0, k1, k2, k3, k4, k5, k6, k7, k8, k9;
-    Scalar k10, k11;
   };
 
   /// M(q, t), symmetric positive (semi)definite
@@ -225,9 +223,7 @@ struct Model {
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
     Scalar T = Scalar(0);
-    const Scalar w0 = qd(0) * qd(0);
-    const Scalar w1 = qd(1) * qd(1);
-    T = w0 * c.k4 - qd(1) * cos(q(1)) * c.k0 * qd(0) + w0 * c.k5 + c.k6 * w1 + c.k7 * w1;
+    T = c.k4 * qd(1) * qd(1) - qd(1) * cos(q(1)) * c.k0 * qd(0) + qd(0) * qd(0) * c.k5;
     return T;
   }
 
@@ -292,13 +288,13 @@ struct Model {
     Eigen::Matrix<Scalar, 2, 1> pivot;
     const Scalar w0 = sin(q(1));
     const Scalar w1 = cos(q(1));
-    const Scalar w2 = w0 * w0 * c.p.mp + w1 * w1 * c.k8 + c.p.mc;
+    const Scalar w2 = w0 * w0 * c.p.mp + w1 * w1 * c.k6 + c.p.mc;
     const Scalar w3 = Scalar(1) / w2;
-    const Scalar w4 = c.p.g * (w0 * c.k8 * w1 - w0 * w1 * c.p.mp) * w3 + (w0 * c.p.mp * c.k9 * qd(1) * qd(1) - u(0)) * w3;
-    pivot(0) = c.k11;
+    const Scalar w4 = c.p.g * (w0 * c.k6 * w1 - w0 * w1 * c.p.mp) * w3 + (w0 * c.p.mp * c.k7 * qd(1) * qd(1) - u(0)) * w3;
+    pivot(0) = c.k9;
     pivot(1) = w2;
     qdd(0) = -w4;
-    qdd(1) = c.k10 * (c.p.g * w0 - w1 * w4);
+    qdd(1) = c.k8 * (c.p.g * w0 - w1 * w4);
     bool regular = true;
     for (int k = 0; k < 2; ++k) regular = regular && pivot(k) > Scalar(0);
     using std::isfinite;

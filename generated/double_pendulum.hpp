@@ -22,7 +22,7 @@ struct Model {
   static constexpr const char* name = "double_pendulum";
   static constexpr const char* description = "Planar double pendulum: two point masses on massless rods, relative angles";
   static constexpr const char* generator_version = "0.1.0";
-  static constexpr const char* model_hash = "87b74200f2dc544b";
+  static constexpr const char* model_hash = "991d0df039800109";
   static constexpr std::array<const char*, nq> coordinate_names{{"theta1", "theta2"}};
   static constexpr std::array<const char*, nu> input_names{{}};
   static constexpr std::array<const char*, np> parameter_names{{"m1", "m2", "l1", "l2", "g"}};
@@ -67,26 +67,26 @@ struct Model {
       const Scalar w0 = p.l2 * p.l2;
       const Scalar w1 = w0 * p.m2;
       const Scalar w2 = p.l1 * p.l1;
-      const Scalar w3 = p.l2 * p.m2;
-      const Scalar w4 = p.l2 * w3;
-      const Scalar w5 = Scalar(1) / w4 * w3;
-      const Scalar w6 = w5 * w3 - p.m2;
-      const Scalar w7 = w6 * p.l2;
+      const Scalar w3 = p.m1 * w2;
+      const Scalar w4 = p.m2 * w2;
+      const Scalar w5 = p.l2 * p.m2;
+      const Scalar w6 = p.l2 * w5;
+      const Scalar w7 = Scalar(1) / w6 * w5;
+      const Scalar w8 = w7 * w5 - p.m2;
+      const Scalar w9 = w8 * p.l2;
       k0 = p.l1 * Scalar(2) * p.l2 * p.m2;
-      k1 = w1 + p.m1 * w2 + p.m2 * w2;
+      k1 = w1 + w3 + w4;
       k2 = p.l1 * p.l2 * p.m2;
       k3 = w1;
-      k4 = p.m1 * p.l1 * p.g;
+      k4 = p.m1 * p.l1 * p.g + p.l1 * p.g * p.m2;
       k5 = p.g * p.l2 * p.m2;
-      k6 = p.l1 * p.g * p.m2;
-      k7 = Scalar(0.5) * p.m2 * w2;
-      k8 = w0 * Scalar(0.5) * p.m2;
-      k9 = p.m1 * Scalar(0.5) * w2;
-      k10 = w7;
-      k11 = p.l2 * w7;
+      k6 = (w3 + w4) * Scalar(0.5);
+      k7 = w0 * Scalar(0.5) * p.m2;
+      k8 = w9;
+      k9 = p.l2 * w9;
+      k10 = w8;
+      k11 = w7;
       k12 = w6;
-      k13 = w5;
-      k14 = w4;
     }
     /// The parameters these constants were computed from.
     const Parameters<Scalar>& parameters() const noexcept { return p; }
@@ -95,7 +95,7 @@ struct Model {
     friend struct Model;
     Parameters<Scalar> p;
     Scalar k0, k1, k2, k3, k4, k5, k6, k7, k8, k9;
-    Scalar k10, k11, k12, k13, k14;
+    Scalar k10, k11, k12;
   };
 
   /// M(q, t), symmetric positive (semi)definite
@@ -128,10 +128,9 @@ struct Model {
     const Scalar w0 = sin(q(1));
     const Scalar w1 = c.k2 * w0 * qd(0) * qd(0);
     const Scalar w2 = qd(1) + qd(0);
-    const Scalar w3 = sin(q(0));
-    const Scalar w4 = c.k5 * sin(q(0) + q(1));
-    F(0) = c.k2 * w0 * w2 * w2 - w1 - c.k4 * w3 - w4 - c.k6 * w3;
-    F(1) = -(w1 + w4);
+    const Scalar w3 = c.k5 * sin(q(0) + q(1));
+    F(0) = c.k2 * w0 * w2 * w2 - sin(q(0)) * c.k4 - w1 - w3;
+    F(1) = -(w1 + w3);
   }
 
   /// F(q, qd, t, u): everything of Lagrange's equations except M qdd
@@ -152,13 +151,12 @@ struct Model {
     const Scalar w1 = sin(q(1));
     const Scalar w2 = c.k2 * w1 * qd(0) * qd(0);
     const Scalar w3 = qd(1) + qd(0);
-    const Scalar w4 = sin(q(0));
-    const Scalar w5 = c.k5 * sin(q(0) + q(1));
+    const Scalar w4 = c.k5 * sin(q(0) + q(1));
     M(0, 0) = c.k1 + c.k0 * w0;
     M(0, 1) = c.k3 + c.k2 * w0;
     M(1, 1) = c.k3;
-    F(0) = c.k2 * w1 * w3 * w3 - w2 - c.k4 * w4 - w5 - c.k6 * w4;
-    F(1) = -(w2 + w5);
+    F(0) = c.k2 * w1 * w3 * w3 - sin(q(0)) * c.k4 - w2 - w4;
+    F(1) = -(w2 + w4);
     M(1, 0) = M(0, 1);
   }
 
@@ -241,9 +239,8 @@ struct Model {
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
     Scalar T = Scalar(0);
-    const Scalar w0 = qd(0) * qd(0);
-    const Scalar w1 = qd(1) + qd(0);
-    T = w0 * c.k7 + c.k8 * w1 * w1 + c.k2 * cos(q(1)) * qd(0) * w1 + c.k9 * w0;
+    const Scalar w0 = qd(1) + qd(0);
+    T = qd(0) * qd(0) * c.k6 + c.k7 * w0 * w0 + c.k2 * cos(q(1)) * qd(0) * w0;
     return T;
   }
 
@@ -262,8 +259,7 @@ struct Model {
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
     Scalar V = Scalar(0);
-    const Scalar w0 = cos(q(0));
-    V = -(c.k5 * cos(q(0) + q(1)) + c.k4 * w0 + c.k6 * w0);
+    V = -(c.k4 * cos(q(0)) + c.k5 * cos(q(0) + q(1)));
     return V;
   }
 
@@ -318,18 +314,18 @@ struct Model {
     using std::log; using std::abs; using std::pow;
     Eigen::Matrix<Scalar, 2, 1> pivot;
     const Scalar w0 = cos(q(1));
-    const Scalar w1 = w0 * c.k10;
+    const Scalar w1 = w0 * c.k8;
     const Scalar w2 = sin(q(1));
-    const Scalar w3 = w1 - c.p.l1 * (c.p.m1 + w2 * w2 * c.p.m2 - w0 * c.k12 * w0);
-    const Scalar w4 = c.k11 + c.p.l1 * w1 + c.p.l1 * w3;
+    const Scalar w3 = w1 - c.p.l1 * (c.p.m1 + w2 * w2 * c.p.m2 - w0 * c.k10 * w0);
+    const Scalar w4 = c.k9 + c.p.l1 * w1 + c.p.l1 * w3;
     const Scalar w5 = Scalar(1) / w4;
     const Scalar w6 = c.p.g * cos(q(0)) + c.p.l1 * qd(0) * qd(0);
     const Scalar w7 = c.p.g * sin(q(0));
-    const Scalar w8 = (w2 * c.k10 + c.p.l1 * (w2 * w0 * c.p.m2 + w2 * c.k12 * w0)) * w5 * w6 + w5 * c.p.l1 * w2 * (Scalar(2) * qd(1) * c.p.l2 * qd(0) + qd(0) * c.p.l2 * qd(0) + c.p.l2 * qd(1) * qd(1)) * c.p.m2 + w3 * w5 * w7;
-    pivot(0) = c.k14;
+    const Scalar w8 = (w2 * c.k8 + c.p.l1 * (w2 * w0 * c.p.m2 + w2 * c.k10 * w0)) * w5 * w6 + w5 * c.p.l1 * w2 * (Scalar(2) * qd(1) * c.p.l2 * qd(0) + qd(0) * c.p.l2 * qd(0) + c.p.l2 * qd(1) * qd(1)) * c.p.m2 + w3 * w5 * w7;
+    pivot(0) = c.k12;
     pivot(1) = -w4;
     qdd(0) = -w8;
-    qdd(1) = c.k13 * (w0 * (c.p.l1 * w8 - w7) - w2 * w6 + c.p.l2 * w8);
+    qdd(1) = c.k11 * (w0 * (c.p.l1 * w8 - w7) - w2 * w6 + c.p.l2 * w8);
     bool regular = true;
     for (int k = 0; k < 2; ++k) regular = regular && pivot(k) > Scalar(0);
     using std::isfinite;

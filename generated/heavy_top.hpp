@@ -22,7 +22,7 @@ struct Model {
   static constexpr const char* name = "heavy_top";
   static constexpr const char* description = "Heavy symmetric top spinning on a fixed pivot at its tip, 3-1-3 Euler angles";
   static constexpr const char* generator_version = "0.1.0";
-  static constexpr const char* model_hash = "bf7ac28b997736c8";
+  static constexpr const char* model_hash = "42c842acc0a570f4";
   static constexpr std::array<const char*, nq> coordinate_names{{"psi", "theta", "phi"}};
   static constexpr std::array<const char*, nu> input_names{{}};
   static constexpr std::array<const char*, np> parameter_names{{"m", "l", "J1", "J3", "g"}};
@@ -64,12 +64,13 @@ struct Model {
       using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
       using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
       using std::log; using std::abs; using std::pow;
-      const Scalar w0 = p.l * p.l;
-      k0 = p.m * w0;
-      k1 = p.g * p.m * p.l;
-      k2 = Scalar(0.5) * p.J1;
-      k3 = p.m * Scalar(0.5) * w0;
-      k4 = Scalar(0.5) * p.J3;
+      const Scalar w0 = p.m * p.l * p.l;
+      const Scalar w1 = w0 + p.J1;
+      k0 = w1;
+      k1 = w0 + p.J1 - p.J3;
+      k2 = p.g * p.m * p.l;
+      k3 = Scalar(0.5) * p.J3;
+      k4 = Scalar(0.5) * w1;
     }
     /// The parameters these constants were computed from.
     const Parameters<Scalar>& parameters() const noexcept { return p; }
@@ -87,19 +88,15 @@ struct Model {
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
     const Scalar w0 = sin(q(1));
-    const Scalar w1 = cos(q(2));
+    const Scalar w1 = sin(q(2));
     const Scalar w2 = w0 * w1;
-    const Scalar w3 = w2 * w2;
-    const Scalar w4 = cos(q(1));
-    const Scalar w5 = sin(q(2));
-    const Scalar w6 = w0 * w5;
-    const Scalar w7 = w6 * w6;
-    const Scalar w8 = w5 * w5;
-    const Scalar w9 = w1 * w1;
-    M(0, 0) = w3 * c.k0 + w3 * c.p.J1 + w4 * w4 * c.p.J3 + w7 * c.p.J1 + c.k0 * w7;
-    M(0, 1) = w6 * c.k0 * w1 - w2 * w5 * c.p.J1 + w6 * c.p.J1 * w1 - w2 * c.k0 * w5;
-    M(0, 2) = w4 * c.p.J3;
-    M(1, 1) = w8 * c.p.J1 + c.k0 * w9 + w8 * c.k0 + w9 * c.p.J1;
+    const Scalar w3 = cos(q(2));
+    const Scalar w4 = w0 * w3;
+    const Scalar w5 = cos(q(1));
+    M(0, 0) = w2 * w2 * c.k0 + w4 * w4 * c.k0 + w5 * w5 * c.p.J3;
+    M(0, 1) = w2 * c.k0 * w3 - w4 * w1 * c.k0;
+    M(0, 2) = w5 * c.p.J3;
+    M(1, 1) = w1 * w1 * c.k0 + w3 * w3 * c.k0;
     M(2, 2) = c.p.J3;
     M(1, 2) = Scalar(0);
     M(1, 0) = M(0, 1);
@@ -122,20 +119,20 @@ struct Model {
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
     const Scalar w0 = sin(q(1));
-    const Scalar w1 = cos(q(2));
+    const Scalar w1 = sin(q(2));
     const Scalar w2 = w0 * w1;
-    const Scalar w3 = cos(q(1));
-    const Scalar w4 = sin(q(2));
-    const Scalar w5 = qd(1) * w1 + w0 * qd(0) * w4;
-    const Scalar w6 = w5 * qd(2) - qd(1) * w3 * qd(0) * w1;
-    const Scalar w7 = w3 * qd(0) + qd(2);
-    const Scalar w8 = w0 * qd(0) * w1 - qd(1) * w4;
-    const Scalar w9 = w0 * w4;
-    const Scalar w10 = qd(1) * w0 * qd(0);
-    const Scalar w11 = w8 * qd(2) + qd(1) * w3 * qd(0) * w4;
-    F(0) = w2 * c.k0 * w6 - w2 * c.k0 * w7 * w5 - w8 * w9 * w7 * c.p.J3 + w2 * w6 * c.p.J1 - w2 * w7 * c.p.J1 * w5 + w3 * w10 * c.p.J3 + w8 * w9 * w7 * c.p.J1 - w9 * c.p.J1 * w11 - w9 * c.k0 * w11 + w2 * w7 * w5 * c.p.J3 + w8 * w9 * c.k0 * w7;
-    F(1) = w8 * w7 * c.p.J1 * w1 - w4 * w6 * c.p.J1 - c.k0 * w1 * w11 + c.k0 * w4 * w7 * w5 - w8 * w7 * c.p.J3 * w1 + w4 * w7 * c.p.J1 * w5 + w2 * c.k1 * w1 - c.p.J1 * w1 * w11 + c.k1 * w9 * w4 - w4 * w7 * w5 * c.p.J3 + w8 * c.k0 * w7 * w1 - c.k0 * w4 * w6;
-    F(2) = w10 * c.p.J3;
+    const Scalar w3 = cos(q(2));
+    const Scalar w4 = w0 * qd(0) * w3 - qd(1) * w1;
+    const Scalar w5 = cos(q(1));
+    const Scalar w6 = w4 * qd(2) + qd(1) * w5 * qd(0) * w1;
+    const Scalar w7 = w5 * qd(0) + qd(2);
+    const Scalar w8 = w0 * w3;
+    const Scalar w9 = qd(1) * w3 + w0 * qd(0) * w1;
+    const Scalar w10 = w9 * qd(2) - qd(1) * w5 * qd(0) * w3;
+    const Scalar w11 = qd(1) * w0 * qd(0);
+    F(0) = c.k1 * w4 * w2 * w7 - w2 * c.k0 * w6 + w8 * w10 * c.k0 - c.k1 * w8 * w7 * w9 + w5 * w11 * c.p.J3;
+    F(1) = c.k1 * w4 * w7 * w3 + c.k1 * w1 * w7 * w9 - c.k0 * w3 * w6 - w1 * w10 * c.k0 + w8 * c.k2 * w3 + c.k2 * w2 * w1;
+    F(2) = w11 * c.p.J3;
   }
 
   /// F(q, qd, t, u): everything of Lagrange's equations except M qdd
@@ -153,29 +150,25 @@ struct Model {
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
     const Scalar w0 = sin(q(1));
-    const Scalar w1 = cos(q(2));
+    const Scalar w1 = sin(q(2));
     const Scalar w2 = w0 * w1;
-    const Scalar w3 = w2 * w2;
-    const Scalar w4 = cos(q(1));
-    const Scalar w5 = sin(q(2));
-    const Scalar w6 = w0 * w5;
-    const Scalar w7 = w6 * w6;
-    const Scalar w8 = w5 * w5;
-    const Scalar w9 = w1 * w1;
-    const Scalar w10 = qd(1) * w1 + w0 * qd(0) * w5;
-    const Scalar w11 = w10 * qd(2) - qd(1) * w4 * qd(0) * w1;
-    const Scalar w12 = w4 * qd(0) + qd(2);
-    const Scalar w13 = w0 * qd(0) * w1 - qd(1) * w5;
-    const Scalar w14 = qd(1) * w0 * qd(0);
-    const Scalar w15 = w13 * qd(2) + qd(1) * w4 * qd(0) * w5;
-    M(0, 0) = w3 * c.k0 + w3 * c.p.J1 + w4 * w4 * c.p.J3 + w7 * c.p.J1 + c.k0 * w7;
-    M(0, 1) = w6 * c.k0 * w1 - w2 * w5 * c.p.J1 + w6 * c.p.J1 * w1 - w2 * c.k0 * w5;
-    M(0, 2) = w4 * c.p.J3;
-    M(1, 1) = w8 * c.p.J1 + c.k0 * w9 + w8 * c.k0 + w9 * c.p.J1;
+    const Scalar w3 = cos(q(2));
+    const Scalar w4 = w0 * w3;
+    const Scalar w5 = cos(q(1));
+    const Scalar w6 = w0 * qd(0) * w3 - qd(1) * w1;
+    const Scalar w7 = w6 * qd(2) + qd(1) * w5 * qd(0) * w1;
+    const Scalar w8 = w5 * qd(0) + qd(2);
+    const Scalar w9 = qd(1) * w3 + w0 * qd(0) * w1;
+    const Scalar w10 = w9 * qd(2) - qd(1) * w5 * qd(0) * w3;
+    const Scalar w11 = qd(1) * w0 * qd(0);
+    M(0, 0) = w2 * w2 * c.k0 + w4 * w4 * c.k0 + w5 * w5 * c.p.J3;
+    M(0, 1) = w2 * c.k0 * w3 - w4 * w1 * c.k0;
+    M(0, 2) = w5 * c.p.J3;
+    M(1, 1) = w1 * w1 * c.k0 + w3 * w3 * c.k0;
     M(2, 2) = c.p.J3;
-    F(0) = w2 * c.k0 * w11 - w2 * c.k0 * w12 * w10 - w13 * w6 * w12 * c.p.J3 + w2 * w11 * c.p.J1 - w2 * w12 * c.p.J1 * w10 + w4 * w14 * c.p.J3 + w13 * w6 * w12 * c.p.J1 - w6 * c.p.J1 * w15 - w6 * c.k0 * w15 + w2 * w12 * w10 * c.p.J3 + w13 * w6 * c.k0 * w12;
-    F(1) = w13 * w12 * c.p.J1 * w1 - w5 * w11 * c.p.J1 - c.k0 * w1 * w15 + c.k0 * w5 * w12 * w10 - w13 * w12 * c.p.J3 * w1 + w5 * w12 * c.p.J1 * w10 + w2 * c.k1 * w1 - c.p.J1 * w1 * w15 + c.k1 * w6 * w5 - w5 * w12 * w10 * c.p.J3 + w13 * c.k0 * w12 * w1 - c.k0 * w5 * w11;
-    F(2) = w14 * c.p.J3;
+    F(0) = c.k1 * w6 * w2 * w8 - w2 * c.k0 * w7 + w4 * w10 * c.k0 - c.k1 * w4 * w8 * w9 + w5 * w11 * c.p.J3;
+    F(1) = c.k1 * w6 * w8 * w3 + c.k1 * w1 * w8 * w9 - c.k0 * w3 * w7 - w1 * w10 * c.k0 + w4 * c.k2 * w3 + c.k2 * w2 * w1;
+    F(2) = w11 * c.p.J3;
     M(1, 2) = Scalar(0);
     M(1, 0) = M(0, 1);
     M(2, 0) = M(0, 2);
@@ -261,15 +254,13 @@ struct Model {
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
     Scalar T = Scalar(0);
-    const Scalar w0 = cos(q(2));
-    const Scalar w1 = sin(q(1));
-    const Scalar w2 = sin(q(2));
-    const Scalar w3 = qd(1) * w0 + w1 * qd(0) * w2;
-    const Scalar w4 = w3 * w3;
-    const Scalar w5 = cos(q(1)) * qd(0) + qd(2);
-    const Scalar w6 = w1 * qd(0) * w0 - qd(1) * w2;
-    const Scalar w7 = w6 * w6;
-    T = w4 * c.k2 + w4 * c.k3 + w5 * w5 * c.k4 + c.k3 * w7 + c.k2 * w7;
+    const Scalar w0 = cos(q(1)) * qd(0) + qd(2);
+    const Scalar w1 = cos(q(2));
+    const Scalar w2 = sin(q(1));
+    const Scalar w3 = sin(q(2));
+    const Scalar w4 = qd(1) * w1 + w2 * qd(0) * w3;
+    const Scalar w5 = w2 * qd(0) * w1 - qd(1) * w3;
+    T = w0 * w0 * c.k3 + w4 * w4 * c.k4 + c.k4 * w5 * w5;
     return T;
   }
 
@@ -288,7 +279,7 @@ struct Model {
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
     Scalar V = Scalar(0);
-    V = c.k1 * cos(q(1));
+    V = c.k2 * cos(q(1));
     return V;
   }
 

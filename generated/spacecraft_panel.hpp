@@ -22,7 +22,7 @@ struct Model {
   static constexpr const char* name = "spacecraft_panel";
   static constexpr const char* description = "Spacecraft bus spinning about b3 with a solar panel hinged about b2 (notes Example 3.1)";
   static constexpr const char* generator_version = "0.1.0";
-  static constexpr const char* model_hash = "690fe914602156c1";
+  static constexpr const char* model_hash = "276e739bebbe462a";
   static constexpr std::array<const char*, nq> coordinate_names{{"gamma", "theta"}};
   static constexpr std::array<const char*, nu> input_names{{"tau_b", "tau_p"}};
   static constexpr std::array<const char*, np> parameter_names{{"l_fh", "l_ef", "w_p", "t_p", "m_b", "J_b1", "J_b2", "J_b3", "m_p"}};
@@ -32,7 +32,7 @@ struct Model {
   static constexpr std::array<int, ni> independent_speeds{{}};  // their coordinate indices
   static constexpr std::array<const char*, ny> output_names{{"tip_position_1", "tip_position_2", "tip_position_3", "tip_velocity_1", "tip_velocity_2", "tip_velocity_3", "omega_panel_1", "omega_panel_2", "omega_panel_3"}};
   static constexpr bool has_forward_dynamics = true;  // forward_dynamics(), without M
-  static constexpr bool prefers_forward_dynamics = true;  // fewer operations than M, F and their Cholesky solve
+  static constexpr bool prefers_forward_dynamics = false;  // fewer operations than M, F and their Cholesky solve
 
   template <class Scalar> using Vector = Eigen::Matrix<Scalar, nq, 1>;
   template <class Scalar> using Inputs = Eigen::Matrix<Scalar, nu, 1>;
@@ -68,43 +68,48 @@ struct Model {
       using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
       using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
       using std::log; using std::abs; using std::pow;
-      const Scalar w0 = p.w_p * p.w_p;
-      const Scalar w1 = p.t_p * p.t_p;
-      const Scalar w2 = Scalar(0.08333333333333333) * p.m_p * w1;
-      const Scalar w3 = p.l_ef * p.l_ef;
-      const Scalar w4 = Scalar(0.3333333333333333) * w3 * p.m_p;
-      const Scalar w5 = p.l_fh * p.l_fh;
-      const Scalar w6 = (w3 + w1) * Scalar(0.08333333333333333) * p.m_p;
-      const Scalar w7 = p.l_ef * Scalar(0.5) * p.m_p;
-      const Scalar w8 = p.l_ef * Scalar(0.5) * w7;
-      const Scalar w9 = w6 + w8;
-      const Scalar w10 = Scalar(0.08333333333333333) * (w3 + w0) * p.m_p;
-      const Scalar w11 = Scalar(0.08333333333333333) * (w0 + w1) * p.m_p;
-      const Scalar w12 = Scalar(1) / w9;
-      const Scalar w13 = w12 * w7;
-      const Scalar w14 = p.m_p - w7 * w13;
-      k0 = Scalar(0.08333333333333333) * p.m_p * w0;
-      k1 = w2;
-      k2 = w4;
-      k3 = p.J_b3 + w5 * p.m_p;
-      k4 = p.l_ef * Scalar(0.5) * p.m_p * p.l_fh;
-      k5 = w2 + w4;
-      k6 = p.m_p * Scalar(0.041666666666666664) * w1;
-      k7 = Scalar(0.5) * p.J_b3;
-      k8 = w5 * Scalar(0.5) * p.m_p;
-      k9 = Scalar(0.16666666666666666) * w3 * p.m_p;
-      k10 = p.m_p * w0 * Scalar(0.041666666666666664);
-      k11 = w8 + p.l_fh * p.m_p * p.l_fh + w10;
-      k12 = w11 + p.l_fh * w14 * p.l_fh;
-      k13 = w10;
-      k14 = w6;
-      k15 = w11;
-      k16 = p.l_ef * Scalar(0.5);
-      k17 = Scalar(2) * p.l_fh;
-      k18 = w14;
-      k19 = w13;
-      k20 = w12;
-      k21 = w9;
+      const Scalar w0 = p.l_ef * p.l_ef;
+      const Scalar w1 = Scalar(4) * w0 * p.m_p;
+      const Scalar w2 = p.w_p * p.w_p;
+      const Scalar w3 = p.m_p * w2;
+      const Scalar w4 = w1 + w3;
+      const Scalar w5 = p.t_p * p.t_p;
+      const Scalar w6 = p.m_p * w5;
+      const Scalar w7 = w3 + w6;
+      const Scalar w8 = p.J_b3 + p.l_fh * p.l_fh * p.m_p;
+      const Scalar w9 = -w6;
+      const Scalar w10 = (w0 + w5) * Scalar(0.08333333333333333) * p.m_p;
+      const Scalar w11 = p.l_ef * Scalar(0.5) * p.m_p;
+      const Scalar w12 = p.l_ef * Scalar(0.5) * w11;
+      const Scalar w13 = w10 + w12;
+      const Scalar w14 = Scalar(0.08333333333333333) * (w0 + w2) * p.m_p;
+      const Scalar w15 = Scalar(0.08333333333333333) * (w2 + w5) * p.m_p;
+      const Scalar w16 = Scalar(1) / w13;
+      const Scalar w17 = w16 * w11;
+      const Scalar w18 = p.m_p - w11 * w17;
+      k0 = w4 * Scalar(0.08333333333333333);
+      k1 = w7 * Scalar(0.08333333333333333);
+      k2 = w8;
+      k3 = p.l_ef * Scalar(0.5) * p.m_p * p.l_fh;
+      k4 = Scalar(0.08333333333333333) * p.m_p * w5 + Scalar(0.3333333333333333) * w0 * p.m_p;
+      k5 = (w1 - w3) * Scalar(0.08333333333333333);
+      k6 = Scalar(0.08333333333333333) * (w9 + w3);
+      k7 = Scalar(0.08333333333333333) * (w1 + w9);
+      k8 = w7 * Scalar(0.041666666666666664);
+      k9 = (w1 + w6) * Scalar(0.041666666666666664);
+      k10 = w4 * Scalar(0.041666666666666664);
+      k11 = Scalar(0.5) * w8;
+      k12 = w12 + p.l_fh * p.m_p * p.l_fh + w14;
+      k13 = w15 + p.l_fh * w18 * p.l_fh;
+      k14 = w14;
+      k15 = w10;
+      k16 = w15;
+      k17 = p.l_ef * Scalar(0.5);
+      k18 = Scalar(2) * p.l_fh;
+      k19 = w18;
+      k20 = w17;
+      k21 = w16;
+      k22 = w13;
     }
     /// The parameters these constants were computed from.
     const Parameters<Scalar>& parameters() const noexcept { return p; }
@@ -114,7 +119,7 @@ struct Model {
     Parameters<Scalar> p;
     Scalar k0, k1, k2, k3, k4, k5, k6, k7, k8, k9;
     Scalar k10, k11, k12, k13, k14, k15, k16, k17, k18, k19;
-    Scalar k20, k21;
+    Scalar k20, k21, k22;
   };
 
   /// M(q, t), symmetric positive (semi)definite
@@ -123,13 +128,11 @@ struct Model {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
-    const Scalar w0 = cos(q(1));
-    const Scalar w1 = w0 * w0;
-    const Scalar w2 = sin(q(1));
-    const Scalar w3 = w2 * w2;
-    M(0, 0) = c.k0 * w1 + w3 * c.k0 + c.k3 + c.k1 * w1 + w3 * c.k2;
-    M(0, 1) = -(c.k4 * w0);
-    M(1, 1) = c.k5;
+    const Scalar w0 = sin(q(1));
+    const Scalar w1 = cos(q(1));
+    M(0, 0) = c.k0 * w0 * w0 + c.k1 * w1 * w1 + c.k2;
+    M(0, 1) = -(c.k3 * w1);
+    M(1, 1) = c.k4;
     M(1, 0) = M(0, 1);
   }
 
@@ -148,13 +151,11 @@ struct Model {
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
     const Scalar w0 = cos(q(1));
-    const Scalar w1 = sin(q(1));
-    const Scalar w2 = w1 * qd(0);
-    const Scalar w3 = w0 * qd(0);
-    const Scalar w4 = qd(1) * w3;
-    const Scalar w5 = qd(1) * w2;
-    F(0) = qd(1) * w0 * c.k1 * w2 - qd(1) * w0 * c.k0 * w2 - qd(1) * w1 * w3 * c.k2 - w4 * w1 * c.k0 + w1 * qd(0) * qd(0) * c.k4 + w5 * w0 * c.k1 + qd(1) * w1 * w3 * c.k0 - c.k4 * w3 * w0 * w2 + w5 * w0 * c.k0 - w2 * w2 * w1 * c.k4 - w1 * c.k4 * qd(1) * qd(1) - w4 * w1 * c.k2 + u(0);
-    F(1) = -(w3 * c.k1 * w2 - u(1) - w3 * c.k2 * w2);
+    const Scalar w1 = w0 * qd(0);
+    const Scalar w2 = sin(q(1));
+    const Scalar w3 = w2 * qd(0);
+    F(0) = qd(1) * w3 * c.k1 * w0 - qd(1) * w1 * w2 * c.k0 - c.k5 * qd(1) * w2 * w1 + w2 * qd(0) * qd(0) * c.k3 - qd(1) * w0 * c.k6 * w3 - c.k3 * w1 * w0 * w3 - w3 * w3 * w2 * c.k3 - w2 * c.k3 * qd(1) * qd(1) + u(0);
+    F(1) = w1 * c.k7 * w3 + u(1);
   }
 
   /// F(q, qd, t, u): everything of Lagrange's equations except M qdd
@@ -171,19 +172,15 @@ struct Model {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
-    const Scalar w0 = cos(q(1));
-    const Scalar w1 = w0 * w0;
-    const Scalar w2 = sin(q(1));
-    const Scalar w3 = w2 * w2;
-    const Scalar w4 = w2 * qd(0);
-    const Scalar w5 = w0 * qd(0);
-    const Scalar w6 = qd(1) * w5;
-    const Scalar w7 = qd(1) * w4;
-    M(0, 0) = c.k0 * w1 + w3 * c.k0 + c.k3 + c.k1 * w1 + w3 * c.k2;
-    M(0, 1) = -(c.k4 * w0);
-    M(1, 1) = c.k5;
-    F(0) = qd(1) * w0 * c.k1 * w4 - qd(1) * w0 * c.k0 * w4 - qd(1) * w2 * w5 * c.k2 - w6 * w2 * c.k0 + w2 * qd(0) * qd(0) * c.k4 + w7 * w0 * c.k1 + qd(1) * w2 * w5 * c.k0 - c.k4 * w5 * w0 * w4 + w7 * w0 * c.k0 - w4 * w4 * w2 * c.k4 - w2 * c.k4 * qd(1) * qd(1) - w6 * w2 * c.k2 + u(0);
-    F(1) = -(w5 * c.k1 * w4 - u(1) - w5 * c.k2 * w4);
+    const Scalar w0 = sin(q(1));
+    const Scalar w1 = cos(q(1));
+    const Scalar w2 = w1 * qd(0);
+    const Scalar w3 = w0 * qd(0);
+    M(0, 0) = c.k0 * w0 * w0 + c.k1 * w1 * w1 + c.k2;
+    M(0, 1) = -(c.k3 * w1);
+    M(1, 1) = c.k4;
+    F(0) = qd(1) * w3 * c.k1 * w1 - qd(1) * w2 * w0 * c.k0 - c.k5 * qd(1) * w0 * w2 + w0 * qd(0) * qd(0) * c.k3 - qd(1) * w1 * c.k6 * w3 - c.k3 * w2 * w1 * w3 - w3 * w3 * w0 * c.k3 - w0 * c.k3 * qd(1) * qd(1) + u(0);
+    F(1) = w2 * c.k7 * w3 + u(1);
     M(1, 0) = M(0, 1);
   }
 
@@ -268,12 +265,8 @@ struct Model {
     Scalar T = Scalar(0);
     const Scalar w0 = cos(q(1));
     const Scalar w1 = w0 * qd(0);
-    const Scalar w2 = w1 * w1;
-    const Scalar w3 = qd(0) * qd(0);
-    const Scalar w4 = qd(1) * qd(1);
-    const Scalar w5 = sin(q(1)) * qd(0);
-    const Scalar w6 = w5 * w5;
-    T = w2 * c.k6 + w3 * c.k7 + c.k6 * w4 + c.k8 * w3 + w6 * c.k9 - qd(1) * c.k4 * w0 * qd(0) + c.k9 * w4 + w2 * c.k10 + w6 * c.k10;
+    const Scalar w2 = sin(q(1)) * qd(0);
+    T = w1 * w1 * c.k8 + c.k9 * qd(1) * qd(1) + w2 * w2 * c.k10 - qd(1) * c.k3 * w0 * qd(0) + qd(0) * qd(0) * c.k11;
     return T;
   }
 
@@ -341,20 +334,20 @@ struct Model {
     Eigen::Matrix<Scalar, 2, 1> pivot;
     const Scalar w0 = sin(q(1));
     const Scalar w1 = cos(q(1));
-    const Scalar w2 = w0 * w0 * c.k11 + c.k12 * w1 * w1 + c.p.J_b3;
+    const Scalar w2 = w0 * w0 * c.k12 + c.k13 * w1 * w1 + c.p.J_b3;
     const Scalar w3 = w1 * qd(0);
-    const Scalar w4 = qd(1) * c.k14;
-    const Scalar w5 = w3 * c.k15;
+    const Scalar w4 = qd(1) * c.k15;
+    const Scalar w5 = w3 * c.k16;
     const Scalar w6 = w0 * qd(0);
-    const Scalar w7 = c.k16 * w6;
-    const Scalar w8 = c.k13 * w6;
+    const Scalar w7 = c.k17 * w6;
+    const Scalar w8 = c.k14 * w6;
     const Scalar w9 = w3 * w7;
     const Scalar w10 = w6 * w5 - w3 * w8 - u(1);
-    const Scalar w11 = Scalar(1) / w2 * (u(0) - (w0 * Scalar(0.5) * (c.k17 * (w6 * w7 + c.k16 * qd(1) * qd(1)) * c.p.m_p - Scalar(2) * (qd(1) * w5 - w3 * w4 - qd(1) * w3 * c.k13) - c.p.l_ef * (w6 * c.p.l_fh * w6 - qd(1) * c.k16 * w3 * Scalar(2) + w3 * w3 * c.p.l_fh) * c.p.m_p) + w1 * ((c.k18 * w9 + w10 * c.k19) * c.p.l_fh - (qd(1) * w6 * c.k15 + w6 * w4 - qd(1) * w8))));
-    pivot(0) = c.k21;
+    const Scalar w11 = Scalar(1) / w2 * (u(0) - (w0 * Scalar(0.5) * (c.k18 * (w6 * w7 + c.k17 * qd(1) * qd(1)) * c.p.m_p - Scalar(2) * (qd(1) * w5 - w3 * w4 - qd(1) * w3 * c.k14) - c.p.l_ef * (w6 * c.p.l_fh * w6 - qd(1) * c.k17 * w3 * Scalar(2) + w3 * w3 * c.p.l_fh) * c.p.m_p) + w1 * ((c.k19 * w9 + w10 * c.k20) * c.p.l_fh - (qd(1) * w6 * c.k16 + w6 * w4 - qd(1) * w8))));
+    pivot(0) = c.k22;
     pivot(1) = w2;
     qdd(0) = w11;
-    qdd(1) = (c.p.l_fh * w11 * w1 + w9) * c.k19 - w10 * c.k20;
+    qdd(1) = (c.p.l_fh * w11 * w1 + w9) * c.k20 - w10 * c.k21;
     bool regular = true;
     for (int k = 0; k < 2; ++k) regular = regular && pivot(k) > Scalar(0);
     using std::isfinite;

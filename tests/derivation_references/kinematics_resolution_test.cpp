@@ -91,6 +91,25 @@ GiNaC::exmap random_consistent_state(const MechanicalSystem& s, unsigned seed) {
   return x;
 }
 
+TEST(LocalResolution, TermsWithTheSameStateFactorsShareOneParameterCoefficient) {
+  // one rod on a universal joint (C_ba = C2(beta) C1(alpha)): the partial angular velocity of
+  // alpha in b is [cos beta, 0, sin beta], that of the mass centre (0, l/2 cos beta, 0), so
+  //   M11 = m l^2/4 cos^2 beta + J1 cos^2 beta + J3 sin^2 beta
+  //       = m (l^2/3 + rd^2/4) cos^2 beta + m rd^2/2 sin^2 beta:
+  // two monomials, each with one coefficient computed once per parameter set
+  const Model md = chain("universal_chain", 1);
+  const MechanicalSystem& s = md.system;
+  const EquationsOfMotion eom = derive_equations(s);
+  ASSERT_EQ(eom.resolution, KinematicsResolution::local);
+  const ex m = symbol_named(s, "m"), l = symbol_named(s, "l"), rd = symbol_named(s, "rd");
+  const ex beta = symbol_named(s, "beta1");
+  const ex M11 = eom.mass_matrix(0, 0);
+  ASSERT_TRUE(GiNaC::is_a<GiNaC::add>(M11)) << M11;
+  EXPECT_EQ(M11.nops(), 2u) << M11;
+  EXPECT_TRUE(equal_after_expansion(
+      M11, m * (l * l / 3 + rd * rd / 4) * GiNaC::pow(cos(beta), 2) + m * rd * rd / 2 * GiNaC::pow(sin(beta), 2)));
+}
+
 class BothResolutions : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(BothResolutions, GiveTheSameEquationsAtRandomStates) {

@@ -5,6 +5,7 @@
 
 #include "eomgen/base/error.hpp"
 #include "operation_estimate.hpp"
+#include "parameter_coefficients.hpp"
 #include "relative_rotations.hpp"
 
 namespace eomgen {
@@ -337,10 +338,15 @@ class Derivation {
     for (std::size_t k = 0; k < n_; ++k) add_f(k, -coordinate_partial(p.value, k));
   }
 
-  // a sum of terms, multiplied out in the local resolution
+  // a sum of terms; in the local resolution multiplied out and grouped by the state-dependent
+  // monomials, with one parameter-only coefficient each
   ex total(const exvector& terms) const {
     const ex sum = GiNaC::add(terms);
-    return resolution_ == KinematicsResolution::local ? sum.expand() : sum;
+    switch (resolution_) {
+      case KinematicsResolution::inertial: return sum;
+      case KinematicsResolution::local: return collect_parameter_coefficients(sum.expand(), vars_);
+    }
+    EOMGEN_UNREACHABLE("Derivation::total: a KinematicsResolution outside its enumerators");
   }
 
   void assemble() {
