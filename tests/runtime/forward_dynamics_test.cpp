@@ -149,18 +149,25 @@ static_assert(uses_forward_dynamics_v<testing::OscillatorWithForwardDynamics> &&
 static_assert(has_forward_dynamics_v<testing::OscillatorPreferringMassMatrix> &&
               !uses_forward_dynamics_v<testing::OscillatorPreferringMassMatrix>);
 
+// an oscillator (m = 2, k = 8) at q = 0.5, qd = -2 under u = 3, solved with ws.M marked -7
+// beforehand, so a test sees whether the solve evaluated M
+template <class Model>
+DynamicsStatus solve_marked_oscillator(const typename Model::template Parameters<double>& p,
+                                       DynamicsWorkspace<Model, double>& ws) {
+  typename ModelTypes<Model, double>::Inputs u;
+  u << 3.0;
+  typename ModelTypes<Model, double>::Coordinates q, qd;
+  q << 0.5;
+  qd << -2.0;
+  ws.M(0, 0) = -7.0;
+  return forward_dynamics_unconstrained<Model>(p, ws, 0.0, q, qd, u);
+}
+
 // a model that has forward_dynamics() but prefers M and F is solved through M: ws.M is evaluated
 TEST(ForwardDynamics, ModelPreferringTheMassMatrixIsSolvedThroughIt) {
   using Model = testing::OscillatorPreferringMassMatrix;
-  Model::Parameters<double> p;
-  ModelTypes<Model, double>::Inputs u;
-  u << 3.0;
-  ModelTypes<Model, double>::Coordinates q, qd;
-  q << 0.5;
-  qd << -2.0;
   DynamicsWorkspace<Model, double> ws;
-  ws.M(0, 0) = -7.0;
-  ASSERT_EQ(forward_dynamics_unconstrained<Model>(p, ws, 0.0, q, qd, u), DynamicsStatus::ok);
+  ASSERT_EQ(solve_marked_oscillator<Model>({}, ws), DynamicsStatus::ok);
   EXPECT_DOUBLE_EQ(ws.qdd(0), (-8.0 * 0.5 + 3.0) / 2.0);
   EXPECT_EQ(ws.M(0, 0), 2.0);  // m
 }
@@ -169,18 +176,12 @@ TEST(ForwardDynamics, ModelPreferringTheMassMatrixIsSolvedThroughIt) {
 TEST(ForwardDynamics, UnconstrainedModelWithItsOwnForwardDynamicsUsesItAndReportsItsFailure) {
   using Model = testing::OscillatorWithForwardDynamics;
   Model::Parameters<double> p;
-  ModelTypes<Model, double>::Inputs u;
-  u << 3.0;
-  ModelTypes<Model, double>::Coordinates q, qd;
-  q << 0.5;
-  qd << -2.0;
   DynamicsWorkspace<Model, double> ws;
-  ws.M(0, 0) = -7.0;
-  ASSERT_EQ(forward_dynamics_unconstrained<Model>(p, ws, 0.0, q, qd, u), DynamicsStatus::ok);
+  ASSERT_EQ(solve_marked_oscillator<Model>(p, ws), DynamicsStatus::ok);
   EXPECT_DOUBLE_EQ(ws.qdd(0), (-8.0 * 0.5 + 3.0) / 2.0);
   EXPECT_EQ(ws.M(0, 0), -7.0);
   p.m = -2.0;
-  EXPECT_EQ(forward_dynamics_unconstrained<Model>(p, ws, 0.0, q, qd, u), DynamicsStatus::singular_mass_matrix);
+  EXPECT_EQ(solve_marked_oscillator<Model>(p, ws), DynamicsStatus::singular_mass_matrix);
 }
 
 TEST(ForwardDynamics, PendulumAtThePivotHasDependentConstraintsAndEveryMethodSaysSo) {
