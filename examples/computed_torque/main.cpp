@@ -4,7 +4,8 @@
 // law tau = M(q) (qdd_ref + Kd (qd_ref - qd) + Kp (q_ref - q)) - F(q, qd) cancels the
 // dynamics, so the tracking error obeys e'' + Kd e' + Kp e = 0 and decays. The loop is
 // integrated with classical RK4 at 1 ms; the controller calls mass_matrix_and_forcing once
-// per evaluation, with no heap allocation.
+// per evaluation, with no heap allocation, through the model's Constants: the values that
+// depend on the parameters only, computed once before the loop.
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
 #include <cmath>
@@ -18,7 +19,7 @@ using State = Eigen::Matrix<double, 2 * Model::nq, 1>;
 
 namespace {
 
-const Model::Parameters<double> parameters;
+const Model::Constants<double> constants{Model::Parameters<double>()};
 const double kp = 100.0, kd = 20.0;  // critically damped: e'' + 20 e' + 100 e = 0
 
 // reference trajectory: both joints swing sinusoidally
@@ -34,7 +35,7 @@ State closed_loop(double t, const State& x) {
   const Vector q = x.head<Model::nq>(), qd = x.tail<Model::nq>();
   Model::MassMatrix<double> M;
   Vector F;
-  Model::mass_matrix_and_forcing(t, q, qd, Model::Inputs<double>(), parameters, M, F);
+  Model::mass_matrix_and_forcing(t, q, qd, Model::Inputs<double>(), constants, M, F);
   Vector q_ref, qd_ref, qdd_ref;
   reference(t, q_ref, qd_ref, qdd_ref);
   const Vector tau = M * (qdd_ref + kd * (qd_ref - qd) + kp * (q_ref - q)) - F;
