@@ -37,7 +37,7 @@ if [ -z "$work" ]; then
 fi
 mkdir -p "$work/sympy" "$work/mujoco"
 
-planar="1,2,4,8,16,32" universal="1,2,4,8"
+planar="1,2,4,8,16,32,64" universal="1,2,4,8"
 if [ "${PEERS_QUICK:-0}" = 1 ]; then planar="1,2" universal="1"; fi
 
 echo "# eomgen against its peers"
