@@ -19,6 +19,7 @@
 
 #include "eomrt/dynamics_kkt.hpp"
 #include "eomrt/dynamics_null_space.hpp"
+#include "eomrt/dynamics_unconstrained.hpp"
 #include "eomrt/integrators.hpp"
 #include "eomrt/rk_adaptive.hpp"
 #include "eomrt/rk_fixed.hpp"
@@ -200,6 +201,10 @@ struct SimulationContext {
     q = x.template head<nq>();
     qd = x.template tail<nq>();
     input(t, x, u);
+    // without constraints: the model's own forward_dynamics() where it prefers it (linear in the
+    // number of bodies), M, F and Cholesky otherwise; nothing to stabilize
+    if constexpr (Model::nc == 0)
+      return forward_dynamics_unconstrained<Model, Scalar>(p, ws, t, q, qd, u);
     const Baumgarte<Scalar> stab = options.stabilization == Stabilization::baumgarte
                                        ? options.baumgarte
                                        : Baumgarte<Scalar>{};
