@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include "support/ir_builders.hpp"
+
 namespace eomgen {
 namespace {
 
@@ -10,12 +12,7 @@ using ir::Instruction;
 using ir::Op;
 using ir::VariableKind;
 
-Instruction var(VariableKind kind, std::size_t index) { return Instruction{Op::variable, {}, 0.0, {kind, index}}; }
-Instruction q(std::size_t index) { return var(VariableKind::coordinate, index); }
-Instruction p(std::size_t index) { return var(VariableKind::parameter, index); }
-Instruction num(double v) { return Instruction{Op::number, {}, v, {}}; }
-Instruction op(Op o, std::vector<std::size_t> args) { return Instruction{o, std::move(args), 0.0, {}}; }
-ir::Target y(std::size_t row) { return {ir::Array::outputs, row, 0}; }
+using namespace testing::ir_builders;
 ir::Target M(std::size_t row, std::size_t column) { return {ir::Array::mass_matrix, row, column}; }
 
 CppPrintOptions with_parameters() {
