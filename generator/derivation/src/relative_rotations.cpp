@@ -1,5 +1,7 @@
 #include "relative_rotations.hpp"
 
+#include "eomgen/mechanics/kinematics.hpp"
+
 namespace eomgen {
 namespace {
 
@@ -7,16 +9,6 @@ using GiNaC::ex;
 using GiNaC::matrix;
 
 matrix identity3() { return GiNaC::ex_to<matrix>(GiNaC::unit_matrix(3)); }
-
-FrameId nearest_common_ancestor(const MechanicalSystem& s, FrameId a, FrameId b) {
-  while (s.frame(a).depth > s.frame(b).depth) a = *s.frame(a).parent;
-  while (s.frame(b).depth > s.frame(a).depth) b = *s.frame(b).parent;
-  while (a != b) {
-    a = *s.frame(a).parent;
-    b = *s.frame(b).parent;
-  }
-  return a;
-}
 
 matrix product(const std::vector<matrix>& factors) {
   matrix out = identity3();
@@ -58,7 +50,7 @@ std::vector<RelativeRotations::Factor> RelativeRotations::factors_to_ancestor(Fr
 }
 
 matrix RelativeRotations::compute(FrameId b, FrameId a) {
-  const FrameId ancestor = nearest_common_ancestor(system_, a, b);
+  const FrameId ancestor = common_ancestor(system_, a, b);
   std::vector<Factor> down = factors_to_ancestor(b, ancestor);  // C_{b,anc}
   std::vector<Factor> up = factors_to_ancestor(a, ancestor);    // C_{a,anc}
   // C_ba = C_{b,anc} C_{a,anc}^T; two principal rotations about one axis meet at the ancestor

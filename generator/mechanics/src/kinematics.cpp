@@ -37,9 +37,6 @@ Id common_ancestor(Id a, Id b, Node&& node) {
   return a;
 }
 
-FrameId common_ancestor(const MechanicalSystem& s, FrameId a, FrameId b) {
-  return common_ancestor(a, b, [&](FrameId f) -> const Frame& { return s.frame(f); });
-}
 
 // omega^{f,ancestor} as the sum of relative angular velocities along the path
 Vector angular_velocity_to_ancestor(const MechanicalSystem& s, FrameId f, FrameId ancestor) {
@@ -66,6 +63,10 @@ Vector position_to_ancestor(const MechanicalSystem& s, PointId p, PointId ancest
 }
 
 }  // namespace
+
+FrameId common_ancestor(const MechanicalSystem& s, FrameId a, FrameId b) {
+  return common_ancestor(a, b, [&](FrameId f) -> const Frame& { return s.frame(f); });
+}
 
 matrix dcm(const MechanicalSystem& s, FrameId b, FrameId a) {
   const FrameId anc = common_ancestor(s, a, b);

@@ -9,6 +9,9 @@
 
 namespace eomgen {
 
+/// The nearest common ancestor of frames a and b in the frame tree.
+FrameId common_ancestor(const MechanicalSystem& system, FrameId a, FrameId b);
+
 /// C_ba, so that v_b = C_ba v_a; compounded along the frame tree through the nearest common
 /// ancestor: C_ba = C_b,anc C_anc,a.
 GiNaC::matrix dcm(const MechanicalSystem& system, FrameId b, FrameId a);
