@@ -150,14 +150,21 @@ std::string statistics_table(const std::vector<eomgen::FunctionStatistics>& stat
   return out;
 }
 
-// which of the two derivations was kept, and both estimates (KinematicsResolution)
-std::string resolution_line(const eomgen::EquationsOfMotion& eom) {
+std::string estimate_or_not_tried(double estimate) {
+  return std::isnan(estimate) ? std::string("not tried") : fmt::format("{:.0f}", estimate);
+}
+
+// which of the derivations of M and F was emitted, and the estimates of all three
+// (KinematicsResolution, composite_body.hpp)
+std::string resolution_line(const eomgen::EquationsOfMotion& eom, const eomgen::EmittedModel& emitted) {
   const bool local = eom.resolution == eomgen::KinematicsResolution::local;
-  const std::string local_estimate = std::isnan(eom.estimated_operations_local)
-                                         ? std::string("not tried")
-                                         : fmt::format("{:.0f}", eom.estimated_operations_local);
-  return fmt::format("kinematics: {} (estimated operations of M and F: local frames {}, inertial {:.0f})\n",
-                     local ? "local frames" : "inertial", local_estimate, eom.estimated_operations_inertial);
+  const std::string kept = emitted.mass_matrix_from_recursions ? "composite body and Newton-Euler"
+                           : local                             ? "local frames"
+                                                               : "inertial";
+  return fmt::format("M and F: {} (estimated operations: local frames {}, inertial {:.0f}, composite body and "
+                     "Newton-Euler {})\n",
+                     kept, estimate_or_not_tried(eom.estimated_operations_local), eom.estimated_operations_inertial,
+                     estimate_or_not_tried(emitted.estimated_operations_recursions));
 }
 
 // why there is no forward_dynamics(), or how it compares with M, F and the Cholesky solve
@@ -188,7 +195,7 @@ void run_generate(const Options& o) {
   // wall times inside the process (what a build step or a benchmark against an in-process
   // peer should compare), not the program's start-up
   const std::string stats =
-      o.stats ? statistics_table(emitted.statistics) + resolution_line(eom) +
+      o.stats ? statistics_table(emitted.statistics) + resolution_line(eom, emitted) +
                     forward_dynamics_line(emitted) +
                     fmt::format("time [ms]: parse {:.3f}, derive {:.3f}, emit {:.3f}\n", milliseconds(loaded - start),
                                 milliseconds(derived - loaded), milliseconds(clock::now() - derived))

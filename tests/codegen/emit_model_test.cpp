@@ -4,6 +4,8 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdint>
 #include <vector>
 
 #include "eomgen/base/content_hash.hpp"
@@ -272,6 +274,35 @@ TEST(EmitModel, ForwardDynamicsIsPreferredOnlyWhereItTakesFewerOperations) {
                                          emitted.prefers_forward_dynamics);
     EXPECT_NE(emitted.header.find(line), std::string::npos) << n;
   }
+}
+
+// M and F come from the recursions exactly where those are estimated smaller than the closed
+// form kept by the derivation: not for a chain of 2, for one of 16; the emitted M + F then take
+// fewer operations than the closed form's would
+TEST(EmitModel, MassMatrixAndForcingComeFromTheRecursionsOnlyWhereTheyAreSmaller) {
+  const auto operations = [](const EmittedModel& emitted) {
+    for (const FunctionStatistics& s : emitted.statistics)
+      if (s.function == "mass_matrix_and_forcing") return s.optimized.total();
+    return std::uint64_t{0};
+  };
+  for (double n : {2.0, 16.0}) {
+    const Model model = load_model(testing::shipped_model_path("planar_chain"), {{"n", n}});
+    const ModelEquations eom = derive_equations(model);
+    const EmittedModel emitted = emit_model(model, eom);
+    const double closed = eom.resolution == KinematicsResolution::local ? eom.estimated_operations_local
+                                                                       : eom.estimated_operations_inertial;
+    EXPECT_GT(emitted.estimated_operations_recursions, 0.0) << n;
+    EXPECT_EQ(emitted.mass_matrix_from_recursions, emitted.estimated_operations_recursions < closed) << n;
+    EXPECT_EQ(emitted.mass_matrix_from_recursions, n > 2) << n;
+    if (n > 2) {
+      EXPECT_LT(operations(emitted), 0.6 * closed) << n;
+    }
+  }
+  // no recursions without a tree: the estimate says so
+  const Model coin = load_model(testing::shipped_model_path("rolling_coin"));
+  const EmittedModel emitted = emit_model(coin, derive_equations(coin));
+  EXPECT_FALSE(emitted.mass_matrix_from_recursions);
+  EXPECT_TRUE(std::isnan(emitted.estimated_operations_recursions));
 }
 
 TEST(EmitModel, AGivenLinearizationAddsItsFunctionsAndChangesNoOther) {

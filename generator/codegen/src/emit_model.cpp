@@ -2,11 +2,14 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
+#include <limits>
 #include <set>
 
 #include "eomgen/base/error.hpp"
 #include "eomgen/codegen/cpp_printer.hpp"
 #include "eomgen/derivation/articulated_body.hpp"
+#include "eomgen/derivation/composite_body.hpp"
 #include "eomgen/derivation/linearization.hpp"
 #include "function_source.hpp"
 #include "function_table.hpp"
@@ -50,6 +53,26 @@ void compare_forward_dynamics(EmittedModel& emitted, std::size_t n) {
   emitted.prefers_forward_dynamics = emitted.forward_dynamics_operations < emitted.mass_matrix_path_operations;
 }
 
+// The closed form's estimate of the resolution it was derived in (KinematicsResolution)
+double closed_form_estimate(const EquationsOfMotion& eom) {
+  switch (eom.resolution) {
+    case KinematicsResolution::inertial: return eom.estimated_operations_inertial;
+    case KinematicsResolution::local: return eom.estimated_operations_local;
+  }
+  EOMGEN_UNREACHABLE("a KinematicsResolution without an estimate");
+}
+
+// The recursive M and F where the model has them and they are estimated to take fewer
+// operations than the closed form; records the choice in `emitted`.
+const CompositeBodyEquations* recursions_if_smaller(const std::variant<CompositeBodyEquations, std::string>& derived,
+                                                    const EquationsOfMotion& eom, EmittedModel& emitted) {
+  const CompositeBodyEquations* recursive = std::get_if<CompositeBodyEquations>(&derived);
+  emitted.estimated_operations_recursions =
+      recursive ? recursive->estimated_operations : std::numeric_limits<double>::quiet_NaN();
+  emitted.mass_matrix_from_recursions = recursive && recursive->estimated_operations < closed_form_estimate(eom);
+  return emitted.mass_matrix_from_recursions ? recursive : nullptr;
+}
+
 // the function table lowered and printed, then the generic linearization() and the header
 EmittedModel emit(const Model& model, const ModelEquations& eom, const SymbolicLinearization* linearization,
                   const EmitOptions& options) {
@@ -57,17 +80,21 @@ EmittedModel emit(const Model& model, const ModelEquations& eom, const SymbolicL
   CppPrintOptions print;
   print.share_subexpressions = options.share_subexpressions;
   for (const Parameter& p : model.system.variables().parameters()) print.parameter_names.push_back(p.name);
+  EmittedModel emitted;
   const std::variant<ForwardDynamics, std::string> derived = derive_forward_dynamics(model.system);
-  const ForwardDynamics* forward = std::get_if<ForwardDynamics>(&derived);
-  const std::vector<FunctionSpec> table = function_table(eom, linearization, forward);
+  const std::variant<CompositeBodyEquations, std::string> recursions = derive_composite_body_equations(model.system);
+  FunctionTableParts parts{linearization, std::get_if<ForwardDynamics>(&derived),
+                           recursions_if_smaller(recursions, eom, emitted)};
+  const ForwardDynamics* forward = parts.forward_dynamics;
+  const std::vector<FunctionSpec> table = function_table(eom, parts);
   std::vector<const Subexpressions*> intermediates{&eom.subexpressions};
   if (linearization) intermediates.push_back(&linearization->derivatives);
   if (forward) intermediates.push_back(&forward->subexpressions);
+  if (parts.recursive_mass_matrix) intermediates.push_back(&parts.recursive_mass_matrix->subexpressions);
   EmittedFunctions functions =
       emit_functions(table, intermediates, bind_variables(model, linearization, print), print);
   if (linearization) functions.source += linearization_source(eom.constraint_count > 0);
   const std::uint64_t hash = model_fingerprint(model, table, functions.source);
-  EmittedModel emitted;
   emitted.statistics = std::move(functions.statistics);
   if (forward)
     compare_forward_dynamics(emitted, eom.coordinate_count);

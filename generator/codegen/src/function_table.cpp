@@ -1,6 +1,7 @@
 #include "function_table.hpp"
 
 #include "eomgen/derivation/articulated_body.hpp"
+#include "eomgen/derivation/composite_body.hpp"
 #include "eomgen/derivation/linearization.hpp"
 
 namespace eomgen {
@@ -38,18 +39,18 @@ FunctionSpec function(std::string name, std::string doc, std::vector<VariableKin
 }
 
 // the mass matrix and the forcing, alone and together (one pass over their shared terms)
-void add_dynamics(std::vector<FunctionSpec>& table, const ModelEquations& eom) {
+void add_dynamics(std::vector<FunctionSpec>& table, const GiNaC::matrix& mass_matrix, const GiNaC::matrix& forcing) {
   FunctionSpec mass = function("mass_matrix", "M(q, t), symmetric positive (semi)definite", positions,
                                {Array::mass_matrix});
-  add_mass_matrix(mass, eom.mass_matrix);
-  FunctionSpec forcing = function("forcing", "F(q, qd, t, u): everything of Lagrange's equations except M qdd",
+  add_mass_matrix(mass, mass_matrix);
+  FunctionSpec f = function("forcing", "F(q, qd, t, u): everything of Lagrange's equations except M qdd",
                                   states_and_inputs, {Array::forcing});
-  add_vector(forcing, Array::forcing, eom.forcing);
+  add_vector(f, Array::forcing, forcing);
   FunctionSpec both = function("mass_matrix_and_forcing", "M and F together, sharing their common subexpressions",
                                states_and_inputs, {Array::mass_matrix, Array::forcing});
-  add_mass_matrix(both, eom.mass_matrix);
-  add_vector(both, Array::forcing, eom.forcing);
-  table.insert(table.end(), {mass, forcing, both});
+  add_mass_matrix(both, mass_matrix);
+  add_vector(both, Array::forcing, forcing);
+  table.insert(table.end(), {mass, f, both});
 }
 
 // Xi, Xi_t, b and phi of the constraints (empty arrays without constraints)
@@ -115,14 +116,16 @@ FunctionSpec linearization_terms(const SymbolicLinearization& linearization, boo
 
 }  // namespace
 
-std::vector<FunctionSpec> function_table(const ModelEquations& eom, const SymbolicLinearization* linearization,
-                                         const ForwardDynamics* forward) {
+std::vector<FunctionSpec> function_table(const ModelEquations& eom, const FunctionTableParts& parts) {
   std::vector<FunctionSpec> table;
-  add_dynamics(table, eom);
+  if (const CompositeBodyEquations* recursive = parts.recursive_mass_matrix)
+    add_dynamics(table, recursive->mass_matrix, recursive->forcing);
+  else
+    add_dynamics(table, eom.mass_matrix, eom.forcing);
   add_constraints(table, eom);
   add_energies_and_outputs(table, eom);
-  if (forward) table.push_back(forward_dynamics(*forward));
-  if (linearization) table.push_back(linearization_terms(*linearization, eom.constraint_count > 0));
+  if (parts.forward_dynamics) table.push_back(forward_dynamics(*parts.forward_dynamics));
+  if (parts.linearization) table.push_back(linearization_terms(*parts.linearization, eom.constraint_count > 0));
   return table;
 }
 

@@ -13,6 +13,7 @@ namespace eomgen {
 
 struct SymbolicLinearization;
 struct ForwardDynamics;
+struct CompositeBodyEquations;
 
 /// One generated function (a static member of the generated Model).
 struct FunctionSpec {
@@ -31,11 +32,18 @@ struct FunctionSpec {
   bool returns_regularity = false;
 };
 
-/// The functions of every model, then forward_dynamics if `forward_dynamics` is given
-/// (derive_forward_dynamics of the same model), then, if `linearization` is given
-/// (linearize_symbolic of the same model and equations), linearization_terms.
-std::vector<FunctionSpec> function_table(const ModelEquations& equations, const SymbolicLinearization* linearization,
-                                         const ForwardDynamics* forward_dynamics = nullptr);
+/// Optional parts of a model's function table, each derived from the same model.
+struct FunctionTableParts {
+  /// linearize_symbolic of the same model and equations: adds linearization_terms
+  const SymbolicLinearization* linearization = nullptr;
+  /// derive_forward_dynamics: adds forward_dynamics
+  const ForwardDynamics* forward_dynamics = nullptr;
+  /// derive_composite_body_equations: M and F from it instead of from the equations
+  const CompositeBodyEquations* recursive_mass_matrix = nullptr;
+};
+
+/// The functions of every model, then forward_dynamics, then linearization_terms, as `parts` has them.
+std::vector<FunctionSpec> function_table(const ModelEquations& equations, const FunctionTableParts& parts = {});
 
 /// True if the function returns its single scalar output instead of writing arguments.
 bool returns_scalar(const FunctionSpec& function);

@@ -414,7 +414,7 @@ class Derivation {
 
 EquationsOfMotion derive_equations(const MechanicalSystem& system, KinematicsResolution resolution) {
   EquationsOfMotion eom = Derivation(system, resolution).run();
-  const double estimate = estimated_operations(eom, system.variables());
+  const double estimate = estimated_operations(eom.mass_matrix, eom.forcing, eom.subexpressions, system.variables());
   const double not_tried = std::numeric_limits<double>::quiet_NaN();
   eom.estimated_operations_inertial = resolution == KinematicsResolution::inertial ? estimate : not_tried;
   eom.estimated_operations_local = resolution == KinematicsResolution::local ? estimate : not_tried;

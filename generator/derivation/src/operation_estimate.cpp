@@ -17,8 +17,8 @@ constexpr double call_cost = 24;
 
 class Estimate {
  public:
-  Estimate(const EquationsOfMotion& eom, const Variables& variables) : variables_(variables) {
-    for (const auto& d : eom.subexpressions.definitions()) definitions_.emplace(d.symbol, &d.value);
+  Estimate(const Subexpressions& intermediates, const Variables& variables) : variables_(variables) {
+    for (const auto& d : intermediates.definitions()) definitions_.emplace(d.symbol, &d.value);
   }
 
   double of(const ex& e) { return state_dependent(e) ? count(e) : 0; }
@@ -83,12 +83,13 @@ class Estimate {
 
 }  // namespace
 
-double estimated_operations(const EquationsOfMotion& eom, const Variables& variables) {
-  Estimate estimate(eom, variables);
+double estimated_operations(const GiNaC::matrix& mass_matrix, const GiNaC::matrix& forcing,
+                            const Subexpressions& intermediates, const Variables& variables) {
+  Estimate estimate(intermediates, variables);
   double operations = 0;
-  for (unsigned j = 0; j < eom.mass_matrix.rows(); ++j) {
-    for (unsigned k = j; k < eom.mass_matrix.cols(); ++k) operations += estimate.of(eom.mass_matrix(j, k));
-    operations += estimate.of(eom.forcing(j, 0));
+  for (unsigned j = 0; j < mass_matrix.rows(); ++j) {
+    for (unsigned k = j; k < mass_matrix.cols(); ++k) operations += estimate.of(mass_matrix(j, k));
+    operations += estimate.of(forcing(j, 0));
   }
   return operations;
 }

@@ -4,13 +4,15 @@
 // intermediates counted once, parameter-only subexpressions free (they are computed once per
 // parameter set), a sum of n terms n - 1 additions, x^k as k - 1 multiplications, and a call of sin, cos
 // or sqrt weighted as the multiplications it costs.
-#include <cstddef>
+#include <ginac/ginac.h>
 
-#include "eomgen/derivation/equations_of_motion.hpp"
+#include "eomgen/mechanics/variables.hpp"
+#include "eomgen/symbolic/subexpressions.hpp"
 
 namespace eomgen {
 
-/// Operations of the upper triangle of M and of F, intermediates included once each.
-double estimated_operations(const EquationsOfMotion& eom, const Variables& variables);
+/// Operations of the upper triangle of M and of F, the intermediates they use included once each.
+double estimated_operations(const GiNaC::matrix& mass_matrix, const GiNaC::matrix& forcing,
+                            const Subexpressions& intermediates, const Variables& variables);
 
 }  // namespace eomgen

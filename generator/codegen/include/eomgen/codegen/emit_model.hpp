@@ -40,10 +40,17 @@ struct EmittedModel {
   /// tells the runtime to prefer it (prefers_forward_dynamics: it takes fewer).
   double forward_dynamics_operations = 0, mass_matrix_path_operations = 0;
   bool prefers_forward_dynamics = false;
+  /// Where the emitted M and F come from: Kane's closed form of the equations, or the
+  /// composite-rigid-body M and Newton-Euler F (composite_body.hpp), whichever has fewer
+  /// estimated operations; the estimate of the recursions is NaN for a model that has none
+  /// (then `no_forward_dynamics` says why).
+  bool mass_matrix_from_recursions = false;
+  double estimated_operations_recursions = 0;
 };
 
 /// The header of a model: its metadata and the functions of its equations (M, F, Xi, Xi_t, b,
 /// phi, T, V and the outputs), and forward_dynamics() when derive_forward_dynamics gives one.
+/// M and F are those of `equations` or, for a tree where they are smaller, the recursive ones.
 /// \throws EmitError if an expression cannot be printed, or if model.independent_speeds is neither
 ///         empty nor nq - nc distinct coordinate indices.
 EmittedModel emit_model(const Model& model, const ModelEquations& equations, const EmitOptions& options = {});

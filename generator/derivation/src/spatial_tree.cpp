@@ -1,0 +1,174 @@
+#include "spatial_tree.hpp"
+
+#include <functional>
+
+#include "eomgen/mechanics/kinematics.hpp"
+#include "load_forces.hpp"
+
+namespace eomgen {
+namespace {
+
+using GiNaC::ex;
+using GiNaC::matrix;
+
+matrix map_entries(const matrix& m, const std::function<ex(const ex&)>& f) {
+  matrix out(m.rows(), m.cols());
+  for (unsigned i = 0; i < m.rows(); ++i)
+    for (unsigned j = 0; j < m.cols(); ++j) out(i, j) = f(m(i, j));
+  return out;
+}
+
+matrix cross3(const matrix& u, const matrix& v) { return cross_matrix(u).mul(v); }
+
+// the 3x3 block of a 6x6 matrix at (row, column)
+matrix sub_block(const matrix& m, unsigned row, unsigned column) {
+  matrix out(3, 3);
+  for (unsigned r = 0; r < 3; ++r)
+    for (unsigned c = 0; c < 3; ++c) out(r, c) = m(row + r, column + c);
+  return out;
+}
+
+}  // namespace
+
+matrix spatial_block(const matrix& v, unsigned first) {
+  return matrix(3, 1, GiNaC::lst{v(first, 0), v(first + 1, 0), v(first + 2, 0)});
+}
+
+matrix stacked(const matrix& top, const matrix& bottom) {
+  matrix out(6, 1);
+  for (unsigned i = 0; i < 3; ++i) {
+    out(i, 0) = top(i, 0);
+    out(i + 3, 0) = bottom(i, 0);
+  }
+  return out;
+}
+
+SpatialTree::SpatialTree(const MechanicalSystem& system, LinkTree tree, Subexpressions& z)
+    : s_(system), vars_(system.variables()), links_(std::move(tree.links)), z_(z), has_children_(links_.size(), false) {
+  for (const Link& link : links_)
+    if (link.parent) has_children_[*link.parent] = true;
+  joints_.reserve(links_.size());
+  for (std::size_t i = 0; i < links_.size(); ++i) joints_.push_back(make_joint(i));
+}
+
+// The relative kinematics come from the plain functions: they involve only J(i). Resolved in
+// f_i, where the joint's own terms are usually given, they need no trigonometric identities.
+SpatialJoint SpatialTree::make_joint(std::size_t i) const {
+  const Link& link = links_[i];
+  const Link* p = link.parent ? &links_[*link.parent] : nullptr;
+  const FrameId fp = p ? p->frame : s_.inertial_frame();
+  const matrix omega_p = p ? joints_[*link.parent].omega : matrix(3, 1);
+  const Vector r = position(s_, link.centre, p ? p->centre : s_.origin());
+  const Vector r_rate = time_derivative(s_, r, fp);
+  const matrix v_rel = resolve(s_, r_rate, link.frame);
+  const matrix a_rel = map_entries(resolve(s_, time_derivative(s_, r_rate, fp), link.frame),
+                                   [&](const ex& e) { return vars_.without_accelerations(e); });
+  const matrix w_rel = resolve(s_, angular_velocity(s_, link.frame, fp), link.frame);
+  const auto rate_partial = [&](const ex& e, std::size_t k) {
+    return e.diff(GiNaC::ex_to<GiNaC::symbol>(ex(vars_.coordinates()[k].qd)));
+  };
+  SpatialJoint j;
+  j.E = z_.bind(dcm(s_, link.frame, fp));
+  j.r = z_.bind(resolve(s_, r, link.frame));
+  j.S = matrix(6, static_cast<unsigned>(link.joint.size()));
+  for (unsigned c = 0; c < link.joint.size(); ++c)
+    for (unsigned row = 0; row < 3; ++row) {
+      j.S(row, c) = z_.bind(rate_partial(w_rel(row, 0), link.joint[c]));
+      j.S(row + 3, c) = z_.bind(rate_partial(v_rel(row, 0), link.joint[c]));
+    }
+  // omega_i = E omega_p + omega_rel
+  const matrix w = z_.bind(j.E.mul(omega_p));
+  const matrix w_rel_bound = z_.bind(w_rel);
+  j.omega = z_.bind(w.add(w_rel_bound));
+  // alpha: d(omega_rel)/dt + w x omega_rel; a: w x (w x r) + 2 w x v_rel + a_rel, w = E omega_p
+  const matrix alpha =
+      map_entries(w_rel, [&](const ex& e) { return vars_.without_accelerations(vars_.time_derivative(e)); })
+          .add(cross3(w, w_rel_bound));
+  const matrix w_x_r = z_.bind(cross3(w, j.r));
+  const matrix a = cross3(w, w_x_r).add(cross3(w, z_.bind(v_rel)).mul_scalar(2)).add(a_rel);
+  j.zeta = z_.bind(stacked(alpha, a));
+  return j;
+}
+
+GiNaC::exvector SpatialTree::load_forces() const {
+  GiNaC::exvector tau = generalized_load_forces(s_);
+  for (ex& Q : tau) Q = z_.bind(Q);
+  return tau;
+}
+
+matrix SpatialTree::ground_acceleration() const {
+  return stacked(matrix(3, 1), resolve(s_, s_.gravity(), s_.inertial_frame()).mul_scalar(-1));
+}
+
+matrix SpatialTree::spatial_inertia(std::size_t i) const {
+  const Link& link = links_[i];
+  matrix M(6, 6);
+  for (unsigned r = 0; r < 3; ++r) {
+    for (unsigned c = 0; c < 3; ++c) M(r, c) = link.inertia(r, c);
+    M(r + 3, r + 3) = link.mass;
+  }
+  return M;
+}
+
+matrix SpatialTree::velocity_product_force(std::size_t i) const {
+  const matrix& w = joints_[i].omega;
+  return stacked(cross3(w, z_.bind(links_[i].inertia.mul(w))), matrix(3, 1));
+}
+
+// Phi (alpha; a) = (w; E a + w x r) with w = E alpha
+matrix SpatialTree::motion_to_link(std::size_t i, const matrix& A) const {
+  const SpatialJoint& j = joints_[i];
+  const matrix w = z_.bind(j.E.mul(spatial_block(A, 0)));
+  return stacked(w, j.E.mul(spatial_block(A, 3)).add(cross3(w, j.r)));
+}
+
+// Phi^T (n; f) = (E^T (n + r x f); E^T f)
+matrix SpatialTree::force_to_parent(std::size_t i, const matrix& F) const {
+  const SpatialJoint& j = joints_[i];
+  const matrix f = z_.bind(spatial_block(F, 3));
+  const matrix Et = j.E.transpose();
+  return stacked(Et.mul(spatial_block(F, 0).add(cross3(j.r, f))), Et.mul(f));
+}
+
+// Phi^T I Phi as a shift to c_p in f_i, then a rotation into f_p: with I = [[A, B], [B^T, C]]
+// and R = r^x, the shift gives [[A - B R + R H^T, H], [H^T, C]], H = B + R C
+matrix SpatialTree::inertia_to_parent(std::size_t i, const matrix& I) const {
+  const SpatialJoint& j = joints_[i];
+  const matrix R = cross_matrix(j.r);
+  const matrix A = sub_block(I, 0, 0), B = sub_block(I, 0, 3), C = sub_block(I, 3, 3);
+  const matrix H = z_.bind(B.add(R.mul(C)));
+  const matrix K = A.sub(B.mul(R)).add(R.mul(H.transpose()));
+  const matrix Et = j.E.transpose();
+  const matrix top = congruence(j.E, bind_symmetric(K)), bottom = congruence(j.E, C);
+  const matrix corner = z_.bind(Et.mul(z_.bind(H.mul(j.E))));
+  matrix out(6, 6);
+  for (unsigned r = 0; r < 3; ++r)
+    for (unsigned c = 0; c < 3; ++c) {
+      out(r, c) = top(r, c);
+      out(r + 3, c + 3) = bottom(r, c);
+      out(r, c + 3) = corner(r, c);
+      out(c + 3, r) = corner(r, c);
+    }
+  return out;
+}
+
+matrix SpatialTree::congruence(const matrix& X, const matrix& A) const {
+  const matrix AX = z_.bind(A.mul(X));
+  matrix out(X.cols(), X.cols());
+  for (unsigned r = 0; r < X.cols(); ++r)
+    for (unsigned c = r; c < X.cols(); ++c) {
+      ex sum = 0;
+      for (unsigned m = 0; m < X.rows(); ++m) sum += X(m, r) * AX(m, c);
+      out(r, c) = out(c, r) = z_.bind(sum);
+    }
+  return out;
+}
+
+matrix SpatialTree::bind_symmetric(const matrix& A) const {
+  matrix out(A.rows(), A.cols());
+  for (unsigned r = 0; r < A.rows(); ++r)
+    for (unsigned c = r; c < A.cols(); ++c) out(r, c) = out(c, r) = z_.bind(A(r, c));
+  return out;
+}
+
+}  // namespace eomgen

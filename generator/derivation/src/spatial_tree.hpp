@@ -1,0 +1,79 @@
+#pragma once
+// The spatial kinematics of a link tree (link_tree.hpp), shared by the recursive algorithms: the
+// articulated-body forward dynamics (articulated_body.hpp) and the composite-rigid-body M with the
+// Newton-Euler F (composite_body.hpp). Spatial quantities of a link are 6-vectors (angular;
+// linear) resolved in the link's frame, the linear part at its mass centre, with classical
+// accelerations. Every intermediate is bound in the caller's Subexpressions, so the algorithms
+// stay linear in the size of the tree.
+#include <ginac/ginac.h>
+
+#include <cstddef>
+#include <vector>
+
+#include "eomgen/mechanics/mechanical_system.hpp"
+#include "eomgen/symbolic/subexpressions.hpp"
+#include "link_tree.hpp"
+
+namespace eomgen {
+
+/// The joint of link i to its parent p: Phi_i = [[E, 0], [-E r^x, E]] maps the parent's spatial
+/// velocity and acceleration into link i's, S its partials with respect to qd_J(i), zeta the part
+/// of its acceleration at qdd = 0 that Phi_i does not carry over from the parent.
+struct SpatialJoint {
+  GiNaC::matrix E;      ///< C_{f_i f_p}
+  GiNaC::matrix r;      ///< r^{c_i c_p} resolved in f_i: Phi_i = [[1, 0], [-r^x, 1]] diag(E, E)
+  GiNaC::matrix S;      ///< 6 x |J(i)|
+  GiNaC::matrix omega;  ///< omega_i, in f_i
+  GiNaC::matrix zeta;   ///< 6x1
+};
+
+class SpatialTree {
+ public:
+  /// The joints of every link, bound in `z`, which must outlive this object.
+  SpatialTree(const MechanicalSystem& system, LinkTree tree, Subexpressions& z);
+
+  std::size_t size() const { return links_.size(); }
+  const Link& link(std::size_t i) const { return links_[i]; }
+  const SpatialJoint& joint(std::size_t i) const { return joints_[i]; }
+  /// Whether some link has link i as its parent.
+  bool has_children(std::size_t i) const { return has_children_[i]; }
+
+  /// Q_k of every load but gravity, bound (n entries).
+  GiNaC::exvector load_forces() const;
+  /// (0; -g) in the inertial frame: the ground's acceleration that stands for gravity acting on
+  /// every link.
+  GiNaC::matrix ground_acceleration() const;
+  /// diag(J_i, m_i 1)
+  GiNaC::matrix spatial_inertia(std::size_t i) const;
+  /// (omega_i x J_i omega_i; 0): the force of link i at zero acceleration in its own frame
+  GiNaC::matrix velocity_product_force(std::size_t i) const;
+
+  /// Phi_i A: a spatial motion of the parent's frame in link i's
+  GiNaC::matrix motion_to_link(std::size_t i, const GiNaC::matrix& A) const;
+  /// Phi_i^T F: a spatial force on link i as one on its parent
+  GiNaC::matrix force_to_parent(std::size_t i, const GiNaC::matrix& F) const;
+  /// Phi_i^T I Phi_i for a symmetric spatial inertia I of link i
+  GiNaC::matrix inertia_to_parent(std::size_t i, const GiNaC::matrix& I) const;
+
+  /// X^T A X for a symmetric A, each entry of the upper triangle bound once
+  GiNaC::matrix congruence(const GiNaC::matrix& X, const GiNaC::matrix& A) const;
+  /// the upper triangle of a symmetric matrix, bound once and mirrored
+  GiNaC::matrix bind_symmetric(const GiNaC::matrix& A) const;
+
+ private:
+  SpatialJoint make_joint(std::size_t i) const;
+
+  const MechanicalSystem& s_;
+  const Variables& vars_;
+  std::vector<Link> links_;
+  Subexpressions& z_;
+  std::vector<SpatialJoint> joints_;
+  std::vector<bool> has_children_;
+};
+
+/// rows first..first+2 of a 6x1 column
+GiNaC::matrix spatial_block(const GiNaC::matrix& v, unsigned first);
+/// (top; bottom) of two 3x1 columns
+GiNaC::matrix stacked(const GiNaC::matrix& top, const GiNaC::matrix& bottom);
+
+}  // namespace eomgen
