@@ -176,7 +176,7 @@ TEST_F(Cli, DerivePrintsTheEquationsTheSameWayEveryRun) {
   const Outcome run = eomgen("derive " + quote(path));
   EXPECT_EQ(run.status, 0) << run.err;
   EXPECT_THAT(run.out, HasSubstr("  M[1,1] = m1*l1^2 + m2*l1^2 + 2*m2*l1*l2*cos(q2) + m2*l2^2\n"));
-  EXPECT_THAT(run.out, HasSubstr("  tip_1 = l1*cos(q1) + l2*cos(q1)*cos(q2) - l2*sin(q1)*sin(q2)\n"));
+  EXPECT_THAT(run.out, HasSubstr("  tip_1 = l1*cos(q1) + l2*cos(q1 + q2)\n"));
   // separate processes: GiNaC's own term order would change with address-space randomization
   EXPECT_EQ(eomgen("derive " + quote(path)).out, run.out);
   EXPECT_EQ(eomgen("show " + quote(path)).out, run.out);

@@ -1,8 +1,9 @@
 #include "operation_estimate.hpp"
 
+#include <ginac/hash_map.h>
+
 #include <cmath>
-#include <map>
-#include <set>
+#include <unordered_set>
 
 namespace eomgen {
 namespace {
@@ -76,9 +77,10 @@ class Estimate {
   }
 
   const Variables& variables_;
-  std::map<ex, const ex*, GiNaC::ex_is_less> definitions_;
-  std::map<ex, bool, GiNaC::ex_is_less> dependent_;
-  std::set<ex, GiNaC::ex_is_less> counted_;
+  // hashed, not ordered: GiNaC's ordering compares whole trees, and only counts come out
+  GiNaC::exhashmap<const ex*> definitions_;
+  GiNaC::exhashmap<bool> dependent_;
+  std::unordered_set<ex> counted_;
 };
 
 }  // namespace

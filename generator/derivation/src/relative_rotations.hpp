@@ -1,9 +1,7 @@
 #pragma once
-// C_fg for any two frames of a system, compounded along the frame tree through their nearest
-// common ancestor and cached. A run of principal rotations about one axis is one rotation by the
-// sum of the angles: C_{b3,b1} of a planar chain is C3(q2 + q3), not C3(q3) C3(q2) multiplied
-// out, so a dot product of vectors resolved in the two frames brings one cosine of the relative
-// angle and no sin^2 + cos^2 that nobody collapses.
+// C_fg for any two frames of a system, as kinematics.hpp's dcm() compounds it (runs of principal
+// rotations about one axis merged into one), bound in the intermediates and cached: a dot product
+// of vectors resolved in two frames of a planar chain brings one cosine of the relative angle.
 #include <ginac/ginac.h>
 
 #include <map>
@@ -26,13 +24,6 @@ class RelativeRotations {
   GiNaC::matrix resolve(const Vector& v, FrameId f);
 
  private:
-  // one factor of C_{f,ancestor}: a principal rotation by a summed angle, or any other rotation
-  struct Factor {
-    int axis = 0;  // 1..3 for a principal rotation, 0 for a general one
-    GiNaC::ex angle;
-    GiNaC::matrix dcm;
-  };
-  std::vector<Factor> factors_to_ancestor(FrameId f, FrameId ancestor) const;
   GiNaC::matrix compute(FrameId b, FrameId a);
 
   const MechanicalSystem& system_;

@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <vector>
+
 #include "eomgen/base/error.hpp"
 
 namespace eomgen {
@@ -14,15 +16,43 @@ matrix identity3() { return GiNaC::ex_to<matrix>(GiNaC::unit_matrix(3)); }
 
 matrix cross3(const matrix& u, const matrix& v) { return cross_matrix(u).mul(v); }
 
-// C_{f, ancestor}, compounding C_{f,p} C_{p,pp} ... up the tree
-matrix dcm_to_ancestor(const MechanicalSystem& s, FrameId f, FrameId ancestor) {
-  matrix C = identity3();
-  while (f != ancestor) {
-    const Frame& frame = s.frame(f);
-    C = C.mul(frame.rotation.dcm());
-    f = *frame.parent;
+// one factor of C_{f,ancestor}: a principal rotation by a summed angle, or any other rotation
+struct Factor {
+  int axis = 0;  // 1..3 for a principal rotation, 0 for a general one
+  ex angle;
+  matrix dcm;
+  matrix value() const { return axis == 0 ? dcm : principal_rotation(axis, angle); }
+};
+
+// C_{f,ancestor} = C_{f,p} C_{p,pp} ... as factors in that order, consecutive principal rotations
+// about one axis merged into one
+std::vector<Factor> factors_to_ancestor(const MechanicalSystem& s, FrameId f, FrameId ancestor) {
+  std::vector<Factor> factors;
+  for (; f != ancestor; f = *s.frame(f).parent) {
+    const Rotation& rotation = s.frame(f).rotation;
+    switch (rotation.kind()) {
+      case Rotation::Kind::identity:
+        continue;
+      case Rotation::Kind::principal: {
+        const int axis = rotation.axes()[0];
+        const ex angle = rotation.parameters().op(0);
+        if (!factors.empty() && factors.back().axis == axis)
+          factors.back().angle += angle;
+        else
+          factors.push_back(Factor{axis, angle, {}});
+        continue;
+      }
+      case Rotation::Kind::euler:
+      case Rotation::Kind::axis_angle:
+      case Rotation::Kind::quaternion:
+      case Rotation::Kind::rodrigues:
+      case Rotation::Kind::modified_rodrigues:
+      case Rotation::Kind::matrix:
+        factors.push_back(Factor{0, 0, rotation.dcm()});
+        continue;
+    }
   }
-  return C;
+  return factors;
 }
 
 // nearest common ancestor in a tree whose nodes know their parent and depth (frames, points)
@@ -68,9 +98,26 @@ FrameId common_ancestor(const MechanicalSystem& s, FrameId a, FrameId b) {
   return common_ancestor(a, b, [&](FrameId f) -> const Frame& { return s.frame(f); });
 }
 
+// C_ba as factors whose product, in order, it is
+static std::vector<matrix> dcm_factors(const MechanicalSystem& s, FrameId b, FrameId a) {
+  const FrameId ancestor = common_ancestor(s, a, b);
+  std::vector<Factor> down = factors_to_ancestor(s, b, ancestor);  // C_{b,anc}
+  std::vector<Factor> up = factors_to_ancestor(s, a, ancestor);    // C_{a,anc}
+  // C_ba = C_{b,anc} C_{a,anc}^T
+  if (!down.empty() && !up.empty() && down.back().axis != 0 && down.back().axis == up.back().axis) {
+    down.back().angle -= up.back().angle;
+    up.pop_back();
+  }
+  std::vector<matrix> factors;
+  for (const Factor& f : down) factors.push_back(f.value());
+  for (auto it = up.rbegin(); it != up.rend(); ++it) factors.push_back(it->value().transpose());
+  return factors;
+}
+
 matrix dcm(const MechanicalSystem& s, FrameId b, FrameId a) {
-  const FrameId anc = common_ancestor(s, a, b);
-  return dcm_to_ancestor(s, b, anc).mul(dcm_to_ancestor(s, a, anc).transpose());
+  matrix C = identity3();
+  for (const matrix& factor : dcm_factors(s, b, a)) C = C.mul(factor);
+  return C;
 }
 
 Vector angular_velocity(const MechanicalSystem& s, FrameId b, FrameId a) {

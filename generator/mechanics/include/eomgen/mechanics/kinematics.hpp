@@ -13,7 +13,11 @@ namespace eomgen {
 FrameId common_ancestor(const MechanicalSystem& system, FrameId a, FrameId b);
 
 /// C_ba, so that v_b = C_ba v_a; compounded along the frame tree through the nearest common
-/// ancestor: C_ba = C_b,anc C_anc,a.
+/// ancestor: C_ba = C_b,anc C_anc,a. A run of principal rotations about one axis is one rotation
+/// by the sum of the angles (C_{b3,b1} of a planar chain is C3(q2 + q3), not C3(q3) C3(q2)), and
+/// two about one axis that meet at the common ancestor one by the difference: products of
+/// rotations about one axis never bring sin^2 + cos^2 that no simplification would collapse,
+/// and the DCMs of long chains stay small.
 GiNaC::matrix dcm(const MechanicalSystem& system, FrameId b, FrameId a);
 
 /// omega^ba, the angular velocity of b relative to a: the sum of the relative angular
