@@ -1,11 +1,13 @@
 #include "eomgen/codegen/lower.hpp"
 
 #include <fmt/format.h>
+#include <ginac/hash_map.h>
 
 #include <algorithm>
 #include <cstring>
 #include <iterator>
 #include <tuple>
+#include <unordered_map>
 
 #include "eomgen/base/error.hpp"
 
@@ -116,11 +118,15 @@ class Lowering {
     h = mix(h, n.name);
     for (std::size_t a : n.args) h = mix(h, nodes_[a].signature);
     n.signature = h;
-    const auto key = std::make_tuple(n.op, n.args, bits, n.variable);
-    auto it = interned_.find(key);
-    if (it != interned_.end()) return it->second;
+    const auto [first, last] = interned_.equal_range(h);
+    for (auto it = first; it != last; ++it) {
+      const Node& m = nodes_[it->second];
+      if (m.op == n.op && m.args == n.args && std::memcmp(&m.number, &n.number, sizeof bits) == 0 &&
+          m.variable == n.variable)
+        return it->second;
+    }
     nodes_.push_back(std::move(n));
-    interned_.emplace(key, nodes_.size() - 1);
+    interned_.emplace(h, nodes_.size() - 1);
     return nodes_.size() - 1;
   }
 
@@ -267,10 +273,12 @@ class Lowering {
   }
 
   const VariableNames& variables_;
-  std::map<ex, ex, GiNaC::ex_is_less> definitions_;
-  std::map<ex, std::size_t, GiNaC::ex_is_less> memo_;
+  // hashed, not ordered: nothing here is iterated, and GiNaC's ordering compares whole trees
+  GiNaC::exhashmap<ex> definitions_;
+  GiNaC::exhashmap<std::size_t> memo_;
   std::vector<Node> nodes_;
-  std::map<std::tuple<Op, std::vector<std::size_t>, std::uint64_t, ir::Variable>, std::size_t> interned_;
+  // the nodes by their content signature; equal signatures are compared field by field
+  std::unordered_multimap<std::uint64_t, std::size_t> interned_;
 };
 
 }  // namespace
