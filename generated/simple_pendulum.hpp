@@ -22,7 +22,7 @@ struct Model {
   static constexpr const char* name = "simple_pendulum";
   static constexpr const char* description = "Simple pendulum: a point mass on a massless rod in a vertical plane";
   static constexpr const char* generator_version = "0.1.0";
-  static constexpr const char* model_hash = "3fba6cde193e63a7";
+  static constexpr const char* model_hash = "d7c9e2b268f2e523";
   static constexpr std::array<const char*, nq> coordinate_names{{"theta"}};
   static constexpr std::array<const char*, nu> input_names{{}};
   static constexpr std::array<const char*, np> parameter_names{{"m", "l", "g"}};
@@ -63,13 +63,11 @@ struct Model {
       using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
       using std::log; using std::abs; using std::pow;
       const Scalar w0 = p.l * p.l;
-      const Scalar w1 = p.m * p.l;
-      const Scalar w2 = p.l * w1;
-      k0 = p.m * w0;
+      const Scalar w1 = p.m * w0;
+      k0 = w1;
       k1 = p.g * p.m * p.l;
       k2 = p.m * Scalar(0.5) * w0;
-      k3 = Scalar(1) / w2 * w1;
-      k4 = w2;
+      k3 = Scalar(1) / w1 * p.m * p.l;
     }
     /// The parameters these constants were computed from.
     const Parameters<Scalar>& parameters() const noexcept { return p; }
@@ -77,7 +75,7 @@ struct Model {
    private:
     friend struct Model;
     Parameters<Scalar> p;
-    Scalar k0, k1, k2, k3, k4;
+    Scalar k0, k1, k2, k3;
   };
 
   /// M(q, t), symmetric positive (semi)definite
@@ -267,8 +265,8 @@ struct Model {
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
     Eigen::Matrix<Scalar, 1, 1> pivot;
-    pivot(0) = c.k4;
-    qdd(0) = -(c.k3 * c.p.g * sin(q(0)));
+    pivot(0) = c.k0;
+    qdd(0) = -(c.p.g * sin(q(0)) * c.k3);
     bool regular = true;
     for (int k = 0; k < 1; ++k) regular = regular && pivot(k) > Scalar(0);
     using std::isfinite;

@@ -72,14 +72,41 @@ class TreeBuilder {
     }
   }
 
+  // true if m depends on parameters only: no coordinate, rate, input or time
+  bool constant(const matrix& m) const {
+    for (unsigned i = 0; i < m.rows(); ++i)
+      for (unsigned j = 0; j < m.cols(); ++j)
+        for (const ex& symbol : symbols_of(m(i, j)))
+          if (vars_.kind_of(symbol) != SymbolKind::parameter) return false;
+    return true;
+  }
+
+  // every term of the offset a constant in a frame that turns with `frame` rigidly
+  bool fixed_in(const Vector& offset, FrameId frame) const {
+    for (const auto& [f, components] : offset.terms()) {
+      if (!constant(components)) return false;
+      for (FrameId step : frame_path(f, frame))
+        if (!constant(s_.frame(step).rotation.dcm())) return false;
+    }
+    return true;
+  }
+
+  // up the point tree from the centre while each step is fixed in the link's frame
+  PointId fixed_origin(PointId centre, FrameId frame) const {
+    PointId p = centre;
+    while (s_.point(p).parent && fixed_in(s_.point(p).offset, frame)) p = *s_.point(p).parent;
+    return p;
+  }
+
   // particles, then rigid bodies (the derivation's order); links that never move carry no
   // dynamics and are left out
   std::vector<Link> collect_links() const {
     std::vector<Link> links;
     for (const Particle& p : s_.particles())
-      links.push_back(Link{p.name, p.mass, matrix(3, 3), particle_frame(p.point), p.point, std::nullopt, {}});
+      links.push_back(Link{p.name, p.mass, matrix(3, 3), particle_frame(p.point), p.point, {}, std::nullopt, {}});
     for (const RigidBody& b : s_.rigid_bodies())
-      links.push_back(Link{b.name, b.mass, b.inertia, b.frame, b.mass_centre, std::nullopt, {}});
+      links.push_back(Link{b.name, b.mass, b.inertia, b.frame, b.mass_centre, {}, std::nullopt, {}});
+    for (Link& link : links) link.origin = fixed_origin(link.centre, link.frame);
     links.erase(std::remove_if(links.begin(), links.end(), [&](const Link& l) { return deps(l).empty(); }),
                 links.end());
     return links;

@@ -21,6 +21,10 @@ struct Link {
   GiNaC::matrix inertia;  ///< J about the mass centre, resolved in `frame`
   FrameId frame;
   PointId centre;
+  /// The point the recursions refer the link's motion and loads to: the one nearest the root of
+  /// the point tree that is still fixed in the link (the hinge of a pendulum, where a revolute
+  /// joint's motion subspace has no linear part); the centre when no other is.
+  PointId origin;
   /// The link it moves relative to: none for the ground (inertial frame, origin).
   std::optional<std::size_t> parent;
   /// J(i): the coordinates of the joint to the parent, in model order; empty for a link

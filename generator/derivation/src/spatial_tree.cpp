@@ -48,7 +48,10 @@ SpatialTree::SpatialTree(const MechanicalSystem& system, LinkTree tree, Subexpre
   for (const Link& link : links_)
     if (link.parent) has_children_[*link.parent] = true;
   joints_.reserve(links_.size());
-  for (std::size_t i = 0; i < links_.size(); ++i) joints_.push_back(make_joint(i));
+  for (std::size_t i = 0; i < links_.size(); ++i) {
+    joints_.push_back(make_joint(i));
+    centre_offsets_.push_back(resolve(s_, position(s_, links_[i].centre, links_[i].origin), links_[i].frame));
+  }
 }
 
 // The relative kinematics come from the plain functions: they involve only J(i). Resolved in
@@ -58,7 +61,7 @@ SpatialJoint SpatialTree::make_joint(std::size_t i) const {
   const Link* p = link.parent ? &links_[*link.parent] : nullptr;
   const FrameId fp = p ? p->frame : s_.inertial_frame();
   const matrix omega_p = p ? joints_[*link.parent].omega : matrix(3, 1);
-  const Vector r = position(s_, link.centre, p ? p->centre : s_.origin());
+  const Vector r = position(s_, link.origin, p ? p->origin : s_.origin());
   const Vector r_rate = time_derivative(s_, r, fp);
   const matrix v_rel = resolve(s_, r_rate, link.frame);
   const matrix a_rel = map_entries(resolve(s_, time_derivative(s_, r_rate, fp), link.frame),
@@ -100,11 +103,23 @@ matrix SpatialTree::ground_acceleration() const {
   return stacked(matrix(3, 1), resolve(s_, s_.gravity(), s_.inertial_frame()).mul_scalar(-1));
 }
 
+// J_o = J - m c^x c^x, the inertia about the origin
+matrix SpatialTree::origin_inertia(std::size_t i) const {
+  const Link& link = links_[i];
+  const matrix C = cross_matrix(centre_offsets_[i]);
+  return link.inertia.sub(C.mul(C).mul_scalar(link.mass));
+}
+
 matrix SpatialTree::spatial_inertia(std::size_t i) const {
   const Link& link = links_[i];
+  const matrix J = origin_inertia(i), mC = cross_matrix(centre_offsets_[i]).mul_scalar(link.mass);
   matrix M(6, 6);
   for (unsigned r = 0; r < 3; ++r) {
-    for (unsigned c = 0; c < 3; ++c) M(r, c) = link.inertia(r, c);
+    for (unsigned c = 0; c < 3; ++c) {
+      M(r, c) = J(r, c).expand();
+      M(r, c + 3) = mC(r, c);
+      M(r + 3, c) = -mC(r, c);
+    }
     M(r + 3, r + 3) = link.mass;
   }
   return M;
@@ -112,7 +127,10 @@ matrix SpatialTree::spatial_inertia(std::size_t i) const {
 
 matrix SpatialTree::velocity_product_force(std::size_t i) const {
   const matrix& w = joints_[i].omega;
-  return stacked(cross3(w, z_.bind(links_[i].inertia.mul(w))), matrix(3, 1));
+  const matrix& c = centre_offsets_[i];
+  const matrix n = cross3(w, z_.bind(origin_inertia(i).mul(w)));
+  const matrix f = c.is_zero_matrix() ? matrix(3, 1) : cross3(w, z_.bind(cross3(w, c))).mul_scalar(links_[i].mass);
+  return stacked(n, f);
 }
 
 // Phi (alpha; a) = (w; E a + w x r) with w = E alpha

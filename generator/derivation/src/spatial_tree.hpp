@@ -2,8 +2,8 @@
 // The spatial kinematics of a link tree (link_tree.hpp), shared by the recursive algorithms: the
 // articulated-body forward dynamics (articulated_body.hpp) and the composite-rigid-body M with the
 // Newton-Euler F (composite_body.hpp). Spatial quantities of a link are 6-vectors (angular;
-// linear) resolved in the link's frame, the linear part at its mass centre, with classical
-// accelerations. Every intermediate is bound in the caller's Subexpressions, so the algorithms
+// linear) resolved in the link's frame, the linear part at its origin (link_tree.hpp: the hinge
+// of a pendulum), with classical accelerations. Every intermediate is bound in the caller's Subexpressions, so the algorithms
 // stay linear in the size of the tree.
 #include <ginac/ginac.h>
 
@@ -21,7 +21,7 @@ namespace eomgen {
 /// of its acceleration at qdd = 0 that Phi_i does not carry over from the parent.
 struct SpatialJoint {
   GiNaC::matrix E;      ///< C_{f_i f_p}
-  GiNaC::matrix r;      ///< r^{c_i c_p} resolved in f_i: Phi_i = [[1, 0], [-r^x, 1]] diag(E, E)
+  GiNaC::matrix r;      ///< r^{o_i o_p} between the origins, in f_i: Phi_i = [[1, 0], [-r^x, 1]] diag(E, E)
   GiNaC::matrix S;      ///< 6 x |J(i)|
   GiNaC::matrix omega;  ///< omega_i, in f_i
   GiNaC::matrix zeta;   ///< 6x1
@@ -43,9 +43,10 @@ class SpatialTree {
   /// (0; -g) in the inertial frame: the ground's acceleration that stands for gravity acting on
   /// every link.
   GiNaC::matrix ground_acceleration() const;
-  /// diag(J_i, m_i 1)
+  /// [[J_o, m c^x], [-m c^x, m 1]] about the origin o, with c the mass centre from o and
+  /// J_o = J - m c^x c^x: (n_o; f) = I (alpha; a_o) + velocity_product_force
   GiNaC::matrix spatial_inertia(std::size_t i) const;
-  /// (omega_i x J_i omega_i; 0): the force of link i at zero acceleration in its own frame
+  /// (omega x J_o omega; m omega x (omega x c)): the force of link i at zero acceleration
   GiNaC::matrix velocity_product_force(std::size_t i) const;
 
   /// Phi_i A: a spatial motion of the parent's frame in link i's
@@ -62,12 +63,14 @@ class SpatialTree {
 
  private:
   SpatialJoint make_joint(std::size_t i) const;
+  GiNaC::matrix origin_inertia(std::size_t i) const;
 
   const MechanicalSystem& s_;
   const Variables& vars_;
   std::vector<Link> links_;
   Subexpressions& z_;
   std::vector<SpatialJoint> joints_;
+  std::vector<GiNaC::matrix> centre_offsets_;  // c of every link, in its frame
   std::vector<bool> has_children_;
 };
 
