@@ -1,7 +1,6 @@
 #include "eomgen/codegen/lower.hpp"
 
 #include <fmt/format.h>
-#include <ginac/hash_map.h>
 
 #include <algorithm>
 #include <cstring>
@@ -10,6 +9,7 @@
 #include <unordered_map>
 
 #include "eomgen/base/error.hpp"
+#include "eomgen/symbolic/expression_map.hpp"
 
 namespace eomgen {
 namespace {
@@ -274,8 +274,8 @@ class Lowering {
 
   const VariableNames& variables_;
   // hashed, not ordered: nothing here is iterated, and GiNaC's ordering compares whole trees
-  GiNaC::exhashmap<ex> definitions_;
-  GiNaC::exhashmap<std::size_t> memo_;
+  ExpressionMap<ex> definitions_;
+  ExpressionMap<std::size_t> memo_;
   std::vector<Node> nodes_;
   // the nodes by their content signature; equal signatures are compared field by field
   std::unordered_multimap<std::uint64_t, std::size_t> interned_;

@@ -1,9 +1,8 @@
 #include "operation_estimate.hpp"
 
-#include <ginac/hash_map.h>
+#include "eomgen/symbolic/expression_map.hpp"
 
 #include <cmath>
-#include <unordered_set>
 
 namespace eomgen {
 namespace {
@@ -22,33 +21,40 @@ class Estimate {
     for (const auto& d : intermediates.definitions()) definitions_.emplace(d.symbol, &d.value);
   }
 
-  double of(const ex& e) { return state_dependent(e) ? count(e) : 0; }
+  double of(const ex& e) { return count(e); }
 
  private:
-  // true when e depends on anything but parameters and numbers (intermediates included)
-  bool state_dependent(const ex& e) {
-    auto memo = dependent_.find(e);
-    if (memo != dependent_.end()) return memo->second;
-    bool result = false;
+  struct Facts {
+    bool dependent = false;  // on anything but parameters and numbers (intermediates included)
+    bool counted = false;    // its operations are in the total already
+  };
+
+  // the facts of e, its dependence worked out on first sight (references stay valid: the
+  // table is node-based)
+  Facts& facts(const ex& e) {
+    auto memo = facts_.find(e);
+    if (memo != facts_.end()) return memo->second;
+    bool dependent = false;
     if (GiNaC::is_a<GiNaC::symbol>(e)) {
       auto definition = definitions_.find(e);
       if (definition != definitions_.end()) {
-        result = state_dependent(*definition->second);
+        dependent = facts(*definition->second).dependent;
       } else {
         const auto kind = variables_.kind_of(e);
-        result = !kind || *kind != SymbolKind::parameter;
+        dependent = !kind || *kind != SymbolKind::parameter;
       }
     } else {
-      for (std::size_t i = 0; i < e.nops() && !result; ++i) result = state_dependent(e.op(i));
+      for (std::size_t i = 0; i < e.nops() && !dependent; ++i) dependent = facts(e.op(i)).dependent;
     }
-    dependent_.emplace(e, result);
-    return result;
+    return facts_.emplace(e, Facts{dependent, false}).first->second;
   }
 
   // operations of e, each distinct subexpression once (as emission's common-subexpression pass
   // does); the parameter-only operands of a sum or product count as one constant
   double count(const ex& e) {
-    if (!state_dependent(e) || !counted_.insert(e).second) return 0;
+    Facts& f = facts(e);
+    if (!f.dependent || f.counted) return 0;
+    f.counted = true;
     if (GiNaC::is_a<GiNaC::symbol>(e)) {
       auto definition = definitions_.find(e);
       return definition == definitions_.end() ? 0 : count(*definition->second);
@@ -56,8 +62,9 @@ class Estimate {
     double operations = 0, operands = 0;
     bool constant = false;
     for (std::size_t i = 0; i < e.nops(); ++i) {
-      if (state_dependent(e.op(i))) {
-        operations += count(e.op(i));
+      const ex operand = e.op(i);  // op() of a sum or product may build a new object: once
+      if (facts(operand).dependent) {
+        operations += count(operand);
         ++operands;
       } else {
         constant = true;
@@ -78,9 +85,8 @@ class Estimate {
 
   const Variables& variables_;
   // hashed, not ordered: GiNaC's ordering compares whole trees, and only counts come out
-  GiNaC::exhashmap<const ex*> definitions_;
-  GiNaC::exhashmap<bool> dependent_;
-  std::unordered_set<ex> counted_;
+  ExpressionMap<const ex*> definitions_;
+  ExpressionMap<Facts> facts_;
 };
 
 }  // namespace
