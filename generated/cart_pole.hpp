@@ -32,7 +32,7 @@ struct Model {
   static constexpr std::array<int, ni> independent_speeds{{}};  // their coordinate indices
   static constexpr std::array<const char*, ny> output_names{{"cart_position", "tip_1", "tip_2", "tip_3", "tip_velocity_1", "tip_velocity_2", "tip_velocity_3"}};
   static constexpr bool has_forward_dynamics = true;  // forward_dynamics(), without M
-  static constexpr bool prefers_forward_dynamics = false;  // fewer operations than M, F and their Cholesky solve
+  static constexpr bool prefers_forward_dynamics = true;  // fewer operations than M, F and their Cholesky solve
 
   template <class Scalar> using Vector = Eigen::Matrix<Scalar, nq, 1>;
   template <class Scalar> using Inputs = Eigen::Matrix<Scalar, nu, 1>;

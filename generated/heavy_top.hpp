@@ -32,7 +32,7 @@ struct Model {
   static constexpr std::array<int, ni> independent_speeds{{}};  // their coordinate indices
   static constexpr std::array<const char*, ny> output_names{{"centre_position_1", "centre_position_2", "centre_position_3", "omega_1", "omega_2", "omega_3", "axis_1", "axis_2", "axis_3", "height"}};
   static constexpr bool has_forward_dynamics = true;  // forward_dynamics(), without M
-  static constexpr bool prefers_forward_dynamics = false;  // fewer operations than M, F and their Cholesky solve
+  static constexpr bool prefers_forward_dynamics = true;  // fewer operations than M, F and their Cholesky solve
 
   template <class Scalar> using Vector = Eigen::Matrix<Scalar, nq, 1>;
   template <class Scalar> using Inputs = Eigen::Matrix<Scalar, nu, 1>;

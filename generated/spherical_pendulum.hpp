@@ -32,7 +32,7 @@ struct Model {
   static constexpr std::array<int, ni> independent_speeds{{}};  // their coordinate indices
   static constexpr std::array<const char*, ny> output_names{{"bob_pos_1", "bob_pos_2", "bob_pos_3", "bob_vel_1", "bob_vel_2", "bob_vel_3", "height", "angular_momentum_vertical"}};
   static constexpr bool has_forward_dynamics = true;  // forward_dynamics(), without M
-  static constexpr bool prefers_forward_dynamics = false;  // fewer operations than M, F and their Cholesky solve
+  static constexpr bool prefers_forward_dynamics = true;  // fewer operations than M, F and their Cholesky solve
 
   template <class Scalar> using Vector = Eigen::Matrix<Scalar, nq, 1>;
   template <class Scalar> using Inputs = Eigen::Matrix<Scalar, nu, 1>;

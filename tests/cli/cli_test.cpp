@@ -341,6 +341,11 @@ TEST_F(Cli, GenerateStatsPrintsOperationCountsAndTimes) {
   const Outcome constrained = eomgen("generate --stats -o " + quote((dir_ / "cp.hpp").string()) + " " + quote(cp));
   ASSERT_EQ(constrained.status, 0) << constrained.err;
   EXPECT_THAT(constrained.out, HasSubstr("no forward_dynamics: the model has constraints\n"));
+  // which derivation of M and F the header has, with the estimates of all three
+  EXPECT_THAT(stats.out, ::testing::ContainsRegex("\nM and F: (local frames|inertial|composite body and Newton-Euler) "
+                                                  "\\(estimated operations: local frames [0-9]+, inertial [0-9]+, "
+                                                  "composite body and Newton-Euler [0-9]+\\)\n"));
+  EXPECT_THAT(constrained.out, HasSubstr("composite body and Newton-Euler not tried)\n"));
 }
 
 TEST_F(Cli, GenerateLinearizationAddsTheFunctionsOnlyWhenAsked) {

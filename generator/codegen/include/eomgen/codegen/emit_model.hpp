@@ -36,8 +36,8 @@ struct EmittedModel {
   /// why the header has no forward_dynamics() (constraints, not a tree), empty if it has one
   std::string no_forward_dynamics;
   /// With forward_dynamics(): its operations per call, those of M and F together with the
-  /// Cholesky solve the runtime would do instead (n^3/3 + 2 n^2 + n), and whether the header
-  /// tells the runtime to prefer it (prefers_forward_dynamics: it takes fewer).
+  /// runtime's Cholesky path instead (its measured cost as operations: 120 + 14 n^2), and whether
+  /// the header tells the runtime to prefer it (prefers_forward_dynamics: it takes fewer).
   double forward_dynamics_operations = 0, mass_matrix_path_operations = 0;
   bool prefers_forward_dynamics = false;
   /// Where the emitted M and F come from: Kane's closed form of the equations, or the
