@@ -13,11 +13,13 @@
 #   ROUNDS=21                     interleaved timing rounds (medians are reported)
 #   JOBS=2                        parallel compilations (runs are always sequential)
 #   CXX=g++ CXXFLAGS="-O2"
-#   MASS_MATRIX_MAX_N=32          above it, M and F are neither compiled nor timed (planar n = 64:
-#                                 GCC needs over 20 GB and many minutes for their 280,000
-#                                 operations at -O2); forward dynamics, mj_forward and the
-#                                 simulations are, and qdd is still checked against qacc
-# The planar n=32 program takes ~100 s to compile at -O2.
+#   MASS_MATRIX_MAX_N=64          above it, M and F are neither compiled nor timed (a closed-form
+#                                 M and F of 280,000 operations, planar n = 64 before the
+#                                 recursions, took GCC over 20 GB at -O2; from the recursions they
+#                                 are 26,000 and compile in under a minute and 1 GB); forward
+#                                 dynamics, mj_forward and the simulations are, and qdd is still
+#                                 checked against qacc
+# The planar n=32 program takes about 20 s to compile at -O2, n = 64 about 2 minutes.
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 repo="$(cd "$here/../.." && pwd)"
@@ -29,7 +31,7 @@ ROUNDS="${ROUNDS:-21}"
 JOBS="${JOBS:-2}"
 CXX="${CXX:-g++}"
 CXXFLAGS="${CXXFLAGS:--O2}"
-MASS_MATRIX_MAX_N="${MASS_MATRIX_MAX_N:-32}"
+MASS_MATRIX_MAX_N="${MASS_MATRIX_MAX_N:-64}"
 
 [[ -x "$eomgen_src" ]] || { echo "no eomgen at $eomgen_src" >&2; exit 1; }
 [[ -f /usr/include/mujoco/mujoco.h ]] || { echo "MuJoCo headers missing: apt-get install libmujoco-dev" >&2; exit 1; }
