@@ -22,7 +22,7 @@ struct Model {
   static constexpr const char* name = "heavy_top";
   static constexpr const char* description = "Heavy symmetric top spinning on a fixed pivot at its tip, 3-1-3 Euler angles";
   static constexpr const char* generator_version = "0.1.0";
-  static constexpr const char* model_hash = "f183a632dadb2487";
+  static constexpr const char* model_hash = "33f0c6fffcc5a815";
   static constexpr std::array<const char*, nq> coordinate_names{{"psi", "theta", "phi"}};
   static constexpr std::array<const char*, nu> input_names{{}};
   static constexpr std::array<const char*, np> parameter_names{{"m", "l", "J1", "J3", "g"}};
@@ -64,14 +64,12 @@ struct Model {
       using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
       using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
       using std::log; using std::abs; using std::pow;
-      const Scalar w0 = p.m * p.l * p.l;
-      const Scalar w1 = w0 + p.J1;
-      k0 = w1;
-      k1 = w0 + p.J1 - p.J3;
-      k2 = p.g * p.m * p.l;
-      k3 = Scalar(0.5) * p.J3;
-      k4 = Scalar(0.5) * w1;
-      k5 = p.m * p.l;
+      const Scalar w0 = p.m * p.l * p.l + p.J1;
+      k0 = w0;
+      k1 = p.m * p.l;
+      k2 = Scalar(0.5) * p.J3;
+      k3 = Scalar(0.5) * w0;
+      k4 = p.g * p.m * p.l;
     }
     /// The parameters these constants were computed from.
     const Parameters<Scalar>& parameters() const noexcept { return p; }
@@ -79,7 +77,7 @@ struct Model {
    private:
     friend struct Model;
     Parameters<Scalar> p;
-    Scalar k0, k1, k2, k3, k4, k5;
+    Scalar k0, k1, k2, k3, k4;
   };
 
   /// M(q, t), symmetric positive (semi)definite
@@ -91,13 +89,16 @@ struct Model {
     const Scalar w0 = sin(q(1));
     const Scalar w1 = sin(q(2));
     const Scalar w2 = w0 * w1;
-    const Scalar w3 = cos(q(2));
-    const Scalar w4 = w0 * w3;
-    const Scalar w5 = cos(q(1));
-    M(0, 0) = w2 * w2 * c.k0 + w4 * w4 * c.k0 + w5 * w5 * c.p.J3;
-    M(0, 1) = w2 * c.k0 * w3 - w4 * w1 * c.k0;
-    M(0, 2) = w5 * c.p.J3;
-    M(1, 1) = w1 * w1 * c.k0 + w3 * w3 * c.k0;
+    const Scalar w3 = cos(q(1));
+    const Scalar w4 = w3 * c.p.J3;
+    const Scalar w5 = cos(q(2));
+    const Scalar w6 = w0 * w5;
+    const Scalar w7 = w1 * c.k0;
+    const Scalar w8 = c.k0 * w5;
+    M(0, 0) = w2 * w2 * c.k0 + w3 * w4 + w6 * w6 * c.k0;
+    M(0, 1) = -(w6 * w7 - w8 * w2);
+    M(0, 2) = w4;
+    M(1, 1) = w7 * w1 + w8 * w5;
     M(2, 2) = c.p.J3;
     M(1, 2) = Scalar(0);
     M(1, 0) = M(0, 1);
@@ -120,20 +121,23 @@ struct Model {
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
     const Scalar w0 = sin(q(1));
-    const Scalar w1 = sin(q(2));
+    const Scalar w1 = cos(q(2));
     const Scalar w2 = w0 * w1;
-    const Scalar w3 = cos(q(2));
-    const Scalar w4 = w0 * qd(0) * w3 - qd(1) * w1;
+    const Scalar w3 = sin(q(2));
+    const Scalar w4 = w0 * w3;
     const Scalar w5 = cos(q(1));
-    const Scalar w6 = w4 * qd(2) + qd(1) * w5 * qd(0) * w1;
+    const Scalar w6 = qd(1) * w1 + w0 * qd(0) * w3;
     const Scalar w7 = w5 * qd(0) + qd(2);
-    const Scalar w8 = w0 * w3;
-    const Scalar w9 = qd(1) * w3 + w0 * qd(0) * w1;
-    const Scalar w10 = w9 * qd(2) - qd(1) * w5 * qd(0) * w3;
-    const Scalar w11 = qd(1) * w0 * qd(0);
-    F(0) = c.k1 * w4 * w2 * w7 - w2 * c.k0 * w6 + w8 * w10 * c.k0 - c.k1 * w8 * w7 * w9 + w5 * w11 * c.p.J3;
-    F(1) = c.k1 * w4 * w7 * w3 + c.k1 * w1 * w7 * w9 - c.k0 * w3 * w6 - w1 * w10 * c.k0 + w8 * c.k2 * w3 + c.k2 * w2 * w1;
-    F(2) = w11 * c.p.J3;
+    const Scalar w8 = c.k0 * w6;
+    const Scalar w9 = w7 * c.p.J3;
+    const Scalar w10 = c.k1 * c.p.g * w4 - (w6 * qd(2) - qd(1) * w5 * qd(0) * w1) * c.k0 + w7 * w8 - w6 * w9;
+    const Scalar w11 = w0 * qd(0) * w1 - qd(1) * w3;
+    const Scalar w12 = w11 * c.k0;
+    const Scalar w13 = qd(1) * w0 * qd(0) * c.p.J3 + w11 * w8 - w6 * w12;
+    const Scalar w14 = w7 * w12 - w11 * w9 - c.k0 * (w11 * qd(2) + qd(1) * w5 * qd(0) * w3) + c.k1 * w2 * c.p.g;
+    F(0) = w5 * w13 - w2 * w10 + w14 * w4;
+    F(1) = w14 * w1 + w10 * w3;
+    F(2) = w13;
   }
 
   /// F(q, qd, t, u): everything of Lagrange's equations except M qdd
@@ -153,23 +157,29 @@ struct Model {
     const Scalar w0 = sin(q(1));
     const Scalar w1 = sin(q(2));
     const Scalar w2 = w0 * w1;
-    const Scalar w3 = cos(q(2));
-    const Scalar w4 = w0 * w3;
-    const Scalar w5 = cos(q(1));
-    const Scalar w6 = w0 * qd(0) * w3 - qd(1) * w1;
-    const Scalar w7 = w6 * qd(2) + qd(1) * w5 * qd(0) * w1;
-    const Scalar w8 = w5 * qd(0) + qd(2);
-    const Scalar w9 = qd(1) * w3 + w0 * qd(0) * w1;
-    const Scalar w10 = w9 * qd(2) - qd(1) * w5 * qd(0) * w3;
-    const Scalar w11 = qd(1) * w0 * qd(0);
-    M(0, 0) = w2 * w2 * c.k0 + w4 * w4 * c.k0 + w5 * w5 * c.p.J3;
-    M(0, 1) = w2 * c.k0 * w3 - w4 * w1 * c.k0;
-    M(0, 2) = w5 * c.p.J3;
-    M(1, 1) = w1 * w1 * c.k0 + w3 * w3 * c.k0;
+    const Scalar w3 = cos(q(1));
+    const Scalar w4 = w3 * c.p.J3;
+    const Scalar w5 = cos(q(2));
+    const Scalar w6 = w0 * w5;
+    const Scalar w7 = w1 * c.k0;
+    const Scalar w8 = c.k0 * w5;
+    const Scalar w9 = qd(1) * w5 + w0 * qd(0) * w1;
+    const Scalar w10 = w3 * qd(0) + qd(2);
+    const Scalar w11 = c.k0 * w9;
+    const Scalar w12 = w10 * c.p.J3;
+    const Scalar w13 = c.k1 * c.p.g * w2 - (w9 * qd(2) - qd(1) * w3 * qd(0) * w5) * c.k0 + w10 * w11 - w9 * w12;
+    const Scalar w14 = w0 * qd(0) * w5 - qd(1) * w1;
+    const Scalar w15 = w14 * c.k0;
+    const Scalar w16 = qd(1) * w0 * qd(0) * c.p.J3 + w14 * w11 - w9 * w15;
+    const Scalar w17 = w10 * w15 - w14 * w12 - c.k0 * (w14 * qd(2) + qd(1) * w3 * qd(0) * w1) + c.k1 * w6 * c.p.g;
+    M(0, 0) = w2 * w2 * c.k0 + w3 * w4 + w6 * w6 * c.k0;
+    M(0, 1) = -(w6 * w7 - w8 * w2);
+    M(0, 2) = w4;
+    M(1, 1) = w7 * w1 + w8 * w5;
     M(2, 2) = c.p.J3;
-    F(0) = c.k1 * w6 * w2 * w8 - w2 * c.k0 * w7 + w4 * w10 * c.k0 - c.k1 * w4 * w8 * w9 + w5 * w11 * c.p.J3;
-    F(1) = c.k1 * w6 * w8 * w3 + c.k1 * w1 * w8 * w9 - c.k0 * w3 * w7 - w1 * w10 * c.k0 + w4 * c.k2 * w3 + c.k2 * w2 * w1;
-    F(2) = w11 * c.p.J3;
+    F(0) = w3 * w16 - w6 * w13 + w17 * w2;
+    F(1) = w17 * w5 + w13 * w1;
+    F(2) = w16;
     M(1, 2) = Scalar(0);
     M(1, 0) = M(0, 1);
     M(2, 0) = M(0, 2);
@@ -261,7 +271,7 @@ struct Model {
     const Scalar w3 = sin(q(2));
     const Scalar w4 = qd(1) * w1 + w2 * qd(0) * w3;
     const Scalar w5 = w2 * qd(0) * w1 - qd(1) * w3;
-    T = w0 * w0 * c.k3 + w4 * w4 * c.k4 + c.k4 * w5 * w5;
+    T = w0 * w0 * c.k2 + w4 * w4 * c.k3 + c.k3 * w5 * w5;
     return T;
   }
 
@@ -280,7 +290,7 @@ struct Model {
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
     Scalar V = Scalar(0);
-    V = c.k2 * cos(q(1));
+    V = c.k4 * cos(q(1));
     return V;
   }
 
@@ -359,8 +369,8 @@ struct Model {
     const Scalar w24 = qd(1) * w6 + w0 * qd(0) * w1;
     const Scalar w25 = w24 * qd(2) - qd(1) * w4 * qd(0) * w6;
     const Scalar w26 = w7 * c.p.g;
-    const Scalar w27 = w2 * c.k5;
-    const Scalar w28 = w6 * c.k5 + w14 * w27;
+    const Scalar w27 = w2 * c.k1;
+    const Scalar w28 = w6 * c.k1 + w14 * w27;
     const Scalar w29 = Scalar(1) / w20;
     const Scalar w30 = qd(1) * w0 * qd(0);
     const Scalar w31 = c.k0 * w24;
@@ -373,8 +383,8 @@ struct Model {
     const Scalar w38 = w33 * w4 - w36 * w2 + w7 * w37;
     const Scalar w39 = w38 * w14 - (w36 * w6 + w37 * w1);
     const Scalar w40 = w3 * w14 + w12;
-    const Scalar w41 = w7 * c.k5;
-    const Scalar w42 = w1 * c.k5 - w41 * w14;
+    const Scalar w41 = w7 * c.k1;
+    const Scalar w42 = w1 * c.k1 - w41 * w14;
     const Scalar w43 = c.p.g * w2;
     const Scalar w44 = w26 * (w16 * w27 - w19 * w28) * w29 + w30 * w20 * w29 + w29 * (w33 + w19 * w39 - w38 * w16) - w29 * (w3 * w16 - w40 * w19) * w22 - w29 * (w19 * w42 + w41 * w16) * w43 + w29 * (w8 * w16 + w23 * w19) * w25;
     const Scalar w45 = w23 * w17 * w25 + w44 * w19 + w17 * w39 - w17 * w28 * w26 - w19 * w30 + w40 * w17 * w22 - w43 * w17 * w42;

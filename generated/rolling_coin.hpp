@@ -22,7 +22,7 @@ struct Model {
   static constexpr const char* name = "rolling_coin";
   static constexpr const char* description = "Thin disk (coin) rolling without slip on a plane: twist, lean, roll";
   static constexpr const char* generator_version = "0.1.0";
-  static constexpr const char* model_hash = "e26cba1f11d1881c";
+  static constexpr const char* model_hash = "b6389ffb7e08968e";
   static constexpr std::array<const char*, nq> coordinate_names{{"x", "y", "psi", "theta", "phi"}};
   static constexpr std::array<const char*, nu> input_names{{}};
   static constexpr std::array<const char*, np> parameter_names{{"m", "r", "g"}};
@@ -65,10 +65,8 @@ struct Model {
       const Scalar w0 = p.r * p.r;
       k0 = w0 * Scalar(0.25) * p.m;
       k1 = w0 * p.m * Scalar(0.5);
-      k2 = w0 * p.m;
-      k3 = p.g * p.r * p.m;
-      k4 = w0 * Scalar(0.125) * p.m;
-      k5 = p.m * Scalar(0.5);
+      k2 = p.g * p.m;
+      k3 = p.m * Scalar(0.5);
     }
     /// The parameters these constants were computed from.
     const Parameters<Scalar>& parameters() const noexcept { return p; }
@@ -76,7 +74,7 @@ struct Model {
    private:
     friend struct Model;
     Parameters<Scalar> p;
-    Scalar k0, k1, k2, k3, k4, k5;
+    Scalar k0, k1, k2, k3;
   };
 
   /// M(q, t), symmetric positive (semi)definite
@@ -85,19 +83,22 @@ struct Model {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
-    const Scalar w0 = cos(q(3));
-    const Scalar w1 = cos(q(4));
+    const Scalar w0 = sin(q(4));
+    const Scalar w1 = cos(q(3));
     const Scalar w2 = w0 * w1;
-    const Scalar w3 = sin(q(4));
-    const Scalar w4 = w3 * w0;
+    const Scalar w3 = cos(q(4));
+    const Scalar w4 = w1 * w3;
     const Scalar w5 = sin(q(3));
-    const Scalar w6 = w5 * w5;
+    const Scalar w6 = c.k1 * w5;
+    const Scalar w7 = c.k0 * w3;
+    const Scalar w8 = w0 * c.k0;
+    const Scalar w9 = c.p.r * w5;
     M(0, 0) = c.p.m;
     M(1, 1) = c.p.m;
-    M(2, 2) = c.k0 * w2 * w2 + c.k0 * w4 * w4 + c.k1 * w6;
-    M(2, 3) = c.k0 * w1 * w4 - w3 * c.k0 * w2;
-    M(2, 4) = -(c.k1 * w5);
-    M(3, 3) = c.k0 * w1 * w1 + c.k0 * w3 * w3 + c.k2 * w6;
+    M(2, 2) = c.k0 * w2 * w2 + w4 * c.k0 * w4 + w6 * w5;
+    M(2, 3) = -(w4 * w8 - w2 * w7);
+    M(2, 4) = -w6;
+    M(3, 3) = w0 * w8 + w9 * w9 * c.p.m + w3 * w7;
     M(4, 4) = c.k1;
     M(0, 1) = Scalar(0);
     M(0, 2) = Scalar(0);
@@ -133,24 +134,26 @@ struct Model {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
-    const Scalar w0 = sin(q(3));
+    const Scalar w0 = cos(q(3));
     const Scalar w1 = w0 * qd(2);
-    const Scalar w2 = w1 - qd(4);
+    const Scalar w2 = cos(q(4));
     const Scalar w3 = sin(q(4));
-    const Scalar w4 = cos(q(3));
-    const Scalar w5 = w4 * qd(2);
-    const Scalar w6 = cos(q(4));
-    const Scalar w7 = w3 * w5 + w6 * qd(3);
-    const Scalar w8 = w4 * w6;
-    const Scalar w9 = w1 * qd(3);
-    const Scalar w10 = w3 * qd(3) - w5 * w6;
-    const Scalar w11 = w3 * w9 + w10 * qd(4);
-    const Scalar w12 = w3 * w4;
-    const Scalar w13 = w9 * w6 + w7 * qd(4);
-    const Scalar w14 = w5 * qd(3);
-    F(2) = w11 * c.k0 * w12 - w2 * c.k0 * w7 * w8 + c.k0 * w8 * w13 - c.k1 * w14 * w0 - w2 * c.k0 * w10 * w12;
-    F(3) = c.k3 * w0 - w2 * c.k0 * w6 * w10 - qd(3) * qd(3) * w4 * c.k2 * w0 - w3 * c.k0 * w13 + w2 * w3 * c.k0 * w7 + w11 * c.k0 * w6;
-    F(4) = c.k1 * w14;
+    const Scalar w4 = w3 * qd(3) - w1 * w2;
+    const Scalar w5 = sin(q(3));
+    const Scalar w6 = w5 * qd(2);
+    const Scalar w7 = w6 - qd(4);
+    const Scalar w8 = w7 * c.k1;
+    const Scalar w9 = c.k0 * w4;
+    const Scalar w10 = w6 * qd(3);
+    const Scalar w11 = w4 * w8 - w7 * w9 - (w3 * w10 + w4 * qd(4)) * c.k0;
+    const Scalar w12 = w3 * w1 + w2 * qd(3);
+    const Scalar w13 = c.k0 * w12;
+    const Scalar w14 = c.k0 * (w10 * w2 + w12 * qd(4)) - w12 * w8 + w7 * w13;
+    const Scalar w15 = w12 * w9 - w4 * w13 + c.k1 * w1 * qd(3);
+    const Scalar w16 = c.p.r * w5;
+    F(2) = -(w11 * w3 * w0 - w14 * w0 * w2 + w15 * w5);
+    F(3) = -(c.p.m * w16 * qd(3) * qd(3) * w0 * c.p.r + w3 * w14 - c.k2 * w16 + w11 * w2);
+    F(4) = w15;
     F(0) = Scalar(0);
     F(1) = Scalar(0);
   }
@@ -169,32 +172,38 @@ struct Model {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
-    const Scalar w0 = cos(q(3));
-    const Scalar w1 = cos(q(4));
+    const Scalar w0 = sin(q(4));
+    const Scalar w1 = cos(q(3));
     const Scalar w2 = w0 * w1;
-    const Scalar w3 = sin(q(4));
-    const Scalar w4 = w3 * w0;
+    const Scalar w3 = cos(q(4));
+    const Scalar w4 = w1 * w3;
     const Scalar w5 = sin(q(3));
-    const Scalar w6 = w5 * w5;
-    const Scalar w7 = w5 * qd(2);
-    const Scalar w8 = w7 - qd(4);
-    const Scalar w9 = w0 * qd(2);
-    const Scalar w10 = w3 * w9 + w1 * qd(3);
-    const Scalar w11 = w7 * qd(3);
-    const Scalar w12 = w3 * qd(3) - w9 * w1;
-    const Scalar w13 = w3 * w11 + w12 * qd(4);
-    const Scalar w14 = w11 * w1 + w10 * qd(4);
-    const Scalar w15 = w9 * qd(3);
+    const Scalar w6 = c.k1 * w5;
+    const Scalar w7 = c.k0 * w3;
+    const Scalar w8 = w0 * c.k0;
+    const Scalar w9 = c.p.r * w5;
+    const Scalar w10 = w1 * qd(2);
+    const Scalar w11 = w0 * qd(3) - w10 * w3;
+    const Scalar w12 = w5 * qd(2);
+    const Scalar w13 = w12 - qd(4);
+    const Scalar w14 = w13 * c.k1;
+    const Scalar w15 = c.k0 * w11;
+    const Scalar w16 = w12 * qd(3);
+    const Scalar w17 = w11 * w14 - w13 * w15 - (w0 * w16 + w11 * qd(4)) * c.k0;
+    const Scalar w18 = w0 * w10 + w3 * qd(3);
+    const Scalar w19 = c.k0 * w18;
+    const Scalar w20 = c.k0 * (w16 * w3 + w18 * qd(4)) - w18 * w14 + w13 * w19;
+    const Scalar w21 = w18 * w15 - w11 * w19 + c.k1 * w10 * qd(3);
     M(0, 0) = c.p.m;
     M(1, 1) = c.p.m;
-    M(2, 2) = c.k0 * w2 * w2 + c.k0 * w4 * w4 + c.k1 * w6;
-    M(2, 3) = c.k0 * w1 * w4 - w3 * c.k0 * w2;
-    M(2, 4) = -(c.k1 * w5);
-    M(3, 3) = c.k0 * w1 * w1 + c.k0 * w3 * w3 + c.k2 * w6;
+    M(2, 2) = c.k0 * w2 * w2 + w4 * c.k0 * w4 + w6 * w5;
+    M(2, 3) = -(w4 * w8 - w2 * w7);
+    M(2, 4) = -w6;
+    M(3, 3) = w0 * w8 + w9 * w9 * c.p.m + w3 * w7;
     M(4, 4) = c.k1;
-    F(2) = w13 * c.k0 * w4 - w8 * c.k0 * w10 * w2 + c.k0 * w2 * w14 - c.k1 * w15 * w5 - w8 * c.k0 * w12 * w4;
-    F(3) = c.k3 * w5 - w8 * c.k0 * w1 * w12 - qd(3) * qd(3) * w0 * c.k2 * w5 - w3 * c.k0 * w14 + w8 * w3 * c.k0 * w10 + w13 * c.k0 * w1;
-    F(4) = c.k1 * w15;
+    F(2) = -(w17 * w2 - w20 * w4 + w21 * w5);
+    F(3) = -(c.p.m * w9 * qd(3) * qd(3) * w1 * c.p.r + w0 * w20 - c.k2 * w9 + w17 * w3);
+    F(4) = w21;
     M(0, 1) = Scalar(0);
     M(0, 2) = Scalar(0);
     M(0, 3) = Scalar(0);
@@ -322,14 +331,15 @@ struct Model {
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
     Scalar T = Scalar(0);
-    const Scalar w0 = sin(q(3));
-    const Scalar w1 = w0 * qd(2) - qd(4);
-    const Scalar w2 = sin(q(4));
-    const Scalar w3 = cos(q(3)) * qd(2);
-    const Scalar w4 = cos(q(4));
-    const Scalar w5 = w2 * w3 + w4 * qd(3);
-    const Scalar w6 = w2 * qd(3) - w3 * w4;
-    T = w1 * w1 * c.k0 + c.k4 * w5 * w5 + qd(3) * qd(3) * c.k1 * w0 * w0 + c.k4 * w6 * w6 + c.k5 * qd(1) * qd(1) + qd(0) * qd(0) * c.k5;
+    const Scalar w0 = sin(q(4));
+    const Scalar w1 = cos(q(3)) * qd(2);
+    const Scalar w2 = cos(q(4));
+    const Scalar w3 = w0 * w1 + w2 * qd(3);
+    const Scalar w4 = sin(q(3));
+    const Scalar w5 = w4 * qd(2) - qd(4);
+    const Scalar w6 = c.p.r * w4 * qd(3);
+    const Scalar w7 = w0 * qd(3) - w1 * w2;
+    T = w3 * Scalar(0.5) * c.k0 * w3 + w5 * Scalar(0.5) * w5 * c.k1 + c.k3 * (w6 * w6 + qd(0) * qd(0) + qd(1) * qd(1)) + Scalar(0.5) * w7 * c.k0 * w7;
     return T;
   }
 
@@ -348,7 +358,7 @@ struct Model {
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
     Scalar V = Scalar(0);
-    V = c.k3 * cos(q(3));
+    V = c.k2 * cos(q(3)) * c.p.r;
     return V;
   }
 

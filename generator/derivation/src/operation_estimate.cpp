@@ -15,6 +15,8 @@ using GiNaC::ex;
 // took the local form, 16 calls against 8, and its M and F ran at 0.57 of SymPy's speed.
 constexpr double call_cost = 24;
 
+const ex minus_one = -1;
+
 class Estimate {
  public:
   Estimate(const Subexpressions& intermediates, const Variables& variables) : variables_(variables) {
@@ -50,7 +52,10 @@ class Estimate {
   }
 
   // operations of e, each distinct subexpression once (as emission's common-subexpression pass
-  // does); the parameter-only operands of a sum or product count as one constant
+  // does); the parameter-only operands of a sum or product count as one constant. A value and
+  // its negation are one node, as emission shares them: GiNaC writes a - b in one process where
+  // it writes -(b - a) in another, and counting both would make the estimate, and the choice it
+  // makes, differ between runs.
   double count(const ex& e) {
     Facts& f = facts(e);
     if (!f.dependent || f.counted) return 0;
@@ -59,6 +64,17 @@ class Estimate {
       auto definition = definitions_.find(e);
       return definition == definitions_.end() ? 0 : count(*definition->second);
     }
+    const bool signed_node = GiNaC::is_a<GiNaC::add>(e) || GiNaC::is_a<GiNaC::mul>(e);
+    if (!signed_node) return operations_of(e);
+    const ex negation = -e;
+    if (facts(negation).counted) return 0;
+    const double operations = operations_of(e);
+    facts(negation).counted = true;
+    return operations;
+  }
+
+  // the operations of e itself and of its operands not counted yet
+  double operations_of(const ex& e) {
     double operations = 0, operands = 0;
     bool constant = false;
     for (std::size_t i = 0; i < e.nops(); ++i) {
@@ -66,7 +82,8 @@ class Estimate {
       if (facts(operand).dependent) {
         operations += count(operand);
         ++operands;
-      } else {
+      } else if (!operand.is_equal(minus_one)) {
+        // a factor -1 costs nothing: emission folds the sign into a subtraction
         constant = true;
       }
     }
