@@ -1,8 +1,8 @@
 #include "operation_estimate.hpp"
 
-#include "eomgen/symbolic/expression_map.hpp"
-
 #include <cmath>
+
+#include "eomgen/symbolic/expression_map.hpp"
 
 namespace eomgen {
 namespace {
@@ -15,7 +15,11 @@ using GiNaC::ex;
 // took the local form, 16 calls against 8, and its M and F ran at 0.57 of SymPy's speed.
 constexpr double call_cost = 24;
 
-const ex minus_one = -1;
+// a local static, not one at namespace scope: GiNaC's numbers must exist before it is built
+bool is_minus_one(const ex& e) {
+  static const ex minus_one = -1;
+  return e.is_equal(minus_one);
+}
 
 class Estimate {
  public:
@@ -82,7 +86,7 @@ class Estimate {
       if (facts(operand).dependent) {
         operations += count(operand);
         ++operands;
-      } else if (!operand.is_equal(minus_one)) {
+      } else if (!is_minus_one(operand)) {
         // a factor -1 costs nothing: emission folds the sign into a subtraction
         constant = true;
       }
