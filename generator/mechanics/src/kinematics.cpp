@@ -67,7 +67,6 @@ Id common_ancestor(Id a, Id b, Node&& node) {
   return a;
 }
 
-
 // omega^{f,ancestor} as the sum of relative angular velocities along the path
 Vector angular_velocity_to_ancestor(const MechanicalSystem& s, FrameId f, FrameId ancestor) {
   Vector w;
@@ -98,25 +97,18 @@ FrameId common_ancestor(const MechanicalSystem& s, FrameId a, FrameId b) {
   return common_ancestor(a, b, [&](FrameId f) -> const Frame& { return s.frame(f); });
 }
 
-// C_ba as factors whose product, in order, it is
-static std::vector<matrix> dcm_factors(const MechanicalSystem& s, FrameId b, FrameId a) {
+matrix dcm(const MechanicalSystem& s, FrameId b, FrameId a) {
   const FrameId ancestor = common_ancestor(s, a, b);
   std::vector<Factor> down = factors_to_ancestor(s, b, ancestor);  // C_{b,anc}
   std::vector<Factor> up = factors_to_ancestor(s, a, ancestor);    // C_{a,anc}
-  // C_ba = C_{b,anc} C_{a,anc}^T
+  // C_ba = C_{b,anc} C_{a,anc}^T; two rotations about one axis meet at the ancestor as one
   if (!down.empty() && !up.empty() && down.back().axis != 0 && down.back().axis == up.back().axis) {
     down.back().angle -= up.back().angle;
     up.pop_back();
   }
-  std::vector<matrix> factors;
-  for (const Factor& f : down) factors.push_back(f.value());
-  for (auto it = up.rbegin(); it != up.rend(); ++it) factors.push_back(it->value().transpose());
-  return factors;
-}
-
-matrix dcm(const MechanicalSystem& s, FrameId b, FrameId a) {
   matrix C = identity3();
-  for (const matrix& factor : dcm_factors(s, b, a)) C = C.mul(factor);
+  for (const Factor& f : down) C = C.mul(f.value());
+  for (auto it = up.rbegin(); it != up.rend(); ++it) C = C.mul(it->value().transpose());
   return C;
 }
 
