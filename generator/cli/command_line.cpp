@@ -95,8 +95,20 @@ CLI::App* add_linearize_command(CLI::App& app, Options& o) {
   add_parameter_option(linearize, o.set, "Override a parameter's default: NAME=VALUE (repeatable)");
   linearize->add_flag("--equilibrium", o.find_equilibrium,
                       "Take --at as a guess: find the equilibrium (coordinates; rates held) by Newton's method first");
-  linearize->add_flag("--drop-cyclic", o.drop_cyclic, "Leave coordinates that appear nowhere in M and F out of the state");
-  linearize->add_option("-f,--format", o.format, "Output format")->check(CLI::IsMember({"text", "latex"}))->capture_default_str();
+  linearize->add_flag("--drop-cyclic", o.drop_cyclic,
+                      "Leave states nothing depends on out (cyclic coordinates; with constraints also speeds such as a "
+                      "wheel's spin)");
+  linearize->add_option("--sweep", o.sweep,
+                        "Linearize at every NAME = FROM, FROM+STEP, ..., TO (a parameter or an --at name): eigenvalues, "
+                        "verdicts and where the verdict changes")
+      ->type_name("NAME=FROM:TO:STEP");
+  linearize->add_option("-f,--format", o.format, "Output format (csv: with --sweep only)")
+      ->check(CLI::IsMember({"text", "latex", "json", "csv"}))
+      ->capture_default_str();
+  linearize->add_option("-o,--output", o.output_path, "Write to FILE instead of standard output (atomically)")
+      ->type_name("FILE");
+  linearize->add_option("--plot", o.sweep_plot, "With --sweep: plot the eigenvalues' real and imaginary parts, .svg or .png")
+      ->type_name("FILE");
   return linearize;
 }
 

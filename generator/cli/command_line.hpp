@@ -29,6 +29,8 @@ struct Options {
   // linearize
   bool drop_cyclic = false;
   bool find_equilibrium = false;
+  std::string sweep;       // NAME=FROM:TO:STEP
+  std::string sweep_plot;  // --plot of linearize
   // simulate
   SimulateRequest simulate;
   std::vector<std::string> init, inputs;

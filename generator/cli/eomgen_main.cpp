@@ -34,39 +34,22 @@
 #include "eomgen/derivation/numeric_evaluation.hpp"
 #include "eomgen/base/version.hpp"
 #include "command_line.hpp"
+#include "command_values.hpp"
+#include "linearize_command.hpp"
 #include "file_output.hpp"
 #include "simulate_command.hpp"
 
 namespace {
 
+using eomgen::tools::join;
+using eomgen::tools::json_document;
+using eomgen::tools::json_rows;
+using eomgen::tools::matrix_text;
+using eomgen::tools::number;
 using eomgen::tools::Options;
+using eomgen::tools::parse_assignments;
+using eomgen::tools::state_and_parameters;
 using eomgen::tools::UsageError;
-
-std::string join(const std::vector<std::string>& items) {
-  std::string out;
-  for (std::size_t i = 0; i < items.size(); ++i) out += (i ? ", " : "") + items[i];
-  return items.empty() ? "none" : out;
-}
-
-// "a=1", "b=-2.5e3" -> {a: 1, b: -2500}; `option` names the flag in messages
-std::map<std::string, double> parse_assignments(const std::vector<std::string>& items, const std::string& option) {
-  std::map<std::string, double> out;
-  for (const std::string& item : items) {
-    const auto eq = item.find('=');
-    if (eq == std::string::npos || eq == 0 || eq + 1 == item.size())
-      throw UsageError(fmt::format("{}: expected NAME=VALUE, got '{}'", option, item));
-    const std::string name = item.substr(0, eq);
-    std::string text = item.substr(eq + 1);
-    if (text[0] == '+') text.erase(0, 1);
-    double value = 0.0;
-    // from_chars: locale-independent, and must consume the whole text
-    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
-    if (ec != std::errc() || end != text.data() + text.size() || !std::isfinite(value))
-      throw UsageError(fmt::format("{}: '{}' in '{}' is not a finite number", option, item.substr(eq + 1), item));
-    if (!out.emplace(name, value).second) throw UsageError(fmt::format("{}: '{}' is given twice", option, name));
-  }
-  return out;
-}
 
 eomgen::Model load(const Options& o) { return eomgen::load_model(o.model_path, parse_assignments(o.defines, "--define")); }
 
@@ -211,46 +194,17 @@ void run_generate(const Options& o) {
 
 // ---- eval ----
 
-std::string number(double x) { return fmt::format("{}", x); }  // shortest text that reads back exactly
-
-void print_matrix(const std::string& title, const Eigen::MatrixXd& a) {
-  std::cout << fmt::format("{} ({} x {}):", title, a.rows(), a.cols()) << (a.size() == 0 ? " empty" : "") << "\n";
-  if (a.size() == 0) return;
-  std::vector<std::size_t> width(a.cols(), 0);
-  for (Eigen::Index j = 0; j < a.cols(); ++j)
-    for (Eigen::Index i = 0; i < a.rows(); ++i) width[j] = std::max(width[j], number(a(i, j)).size());
-  for (Eigen::Index i = 0; i < a.rows(); ++i) {
-    std::cout << "  [";
-    for (Eigen::Index j = 0; j < a.cols(); ++j) std::cout << (j ? "  " : " ") << fmt::format("{:>{}}", number(a(i, j)), width[j]);
-    std::cout << " ]\n";
-  }
-}
+void print_matrix(const std::string& title, const Eigen::MatrixXd& a) { std::cout << matrix_text(title, a); }
 
 void print_named(const std::string& title, const std::vector<std::pair<std::string, double>>& values) {
   std::cout << title << ":" << (values.empty() ? " none" : "") << "\n";
   for (const auto& [name, value] : values) std::cout << "  " << name << " = " << number(value) << "\n";
 }
 
-// --at (the state) and --set (parameters) as one set of named values for the evaluation
-eomgen::NamedValues state_and_parameters(const Options& o, const eomgen::Model& model) {
-  const std::map<std::string, double> at = parse_assignments(o.at, "--at");
-  const std::map<std::string, double> set = parse_assignments(o.set, "--set");
-  eomgen::NamedValues values = at;
-  for (const auto& [name, value] : set)
-    if (!values.emplace(name, value).second) throw UsageError(fmt::format("--set: '{}' is also given in --at", name));
-  const eomgen::Variables& v = model.system.variables();
-  for (const auto& [name, value] : set) {
-    bool is_parameter = false;
-    for (const auto& p : v.parameters()) is_parameter = is_parameter || p.name == name;
-    if (!is_parameter) throw eomgen::Error(fmt::format("--set: '{}' is not a parameter of the model", name));
-  }
-  return values;
-}
-
 void run_eval(const Options& o) {
   if (o.format != "text" && o.format != "json") throw UsageError("--format: eval prints 'text' or 'json'");
   const eomgen::Model model = load(o);
-  const eomgen::NamedValues values = state_and_parameters(o, model);
+  const eomgen::NamedValues values = state_and_parameters(o.at, o.set, model);
   const eomgen::Variables& v = model.system.variables();
   const eomgen::ModelEquations eom = eomgen::derive_equations(model);
   const eomgen::NumericEquations eq = eomgen::evaluate_equations(model, eom, values);
@@ -286,15 +240,6 @@ void run_eval(const Options& o) {
 
   if (o.format == "json") {
     using json = nlohmann::ordered_json;  // keys in a fixed, readable order
-    auto rows = [](const Eigen::MatrixXd& a) {
-      json out = json::array();
-      for (Eigen::Index i = 0; i < a.rows(); ++i) {
-        json row = json::array();
-        for (Eigen::Index j = 0; j < a.cols(); ++j) row.push_back(a(i, j));
-        out.push_back(row);
-      }
-      return out;
-    };
     auto column = [](const Eigen::VectorXd& x) { return json(std::vector<double>(x.data(), x.data() + x.size())); };
     auto object = [](const std::vector<std::pair<std::string, double>>& values) {
       json out = json::object();
@@ -307,9 +252,9 @@ void run_eval(const Options& o) {
     j["constraints"] = constraints;
     j["state"] = object(state);
     j["parameters"] = object(parameters);
-    j["M"] = rows(eq.mass_matrix);
+    j["M"] = json_rows(eq.mass_matrix);
     j["F"] = column(eq.forcing);
-    j["Xi"] = rows(eq.constraint_jacobian);
+    j["Xi"] = json_rows(eq.constraint_jacobian);
     j["Xi_t"] = column(eq.constraint_rate_term);
     j["b"] = column(eq.constraint_acceleration_term);
     j["phi"] = column(eq.holonomic_residuals);
@@ -318,12 +263,7 @@ void run_eval(const Options& o) {
     j["qdd"] = column(sol.qdd);
     j["lambda"] = column(sol.lambda);
     j["outputs"] = object(eq.outputs);
-    // one key per line, each value compact (a matrix on one line as an array of rows);
-    // nlohmann writes the shortest decimal that reads back to the same double
-    std::cout << "{";
-    for (auto it = j.begin(); it != j.end(); ++it)
-      std::cout << (it == j.begin() ? "\n  " : ",\n  ") << json(it.key()).dump() << ": " << it.value().dump();
-    std::cout << "\n}\n";
+    std::cout << json_document(j);
     return;
   }
   std::cout << "Model " << model.name << "\n";
@@ -342,93 +282,6 @@ void run_eval(const Options& o) {
   print_named("Outputs", eq.outputs);
   print_named("Accelerations qdd", qdd);
   if (!constraints.empty()) print_named("Multipliers lambda", lambda);
-}
-
-// ---- linearize ----
-
-std::string latex_matrix(const Eigen::MatrixXd& a) {
-  // an empty bmatrix (B of a model without inputs) would be rows of nothing: say what it is
-  if (a.size() == 0) return fmt::format("\\text{{(empty, {} \\times {})}}", a.rows(), a.cols());
-  std::string out = "\\begin{bmatrix}\n";
-  for (Eigen::Index i = 0; i < a.rows(); ++i) {
-    for (Eigen::Index j = 0; j < a.cols(); ++j) out += (j ? " & " : "  ") + number(a(i, j));
-    out += i + 1 < a.rows() ? " \\\\\n" : "\n";
-  }
-  return out + "\\end{bmatrix}";
-}
-
-std::string complex_number(const std::complex<double>& z) {
-  if (z.imag() == 0) return number(z.real());
-  return fmt::format("{} {} {}i", number(z.real()), z.imag() < 0 ? "-" : "+", number(std::abs(z.imag())));
-}
-
-void run_linearize(const Options& o) {
-  const eomgen::Model model = load(o);
-  const eomgen::NamedValues values = state_and_parameters(o, model);
-  const eomgen::ModelEquations eom = eomgen::derive_equations(model);
-  const eomgen::SymbolicLinearization symbolic = eomgen::linearize_symbolic(model, eom);
-  eomgen::LinearizeOptions options;
-  options.drop_cyclic = o.drop_cyclic;
-  eomgen::NamedValues at = values;
-  std::string found;
-  if (o.find_equilibrium) {
-    const eomgen::Equilibrium eq = eomgen::find_equilibrium(model, eom, symbolic, values);
-    at = eq.point;
-    std::vector<std::string> q;
-    for (const auto& c : model.system.variables().coordinates()) q.push_back(fmt::format("{} = {}", c.name, number(at.at(c.name))));
-    found = fmt::format("Equilibrium found from the guess by Newton's method in {} iterations: {} (residual {:.3g})\n",
-                        eq.iterations, join(q), eq.residual);
-  }
-  const eomgen::LinearModel lin = eomgen::linearize(model, eom, symbolic, at, options);
-  // an operating point whose accelerations are not zero is a point of a trajectory: A is
-  // still its linearization, but the stability theorems are about equilibria
-  const double scale = std::max(1.0, lin.A.cwiseAbs().maxCoeff());
-  const bool equilibrium = lin.qdd0.cwiseAbs().maxCoeff() <= 1e-9 * scale;
-  std::vector<std::string> point;
-  for (const auto& [name, value] : at) point.push_back(fmt::format("{} = {}", name, number(value)));
-
-  if (o.format == "latex") {
-    std::cout << fmt::format("% linearization of {} about {}\n", model.name, join(point));
-    std::cout << "A = " << latex_matrix(lin.A) << "\n\nB = " << latex_matrix(lin.B) << "\n\n";
-    if (lin.M.size() > 0)
-      std::cout << "M = " << latex_matrix(lin.M) << "\n\nD = " << latex_matrix(lin.D) << "\n\nK = "
-                << latex_matrix(lin.K) << "\n\nB_u = " << latex_matrix(lin.B_u) << "\n";
-    return;
-  }
-  std::cout << found;
-  std::cout << fmt::format("Linearization of {} about {} (others 0, parameters at their defaults)\n", model.name,
-                           point.empty() ? std::string("the origin") : join(point));
-  std::cout << fmt::format("Accelerations at the point: [{}]{}\n", [&] {
-    std::vector<std::string> a;
-    for (Eigen::Index i = 0; i < lin.qdd0.size(); ++i) a.push_back(number(lin.qdd0(i)));
-    return join(a);
-  }(), equilibrium ? " (an equilibrium or steady motion)" : " (not an equilibrium: A linearizes about a point of a trajectory)");
-  std::cout << fmt::format("State kept: [{}]; dropped as cyclic: {}\n", join(lin.state_names), join(lin.dropped));
-  if (!lin.dependent.empty())
-    std::cout << fmt::format("Determined by the constraints (not states): {}\n", join(lin.dependent));
-  std::cout << fmt::format("Inputs: [{}]\n\n", join(lin.input_names));
-  print_matrix("A", lin.A);
-  print_matrix("B", lin.B);
-  if (lin.M.size() > 0) {
-    std::cout << "\nSecond-order form M dqdd + D dqd + K dq = B_u du (all coordinates):\n";
-    print_matrix("M", lin.M);
-    print_matrix("D (damping and gyroscopic)", lin.D);
-    print_matrix("K (stiffness)", lin.K);
-    print_matrix("B_u", lin.B_u);
-  } else {
-    std::cout << "\nSecond-order form: none (a constrained model's linear model is in independent states)\n";
-  }
-  const eomgen::StabilityReport report = eomgen::assess_stability(lin.A);
-  std::vector<std::string> eig;
-  for (Eigen::Index i = 0; i < report.eigenvalues.size(); ++i) eig.push_back(complex_number(report.eigenvalues(i)));
-  std::cout << fmt::format("\nEigenvalues of A: {}\n", join(eig));
-  if (!equilibrium) {
-    std::cout << "Stability: not assessed (the point is not an equilibrium)\n";
-    return;
-  }
-  std::cout << fmt::format("Linear system (notes, Theorem A.21): {}\n", eomgen::to_string(report.linear));
-  std::cout << fmt::format("Equilibrium, by Lyapunov's indirect method (Theorem A.22): {}\n",
-                           eomgen::to_string(report.nonlinear));
 }
 
 // ---- simulate ----
@@ -489,7 +342,7 @@ int main(int argc, char** argv) {
       {tools::add_derive_command(app, o), succeeds<run_derive>},
       {tools::add_eval_command(app, o), succeeds<run_eval>},
       {tools::add_generate_command(app, o), succeeds<run_generate>},
-      {tools::add_linearize_command(app, o), succeeds<run_linearize>},
+      {tools::add_linearize_command(app, o), succeeds<eomgen::tools::run_linearize>},
       {tools::add_simulate_command(app, o), run_simulate},
   };
   try {

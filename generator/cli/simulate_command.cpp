@@ -22,6 +22,7 @@
 #include "eomgen_build_config.hpp"
 #include "eomrt/integrators.hpp"
 #include "file_output.hpp"
+#include "gnuplot.hpp"
 #include "process.hpp"
 
 namespace eomgen::tools {
@@ -236,29 +237,16 @@ fs::path simulation_program(const Model& model, const std::string& header, const
   return program;
 }
 
-/// A string for gnuplot's single quotes, where only the quote itself is special ('' in it).
-std::string gnuplot_quoted(const std::string& text) {
-  std::string out = "'";
-  for (char c : text) {
-    if (c == '\'') out += '\'';
-    if (c == '\n' || c == '\r') continue;
-    out += c;
-  }
-  return out + "'";
-}
-
 /// gnuplot script: coordinates against time above, T, V and T+V below; `image` is where gnuplot
-/// writes (a temporary name), `png` chooses the terminal (else SVG).
-std::string plot_script(const Model& model, const std::string& csv, const std::string& image, bool png,
-                        const std::string& title) {
+/// writes (a temporary name), `image_name`'s extension chooses the terminal.
+std::string plot_script(const Model& model, const std::string& csv, const std::string& image,
+                        const std::string& image_name, const std::string& title) {
   const Variables& vars = model.system.variables();
   const std::size_t nq = vars.coordinates().size();
   const std::size_t nc = model.system.constraints().size();
   const std::size_t nu = vars.inputs().size();
   const std::size_t energy_column = 1 + 2 * nq + nc + nu + 1;  // of T; gnuplot counts from 1 (t)
-  std::string s;
-  s += png ? "set terminal pngcairo size 1000,800 noenhanced font 'sans,10'\n"
-           : "set terminal svg size 1000,800 dynamic noenhanced font 'sans,11' background rgb 'white'\n";
+  std::string s = gnuplot_terminal(image_name, 1000, 800);
   s += "set output " + gnuplot_quoted(image) + "\n";
   s += "set datafile separator ','\n";
   s += "set grid\nset key outside right top\nset xlabel 't [s]'\n";
@@ -308,13 +296,7 @@ int run_simulate(const Model& model, const SimulateRequest& r) {
   const std::string stem = cpp_identifier(model.name);
   const std::string csv_path = r.csv_path.empty() ? stem + ".csv" : r.csv_path;
   const std::string plot_path = r.plot_path.empty() ? stem + ".svg" : r.plot_path;
-  if (r.plot) {
-    const std::string ext = fs::path(plot_path).extension().string();
-    if (ext != ".svg" && ext != ".png")
-      throw UsageError(fmt::format("--plot: expected a .svg or .png file, got '{}'", plot_path));
-    if (!program_available("gnuplot"))
-      throw Error("gnuplot is not installed (on Debian: apt-get install gnuplot-nox); install it or pass --no-plot");
-  }
+  if (r.plot) require_plot_target(plot_path, "--plot", "pass --no-plot");
 
   const ModelEquations eom = derive_equations(model);
   EmitOptions emit;
@@ -348,20 +330,10 @@ int run_simulate(const Model& model, const SimulateRequest& r) {
   std::cout << fmt::format("CSV:  {}\n", csv_path);
 
   if (r.plot) {
-    PendingFile image(plot_path);
-    PendingFile script(plot_path + ".gp");
     const std::string title = fmt::format("{}: {}", model.name, model.description);
-    // absolute paths: gnuplot runs a data file named "<cmd" and an output named "|cmd" as
-    // shell commands, whatever the quoting; a path starting with '/' is never one
-    write_atomically(script.path(), plot_script(model, fs::absolute(csv_path).string(), fs::absolute(image.path()).string(),
-                                                fs::path(plot_path).extension() == ".png", title));
-    const fs::path log = fs::path(script.path()).replace_extension(".log");
-    const int plotted = run_process({"gnuplot", fs::absolute(script.path()).string()}, log.string());
-    const std::string output = read_file(log);
-    std::error_code ec;
-    fs::remove(log, ec);
-    if (plotted != 0) throw Error(fmt::format("gnuplot failed (exit status {}):\n{}", plotted, output));
-    image.commit();
+    plot_with_gnuplot(plot_path, [&](const std::string& image) {
+      return plot_script(model, fs::absolute(csv_path).string(), image, plot_path, title);
+    });
     std::cout << fmt::format("plot: {}\n", plot_path);
   }
   return 0;

@@ -152,7 +152,8 @@ TEST(ShippedModels, EveryModelLoadsAndDerivesWithConsistentShapes) {
 TEST(ShippedModels, OnlyTheNonholonomicModelsDeclareIndependentSpeeds) {
   // the holonomic ones leave the choice to the runtime's QR null space
   const std::map<std::string, std::vector<std::size_t>> declared = {{"knife_edge", {0, 2}},        // x, theta
-                                                                    {"rolling_coin", {2, 3, 4}}};  // psi, theta, phi
+                                                                    {"rolling_coin", {2, 3, 4}},   // psi, theta, phi
+                                                                    {"whipple_bicycle", {3, 6, 5}}};  // phi, delta, theta_r
   for (const auto& file : shipped_models()) {
     SCOPED_TRACE(file.string());
     const Model m = eomgen::load_model(file.string());

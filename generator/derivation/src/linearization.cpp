@@ -10,6 +10,7 @@
 
 #include "eomgen/base/error.hpp"
 #include "eomgen/mechanics/variables.hpp"
+#include "eomgen/symbolic/expression_tape.hpp"
 #include "eomrt/linearization.hpp"
 
 namespace eomgen {
@@ -17,6 +18,20 @@ namespace eomgen {
 using GiNaC::ex;
 using GiNaC::ex_to;
 using GiNaC::symbol;
+
+/// See SymbolicLinearization::program. The registers of each matrix are row-major.
+struct LinearizationProgram {
+  std::vector<GiNaC::ex> inputs;  ///< t, q, qd, u, parameters (numeric_substitution's), qdd, lambda
+  ExpressionTape tape;
+  struct Matrix {
+    Eigen::Index rows = 0, cols = 0;
+    std::vector<std::uint32_t> registers;
+    std::string name;
+  };
+  Matrix M, F, Xi, Xi_t, b, phi, K, D, B_u, S_q, S_qd, C_q;
+
+  explicit LinearizationProgram(std::vector<GiNaC::ex> in) : inputs(std::move(in)), tape(inputs) {}
+};
 
 namespace {
 
@@ -126,6 +141,41 @@ void mark_cyclic_by_evaluation(const Model& model, const ModelEquations& eom, Sy
   for (std::size_t k : candidates) lin.cyclic[k] = vanishes[k];
 }
 
+std::shared_ptr<const LinearizationProgram> compile_program(const Model& model, const ModelEquations& eom,
+                                                            const SymbolicLinearization& lin) {
+  const Variables& vars = model.system.variables();
+  std::vector<ex> inputs{vars.time()};
+  for (const Coordinate& c : vars.coordinates()) inputs.push_back(c.q), inputs.push_back(c.qd);
+  for (const Input& u : vars.inputs()) inputs.push_back(u.symbol);
+  for (const Parameter& p : vars.parameters()) inputs.push_back(p.symbol);
+  for (const Coordinate& c : vars.coordinates()) inputs.push_back(c.qdd);
+  for (const auto& l : lin.lambda) inputs.push_back(l);
+  auto program = std::make_shared<LinearizationProgram>(std::move(inputs));
+  ExpressionTape& tape = program->tape;
+  for (const auto& d : eom.subexpressions.definitions()) tape.define(d.symbol, d.value, "intermediate " + d.symbol.get_name());
+  for (const auto& d : lin.derivatives.definitions()) tape.define(d.symbol, d.value, "derivative " + d.symbol.get_name());
+  const auto matrix = [&](const GiNaC::matrix& m, const std::string& name) {
+    LinearizationProgram::Matrix out{m.rows(), m.cols(), {}, name};
+    for (unsigned i = 0; i < m.rows(); ++i)
+      for (unsigned j = 0; j < m.cols(); ++j)
+        out.registers.push_back(tape.compile(m(i, j), fmt::format("{}[{},{}]", name, i + 1, j + 1)));
+    return out;
+  };
+  program->M = matrix(eom.mass_matrix, "M");
+  program->F = matrix(eom.forcing, "F");
+  program->Xi = matrix(eom.constraint_jacobian, "Xi");
+  program->Xi_t = matrix(eom.constraint_rate_term, "Xi_t");
+  program->b = matrix(eom.constraint_acceleration_term, "b");
+  program->phi = matrix(eom.holonomic_residuals, "phi");
+  program->K = matrix(lin.K, "K");
+  program->D = matrix(lin.D, "D");
+  program->B_u = matrix(lin.B_u, "B_u");
+  program->S_q = matrix(lin.S_q, "S_q");
+  program->S_qd = matrix(lin.S_qd, "S_qd");
+  program->C_q = matrix(lin.C_q, "C_q");
+  return program;
+}
+
 }  // namespace
 
 SymbolicLinearization linearize_symbolic(const Model& model, const ModelEquations& eom) {
@@ -173,6 +223,7 @@ SymbolicLinearization linearize_symbolic(const Model& model, const ModelEquation
     }
   }
   if (m == 0) mark_cyclic_by_evaluation(model, eom, lin);
+  lin.program = compile_program(model, eom, lin);
   return lin;
 }
 
@@ -201,37 +252,74 @@ Eigen::MatrixXd columns_of(const Eigen::MatrixXd& a, const std::vector<Eigen::In
   return out;
 }
 
-/// K, D, B_u, S_q and S_qd of `symbolic` in numbers (S_q, S_qd empty without constraints).
-eomrt::LinearizationTerms<double> terms_in_numbers(const SymbolicLinearization& symbolic, const DoubleEvaluator& eval) {
-  eomrt::LinearizationTerms<double> terms;
-  terms.K = evaluate_matrix(symbolic.K, eval, "K");
-  terms.D = evaluate_matrix(symbolic.D, eval, "D");
-  terms.B_u = evaluate_matrix(symbolic.B_u, eval, "B_u");
-  terms.S_q = evaluate_matrix(symbolic.S_q, eval, "S_q");
-  terms.S_qd = evaluate_matrix(symbolic.S_qd, eval, "S_qd");
-  return terms;
-}
+/// One operating point run on SymbolicLinearization::program.
+class PointEvaluation {
+ public:
+  PointEvaluation(const Model& model, const LinearizationProgram& program, const NamedValues& point)
+      : program_(program) {
+    const GiNaC::exmap values = numeric_substitution(model, point);  // checks the names
+    for (const ex& s : program.inputs) {
+      const auto it = values.find(s);
+      inputs_.push_back(it == values.end() ? 0.0 : ex_to<GiNaC::numeric>(it->second).to_double());
+    }
+    program_.tape.evaluate(inputs_, registers_);
+  }
+
+  /// the accelerations and multipliers the derivatives are taken at; evaluates again
+  void set_accelerations(const Eigen::VectorXd& qdd, const Eigen::VectorXd& lambda) {
+    const std::size_t first = inputs_.size() - static_cast<std::size_t>(qdd.size() + lambda.size());
+    for (Eigen::Index j = 0; j < qdd.size(); ++j) inputs_[first + static_cast<std::size_t>(j)] = qdd(j);
+    for (Eigen::Index r = 0; r < lambda.size(); ++r)
+      inputs_[first + static_cast<std::size_t>(qdd.size() + r)] = lambda(r);
+    program_.tape.evaluate(inputs_, registers_);
+  }
+
+  /// \throws Error as evaluate_matrix does, for an entry that is not finite
+  Eigen::MatrixXd matrix(const LinearizationProgram::Matrix& m) const {
+    Eigen::MatrixXd out(m.rows, m.cols);
+    for (Eigen::Index i = 0; i < m.rows; ++i)
+      for (Eigen::Index j = 0; j < m.cols; ++j) {
+        const double x = registers_[m.registers[static_cast<std::size_t>(i * m.cols + j)]];
+        if (!std::isfinite(x))
+          throw Error(fmt::format("evaluating {}[{},{}] at this state: the result is not finite (a division by zero, "
+                                  "or a root or logarithm of a negative number)",
+                                  m.name, i + 1, j + 1));
+        out(i, j) = x;
+      }
+    return out;
+  }
+
+  /// M, F, Xi, Xi_t, b and phi (what the accelerations and the constraints need; no
+  /// energies or outputs)
+  NumericEquations equations() const {
+    NumericEquations e;
+    e.mass_matrix = matrix(program_.M);
+    e.forcing = matrix(program_.F);
+    e.constraint_jacobian = matrix(program_.Xi);
+    e.constraint_rate_term = matrix(program_.Xi_t);
+    e.constraint_acceleration_term = matrix(program_.b);
+    e.holonomic_residuals = matrix(program_.phi);
+    return e;
+  }
+
+  eomrt::LinearizationTerms<double> terms() const {
+    eomrt::LinearizationTerms<double> t;
+    t.K = matrix(program_.K);
+    t.D = matrix(program_.D);
+    t.B_u = matrix(program_.B_u);
+    t.S_q = matrix(program_.S_q);
+    t.S_qd = matrix(program_.S_qd);
+    return t;
+  }
+
+ private:
+  const LinearizationProgram& program_;
+  std::vector<double> inputs_, registers_;
+};
 
 /// -0 from negating a zero would print as "-0"
 void clear_negative_zeros(std::initializer_list<Eigen::MatrixXd*> matrices) {
   for (Eigen::MatrixXd* m : matrices) *m = m->unaryExpr([](double v) { return v == 0 ? 0.0 : v; });
-}
-
-/// Throws unless the point satisfies the constraints, at position and at velocity level.
-void require_on_constraints(const Model& model, const NumericEquations& at, const NamedValues& point) {
-  const auto& coordinates = model.system.variables().coordinates();
-  Eigen::VectorXd qd(static_cast<Eigen::Index>(coordinates.size()));
-  for (Eigen::Index j = 0; j < qd.size(); ++j) {
-    const auto it = point.find(coordinates[static_cast<std::size_t>(j)].name + "_dot");
-    qd(j) = it == point.end() ? 0.0 : it->second;
-  }
-  const Eigen::VectorXd velocity_residual = at.constraint_jacobian * qd + at.constraint_rate_term;
-  const double violation = std::max(at.holonomic_residuals.size() ? at.holonomic_residuals.cwiseAbs().maxCoeff() : 0.0,
-                                    velocity_residual.cwiseAbs().maxCoeff());
-  if (violation > 1e-9)
-    throw Error(fmt::format("linearizing {}: the operating point violates the constraints (largest residual "
-                            "{:.3g}); give coordinates and rates that satisfy them",
-                            model.name, violation));
 }
 
 /// Independent coordinates and speeds at a point on the constraints: the full state's
@@ -298,25 +386,28 @@ TangentSpace tangent_space(const Model& model, const Eigen::MatrixXd& Xi, const 
   return space;
 }
 
-/// The reduced A and B in the tangent space's states, without the kept coordinates nothing
-/// depends on when asked to drop them, and the names of what was kept, dropped and determined.
-void reduce(const Model& model, const TangentSpace& space, const LinearizeOptions& options, LinearModel& lin) {
+/// The reduced A and B in the tangent space's states, without the states nothing depends on
+/// when asked to drop them, and the names of what was kept, dropped and determined.
+/// \return the kept states, as indices into the tangent space's [q_kept; v_independent]
+std::vector<Eigen::Index> reduce(const Model& model, const TangentSpace& space, const LinearizeOptions& options,
+                                 LinearModel& lin) {
   const auto& coordinates = model.system.variables().coordinates();
   const auto name = [&](Eigen::Index i) { return coordinates[static_cast<std::size_t>(i)].name; };
   const Eigen::MatrixXd A = space.P * lin.A_full * space.T, B = space.P * lin.B_full;
   const Eigen::Index nk = static_cast<Eigen::Index>(space.q_kept.size()), ns = A.rows();
-  // cyclic: a kept coordinate nothing else in the reduced model depends on. Dropping one can
-  // free another (the rolling coin's heading moves only x and y), so this runs to a fixed point
+  // a state nothing else in the reduced model depends on: a cyclic coordinate, or a speed
+  // held constant to first order that enters nowhere (a wheel's spin). Dropping one can free
+  // another (the rolling coin's heading moves only x and y), so this runs to a fixed point
   std::vector<bool> keep(static_cast<std::size_t>(ns), true);
   const double scale = std::max(1.0, A.cwiseAbs().maxCoeff());
   for (bool changed = options.drop_cyclic; changed;) {
     changed = false;
-    for (Eigen::Index j = 0; j < nk; ++j) {
+    for (Eigen::Index j = 0; j < ns; ++j) {
       if (!keep[static_cast<std::size_t>(j)]) continue;
       double largest = 0;
       for (Eigen::Index i = 0; i < ns; ++i)
         if (keep[static_cast<std::size_t>(i)]) largest = std::max(largest, std::abs(A(i, j)));
-      if (largest <= 1e-12 * scale) keep[static_cast<std::size_t>(j)] = false, changed = true;
+      if (largest <= operating_point_tolerance * scale) keep[static_cast<std::size_t>(j)] = false, changed = true;
     }
   }
   std::vector<Eigen::Index> rows;
@@ -335,40 +426,103 @@ void reduce(const Model& model, const TangentSpace& space, const LinearizeOption
   for (Eigen::Index i : space.v_dependent) lin.dependent.push_back(name(i) + "_dot");
   lin.A = A(rows, rows);
   lin.B = B(rows, Eigen::all);
+  return rows;
+}
+
+/// The reduced second-order form (see LinearModel::M) where the kept coordinates are the
+/// coordinates of the kept speeds and the coordinates' rows of A say dq' = dnu.
+void reduced_second_order_form(const Model& model, const TangentSpace& space, const std::vector<Eigen::Index>& kept,
+                               const Eigen::MatrixXd& mass_matrix, LinearModel& lin) {
+  const auto& coordinates = model.system.variables().coordinates();
+  const Eigen::Index nk = static_cast<Eigen::Index>(space.q_kept.size());
+  std::vector<Eigen::Index> q, v;  // coordinate indices of the kept coordinates and speeds
+  std::vector<Eigen::Index> speed_columns;  // the kept speeds' columns of G
+  for (Eigen::Index j : kept) {
+    if (j < nk) {
+      q.push_back(space.q_kept[static_cast<std::size_t>(j)]);
+    } else {
+      v.push_back(space.v_independent[static_cast<std::size_t>(j - nk)]);
+      speed_columns.push_back(j - nk);
+    }
+  }
+  const auto names = [&](const std::vector<Eigen::Index>& indices, const char* suffix) {
+    std::vector<std::string> out;
+    for (Eigen::Index i : indices) out.push_back(coordinates[static_cast<std::size_t>(i)].name + suffix);
+    return out;
+  };
+  const auto list = [](const std::vector<std::string>& items) {
+    std::string out;
+    for (const std::string& item : items) out += (out.empty() ? "" : ", ") + item;
+    return out.empty() ? std::string("none") : out;
+  };
+  if (q != v) {
+    lin.no_second_order = fmt::format("the kept coordinates ({}) are not those of the kept independent speeds ({})",
+                                      list(names(q, "")), list(names(v, "_dot")));
+    return;
+  }
+  const Eigen::Index k = static_cast<Eigen::Index>(q.size());
+  const double scale = std::max(1.0, lin.A.cwiseAbs().maxCoeff());
+  if (k == 0 || !lin.A.topLeftCorner(k, k).isZero(operating_point_tolerance * scale) ||
+      !(lin.A.topRightCorner(k, k) - Eigen::MatrixXd::Identity(k, k)).isZero(operating_point_tolerance * scale)) {
+    lin.no_second_order = k == 0 ? "no coordinates are kept"
+                                 : "the kept coordinates' rates are not the independent speeds at this point";
+    return;
+  }
+  const Eigen::Index n = mass_matrix.rows();
+  const Eigen::MatrixXd G = space.T.bottomRightCorner(n, static_cast<Eigen::Index>(space.v_independent.size()))(
+      Eigen::all, speed_columns);
+  lin.M = G.transpose() * mass_matrix * G;
+  lin.K = -lin.M * lin.A.bottomLeftCorner(k, k);
+  lin.D = -lin.M * lin.A.bottomRightCorner(k, k);
+  lin.B_u = lin.M * lin.B.bottomRows(k);
+  lin.second_order_coordinates = names(q, "");
 }
 
 /// The reduced linear model of a constrained system (see the header).
-void linearize_constrained(const Model& model, const ModelEquations& eom, const SymbolicLinearization& symbolic,
+void linearize_constrained(const Model& model, const SymbolicLinearization& symbolic,
                            const NamedValues& point, const LinearizeOptions& options, LinearModel& lin) {
-  const NumericEquations at = evaluate_equations(model, eom, point);
-  require_on_constraints(model, at, point);
+  try {
+    ConstrainedPoint completed = satisfy_constraints(
+        model, [&](const NamedValues& at) { return PointEvaluation(model, *symbolic.program, at).equations(); }, point);
+    lin.point = std::move(completed.point);
+    lin.solved = std::move(completed.solved);
+  } catch (const Error& e) {
+    throw Error(fmt::format("linearizing {}: {}", model.name, e.what()));
+  }
+  PointEvaluation run(model, *symbolic.program, lin.point);
+  const NumericEquations at = run.equations();
   const eomrt::KktSystem<double> kkt = factorize_kkt(at);
   const AccelerationSolution solution = solve_accelerations(at, kkt);
   lin.qdd0 = solution.qdd;
-  const DoubleEvaluator eval = terms_at(model, eom, symbolic, point, lin.qdd0, solution.lambda);
-  const eomrt::LinearizationTerms<double> terms = terms_in_numbers(symbolic, eval);
-  const Eigen::MatrixXd C_q = evaluate_matrix(symbolic.C_q, eval, "C_q");
+  run.set_accelerations(lin.qdd0, solution.lambda);
+  const eomrt::LinearizationTerms<double> terms = run.terms();
+  const Eigen::MatrixXd C_q = run.matrix(symbolic.program->C_q);
   Eigen::MatrixXd derivatives;
   eomrt::first_order_form(kkt, terms, derivatives, lin.A_full, lin.B_full);
-  reduce(model, tangent_space(model, at.constraint_jacobian, C_q), options, lin);
+  const TangentSpace space = tangent_space(model, at.constraint_jacobian, C_q);
+  const std::vector<Eigen::Index> kept = reduce(model, space, options, lin);
+  reduced_second_order_form(model, space, kept, at.mass_matrix, lin);
 }
 
 /// The linear model of an unconstrained system (see the header).
-void linearize_unconstrained(const Model& model, const ModelEquations& eom, const SymbolicLinearization& symbolic,
+void linearize_unconstrained(const Model& model, const SymbolicLinearization& symbolic,
                              const NamedValues& point, const LinearizeOptions& options, LinearModel& lin) {
   const auto& coordinates = model.system.variables().coordinates();
   const Eigen::Index n = static_cast<Eigen::Index>(coordinates.size());
-  const NumericEquations at = evaluate_equations(model, eom, point);
+  PointEvaluation run(model, *symbolic.program, point);
+  const NumericEquations at = run.equations();
   lin.M = at.mass_matrix;
   const Eigen::LLT<Eigen::MatrixXd> llt(lin.M);
   if (!eomrt::cholesky_is_regular(llt, eomrt::default_singular_rcond<double>()))
     throw Error(fmt::format("linearizing {}: the mass matrix is singular at the operating point", model.name));
   lin.qdd0 = llt.solve(at.forcing);
-  const eomrt::LinearizationTerms<double> terms =
-      terms_in_numbers(symbolic, terms_at(model, eom, symbolic, point, lin.qdd0, Eigen::VectorXd()));
+  run.set_accelerations(lin.qdd0, Eigen::VectorXd());
+  const eomrt::LinearizationTerms<double> terms = run.terms();
   lin.K = terms.K;
   lin.D = terms.D;
   lin.B_u = terms.B_u;
+  for (const Coordinate& c : coordinates) lin.second_order_coordinates.push_back(c.name);
+  lin.point = point;
   eomrt::first_order_form(llt, terms, lin.A_full, lin.B_full);
   // the state: the kept coordinates, then every rate
   std::vector<Eigen::Index> states;
@@ -391,12 +545,13 @@ void linearize_unconstrained(const Model& model, const ModelEquations& eom, cons
 
 LinearModel linearize(const Model& model, const ModelEquations& eom, const SymbolicLinearization& symbolic,
                       const NamedValues& point, const LinearizeOptions& options) {
+  EOMGEN_DEMAND(symbolic.program != nullptr, "linearize: a SymbolicLinearization without its compiled program");
   LinearModel lin;
   for (const Input& u : model.system.variables().inputs()) lin.input_names.push_back(u.name);
   if (eom.constraint_count > 0)
-    linearize_constrained(model, eom, symbolic, point, options, lin);
+    linearize_constrained(model, symbolic, point, options, lin);
   else
-    linearize_unconstrained(model, eom, symbolic, point, options, lin);
+    linearize_unconstrained(model, symbolic, point, options, lin);
   clear_negative_zeros({&lin.A, &lin.B, &lin.K, &lin.D, &lin.B_u, &lin.A_full, &lin.B_full});
   return lin;
 }

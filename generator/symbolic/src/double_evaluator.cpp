@@ -8,96 +8,12 @@
 #include <vector>
 
 #include "eomgen/base/error.hpp"
+#include "order_independent_arithmetic.hpp"
 
 namespace eomgen {
 
 using GiNaC::ex;
 using GiNaC::is_a;
-
-namespace {
-
-// GiNaC orders the operands of a sum or product by hash values seeded from addresses, so the
-// order differs from process to process. Floating-point addition and multiplication are not
-// associative: evaluating operands in GiNaC's order would make the last digits of M, F, T, V
-// (and the verdicts that compare them with a tolerance) depend on the run. Both reductions
-// below give the same bits for any order of the same values, and the same bits with the
-// opposite sign for negated operands (GiNaC writes one value as l*(a - b) in one run and as
-// -l*(b - a) in another).
-
-bool all_finite(const std::vector<double>& xs) {
-  return std::all_of(xs.begin(), xs.end(), [](double x) { return std::isfinite(x); });
-}
-
-// A zero result is +0: -0 would print as "-0" in some runs and flip atan2's branch.
-double without_negative_zero(double x) { return x == 0.0 ? 0.0 : x; }
-
-// The exact sum rounded once to the nearest double (Shewchuk's non-overlapping partials, then
-// a round-half-even correction from the partials below the leading one), hence independent of
-// the order of the terms.
-double correctly_rounded_sum(const std::vector<double>& terms) {
-  if (!all_finite(terms)) {
-    // inf, -inf, NaN: the IEEE sum of these does not depend on order (inf - inf is NaN)
-    double x = 0.0;
-    for (double t : terms) x += std::isfinite(t) ? 0.0 : t;
-    return x;
-  }
-  std::vector<double> partials;  // non-overlapping, increasing magnitude; their sum is exact
-  for (double x : terms) {
-    std::size_t kept = 0;
-    for (double y : partials) {
-      if (std::fabs(x) < std::fabs(y)) std::swap(x, y);
-      const double hi = x + y;
-      const double lo = y - (hi - x);
-      if (lo != 0.0) partials[kept++] = lo;
-      x = hi;
-    }
-    if (!std::isfinite(x)) {
-      // an intermediate overflow; the ordered sum of sorted terms is still order-independent
-      std::vector<double> sorted = terms;
-      std::sort(sorted.begin(), sorted.end());
-      double s = 0.0;
-      for (double t : sorted) s += t;
-      return s;
-    }
-    partials.resize(kept);
-    partials.push_back(x);
-  }
-  if (partials.empty()) return 0.0;
-  std::size_t n = partials.size() - 1;
-  double hi = partials[n], lo = 0.0;
-  while (n > 0) {
-    const double x = hi, y = partials[--n];
-    hi = x + y;
-    lo = y - (hi - x);
-    if (lo != 0.0) break;
-  }
-  // hi + lo is exact here; when lo is exactly half an ulp of hi, the partials further down
-  // decide which way the true sum rounds
-  if (n > 0 && ((lo < 0.0 && partials[n - 1] < 0.0) || (lo > 0.0 && partials[n - 1] > 0.0))) {
-    const double twice = lo * 2.0;
-    const double x = hi + twice;
-    if (twice == x - hi) hi = x;
-  }
-  return without_negative_zero(hi);
-}
-
-// The product of the magnitudes in increasing order, then the sign: the same bits for any
-// order of the factors.
-double ordered_product(std::vector<double> factors) {
-  if (std::any_of(factors.begin(), factors.end(), [](double x) { return std::isnan(x); }))
-    return std::numeric_limits<double>::quiet_NaN();
-  bool negative = false;
-  for (double& x : factors) {
-    negative ^= std::signbit(x);
-    x = std::fabs(x);
-  }
-  std::sort(factors.begin(), factors.end());
-  double p = 1.0;
-  for (double x : factors) p *= x;
-  return without_negative_zero(negative ? -p : p);
-}
-
-}  // namespace
 
 double DoubleEvaluator::finite(const ex& e, const std::string& what) const {
   const double x = value(e, what);
@@ -123,7 +39,8 @@ double DoubleEvaluator::value(const ex& e, const std::string& what) const {
   if (is_a<GiNaC::add>(e) || is_a<GiNaC::mul>(e)) {
     std::vector<double> operands(e.nops());
     for (std::size_t i = 0; i < e.nops(); ++i) operands[i] = value(e.op(i), what);
-    return is_a<GiNaC::add>(e) ? correctly_rounded_sum(operands) : ordered_product(std::move(operands));
+    return is_a<GiNaC::add>(e) ? detail::correctly_rounded_sum(operands.data(), operands.size())
+                               : detail::ordered_product(operands.data(), operands.size());
   }
   if (is_a<GiNaC::power>(e)) {
     const double base = value(e.op(0), what);

@@ -31,12 +31,14 @@
 #include <ginac/ginac.h>
 
 #include <complex>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "eomgen/derivation/equations_of_motion.hpp"
 #include "eomgen/derivation/model_equations.hpp"
 #include "eomgen/derivation/numeric_evaluation.hpp"
+#include "eomgen/derivation/operating_point.hpp"
 #include "eomgen/symbolic/subexpressions.hpp"
 
 namespace eomgen {
@@ -56,6 +58,9 @@ struct SymbolicLinearization {
   /// coordinates that appear nowhere in M and F (their columns of K are structurally zero):
   /// cyclic, so they may be dropped from the state
   std::vector<bool> cyclic;
+  /// M, F, Xi, Xi_t, b and the terms above compiled into one ExpressionTape, so that each
+  /// further operating point (a sweep's) costs numbers only
+  std::shared_ptr<const struct LinearizationProgram> program;
 };
 
 /// Differentiates R = M qdd - F of `eom` (derived from model.system).
@@ -72,23 +77,38 @@ struct LinearModel {
   /// the first-order form on the full state [q; qd] before any reduction (with constraints:
   /// of the KKT accelerations), as eomrt::linearization gives it from the generated code
   Eigen::MatrixXd A_full, B_full;
-  /// second-order form M dqdd + D dqd + K dq = B_u du over all coordinates (it exists also
-  /// when cyclic coordinates are dropped from A); empty for a constrained model, whose linear
-  /// model lives in independent coordinates and speeds instead
+  /// second-order form M dq'' + D dq' + K dq = B_u du in `second_order_coordinates`:
+  /// - without constraints, over all coordinates (also when cyclic ones are dropped from A);
+  /// - with constraints, the reduced form in the kept independent coordinates, where each is
+  ///   paired with its rate as an independent speed (a bicycle's lean and steer): with G the
+  ///   kept speeds' columns of the null space (dqd = G dnu + ...), M = G^T M_full G, the
+  ///   generalized mass of Kane's equations, and D, K, B_u = M times the reduced A's and B's
+  ///   blocks, so that the form is Kane's equations linearized. Empty where the kept
+  ///   coordinates and speeds do not pair up; `no_second_order` then says why.
   Eigen::MatrixXd M, D, K, B_u;
+  std::vector<std::string> second_order_coordinates;
+  std::string no_second_order;
   Eigen::VectorXd qdd0;  ///< accelerations at the point: zero at equilibria and steady motions
+  /// the point linearized about: the given values and, with constraints, those solved from
+  /// them (satisfy_constraints, operating_point.hpp), whose names `solved` lists
+  NamedValues point;
+  std::vector<std::string> solved;
 };
 
 struct LinearizeOptions {
-  /// leave coordinates that appear nowhere in M and F out of A (with constraints: whose
-  /// column of the reduced A vanishes at the point)
+  /// leave coordinates that appear nowhere in M and F out of A (with constraints: every state,
+  /// coordinate or speed, whose column of the reduced A vanishes at the point, to
+  /// operating_point_tolerance; each removes an eigenvalue 0, such as a bicycle's heading or
+  /// its rear wheel's spin)
   bool drop_cyclic = false;
 };
 
 /// Evaluates the linearization at an operating point (names as in numeric_substitution:
-/// coordinates, NAME_dot rates, inputs, t, parameters; the rest 0 or default).
-/// \throws Error if M (or the KKT matrix) is singular at the point, if the point violates the
-///   constraints, or for unknown names
+/// coordinates, NAME_dot rates, inputs, t, parameters; the rest 0 or default). With
+/// constraints, the coordinates and rates the point leaves out are first solved from them
+/// (satisfy_constraints).
+/// \throws Error if M (or the KKT matrix) is singular at the point, if the point cannot be
+///   brought onto the constraints (naming the constraint), or for unknown names
 LinearModel linearize(const Model& model, const ModelEquations& eom, const SymbolicLinearization& symbolic,
                       const NamedValues& point, const LinearizeOptions& options = {});
 

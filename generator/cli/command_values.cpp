@@ -1,0 +1,89 @@
+#include "command_values.hpp"
+
+#include <fmt/format.h>
+
+#include <charconv>
+#include <cmath>
+
+#include "eomgen/base/error.hpp"
+#include "simulate_command.hpp"
+
+namespace eomgen::tools {
+
+std::string join(const std::vector<std::string>& items) {
+  std::string out;
+  for (std::size_t i = 0; i < items.size(); ++i) out += (i ? ", " : "") + items[i];
+  return items.empty() ? "none" : out;
+}
+
+std::string number(double x) { return fmt::format("{}", x); }
+
+std::map<std::string, double> parse_assignments(const std::vector<std::string>& items, const std::string& option) {
+  std::map<std::string, double> out;
+  for (const std::string& item : items) {
+    const auto eq = item.find('=');
+    if (eq == std::string::npos || eq == 0 || eq + 1 == item.size())
+      throw UsageError(fmt::format("{}: expected NAME=VALUE, got '{}'", option, item));
+    const std::string name = item.substr(0, eq);
+    std::string text = item.substr(eq + 1);
+    if (text[0] == '+') text.erase(0, 1);
+    double value = 0.0;
+    // from_chars: locale-independent, and must consume the whole text
+    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+    if (ec != std::errc() || end != text.data() + text.size() || !std::isfinite(value))
+      throw UsageError(fmt::format("{}: '{}' in '{}' is not a finite number", option, item.substr(eq + 1), item));
+    if (!out.emplace(name, value).second) throw UsageError(fmt::format("{}: '{}' is given twice", option, name));
+  }
+  return out;
+}
+
+NamedValues state_and_parameters(const std::vector<std::string>& at_items, const std::vector<std::string>& set_items,
+                                 const Model& model) {
+  const std::map<std::string, double> at = parse_assignments(at_items, "--at");
+  const std::map<std::string, double> set = parse_assignments(set_items, "--set");
+  NamedValues values = at;
+  for (const auto& [name, value] : set)
+    if (!values.emplace(name, value).second) throw UsageError(fmt::format("--set: '{}' is also given in --at", name));
+  const Variables& v = model.system.variables();
+  for (const auto& [name, value] : set) {
+    bool is_parameter = false;
+    for (const auto& p : v.parameters()) is_parameter = is_parameter || p.name == name;
+    if (!is_parameter) throw Error(fmt::format("--set: '{}' is not a parameter of the model", name));
+  }
+  return values;
+}
+
+std::string matrix_text(const std::string& title, const Eigen::MatrixXd& a) {
+  std::string out = fmt::format("{} ({} x {}):", title, a.rows(), a.cols()) + (a.size() == 0 ? " empty" : "") + "\n";
+  if (a.size() == 0) return out;
+  std::vector<std::size_t> width(static_cast<std::size_t>(a.cols()), 0);
+  for (Eigen::Index j = 0; j < a.cols(); ++j)
+    for (Eigen::Index i = 0; i < a.rows(); ++i)
+      width[static_cast<std::size_t>(j)] = std::max(width[static_cast<std::size_t>(j)], number(a(i, j)).size());
+  for (Eigen::Index i = 0; i < a.rows(); ++i) {
+    out += "  [";
+    for (Eigen::Index j = 0; j < a.cols(); ++j)
+      out += (j ? "  " : " ") + fmt::format("{:>{}}", number(a(i, j)), width[static_cast<std::size_t>(j)]);
+    out += " ]\n";
+  }
+  return out;
+}
+
+nlohmann::ordered_json json_rows(const Eigen::MatrixXd& a) {
+  nlohmann::ordered_json out = nlohmann::ordered_json::array();
+  for (Eigen::Index i = 0; i < a.rows(); ++i) {
+    nlohmann::ordered_json row = nlohmann::ordered_json::array();
+    for (Eigen::Index j = 0; j < a.cols(); ++j) row.push_back(a(i, j));
+    out.push_back(row);
+  }
+  return out;
+}
+
+std::string json_document(const nlohmann::ordered_json& j) {
+  std::string out = "{";
+  for (auto it = j.begin(); it != j.end(); ++it)
+    out += (it == j.begin() ? "\n  " : ",\n  ") + nlohmann::ordered_json(it.key()).dump() + ": " + it.value().dump();
+  return out + "\n}\n";
+}
+
+}  // namespace eomgen::tools
