@@ -9,18 +9,20 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <sstream>
 #include <string>
 
 #include "eomgen/base/error.hpp"
 #include "eomgen/derivation/model_equations.hpp"
 #include "eomgen/derivation/numeric_evaluation.hpp"
 #include "eomgen/language/model_file.hpp"
+#include "support/expect_model_error.hpp"
 #include "support/numeric_checks.hpp"
 
 namespace eomgen {
 namespace {
 
-using ::testing::HasSubstr;
+using testing::expect_model_error;
 using testing::matrices_near;
 
 const std::string declarations =
@@ -67,11 +69,9 @@ TEST(DefinitionProducts, DotCrossNormUnitInDefinitionsGiveTheEquationsOfTheHandE
 
 TEST(DefinitionProducts, DefinitionsThatNameLaterOnesGiveTheSameEquations) {
   // the products name b and p before their definitions; the elements come first as well
-  const std::string reversed =
-      "frame c = axis_angle(a, [dot(b.1, a.1), dot(b.1, a.2), dot(b.1, a.3)], q3)\n"
-      "point p = w + l*dot(b.2, a.3)*a.1 + l*cross(b.3, a.3) + norm(l*b.1 + l*b.2)*a.3 + unit(2*b.2)\n"
-      "frame b = rotate(h, 1, theta)\n"
-      "frame h = rotate(a, 3, psi)\n";
+  std::istringstream lines(with_products);
+  std::string reversed;
+  for (std::string line; std::getline(lines, line);) reversed = line + "\n" + reversed;
   expect_same_equations(reversed + declarations, declarations + by_hand);
 }
 
@@ -96,26 +96,7 @@ TEST(DefinitionProducts, ACycleThroughADotProductIsReportedAsACycleAtTheDefiniti
       "frame b = rotate(a, 3, dot(position(p), a.1))\n"
       "point p = w + q*b.1\n"
       "particle m(mass = 1, at = p)\n";
-  try {
-    parse_model(text, "test.eom");
-    FAIL() << "expected a SourceError";
-  } catch (const SourceError& e) {
-    EXPECT_EQ(e.location().line, 2);
-    EXPECT_EQ(e.location().column, 7);
-    EXPECT_THAT(e.message(), HasSubstr("frame 'b' is defined through a cycle: b -> p -> b"));
-  }
-}
-
-void expect_error_at(const std::string& text, int line, int column, const std::string& message) {
-  SCOPED_TRACE(text);
-  try {
-    parse_model(text, "test.eom");
-    ADD_FAILURE() << "expected a SourceError";
-  } catch (const SourceError& e) {
-    EXPECT_EQ(e.location().line, line) << e.what();
-    EXPECT_EQ(e.location().column, column) << e.what();
-    EXPECT_THAT(e.message(), HasSubstr(message));
-  }
+  expect_model_error(text, 2, 7, "frame 'b' is defined through a cycle: b -> p -> b");
 }
 
 const std::string pendulum =
@@ -128,13 +109,13 @@ const std::string pendulum =
 TEST(DefinitionProducts, UnitOfAZeroVectorIsAnErrorAtTheVector) {
   const std::string zero = "unit(): the vector is zero";
   // zero as written
-  expect_error_at(pendulum + "point p = w + l*unit(b.1 - b.1)\n", 6, 22, zero);
+  expect_model_error(pendulum + "point p = w + l*unit(b.1 - b.1)\n", 6, 22, zero);
   // zero once resolved in one frame: b.3 = a.3
-  expect_error_at(pendulum + "point p = w + l*unit(b.3 - a.3)\n", 6, 22, zero);
+  expect_model_error(pendulum + "point p = w + l*unit(b.3 - a.3)\n", 6, 22, zero);
   // zero at the parameters' default values
-  expect_error_at(pendulum + "point p = w + l*unit(s*b.1)\n", 6, 22, zero);
+  expect_model_error(pendulum + "point p = w + l*unit(s*b.1)\n", 6, 22, zero);
   // anywhere an expression can be, not only in definitions
-  expect_error_at(pendulum + "point p = w + l*b.1\noutput o = unit(position(p, p))\n", 7, 17, zero);
+  expect_model_error(pendulum + "point p = w + l*b.1\noutput o = unit(position(p, p))\n", 7, 17, zero);
 }
 
 TEST(DefinitionProducts, UnitIsTheDirectionOfItsVectorEverywhere) {
@@ -148,7 +129,7 @@ TEST(DefinitionProducts, UnitIsTheDirectionOfItsVectorEverywhere) {
 }
 
 TEST(DefinitionProducts, RatesStayOutOfDefinitions) {
-  expect_error_at(pendulum + "point p = w + l*b.1 + dot(velocity(q), a.1)*a.2\npoint q = w + l*b.2\n", 6, 27,
+  expect_model_error(pendulum + "point p = w + l*b.1 + dot(velocity(q), a.1)*a.2\npoint q = w + l*b.2\n", 6, 27,
                   "velocity() may not be used in frame or point definitions: a position or an attitude depends on "
                   "coordinates and time, not on rates");
 }

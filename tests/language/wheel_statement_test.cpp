@@ -19,13 +19,14 @@
 #include "eomgen/derivation/model_equations.hpp"
 #include "eomgen/derivation/numeric_evaluation.hpp"
 #include "eomgen/language/model_file.hpp"
+#include "support/expect_model_error.hpp"
 #include "support/numeric_checks.hpp"
 #include "support/source_dir.hpp"
 
 namespace eomgen {
 namespace {
 
-using ::testing::HasSubstr;
+using testing::expect_model_error;
 using testing::matrices_near;
 
 std::string shipped_text(const std::string& name) {
@@ -185,18 +186,6 @@ TEST(WheelStatement, RollWithALongerNormalHasTheSameRowsAndMultipliers) {
 
 // --- errors, each at the argument that is wrong ---
 
-void expect_error_at(const std::string& text, int line, int column, const std::string& message) {
-  SCOPED_TRACE(text);
-  try {
-    parse_model(text, "test.eom");
-    ADD_FAILURE() << "expected a SourceError";
-  } catch (const SourceError& e) {
-    EXPECT_EQ(e.location().line, line) << e.what();
-    EXPECT_EQ(e.location().column, column) << e.what();
-    EXPECT_THAT(e.message(), HasSubstr(message));
-  }
-}
-
 // an upright coin on lines 1-8; each case appends its wheel on line 9
 const std::string coin =
     "parameter r = 0.3 [m]\n"
@@ -208,39 +197,39 @@ const std::string coin =
     "body disk(mass = 1, centre = c, frame = f, inertia = diag(1, 2, 1))\n"
     "particle bead(mass = 1, at = c)\n";
 
-std::string wheel_with(const std::string& arguments) { return coin + "wheel rim(" + arguments + ")\n"; }
-
 TEST(WheelStatement, ErrorsSayWhichArgumentIsWrongAndWhatWasExpected) {
+  struct Case {
+    std::string arguments;
+    int column;
+    std::string message;
+  };
   const std::string rest = ", centre = c, axle = f.2, radius = r, normal = a.3";
-  expect_error_at(wheel_with("body = disc" + rest), 9, 18, "unknown rigid body 'disc'; did you mean 'disk'?");
-  expect_error_at(wheel_with("body = bead" + rest), 9, 18, "'bead' is a particle, not a rigid body");
-  expect_error_at(wheel_with("body = disk, centre = c, axle = f.2, radius = r, normal = sin(theta)*a.3 + a.1"), 9,
-                  69, "wheel 'rim': the plane's normal must be a constant vector");
-  expect_error_at(wheel_with("body = disk, centre = c, axle = f.2, radius = r, normal = a.3 - a.3"), 9, 69,
-                  "wheel 'rim': the plane's normal is zero");
-  // f.2 = l.2: zero only once resolved in one frame
-  expect_error_at(wheel_with("body = disk, centre = c, axle = f.2 - l.2, radius = r, normal = a.3"), 9, 43,
-                  "wheel 'rim': 'axle': the vector is zero");
-  expect_error_at(wheel_with("body = disk, centre = c, axle = f.2, radius = -r, normal = a.3"), 9, 57,
-                  "wheel 'rim': 'radius' must be a positive constant");
-  expect_error_at(wheel_with("body = disk, centre = c, axle = f.2, radius = r*theta, normal = a.3"), 9, 57,
-                  "wheel 'rim': 'radius' must be a positive constant");
-  expect_error_at(wheel_with("body = disk, centre = c, axle = a.3, radius = r, normal = a.3"), 9, 43,
-                  "wheel 'rim': the axle is along the plane's normal at a generic state");
-  expect_error_at(wheel_with("body = disk, centre = c, axle = h.1, radius = r, normal = a.3"), 9, 43,
-                  "wheel 'rim': the axle turns relative to the body 'disk'");
-  expect_error_at(wheel_with("body = disk, centre = c, axle = f.2, radius = r, normal = a.3, plane = c"), 9, 82,
-                  "wheel 'rim': the point 'plane' moves");
-  expect_error_at(wheel_with("body = disk, center = c, axle = f.2, normal = a.3"), 9, 1,
-                  "wheel 'rim': missing argument 'radius'");
-  expect_error_at(wheel_with("body = disk, centre = c, axle = f.2, radius = r, normal = a.3, contact = c"), 9, 74,
-                  "wheel 'rim': unknown argument 'contact'");
+  const Case cases[] = {
+      {"body = disc" + rest, 18, "unknown rigid body 'disc'; did you mean 'disk'?"},
+      {"body = bead" + rest, 18, "'bead' is a particle, not a rigid body"},
+      {"body = disk, centre = c, axle = f.2, radius = r, normal = sin(theta)*a.3 + a.1", 69,
+       "wheel 'rim': the plane's normal must be a constant vector"},
+      {"body = disk, centre = c, axle = f.2, radius = r, normal = a.3 - a.3", 69, "wheel 'rim': the plane's normal is zero"},
+      // f.2 = l.2: zero only once resolved in one frame
+      {"body = disk, centre = c, axle = f.2 - l.2, radius = r, normal = a.3", 43, "wheel 'rim': 'axle': the vector is zero"},
+      {"body = disk, centre = c, axle = f.2, radius = -r, normal = a.3", 57, "wheel 'rim': 'radius' must be a positive constant"},
+      {"body = disk, centre = c, axle = f.2, radius = r*theta, normal = a.3", 57,
+       "wheel 'rim': 'radius' must be a positive constant"},
+      {"body = disk, centre = c, axle = a.3, radius = r, normal = a.3", 43,
+       "wheel 'rim': the axle is along the plane's normal at a generic state"},
+      {"body = disk, centre = c, axle = h.1, radius = r, normal = a.3", 43,
+       "wheel 'rim': the axle turns relative to the body 'disk'"},
+      {"body = disk, centre = c, axle = f.2, radius = r, normal = a.3, plane = c", 82, "wheel 'rim': the point 'plane' moves"},
+      {"body = disk, center = c, axle = f.2, normal = a.3", 1, "wheel 'rim': missing argument 'radius'"},
+      {"body = disk, centre = c, axle = f.2, radius = r, normal = a.3, contact = c", 74,
+       "wheel 'rim': unknown argument 'contact'"}};
+  for (const Case& c : cases) expect_model_error(coin + "wheel rim(" + c.arguments + ")\n", 9, c.column, c.message);
 }
 
 TEST(WheelStatement, ACentrePlacedFromItsOwnContactIsACycle) {
-  expect_error_at(replaced(coin, "point c = w + x*a.1 + y*a.2 + r*cos(theta)*a.3", "point c = rim_contact + r*l.3") +
-                      "wheel rim(body = disk, centre = c, axle = f.2, radius = r, normal = a.3)\n",
-                  6, 7, "point 'c' is defined through a cycle: c -> rim_contact -> c");
+  expect_model_error(replaced(coin, "point c = w + x*a.1 + y*a.2 + r*cos(theta)*a.3", "point c = rim_contact + r*l.3") +
+                         "wheel rim(body = disk, centre = c, axle = f.2, radius = r, normal = a.3)\n",
+                     6, 7, "point 'c' is defined through a cycle: c -> rim_contact -> c");
 }
 
 }  // namespace
