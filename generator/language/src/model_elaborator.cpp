@@ -37,6 +37,7 @@ const char* statement_word(Kind kind) {
     case Kind::generalized_force: return "generalized_force";
     case Kind::constraint: return "constraint";
     case Kind::roll: return "roll";
+    case Kind::wheel: return "wheel";
     case Kind::independent: return "independent";
     case Kind::output: return "output";
     case Kind::loop: return "for";
@@ -67,6 +68,7 @@ Pass pass_of(Kind kind) {
     case Kind::generalized_force:
     case Kind::constraint:
     case Kind::roll:
+    case Kind::wheel:  // and its contact point with the points (collect_frames_and_points)
     case Kind::output: return Pass::elements;
     case Kind::independent: return Pass::independent_speeds;
   }
@@ -200,17 +202,41 @@ void Elaborator::collect_frames_and_points() {
     declare(name, s.kind == Kind::frame ? "frame" : "point", s.name.location);
     (s.kind == Kind::frame ? frame_instances_ : point_instances_)[name] = i;
   }
+  // a wheel declares its contact point, which other definitions may use
+  for (std::size_t i = 0; i < instances_.size(); ++i) {
+    const Statement& s = *instances_[i].statement;
+    if (s.kind != Kind::wheel) continue;
+    const std::string name = wheel_contact_name(resolve(s.name, instances_[i].environment));
+    declare(name, "point", s.name.location);
+    point_instances_[name] = i;
+  }
 }
 
-// `name` is being defined while its own definition is on the stack: report the whole loop
-static void reject_cycle(const char* kind, const std::string& name, const std::vector<std::string>& stack,
-                         const SourceLocation& at) {
-  auto start = std::find(stack.begin(), stack.end(), name);
-  if (start == stack.end()) return;
-  std::string cycle;
-  for (auto it = start; it != stack.end(); ++it) cycle += *it + " -> ";
-  throw SourceError(at, fmt::format("{} '{}' is defined through a cycle: {}{}", kind, name, cycle, name));
-}
+namespace {
+
+// Marks a definition as being built while it is: frames and points are built on demand, when an
+// expression names them, so meeting one of them again before it is done is a cycle.
+class InProgress {
+ public:
+  InProgress(std::vector<std::string>& stack, const char* kind, const std::string& name, const SourceLocation& at)
+      : stack_(stack) {
+    auto start = std::find(stack.begin(), stack.end(), name);
+    if (start != stack.end()) {
+      std::string cycle;
+      for (auto it = start; it != stack.end(); ++it) cycle += *it + " -> ";
+      throw SourceError(at, fmt::format("{} '{}' is defined through a cycle: {}{}", kind, name, cycle, name));
+    }
+    stack_.push_back(name);
+  }
+  InProgress(const InProgress&) = delete;
+  InProgress& operator=(const InProgress&) = delete;
+  ~InProgress() { stack_.pop_back(); }
+
+ private:
+  std::vector<std::string>& stack_;
+};
+
+}  // namespace
 
 // a definition's parent is the leftmost name: `b`, `rotate(b, ...)`, `p + ...`
 static const Expr* leftmost(const Expr* e) {
@@ -218,13 +244,12 @@ static const Expr* leftmost(const Expr* e) {
   return e;
 }
 
-FrameId Elaborator::build_frame(const std::string& name, std::vector<std::string>& stack) {
+FrameId Elaborator::build_frame(const std::string& name) {
   if (auto it = frames_.find(name); it != frames_.end()) return it->second;
   const Instance& in = instances_[frame_instances_.at(name)];
   const Statement& s = *in.statement;
   const Environment& env = in.environment;
-  reject_cycle("frame", name, stack, s.name.location);
-  stack.push_back(name);
+  const InProgress building(in_progress_, "frame", name, s.name.location);
   const Expr& def = *s.value;
   const std::vector<std::string> kinds = {"rotate", "euler", "axis_angle", "quaternion", "rodrigues", "mrp", "dcm"};
   const bool is_call = def.kind == Expr::Kind::call && def.name.is_plain() &&
@@ -236,14 +261,7 @@ FrameId Elaborator::build_frame(const std::string& name, std::vector<std::string
   if (is_call && (def.args.empty() || def.args[0]->kind != Expr::Kind::name))
     throw SourceError(def.location, fmt::format("{}(): expected the parent frame as the first argument", def.name.plain()));
   const Expr& parent_expr = is_call ? *def.args[0] : def;
-  const std::string parent_name = resolve(parent_expr.name, env);
-  FrameId parent;
-  if (frame_instances_.count(parent_name)) {
-    parent = build_frame(parent_name, stack);
-  } else {
-    parent = frame_named(parent_expr.name, env);
-  }
-  stack.pop_back();
+  const FrameId parent = frame_named(parent_expr.name, env);
   if (!is_call) return frames_[name] = parent;  // an alias of its parent
 
   const std::string f = def.name.plain();
@@ -299,20 +317,17 @@ FrameId Elaborator::build_frame(const std::string& name, std::vector<std::string
   }
 }
 
-PointId Elaborator::build_point(const std::string& name, std::vector<std::string>& stack) {
+PointId Elaborator::build_point(const std::string& name) {
   if (auto it = points_.find(name); it != points_.end()) return it->second;
   const Instance& in = instances_[point_instances_.at(name)];
   const Statement& s = *in.statement;
   const Environment& env = in.environment;
-  reject_cycle("point", name, stack, s.name.location);
+  const InProgress building(in_progress_, "point", name, s.name.location);
+  if (s.kind == Kind::wheel) return points_[name] = wheel_contact(in, name);
   const Expr* parent_expr = leftmost(s.value.get());
   if (parent_expr->kind != Expr::Kind::name)
     throw SourceError(start_of(*s.value), "expected a point definition: PARENT_POINT + VECTOR");
-  stack.push_back(name);
-  const std::string parent_name = resolve(parent_expr->name, env);
-  const PointId parent = point_instances_.count(parent_name) ? build_point(parent_name, stack)
-                                                             : point_named(parent_expr->name, env);
-  stack.pop_back();
+  const PointId parent = point_named(parent_expr->name, env);
   // the offset: every term right of the parent along the chain of + and -
   eomgen::Vector offset;
   for (const Expr* e = s.value.get(); e != parent_expr; e = e->args[0].get()) {
@@ -332,11 +347,13 @@ Model Elaborator::run(const std::vector<Statement>& statements) {
   if (!saw_statement_) throw SourceError({file_, 1, 1}, "empty model: expected statements such as 'coordinate', 'frame', 'point' and 'particle'");
   declarations();
   collect_frames_and_points();
-  std::vector<std::string> stack;
+  // in file order, which numbers the frames and points and so orders the generated code
   for (const Instance& in : instances_)
-    if (in.statement->kind == Kind::frame) build_frame(resolve(in.statement->name, in.environment), stack);
-  for (const Instance& in : instances_)
-    if (in.statement->kind == Kind::point) build_point(resolve(in.statement->name, in.environment), stack);
+    if (in.statement->kind == Kind::frame) build_frame(resolve(in.statement->name, in.environment));
+  for (const Instance& in : instances_) {
+    if (in.statement->kind == Kind::point) build_point(resolve(in.statement->name, in.environment));
+    if (in.statement->kind == Kind::wheel) build_point(wheel_contact_name(resolve(in.statement->name, in.environment)));
+  }
   kinematics_ready_ = true;
   // bodies first: a roll statement names its body, which may come later in the file
   for (const Instance& in : instances_)

@@ -4,6 +4,7 @@
 #include <ginac/ginac.h>
 
 #include <map>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -26,6 +27,10 @@ struct Value {
 };
 
 std::string kind_name(Value::Kind kind);
+
+/// e at a state that gives every symbol in it a number, or nothing where e is not a real number
+/// there (a pole, a root of a negative number, a symbol the state leaves free).
+std::optional<double> value_at(const GiNaC::ex& e, const GiNaC::exmap& state);
 
 /// Loop variables of the current iteration.
 using Environment = std::map<std::string, GiNaC::numeric>;
@@ -73,8 +78,13 @@ class Elaborator {
   void declare(const std::string& name, const std::string& kind, const SourceLocation& at);
   void declarations();
   void collect_frames_and_points();
-  FrameId build_frame(const std::string& name, std::vector<std::string>& stack);
-  PointId build_point(const std::string& name, std::vector<std::string>& stack);
+  FrameId build_frame(const std::string& name);
+  PointId build_point(const std::string& name);
+
+  // generic states and the checks made at them (model_generic_states.cpp)
+  std::vector<GiNaC::exmap> generic_states() const;
+  void reject_zero_vector(const eomgen::Vector& v, const GiNaC::ex& length, const SourceLocation& at,
+                          const std::string& what) const;
 
   // whole-model checks (model_file.cpp)
   void independent_speeds();
@@ -90,6 +100,17 @@ class Elaborator {
   void constraint(const Instance& instance, const std::string& name, const std::string& what);
   void output(const Instance& instance);
   void roll(const Instance& instance);
+  // what roll and wheel share
+  const RigidBody& rigid_body(const Arguments& args, const Environment& env);
+  GiNaC::matrix plane_normal(const Argument& normal, const Environment& env, const std::string& what);
+  eomgen::Vector material_velocity(const RigidBody& body, PointId at) const;
+  std::vector<GiNaC::ex> no_slip_rows(const RigidBody& body, PointId contact, const GiNaC::matrix& unit_normal);
+  void add_rolling_rows(const std::string& name, const std::vector<GiNaC::ex>& rows, const SourceLocation& at);
+
+  // the wheel statement (model_wheel.cpp)
+  static std::string wheel_contact_name(const std::string& wheel) { return wheel + "_contact"; }
+  PointId wheel_contact(const Instance& instance, const std::string& contact_name);
+  void wheel(const Instance& instance, const std::string& name, const std::string& what);
 
   std::string file_;
   std::map<std::string, double> overrides_;
@@ -104,6 +125,7 @@ class Elaborator {
   std::map<std::string, std::size_t> frame_instances_, point_instances_;  // name -> index in instances_
   std::map<std::string, FrameId> frames_;
   std::map<std::string, PointId> points_;
+  std::vector<std::string> in_progress_;  // frames and points being built, innermost last
   std::set<std::string> used_coordinates_;
   SourceLocation independent_location_;  // of the `independent` keyword, when there is one
   bool kinematics_ready_ = false;

@@ -6,70 +6,13 @@
 #include "eomgen/base/error.hpp"
 #include "eomgen/mechanics/kinematics.hpp"
 #include "eomgen/symbolic/simplify.hpp"
+#include "model_arguments.hpp"
 #include "model_elaborator.hpp"
 
 namespace eomgen::syntax {
 
 using GiNaC::ex;
 using Kind = Statement::Kind;
-
-// the key = value arguments of an element statement, checked against what the statement takes
-class Elaborator::Arguments {
- public:
-  Arguments(Elaborator& elaborator, const Instance& in, std::string what, std::vector<std::string> allowed)
-      : elaborator_(elaborator), s_(*in.statement), env_(in.environment), what_(std::move(what)),
-        allowed_(std::move(allowed)) {
-    for (const Argument& a : s_.arguments) {
-      if (std::find(allowed_.begin(), allowed_.end(), a.key) == allowed_.end())
-        throw SourceError(a.location, fmt::format("{}: unknown argument '{}'; expected {}", what_, a.key, list()));
-      for (const Argument& b : s_.arguments)
-        if (&b != &a && b.key == a.key && &b > &a)
-          throw SourceError(b.location, fmt::format("{}: argument '{}' is given twice", what_, a.key));
-    }
-  }
-  const Argument* find(const std::string& key) const {
-    for (const Argument& a : s_.arguments)
-      if (a.key == key) return &a;
-    return nullptr;
-  }
-  const Argument& require(const std::string& key, const std::string& hint) const {
-    if (const Argument* a = find(key)) return *a;
-    throw SourceError(s_.location, fmt::format("{}: missing argument '{}' ({})", what_, key, hint));
-  }
-  const Name& name_of(const Argument& a, const std::string& expected) const {
-    if (a.value->kind != Expr::Kind::name)
-      throw SourceError(a.value->location, fmt::format("{}: argument '{}' must name {}", what_, a.key, expected));
-    return a.value->name;
-  }
-  PointId point(const char* key) const {
-    return elaborator_.point_named(name_of(require(key, "a point"), "a point"), env_);
-  }
-  FrameId frame(const char* key, const char* hint) const {
-    return elaborator_.frame_named(name_of(require(key, hint), "a frame"), env_);
-  }
-  GiNaC::ex scalar(const char* key, const char* hint) const {
-    return elaborator_.scalar(require(key, hint).value, env_, fmt::format("{}: '{}'", what_, key));
-  }
-  GiNaC::ex optional_scalar(const char* key) const {
-    const Argument* a = find(key);
-    return a ? elaborator_.scalar(a->value, env_, fmt::format("{}: '{}'", what_, key)) : GiNaC::ex(0);
-  }
-  eomgen::Vector vector(const char* key) const {
-    return elaborator_.vector(require(key, "a vector").value, env_, what_);
-  }
-
- private:
-  std::string list() const {
-    std::string out;
-    for (std::size_t i = 0; i < allowed_.size(); ++i) out += (i ? ", " : "") + allowed_[i];
-    return out;
-  }
-  Elaborator& elaborator_;
-  const Statement& s_;
-  const Environment& env_;
-  std::string what_;
-  std::vector<std::string> allowed_;
-};
 
 void Elaborator::element(const Instance& in) {
   const Statement& s = *in.statement;
@@ -132,6 +75,7 @@ void Elaborator::add_element(const Instance& in, const std::string& name, const 
     case Kind::generalized_force: generalized_force(in, what); break;
     case Kind::constraint: constraint(in, name, what); break;
     case Kind::roll: roll(in); break;
+    case Kind::wheel: wheel(in, name, what); break;
     case Kind::output: output(in); break;
     case Kind::model:
     case Kind::description:
@@ -150,9 +94,7 @@ void Elaborator::add_element(const Instance& in, const std::string& name, const 
 void Elaborator::body(const Instance& in, const std::string& name, const std::string& what) {
   const Arguments args(*this, in, what, {"mass", "centre", "center", "frame", "inertia"});
   const ex mass = args.scalar("mass", "the body's mass");
-  const Argument* centre = args.find("centre") ? args.find("centre") : args.find("center");
-  if (!centre) args.require("centre", "the mass centre, a point");
-  const PointId c = point_named(args.name_of(*centre, "a point"), in.environment);
+  const PointId c = point_named(args.name_of(args.centre("the mass centre, a point"), "a point"), in.environment);
   const FrameId f = args.frame("frame", "the body frame");
   const Argument& inertia = args.require("inertia", "the inertia matrix about the mass centre in the body "
                                                     "frame, e.g. inertia = diag(J1, J2, J3)");
@@ -201,6 +143,78 @@ void Elaborator::constraint(const Instance& in, const std::string& name, const s
   model_.constraint_locations.push_back(s.name.location);
 }
 
+const RigidBody& Elaborator::rigid_body(const Arguments& args, const Environment& env) {
+  const Argument& body_arg = args.require("body", "the rolling rigid body");
+  const std::string body_name = resolve(args.name_of(body_arg, "a rigid body"), env);
+  for (const RigidBody& b : model_.system.rigid_bodies())
+    if (b.name == body_name) return b;
+  std::vector<std::string> bodies;
+  for (const RigidBody& b : model_.system.rigid_bodies()) bodies.push_back(b.name);
+  // particles are declared in file order with the other elements, after every body
+  std::string kind = declared_.count(body_name) ? declared_.at(body_name).kind : "";
+  for (const Particle& p : model_.system.particles())
+    if (p.name == body_name) kind = "particle";
+  if (!kind.empty())
+    throw SourceError(body_arg.value->location, fmt::format("'{}' is a {}, not a rigid body: expected the name of a "
+                                                            "'body' statement (it turns, so it needs a frame)",
+                                                            body_name, kind));
+  unknown_name(body_name, body_arg.value->location, bodies, "rigid body");
+}
+
+GiNaC::matrix Elaborator::plane_normal(const Argument& normal, const Environment& env, const std::string& what) {
+  const MechanicalSystem& sys = model_.system;
+  const GiNaC::matrix n = eomgen::resolve(sys, vector(normal.value, env, what), sys.inertial_frame());
+  ex square = 0;
+  for (unsigned i = 0; i < 3; ++i) {
+    if (!GiNaC::is_a<GiNaC::numeric>(n(i, 0).evalf()))
+      throw SourceError(start_of(*normal.value), fmt::format("{}: the plane's normal must be a constant vector (numbers "
+                                                             "and consts only)", what));
+    square += GiNaC::pow(n(i, 0), 2);
+  }
+  if (GiNaC::ex_to<GiNaC::numeric>(square.evalf()).to_double() < 1e-24)
+    throw SourceError(start_of(*normal.value), fmt::format("{}: the plane's normal is zero: expected a non-zero "
+                                                           "vector", what));
+  // unit, so that the rows of Xi do not scale with it and the multipliers are forces
+  return n.mul_scalar(1 / GiNaC::sqrt(square));
+}
+
+// The plane's tangents t1 = unit(n x e), t2 = n x t1, e the inertial axis least aligned with n
+// (the first of equals): (t1, t2, n) is right-handed and constant. For n = a.3, t1 = a.2 and
+// t2 = -a.1.
+std::vector<ex> Elaborator::no_slip_rows(const RigidBody& body, PointId contact, const GiNaC::matrix& n) {
+  const MechanicalSystem& sys = model_.system;
+  unsigned least = 0;
+  for (unsigned i = 1; i < 3; ++i)
+    if (GiNaC::abs(n(i, 0)).evalf() < GiNaC::abs(n(least, 0)).evalf()) least = i;
+  const GiNaC::matrix across = cross_matrix(n).mul(unit_column(static_cast<int>(least) + 1));
+  const ex length = GiNaC::sqrt(GiNaC::pow(across(0, 0), 2) + GiNaC::pow(across(1, 0), 2) + GiNaC::pow(across(2, 0), 2));
+  const GiNaC::matrix t1 = across.mul_scalar(1 / length);
+  const GiNaC::matrix t2 = cross_matrix(n).mul(t1);
+  const GiNaC::matrix v = eomgen::resolve(sys, material_velocity(body, contact), sys.inertial_frame());
+  std::vector<ex> rows;
+  for (const GiNaC::matrix& t : {t1, t2}) rows.push_back(t(0, 0) * v(0, 0) + t(1, 0) * v(1, 0) + t(2, 0) * v(2, 0));
+  return rows;
+}
+
+// the velocity of the body's material point at `at`: v^c + omega^body x r^{at, c}
+eomgen::Vector Elaborator::material_velocity(const RigidBody& body, PointId at) const {
+  const MechanicalSystem& sys = model_.system;
+  return eomgen::velocity(sys, body.mass_centre) +
+         eomgen::cross(sys, eomgen::angular_velocity(sys, body.frame, sys.inertial_frame()),
+                       eomgen::position(sys, at, body.mass_centre));
+}
+
+// rows NAME_1, NAME_2... in order; a row that is identically zero is left out, and its number with it
+void Elaborator::add_rolling_rows(const std::string& name, const std::vector<ex>& rows, const SourceLocation& at) {
+  int index = 0;
+  for (const ex& row : rows) {
+    ++index;
+    if (simplify_for_display(row).is_zero()) continue;
+    model_.system.add_nonholonomic_constraint(fmt::format("{}_{}", name, index), row);
+    model_.constraint_locations.push_back(at);
+  }
+}
+
 void Elaborator::roll(const Instance& in) {
   const Statement& s = *in.statement;
   const Environment& env = in.environment;
@@ -208,45 +222,13 @@ void Elaborator::roll(const Instance& in) {
   const std::string name = resolve(s.name, env);
   const std::string what = fmt::format("roll '{}'", name);
   const Arguments args(*this, in, what, {"body", "contact", "normal"});
-  const Argument& body_arg = args.require("body", "the rolling rigid body");
-  const std::string body_name = resolve(args.name_of(body_arg, "a rigid body"), env);
-  const RigidBody* body = nullptr;
-  for (const RigidBody& b : sys.rigid_bodies())
-    if (b.name == body_name) body = &b;
-  if (!body) {
-    std::vector<std::string> bodies;
-    for (const RigidBody& b : sys.rigid_bodies()) bodies.push_back(b.name);
-    unknown_name(body_name, body_arg.value->location, bodies, "rigid body");
-  }
+  const RigidBody& body = rigid_body(args, env);
   const PointId contact = point_named(args.name_of(args.require("contact", "the contact point"), "a point"), env);
-  // the material point of the body at the contact has zero velocity (fixed surface)
-  const eomgen::Vector slip = eomgen::velocity(sys, body->mass_centre) +
-                              eomgen::cross(sys, eomgen::angular_velocity(sys, body->frame, sys.inertial_frame()),
-                                            eomgen::position(sys, contact, body->mass_centre));
-  std::vector<ex> rows;
   if (const Argument* normal = args.find("normal")) {
-    const GiNaC::matrix n = eomgen::resolve(sys, vector(normal->value, env, what), sys.inertial_frame());
-    for (unsigned i = 0; i < 3; ++i)
-      if (!GiNaC::is_a<GiNaC::numeric>(n(i, 0).evalf()))
-        throw SourceError(normal->value->location, fmt::format("{}: the plane's normal must be a constant vector", what));
-    // two tangent directions: n x e and n x (n x e), e the axis least aligned with n
-    unsigned least = 0;
-    for (unsigned i = 1; i < 3; ++i)
-      if (GiNaC::abs(n(i, 0)).evalf() < GiNaC::abs(n(least, 0)).evalf()) least = i;
-    const GiNaC::matrix t1 = cross_matrix(n).mul(unit_column(static_cast<int>(least) + 1));
-    const GiNaC::matrix t2 = cross_matrix(n).mul(t1);
-    const GiNaC::matrix v = eomgen::resolve(sys, slip, sys.inertial_frame());
-    for (const GiNaC::matrix& t : {t1, t2}) rows.push_back(t(0, 0) * v(0, 0) + t(1, 0) * v(1, 0) + t(2, 0) * v(2, 0));
+    add_rolling_rows(name, no_slip_rows(body, contact, plane_normal(*normal, env, what)), s.name.location);
   } else {
-    const GiNaC::matrix v = eomgen::resolve(sys, slip, sys.inertial_frame());
-    for (unsigned i = 0; i < 3; ++i) rows.push_back(v(i, 0));
-  }
-  int index = 0;
-  for (const ex& row : rows) {
-    ++index;
-    if (simplify_for_display(row).is_zero()) continue;
-    sys.add_nonholonomic_constraint(fmt::format("{}_{}", name, index), row);
-    model_.constraint_locations.push_back(s.name.location);
+    const GiNaC::matrix v = eomgen::resolve(sys, material_velocity(body, contact), sys.inertial_frame());
+    add_rolling_rows(name, {v(0, 0), v(1, 0), v(2, 0)}, s.name.location);
   }
 }
 

@@ -5,6 +5,7 @@
 
 #include "eomgen/base/error.hpp"
 #include "eomgen/mechanics/kinematics.hpp"
+#include "eomgen/mechanics/lean_products.hpp"
 #include "model_elaborator.hpp"
 
 namespace eomgen::syntax {
@@ -14,7 +15,7 @@ using GiNaC::ex;
 
 const std::vector<std::string> scalar_functions = {"sin",  "cos",  "tan",  "asin", "acos", "atan", "atan2",
                                                    "sinh", "cosh", "tanh", "sqrt", "exp",  "log",  "abs"};
-const std::vector<std::string> other_functions = {"dot", "norm", "cross", "position", "velocity",
+const std::vector<std::string> other_functions = {"dot", "norm", "cross", "unit", "position", "velocity",
                                                   "angular_velocity", "diag"};
 const std::vector<std::string> frame_functions = {"rotate", "euler", "axis_angle", "quaternion", "rodrigues",
                                                   "mrp", "dcm"};
@@ -134,6 +135,8 @@ FrameId Elaborator::frame_named(const Name& name, const Environment& env) {
   const std::string n = resolve(name, env);
   auto it = frames_.find(n);
   if (it != frames_.end()) return it->second;
+  // statements come in any order: a frame named before its definition is built first
+  if (frame_instances_.count(n)) return build_frame(n);
   std::vector<std::string> known;
   for (const auto& [k, v] : frames_) known.push_back(k);
   for (const auto& [k, v] : frame_instances_) known.push_back(k);
@@ -144,6 +147,7 @@ PointId Elaborator::point_named(const Name& name, const Environment& env) {
   const std::string n = resolve(name, env);
   auto it = points_.find(n);
   if (it != points_.end()) return it->second;
+  if (point_instances_.count(n)) return build_point(n);
   std::vector<std::string> known;
   for (const auto& [k, v] : points_) known.push_back(k);
   for (const auto& [k, v] : point_instances_) known.push_back(k);  // defined later in the file
@@ -193,10 +197,11 @@ Value Elaborator::call(const Expr& e, const Environment& env) {
       throw SourceError(e.args[i]->location, fmt::format("argument {} of {}(): expected a name", i + 1, f));
     return e.args[i]->name;
   };
+  // a position or an attitude may not depend on rates
   auto need_kinematics = [&] {
     if (!kinematics_ready_)
-      throw SourceError(e.location, fmt::format("{}() may not be used in frame or point definitions; write the "
-                                                "vector from basis vectors instead", f));
+      throw SourceError(e.location, fmt::format("{}() may not be used in frame or point definitions: a position or "
+                                                "an attitude depends on coordinates and time, not on rates", f));
   };
   const MechanicalSystem& s = model_.system;
   if (std::find(scalar_functions.begin(), scalar_functions.end(), f) != scalar_functions.end()) try {
@@ -232,21 +237,30 @@ Value Elaborator::call(const Expr& e, const Environment& env) {
     for (unsigned i = 0; i < 3; ++i) v.matrix(i, i) = arg_scalar(i);
     return v;
   }
+  // in a definition, the lean forms: a position or an attitude enters every later derivation,
+  // whereas elsewhere (loads, constraints, outputs of large models) simplifying would cost more
+  // than it saves
+  const bool lean = !kinematics_ready_;
   if (f == "dot" || f == "cross") {
     arity(2, 2);
-    need_kinematics();
-    if (f == "dot") return Value::of(eomgen::dot(s, arg_vector(0), arg_vector(1)));
-    return Value::of(eomgen::cross(s, arg_vector(0), arg_vector(1)));
+    const eomgen::Vector u = arg_vector(0), v = arg_vector(1);
+    if (f == "dot") return Value::of(lean ? lean_dot(s, u, v) : eomgen::dot(s, u, v));
+    return Value::of(lean ? lean_cross(s, u, v) : eomgen::cross(s, u, v));
   }
   if (f == "norm") {
     arity(1, 1);
-    need_kinematics();
     const eomgen::Vector u = arg_vector(0);
-    return Value::of(GiNaC::sqrt(eomgen::dot(s, u, u)));
+    return Value::of(lean ? lean_norm(s, u) : GiNaC::sqrt(eomgen::dot(s, u, u)));
+  }
+  if (f == "unit") {
+    arity(1, 1);
+    const eomgen::Vector u = arg_vector(0);
+    const ex length = lean_norm(s, u);
+    reject_zero_vector(u, length, start_of(*e.args[0]), "unit()");
+    return Value::of(ex(1) / length * u);
   }
   if (f == "position") {
     arity(1, 2);
-    need_kinematics();
     const PointId p = point_named(arg_name(0), env);
     return Value::of(eomgen::position(s, p, e.args.size() == 2 ? point_named(arg_name(1), env) : s.origin()));
   }

@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <fstream>
-#include <random>
 #include <sstream>
 
 #include "eomgen/base/error.hpp"
@@ -93,17 +92,8 @@ void Elaborator::checks() {
       throw SourceError(model_.coordinate_locations[k],
                         fmt::format("coordinate '{}' is declared but never used", vars.coordinates()[k].name));
 
-  // Xi at a generic state: parameters at their defaults, coordinates and rates at irrational-
-  // looking values no special configuration is likely to hit
   const auto& constraints = sys.constraints();
-  std::mt19937 rng(20261121);
-  std::uniform_real_distribution<double> value(0.31, 1.17);
-  GiNaC::exmap state = sys.parameter_defaults();
-  state[vars.time()] = 0.73;
-  for (const auto& c : vars.coordinates()) {
-    state[c.q] = value(rng);
-    state[c.qd] = value(rng);
-  }
+  const GiNaC::exmap state = generic_states().front();
   const std::size_t n = vars.coordinate_count();
   Eigen::MatrixXd xi(0, static_cast<Eigen::Index>(n));
   for (std::size_t i = 0; i < constraints.size(); ++i) {

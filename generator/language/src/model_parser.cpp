@@ -15,7 +15,8 @@ using Kind = Statement::Kind;
 const std::map<std::string, Kind> element_keywords = {
     {"particle", Kind::particle}, {"body", Kind::body},     {"force", Kind::force},
     {"moment", Kind::moment},     {"spring", Kind::spring}, {"damper", Kind::damper},
-    {"torsion", Kind::torsion},   {"roll", Kind::roll},     {"generalized_force", Kind::generalized_force}};
+    {"torsion", Kind::torsion},   {"roll", Kind::roll},     {"generalized_force", Kind::generalized_force},
+    {"wheel", Kind::wheel}};
 
 class Parser {
  public:
@@ -181,7 +182,7 @@ class Parser {
       error(keyword, fmt::format("unknown statement '{}': expected one of model, description, const, parameter, "
                                  "coordinate, input, frame, point, particle, body, gravity, force, moment, "
                                  "spring, damper, torsion, potential, generalized_force, constraint, roll, "
-                                 "independent, output, for", word));
+                                 "wheel, independent, output, for", word));
     }
     end_of_statement();
     return s;

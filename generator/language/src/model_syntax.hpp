@@ -46,7 +46,7 @@ struct Argument {
 struct Statement {
   enum class Kind { model, description, constant, parameter, coordinate, input, frame, point, particle,
                     body, gravity, force, moment, spring, damper, torsion, potential, generalized_force,
-                    constraint, roll, independent, output, loop };
+                    constraint, roll, wheel, independent, output, loop };
   Kind kind;
   SourceLocation location;  // of the keyword
   Name name;                // the declared name (most statements)
