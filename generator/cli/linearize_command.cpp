@@ -256,8 +256,8 @@ std::string sweep_json(const Model& model, const StabilitySweep& sweep) {
   return json_document(j);
 }
 
-/// the classic figure: real parts (filled) and imaginary parts (open) of every eigenvalue
-/// against the swept value, the changes of verdict as vertical lines
+/// the classic figure: real parts (filled) and nonzero imaginary parts (open) of every
+/// eigenvalue against the swept value, the changes of verdict as labelled vertical lines
 std::string sweep_plot_script(const Model& model, const StabilitySweep& sweep, const std::string& image,
                               const std::string& plot_path) {
   const Eigen::Index most = most_eigenvalues(sweep);
@@ -274,13 +274,16 @@ std::string sweep_plot_script(const Model& model, const StabilitySweep& sweep, c
   s += "EOD\n";
   s += "set title " + gnuplot_quoted(fmt::format("{}: eigenvalues against {}", model.name, sweep.name)) + "\n";
   s += "set xlabel " + gnuplot_quoted(sweep.name) + "\nset ylabel 'eigenvalue [1/s]'\nset grid\n";
-  s += "set key outside right top\nset xzeroaxis lt -1\n";
-  for (const StabilityChange& c : sweep.changes)
+  s += "set key inside left bottom opaque box\nset xzeroaxis lt -1\n";
+  for (const StabilityChange& c : sweep.changes) {
     s += fmt::format("set arrow from {0:.17g}, graph 0 to {0:.17g}, graph 1 nohead dt 2 lc rgb 'gray40'\n", c.value);
+    s += fmt::format("set label {} at {:.17g}, graph 0.96 left offset 0.5,0\n", gnuplot_quoted(fmt::format("{:.6g}", c.value)),
+                     c.value);
+  }
   s += fmt::format("plot for [k=1:{0}] $eigenvalues using 1:(column(2*k)) with points pt 7 ps 0.4 lc rgb '#1f5fbf' "
                    "title (k == 1 ? 'real part' : ''), \\\n"
-                   "     for [k=1:{0}] $eigenvalues using 1:(column(2*k+1)) with points pt 6 ps 0.4 lc rgb '#d9541e' "
-                   "title (k == 1 ? 'imaginary part' : '')\n",
+                   "     for [k=1:{0}] $eigenvalues using 1:(column(2*k+1) != 0 ? column(2*k+1) : NaN) with points "
+                   "pt 6 ps 0.4 lc rgb '#d9541e' title (k == 1 ? 'imaginary part (where not 0)' : '')\n",
                    most);
   return s + "set output\n";
 }

@@ -53,6 +53,6 @@ struct StabilitySweep {
 /// \throws Error as linearize does, naming the swept value where it failed
 StabilitySweep sweep_stability(const Model& model, const ModelEquations& eom, const SymbolicLinearization& symbolic,
                                const NamedValues& base, const SweepRange& range, const LinearizeOptions& options,
-                               double tolerance = 1e-10);
+                               double tolerance = 1e-12);
 
 }  // namespace eomgen
