@@ -289,11 +289,7 @@ std::string sweep_plot_script(const Model& model, const StabilitySweep& sweep, c
 }
 
 void run_sweep(const Options& o, const Model& model, const ModelEquations& eom, const SymbolicLinearization& symbolic,
-               const NamedValues& given, const LinearizeOptions& options) {
-  const SweepRange range = parse_sweep(o.sweep);
-  check_swept_name(model, given, range.name);
-  if (o.format == "latex") throw UsageError("--format latex: a sweep is printed as text, json or csv");
-  if (!o.sweep_plot.empty()) require_plot_target(o.sweep_plot, "--plot", "leave out --plot");
+               const NamedValues& given, const SweepRange& range, const LinearizeOptions& options) {
   const StabilitySweep sweep = sweep_stability(model, eom, symbolic, given, range, options);
   const std::string document = o.format == "json" ? sweep_json(model, sweep)
                                : o.format == "csv" ? sweep_csv(sweep)
@@ -318,11 +314,19 @@ void run_linearize(const Options& o) {
   if (o.sweep.empty() && o.format == "csv") throw UsageError("--format csv: a table of a sweep; give --sweep too");
   if (!o.sweep.empty() && o.find_equilibrium)
     throw UsageError("--equilibrium: not with --sweep (each point of a sweep is taken as given)");
+  // the whole request is checked before the derivation, which takes the time
+  SweepRange range;
+  if (!o.sweep.empty()) {
+    range = parse_sweep(o.sweep);
+    check_swept_name(model, given, range.name);
+    if (o.format == "latex") throw UsageError("--format latex: a sweep is printed as text, json or csv");
+    if (!o.sweep_plot.empty()) require_plot_target(o.sweep_plot, "--plot", "leave out --plot");
+  }
   const ModelEquations eom = derive_equations(model);
   const SymbolicLinearization symbolic = linearize_symbolic(model, eom);
   LinearizeOptions options;
   options.drop_cyclic = o.drop_cyclic;
-  if (!o.sweep.empty()) return run_sweep(o, model, eom, symbolic, given, options);
+  if (!o.sweep.empty()) return run_sweep(o, model, eom, symbolic, given, range, options);
 
   NamedValues at = given;
   std::string found;
