@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "eomgen/base/error.hpp"
-#include "order_independent_arithmetic.hpp"
+#include "double_arithmetic.hpp"
 
 namespace eomgen {
 
@@ -53,16 +53,9 @@ double DoubleEvaluator::value(const ex& e, const std::string& what) const {
 }
 
 double DoubleEvaluator::function(const ex& e, const std::string& what) const {
-  using unary = double (*)(double);
-  static const std::pair<const char*, unary> functions[] = {
-      {"sin", std::sin},     {"cos", std::cos},     {"tan", std::tan},     {"asin", std::asin},
-      {"acos", std::acos},   {"atan", std::atan},   {"sinh", std::sinh},   {"cosh", std::cosh},
-      {"tanh", std::tanh},   {"asinh", std::asinh}, {"acosh", std::acosh}, {"atanh", std::atanh},
-      {"exp", std::exp},     {"log", std::log},     {"abs", std::fabs}};
   const std::string name = GiNaC::ex_to<GiNaC::function>(e).get_name();
   if (name == "atan2" && e.nops() == 2) return std::atan2(value(e.op(0), what), value(e.op(1), what));
-  for (const auto& [known, f] : functions)
-    if (name == known && e.nops() == 1) return f(value(e.op(0), what));
+  if (const detail::UnaryFunction f = e.nops() == 1 ? detail::unary_function(name) : nullptr) return f(value(e.op(0), what));
   throw Error(fmt::format("evaluating {}: the function '{}' has no numeric evaluation here", what, name));
 }
 

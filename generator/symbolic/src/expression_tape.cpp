@@ -6,7 +6,7 @@
 #include <utility>
 
 #include "eomgen/base/error.hpp"
-#include "order_independent_arithmetic.hpp"
+#include "double_arithmetic.hpp"
 
 namespace eomgen {
 
@@ -58,20 +58,14 @@ std::uint32_t ExpressionTape::node(const ex& e, const std::string& what) {
       operands.push_back(node(e.op(1), what));
     }
   } else if (is_a<GiNaC::function>(e)) {
-    using unary = double (*)(double);
-    static const std::pair<const char*, unary> functions[] = {
-        {"sin", std::sin},     {"cos", std::cos},     {"tan", std::tan},     {"asin", std::asin},
-        {"acos", std::acos},   {"atan", std::atan},   {"sinh", std::sinh},   {"cosh", std::cosh},
-        {"tanh", std::tanh},   {"asinh", std::asinh}, {"acosh", std::acosh}, {"atanh", std::atanh},
-        {"exp", std::exp},     {"log", std::log},     {"abs", std::fabs}};
     const std::string name = GiNaC::ex_to<GiNaC::function>(e).get_name();
     if (name == "atan2" && e.nops() == 2) {
       step.op = Op::atan2;
+    } else if (const detail::UnaryFunction f = e.nops() == 1 ? detail::unary_function(name) : nullptr) {
+      step.op = Op::unary;
+      step.unary = f;
     } else {
-      for (const auto& [known, f] : functions)
-        if (name == known && e.nops() == 1) step.op = Op::unary, step.unary = f;
-      if (step.op != Op::unary)
-        throw Error(fmt::format("evaluating {}: the function '{}' has no numeric evaluation here", what, name));
+      throw Error(fmt::format("evaluating {}: the function '{}' has no numeric evaluation here", what, name));
     }
     for (std::size_t i = 0; i < e.nops(); ++i) operands.push_back(node(e.op(i), what));
   } else {

@@ -1,4 +1,4 @@
-#include "order_independent_arithmetic.hpp"
+#include "double_arithmetic.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -91,6 +91,17 @@ double ordered_product(double* factors, std::size_t count) {
   double p = 1.0;
   for (std::size_t i = 0; i < count; ++i) p *= factors[i];
   return without_negative_zero(negative ? -p : p);
+}
+
+UnaryFunction unary_function(const std::string& name) {
+  static const std::pair<const char*, UnaryFunction> functions[] = {
+      {"sin", std::sin},     {"cos", std::cos},     {"tan", std::tan},     {"asin", std::asin},
+      {"acos", std::acos},   {"atan", std::atan},   {"sinh", std::sinh},   {"cosh", std::cosh},
+      {"tanh", std::tanh},   {"asinh", std::asinh}, {"acosh", std::acosh}, {"atanh", std::atanh},
+      {"exp", std::exp},     {"log", std::log},     {"abs", std::fabs}};
+  for (const auto& [known, f] : functions)
+    if (name == known) return f;
+  return nullptr;
 }
 
 }  // namespace eomgen::detail
