@@ -43,6 +43,8 @@
 
 namespace eomgen {
 
+struct LinearizationProgram;  // linearization.cpp
+
 /// The second-order form's matrices as expressions in the model's symbols, the accelerations
 /// qdd (standing for the operating point's qdd0) and the intermediates of `derivatives`.
 struct SymbolicLinearization {
@@ -60,7 +62,7 @@ struct SymbolicLinearization {
   std::vector<bool> cyclic;
   /// M, F, Xi, Xi_t, b and the terms above compiled into one ExpressionTape, so that each
   /// further operating point (a sweep's) costs numbers only
-  std::shared_ptr<const struct LinearizationProgram> program;
+  std::shared_ptr<const LinearizationProgram> program;
 };
 
 /// Differentiates R = M qdd - F of `eom` (derived from model.system).
