@@ -130,9 +130,10 @@ TEST_F(Simulate, PendulumCsvMatchesAnIndependentIntegrationAndIsPlotted) {
 TEST_F(Simulate, SecondRunReusesTheCompiledSimulation) {
   const std::string model = quote(models_dir + "simple_pendulum.eom");
   const std::string out = " -o " + quote((dir_ / "work" / "a.csv").string()) + " --no-plot";
-  const Outcome first = simulate(model + " --t-end 0.5 --init theta=0.3" + out);
+  const Outcome first = simulate(model + " --t-end 0.5 --init theta=0.3 --method rk4 --dt 0.02" + out);
   ASSERT_EQ(first.status, 0) << first.err;
-  // parameters and initial state are arguments of the program, not part of its build
+  // parameters, initial state and step are arguments of the program, not part of its build (the
+  // method is: the program holds only the one it runs)
   const Outcome second = simulate(model + " --t-end 1 --init theta=0.1 --set g=3.7 --method rk4 --dt 0.01" + out);
   ASSERT_EQ(second.status, 0) << second.err;
   EXPECT_THAT(second.err, HasSubstr("using the cached build"));

@@ -48,6 +48,8 @@ const NotRun not_run[] = {
     {"bench/compare_peers.sh", "the peer benchmark: 20-30 min, installs MuJoCo and SymPy"},
     {"bench/compare_peers.sh > report.md", "the peer benchmark: 20-30 min, installs MuJoCo and SymPy"},
     {"PEERS_QUICK=1 bench/compare_peers.sh", "installs MuJoCo and SymPy; a benchmark, not a test"},
+    {"bench/model_times.sh build/generator/eomgen",
+     "a benchmark, not a test: times commands and compiles a simulation three times (minutes)"},
 };
 
 struct Block {

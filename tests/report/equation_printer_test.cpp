@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -215,6 +216,30 @@ TEST(SharedForm, ChosenAutomaticallyForLargeSystemsOnly) {
   EXPECT_TRUE(uses_shared_form(three, few, options));
   options.intermediates = IntermediateForm::written_out;
   EXPECT_FALSE(uses_shared_form(chain, large, options));
+}
+
+TEST(SharedForm, ChosenWhenMultiplyingOutWouldBeLargeThoughTheTreeIsSmall) {
+  // V = (q1 + ... + q8)^8 is a tree of a dozen nodes and 8^8 = 16.7 million terms multiplied out
+  Model model;
+  model.name = "octic";
+  MechanicalSystem& s = model.system;
+  GiNaC::exvector coordinates;
+  for (int i = 1; i <= 8; ++i) coordinates.push_back(s.add_coordinate("q" + std::to_string(i)).q);
+  s.add_potential("octic", GiNaC::pow(GiNaC::add(coordinates), 8));
+  const ModelEquations eom = derive_equations(model);
+  PrintOptions options;
+  options.parts = parse_equation_parts("V");
+  EXPECT_LT(written_out_size(model, eom, options.parts), 20);
+  EXPECT_GT(multiplied_out_size(model, eom, options.parts), 8 * std::pow(8.0, 8));
+  EXPECT_TRUE(uses_shared_form(model, eom, options));
+  EXPECT_THAT(format_equations(model, eom, options), HasSubstr("V = (q1 + q2 + q3 + q4 + q5 + q6 + q7 + q8)^8\n"));
+  // a square of the same sum multiplies out to 64 terms and is written out
+  Model square;
+  square.name = "square";
+  GiNaC::exvector q;
+  for (int i = 1; i <= 8; ++i) q.push_back(square.system.add_coordinate("q" + std::to_string(i)).q);
+  square.system.add_potential("square", GiNaC::pow(GiNaC::add(q), 2));
+  EXPECT_FALSE(uses_shared_form(square, derive_equations(square), options));
 }
 
 TEST(Determinism, SameModelPrintsTheSameBytesWhateverSymbolsCameBefore) {

@@ -78,9 +78,10 @@ void report_summary(const RunSettings<Model>& run, const eomrt::SimulationResult
   std::printf("rows: %lld\n", samples.rows());
 }
 
-/// Runs a simulation of Model as described in the file comment.
+/// Runs a simulation of Model as described in the file comment, with the methods of Methods
+/// (eomrt::simulate_with): the others are not compiled.
 /// \return the exit status (0, 1 or 2)
-template <class Model>
+template <class Model, class Methods = eomrt::AllMethods>
 int simulation_main(int argc, char** argv) {
   using Types = eomrt::ModelTypes<Model, double>;
   try {
@@ -97,7 +98,7 @@ int simulation_main(int argc, char** argv) {
 
     const auto start = std::chrono::steady_clock::now();
     const eomrt::SimulationResult<Model, double> r =
-        eomrt::simulate<Model>(run.p, run.x0, run.options, inputs, samples);
+        eomrt::simulate_with<Methods, Model>(run.p, run.x0, run.options, inputs, samples);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     samples.finish();
     const bool written = std::fclose(csv) == 0;

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "eomgen/base/error.hpp"
+#include "eomgen/symbolic/tree_size.hpp"
 #include "operation_estimate.hpp"
 #include "parameter_coefficients.hpp"
 #include "relative_rotations.hpp"
@@ -14,6 +15,9 @@ namespace {
 using GiNaC::ex;
 using GiNaC::exvector;
 using GiNaC::matrix;
+
+// constraint terms of more tree nodes than this, all together, are bound to intermediates
+constexpr double large_constraint_size = 5000;
 
 matrix zero3() { return matrix(3, 1); }
 
@@ -393,6 +397,27 @@ class Derivation {
       // d/dt (Xi qd + Xi_t) = Xi qdd + (dXi/dt qd + dXi_t/dt): keep the part without qdd
       eom_.constraint_acceleration_term(i, 0) = rate_at_zero_acceleration(rate_form);
     }
+    share_large_constraint_terms();
+  }
+
+  // The constraints are differentiated in model symbols, outside the shared kinematics: a
+  // contact point such as a steered wheel's makes b a tree of some 10,000 nodes per row, with
+  // the same pieces repeated by the product rule. Bound to intermediates, printing,
+  // linearization (which differentiates them again) and emission see a graph instead. Small
+  // constraints stay as derived: the forms one writes by hand.
+  void share_large_constraint_terms() {
+    std::vector<matrix*> parts{&eom_.constraint_jacobian, &eom_.constraint_rate_term,
+                               &eom_.constraint_acceleration_term, &eom_.holonomic_residuals};
+    GiNaC::lst all;
+    for (const matrix* part : parts)
+      for (unsigned i = 0; i < part->rows(); ++i)
+        for (unsigned j = 0; j < part->cols(); ++j) all.append((*part)(i, j));
+    if (tree_size(all) <= large_constraint_size) return;
+    const ex shared = z_.share(all);
+    std::size_t k = 0;
+    for (matrix* part : parts)
+      for (unsigned i = 0; i < part->rows(); ++i)
+        for (unsigned j = 0; j < part->cols(); ++j) (*part)(i, j) = shared.op(k++);
   }
 
   const MechanicalSystem& s_;

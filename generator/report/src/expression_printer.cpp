@@ -165,7 +165,13 @@ std::vector<std::string> ExpressionPrinter::signed_terms(const ex& sum, Style st
   return out;
 }
 
-ExpressionPrinter::Monomial ExpressionPrinter::monomial(const ex& term) const {
+const ExpressionPrinter::Monomial& ExpressionPrinter::monomial(const ex& term) const {
+  if (const auto it = monomials_.find(term); it != monomials_.end()) return it->second;
+  Monomial m = make_monomial(term);
+  return monomials_.emplace(term, std::move(m)).first->second;
+}
+
+ExpressionPrinter::Monomial ExpressionPrinter::make_monomial(const ex& term) const {
   Monomial m{1, {}};
   std::vector<ex> factors;
   if (is_a<GiNaC::numeric>(term)) {
@@ -185,7 +191,7 @@ ExpressionPrinter::Monomial ExpressionPrinter::monomial(const ex& term) const {
     const ex base = power ? f.op(0) : f, exponent = power ? f.op(1) : ex(1);
     const bool integer = is_a<GiNaC::numeric>(exponent) && GiNaC::ex_to<GiNaC::numeric>(exponent).is_integer();
     if (is_a<GiNaC::add>(base) && integer) {
-      const Monomial first = monomial(sorted_terms(base).front());
+      const Monomial& first = monomial(sorted_terms(base).front());
       if (first.coefficient.is_real() && first.coefficient.is_negative()) {
         // (-s)^k = (-1)^k s^k; -s of a sum is again a sum, so nothing re-normalizes it
         m.factors.push_back(Factor{-base, exponent});
@@ -317,6 +323,7 @@ int ExpressionPrinter::compare_symbols(const ex& a, const ex& b) const {
 }
 
 int ExpressionPrinter::compare(const ex& a, const ex& b) const {
+  if (a.is_equal(b)) return 0;  // shared subtrees: the same object, or equal hashes and structure
   if (const int c = three_way(rank(a), rank(b))) return c;
   switch (rank(a)) {
     case 0: return three_way(ginac_text(a), ginac_text(b));
@@ -329,7 +336,8 @@ int ExpressionPrinter::compare(const ex& a, const ex& b) const {
       return three_way(a.nops(), b.nops());
     }
     case 3: {
-      const std::vector<ex> ta = sorted_terms(a), tb = sorted_terms(b);
+      const std::vector<ex>& ta = sorted_terms(a);
+      const std::vector<ex>& tb = sorted_terms(b);
       for (std::size_t i = 0; i < std::min(ta.size(), tb.size()); ++i)
         if (const int c = compare_monomials(monomial(ta[i]), monomial(tb[i]))) return c;
       return three_way(ta.size(), tb.size());
@@ -354,11 +362,12 @@ int ExpressionPrinter::compare_monomials(const Monomial& a, const Monomial& b) c
   return a.coefficient.compare(b.coefficient);
 }
 
-std::vector<ex> ExpressionPrinter::sorted_terms(const ex& sum) const {
+const std::vector<ex>& ExpressionPrinter::sorted_terms(const ex& sum) const {
+  if (const auto it = sorted_terms_.find(sum); it != sorted_terms_.end()) return it->second;
   std::vector<ex> terms(sum.begin(), sum.end());
   std::stable_sort(terms.begin(), terms.end(),
                    [this](const ex& x, const ex& y) { return compare_monomials(monomial(x), monomial(y)) < 0; });
-  return terms;
+  return sorted_terms_.emplace(sum, std::move(terms)).first->second;
 }
 
 }  // namespace eomgen

@@ -1,5 +1,13 @@
 #include "eomgen/symbolic/subexpressions.hpp"
 
+#include <algorithm>
+#include <cstdint>
+#include <numeric>
+#include <sstream>
+#include <unordered_map>
+
+#include "eomgen/base/content_hash.hpp"
+#include "eomgen/symbolic/expression_map.hpp"
 
 namespace eomgen {
 namespace {
@@ -34,36 +42,154 @@ ex Subexpressions::bind(const ex& value) {
   return z;
 }
 
+namespace {
+
+// The content of an expression up to its sign: e = sign * magnitude, with a hash of the
+// magnitude from names, numbers and structure, the operands of sums and products taken in
+// sorted order. GiNaC orders those operands by hash values seeded from addresses, so from one
+// process to the next it writes the same value in other orders and, inside products, with
+// either sign (x*(a - b) or -x*(b - a)); e and -e have the same magnitude here in every run.
+struct Signature {
+  std::uint64_t magnitude = 0;
+  int sign = 1;
+};
+
+class Signatures {
+ public:
+  Signature operator()(const ex& e) {
+    if (const auto it = memo_.find(e); it != memo_.end()) return it->second;
+    const Signature s = compute(e);
+    memo_.emplace(e, s);
+    return s;
+  }
+
+ private:
+  static std::uint64_t mix(std::uint64_t h, std::uint64_t v) {
+    for (int i = 0; i < 8; ++i) h = (h ^ ((v >> (8 * i)) & 0xffu)) * 1099511628211ull;  // FNV-1a
+    return h;
+  }
+  static std::uint64_t text_hash(const ex& e) {
+    std::ostringstream text;  // numbers and constants: GiNaC prints these the same in every run
+    text << e;
+    return content_hash(text.str());
+  }
+  static std::uint64_t tag(const char* kind) { return content_hash(kind); }
+
+  Signature compute(const ex& e) {
+    using GiNaC::is_a;
+    if (is_a<GiNaC::numeric>(e)) {
+      const GiNaC::numeric& n = GiNaC::ex_to<GiNaC::numeric>(e);
+      const bool negative = n.is_real() && n.is_negative();
+      return {mix(tag("numeric"), text_hash(negative ? ex(-n) : e)), negative ? -1 : 1};
+    }
+    if (is_a<GiNaC::symbol>(e)) return {mix(tag("symbol"), content_hash(GiNaC::ex_to<GiNaC::symbol>(e).get_name())), 1};
+    if (is_a<GiNaC::mul>(e)) {
+      GiNaC::numeric coefficient = 1;
+      int sign = 1;
+      std::vector<std::uint64_t> factors;
+      for (std::size_t i = 0; i < e.nops(); ++i) {
+        if (is_a<GiNaC::numeric>(e.op(i))) {
+          coefficient *= GiNaC::ex_to<GiNaC::numeric>(e.op(i));
+          continue;
+        }
+        const Signature f = (*this)(e.op(i));
+        sign *= f.sign;
+        factors.push_back(f.magnitude);
+      }
+      if (coefficient.is_real() && coefficient.is_negative()) sign = -sign, coefficient = -coefficient;
+      // -x is x negated, wherever it stands
+      if (factors.size() == 1 && coefficient.is_equal(1)) return {factors[0], sign};
+      std::sort(factors.begin(), factors.end());
+      std::uint64_t h = mix(tag("mul"), text_hash(coefficient));
+      for (std::uint64_t f : factors) h = mix(h, f);
+      return {h, sign};
+    }
+    if (is_a<GiNaC::add>(e)) {
+      std::vector<Signature> terms;
+      for (std::size_t i = 0; i < e.nops(); ++i) terms.push_back((*this)(e.op(i)));
+      std::sort(terms.begin(), terms.end(), [](const Signature& a, const Signature& b) {
+        return a.magnitude != b.magnitude ? a.magnitude < b.magnitude : a.sign < b.sign;
+      });
+      const int sign = terms.front().sign;
+      std::uint64_t h = tag("add");
+      for (const Signature& t : terms) h = mix(mix(h, t.magnitude), static_cast<std::uint64_t>(t.sign * sign + 1));
+      return {h, sign};
+    }
+    if (is_a<GiNaC::power>(e)) {
+      const Signature base = (*this)(e.op(0));
+      const ex& exponent = e.op(1);
+      std::uint64_t h = mix(mix(tag("power"), base.magnitude), text_hash(exponent));
+      if (is_a<GiNaC::numeric>(exponent) && GiNaC::ex_to<GiNaC::numeric>(exponent).is_integer())
+        return {h, GiNaC::ex_to<GiNaC::numeric>(exponent).is_odd() ? base.sign : 1};
+      // sqrt(a - b) and sqrt(b - a) are different values
+      const Signature x = (*this)(exponent);
+      return {mix(mix(mix(h, static_cast<std::uint64_t>(base.sign + 1)), x.magnitude), static_cast<std::uint64_t>(x.sign + 1)), 1};
+    }
+    // functions (sin(a - b) is not -sin(b - a) to GiNaC), constants, lists: operands in order
+    std::uint64_t h = mix(tag(GiNaC::ex_to<GiNaC::basic>(e).class_name()), e.nops() == 0 ? text_hash(e) : 0);
+    if (is_a<GiNaC::function>(e)) h = mix(h, content_hash(GiNaC::ex_to<GiNaC::function>(e).get_name()));
+    for (std::size_t i = 0; i < e.nops(); ++i) {
+      const Signature o = (*this)(e.op(i));
+      h = mix(mix(h, o.magnitude), static_cast<std::uint64_t>(o.sign + 1));
+    }
+    return {h, 1};
+  }
+
+  ExpressionMap<Signature> memo_;
+};
+
+}  // namespace
+
 ex Subexpressions::share(const ex& value) {
-  // count the parents of every node, visiting each shared node once (identical shared nodes
-  // compare by pointer, so the maps stay cheap)
-  std::map<ex, std::size_t, GiNaC::ex_is_less> parents;
+  // Everything below goes by values up to sign, not by GiNaC's structure: the same value
+  // written as x*(a - b) here and -x*(b - a) there is one node, bound once, with the sign of
+  // a fixed choice, and nodes are visited in the order of their content. So the intermediates
+  // and their numbers are the same in every run.
+  Signatures signature;
+  // count the parents of every node, visiting each node once
+  std::unordered_map<std::uint64_t, std::size_t> parents;
   std::vector<ex> stack{value};
-  parents[value] = 1;
+  parents[signature(value).magnitude] = 1;
   while (!stack.empty()) {
     const ex e = stack.back();
     stack.pop_back();
     for (std::size_t i = 0; i < e.nops(); ++i) {
       if (is_leaf(e.op(i))) continue;
-      if (parents[e.op(i)]++ == 0) stack.push_back(e.op(i));
+      if (parents[signature(e.op(i)).magnitude]++ == 0) stack.push_back(e.op(i));
     }
   }
   // rebuild bottom-up, binding the nodes used more than once
   struct Rebuild : GiNaC::map_function {
     Subexpressions& z;
-    std::map<ex, std::size_t, GiNaC::ex_is_less>& parents;
-    std::map<ex, ex, GiNaC::ex_is_less> done;
-    Rebuild(Subexpressions& s, std::map<ex, std::size_t, GiNaC::ex_is_less>& p) : z(s), parents(p) {}
+    const std::unordered_map<std::uint64_t, std::size_t>& parents;
+    Signatures& signature;
+    // a node's value as +-1 times a canonical value: the one bound when the node is shared
+    struct Done {
+      ex canonical;
+      int sign;  // of the node whose signature has sign +1
+    };
+    std::unordered_map<std::uint64_t, Done> done;
+    Rebuild(Subexpressions& s, const std::unordered_map<std::uint64_t, std::size_t>& p, Signatures& g)
+        : z(s), parents(p), signature(g) {}
     ex operator()(const ex& e) override {
       if (is_leaf(e)) return e;
-      auto it = done.find(e);
-      if (it != done.end()) return it->second;
-      ex r = e.map(*this);
-      if (parents[e] > 1) r = z.bind(r);
-      done.emplace(e, r);
-      return r;
+      const Signature s = signature(e);
+      if (const auto it = done.find(s.magnitude); it != done.end()) return s.sign * it->second.sign * it->second.canonical;
+      std::vector<std::size_t> order(e.nops());
+      std::iota(order.begin(), order.end(), std::size_t{0});
+      std::vector<std::uint64_t> keys;
+      for (std::size_t i = 0; i < e.nops(); ++i) keys.push_back(signature(e.op(i)).magnitude);
+      std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return keys[a] < keys[b]; });
+      for (std::size_t i : order) (*this)(e.op(i));
+      const ex r = e.map(*this);  // every operand is done: this only looks them up
+      // r = e; its canonical value is r times its own sign (taken on its new content)
+      const int r_sign = signature(r).sign;
+      ex canonical = r_sign * r;
+      if (parents.at(s.magnitude) > 1) canonical = z.bind(canonical);
+      done.emplace(s.magnitude, Done{canonical, s.sign * r_sign});
+      return r_sign * canonical;
     }
-  } rebuild(*this, parents);
+  } rebuild(*this, parents, signature);
   return rebuild(value);
 }
 

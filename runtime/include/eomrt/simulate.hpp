@@ -16,6 +16,9 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <tuple>
+#include <type_traits>
+#include <utility>
 
 #include "eomrt/dynamics_kkt.hpp"
 #include "eomrt/dynamics_null_space.hpp"
@@ -30,6 +33,25 @@ namespace eomrt {
 
 enum class ConstraintSolver { kkt, null_space };
 enum class Stabilization { none, baumgarte, projection };
+
+/// The methods an instantiation of simulate() can run: every integrator, constraint solver and
+/// the projection it contains is compiled for the model. With the model's fixed-size matrices
+/// each costs seconds of compile time (the null-space solver's QR, 15 s of the 35 s a rolling
+/// coin's program took), so a program that knows its options when it is compiled, as eomgen
+/// simulate's does, names only those (OnlyMethods).
+struct AllMethods {
+  static constexpr bool has(Integrator) { return true; }
+  static constexpr bool has(ConstraintSolver) { return true; }
+  static constexpr bool has(Stabilization) { return true; }
+};
+
+/// One integrator, one constraint solver and one stabilization.
+template <Integrator method, ConstraintSolver solver, Stabilization stabilization>
+struct OnlyMethods {
+  static constexpr bool has(Integrator i) { return i == method; }
+  static constexpr bool has(ConstraintSolver c) { return c == solver; }
+  static constexpr bool has(Stabilization s) { return s == stabilization; }
+};
 
 /// How a simulation is run. Defaults suit a first look at most models.
 template <class Scalar>
@@ -172,7 +194,7 @@ inline SimulationStatus simulation_status(DynamicsStatus s) {
 }
 
 /// Everything one simulation needs besides the integrator's own scratch; built once.
-template <class Model, class Scalar, class InputFn>
+template <class Model, class Scalar, class InputFn, class Methods>
 struct SimulationContext {
   using Types = ModelTypes<Model, Scalar>;
   static constexpr int nq = Model::nq;
@@ -208,9 +230,12 @@ struct SimulationContext {
     const Baumgarte<Scalar> stab = options.stabilization == Stabilization::baumgarte
                                        ? options.baumgarte
                                        : Baumgarte<Scalar>{};
-    if (options.solver == ConstraintSolver::null_space)
-      return forward_dynamics_null_space<Model, Scalar>(p, ws, t, q, qd, u, stab, partition);
-    return forward_dynamics_kkt<Model, Scalar>(p, ws, t, q, qd, u, stab);
+    if constexpr (Methods::has(ConstraintSolver::null_space))
+      if (options.solver == ConstraintSolver::null_space)
+        return forward_dynamics_null_space<Model, Scalar>(p, ws, t, q, qd, u, stab, partition);
+    if constexpr (Methods::has(ConstraintSolver::kkt))
+      return forward_dynamics_kkt<Model, Scalar>(p, ws, t, q, qd, u, stab);
+    return DynamicsStatus::ok;  // not reached: simulate() refuses a solver Methods lacks
   }
 
   /// the right-hand side for the integrators; false stops them (the reason stays in failure)
@@ -227,14 +252,18 @@ struct SimulationContext {
 
   /// projects x in place when projection is on
   DynamicsStatus stabilize(const Scalar& t, typename Types::State& x) {
-    if (options.stabilization != Stabilization::projection || Model::nc == 0)
+    if constexpr (!Methods::has(Stabilization::projection)) {
       return DynamicsStatus::ok;
-    q = x.template head<nq>();
-    qd = x.template tail<nq>();
-    const DynamicsStatus s = project_onto_constraints<Model, Scalar>(p, ws, t, q, qd);
-    x.template head<nq>() = q;
-    x.template tail<nq>() = qd;
-    return s;
+    } else {
+      if (options.stabilization != Stabilization::projection || Model::nc == 0)
+        return DynamicsStatus::ok;
+      q = x.template head<nq>();
+      qd = x.template tail<nq>();
+      const DynamicsStatus s = project_onto_constraints<Model, Scalar>(p, ws, t, q, qd);
+      x.template head<nq>() = q;
+      x.template tail<nq>() = qd;
+      return s;
+    }
   }
 
   /// evaluates everything a sample reports at (t, x) and hands it to the observer
@@ -332,9 +361,9 @@ inline SimulationStatus simulation_status(AdaptiveStatus s, DynamicsStatus rhs_f
 /// Fixed steps from result.t to the sample time t_target: the interval is cut into equal steps
 /// no longer than options.step, so that the sample lands on a step.
 /// \return false if a step failed (recorded in result, which keeps the last good state)
-template <std::size_t S, class Model, class Scalar, class InputFn, class Rhs, class State>
+template <std::size_t S, class Model, class Scalar, class InputFn, class Methods, class Rhs, class State>
 bool fixed_steps_to(const ButcherTableau<S>& tableau,
-                    SimulationContext<Model, Scalar, InputFn>& ctx, Rhs& rhs,
+                    SimulationContext<Model, Scalar, InputFn, Methods>& ctx, Rhs& rhs,
                     RkWorkspace<State, S>& ws, const Scalar& t_target,
                     SimulationResult<Model, Scalar>& result) {
   using std::abs;
@@ -376,8 +405,8 @@ bool fixed_steps_to(const ButcherTableau<S>& tableau,
 }
 
 /// A fixed-step method from the first sample to t_end, marching from sample to sample.
-template <std::size_t S, class Model, class Scalar, class InputFn, class Observer>
-void march_fixed(const ButcherTableau<S>& tableau, SimulationContext<Model, Scalar, InputFn>& ctx,
+template <std::size_t S, class Model, class Scalar, class InputFn, class Methods, class Observer>
+void march_fixed(const ButcherTableau<S>& tableau, SimulationContext<Model, Scalar, InputFn, Methods>& ctx,
                  Observer& observer, SimulationResult<Model, Scalar>& result) {
   using State = typename ModelTypes<Model, Scalar>::State;
   auto rhs = [&ctx](const Scalar& t, const State& x, State& dxdt) { return ctx.rhs(t, x, dxdt); };
@@ -392,8 +421,8 @@ void march_fixed(const ButcherTableau<S>& tableau, SimulationContext<Model, Scal
 
 /// The samples of the grid inside the step just accepted, from its dense output: before the
 /// end state is projected. \return false if one failed (recorded in result)
-template <class Model, class Scalar, class InputFn, class Observer, class Workspace, class State>
-bool emit_dense_samples(SimulationContext<Model, Scalar, InputFn>& ctx, const Workspace& ws,
+template <class Model, class Scalar, class InputFn, class Methods, class Observer, class Workspace, class State>
+bool emit_dense_samples(SimulationContext<Model, Scalar, InputFn, Methods>& ctx, const Workspace& ws,
                         Observer& observer, long long& next_sample, State& x_sample,
                         SimulationResult<Model, Scalar>& result) {
   for (Scalar ts = sample_time(ctx.options, next_sample); ts < ws.t;
@@ -411,8 +440,8 @@ bool emit_dense_samples(SimulationContext<Model, Scalar, InputFn>& ctx, const Wo
 /// An adaptive method from the first sample to t_end: steps as the error control chooses,
 /// samples from the dense output (or after every step when there is no grid), and the end of
 /// each step projected onto the constraints, the stepper then restarted from the projection.
-template <std::size_t S, class Model, class Scalar, class InputFn, class Observer>
-void march_adaptive(const EmbeddedTableau<S>& pair, SimulationContext<Model, Scalar, InputFn>& ctx,
+template <std::size_t S, class Model, class Scalar, class InputFn, class Methods, class Observer>
+void march_adaptive(const EmbeddedTableau<S>& pair, SimulationContext<Model, Scalar, InputFn, Methods>& ctx,
                     Observer& observer, SimulationResult<Model, Scalar>& result) {
   using State = typename ModelTypes<Model, Scalar>::State;
   const SimulationOptions<Scalar>& o = ctx.options;
@@ -461,6 +490,73 @@ void march_adaptive(const EmbeddedTableau<S>& pair, SimulationContext<Model, Sca
 
 }  // namespace detail
 
+namespace detail {
+
+/// visit_integrator over the rows Methods has: the others are not compiled.
+template <class Methods, std::size_t I = 0, class F>
+void visit_integrator_of(Integrator method, F& f) {
+  constexpr auto& entry = std::get<I>(integrator_registry);
+  if constexpr (Methods::has(entry.method))
+    if (entry.method == method) return f(entry);
+  if constexpr (I + 1 < std::tuple_size_v<std::decay_t<decltype(integrator_registry)>>)
+    visit_integrator_of<Methods, I + 1>(method, f);
+}
+
+}  // namespace detail
+
+/// simulate() compiled with the methods of Methods only (AllMethods, OnlyMethods).
+/// @throws std::invalid_argument if the options ask for an integrator, constraint solver or
+///         stabilization Methods lacks, and where simulate() throws
+template <class Methods, class Model, class Scalar = double, class InputFn = ZeroInputs,
+          class Observer = IgnoreSamples>
+SimulationResult<Model, Scalar> simulate_with(const typename ModelTypes<Model, Scalar>::Parameters& p,
+                                              const typename ModelTypes<Model, Scalar>::State& x0,
+                                              const SimulationOptions<Scalar>& options,
+                                              InputFn&& input = InputFn{},
+                                              Observer&& observer = Observer{}) {
+  static_assert(check_model<Model, Scalar>());
+  detail::check_options(options);
+  if (!Methods::has(options.integrator) || !Methods::has(options.solver) ||
+      !Methods::has(options.stabilization))
+    throw std::invalid_argument(std::string("simulate: the integrator ") + to_string(options.integrator) +
+                                ", its constraint solver or its stabilization is not compiled into this program");
+
+  // the declared partition is built (and validated) here, before the loop
+  std::optional<SpeedPartition<Model>> declared;
+  if constexpr (has_independent_speeds_v<Model> && Methods::has(ConstraintSolver::null_space)) {
+    if (options.use_declared_speeds && options.solver == ConstraintSolver::null_space)
+      declared = declared_speed_partition<Model>();
+  }
+  const SpeedPartition<Model>* partition = declared ? &*declared : nullptr;
+
+  using Input = std::remove_reference_t<InputFn>;
+  detail::SimulationContext<Model, Scalar, Input, Methods> ctx(p, options, input, partition);
+  SimulationResult<Model, Scalar> result;
+  result.t = options.t0;
+  result.x = x0;
+  if (!result.x.allFinite()) {
+    detail::fail(result, SimulationStatus::non_finite_state, options.t0);
+    return result;
+  }
+
+  // the first sample stabilizes x0 (projection) and proves the dynamics regular there
+  const DynamicsStatus ds = ctx.emit(options.t0, result.x, observer);
+  if (ds != DynamicsStatus::ok) {
+    detail::fail(result, detail::simulation_status(ds), options.t0);
+    return result;
+  }
+  if (options.t_end == options.t0) return result;
+
+  const auto march = [&](const auto& entry) {
+    if constexpr (std::decay_t<decltype(entry)>::adaptive)
+      detail::march_adaptive(entry.tableau, ctx, observer, result);
+    else
+      detail::march_fixed(entry.tableau, ctx, observer, result);
+  };
+  detail::visit_integrator_of<Methods>(options.integrator, march);
+  return result;
+}
+
 /// Simulates a model from (t0, x0) to t_end.
 /// \param[in] p         parameters; a model with Constants is evaluated through Constants built
 ///                      once from them (make_parameter_set)
@@ -480,42 +576,8 @@ SimulationResult<Model, Scalar> simulate(const typename ModelTypes<Model, Scalar
                                          const SimulationOptions<Scalar>& options,
                                          InputFn&& input = InputFn{},
                                          Observer&& observer = Observer{}) {
-  static_assert(check_model<Model, Scalar>());
-  detail::check_options(options);
-
-  // the declared partition is built (and validated) here, before the loop
-  std::optional<SpeedPartition<Model>> declared;
-  if constexpr (has_independent_speeds_v<Model>) {
-    if (options.use_declared_speeds && options.solver == ConstraintSolver::null_space)
-      declared = declared_speed_partition<Model>();
-  }
-  const SpeedPartition<Model>* partition = declared ? &*declared : nullptr;
-
-  using Input = std::remove_reference_t<InputFn>;
-  detail::SimulationContext<Model, Scalar, Input> ctx(p, options, input, partition);
-  SimulationResult<Model, Scalar> result;
-  result.t = options.t0;
-  result.x = x0;
-  if (!result.x.allFinite()) {
-    detail::fail(result, SimulationStatus::non_finite_state, options.t0);
-    return result;
-  }
-
-  // the first sample stabilizes x0 (projection) and proves the dynamics regular there
-  const DynamicsStatus ds = ctx.emit(options.t0, result.x, observer);
-  if (ds != DynamicsStatus::ok) {
-    detail::fail(result, detail::simulation_status(ds), options.t0);
-    return result;
-  }
-  if (options.t_end == options.t0) return result;
-
-  visit_integrator(options.integrator, [&](const auto& entry) {
-    if constexpr (std::decay_t<decltype(entry)>::adaptive)
-      detail::march_adaptive(entry.tableau, ctx, observer, result);
-    else
-      detail::march_fixed(entry.tableau, ctx, observer, result);
-  });
-  return result;
+  return simulate_with<AllMethods, Model, Scalar>(p, x0, options, std::forward<InputFn>(input),
+                                                  std::forward<Observer>(observer));
 }
 
 }  // namespace eomrt

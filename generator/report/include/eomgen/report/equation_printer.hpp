@@ -49,11 +49,20 @@ struct PrintOptions {
   /// (a 4-link planar chain has about 13,000 and prints in well under a second; the
   /// simplification cost grows about tenfold per further link).
   double max_written_out_size = 20000;
+  /// ...or when multiplying them out (as the written-out form does) would give more nodes than
+  /// this, counted before like terms combine: the tree size misses products of sums (the
+  /// bicycle's kinetic energy, a few thousand nodes, multiplies out to 340 KB of text and took
+  /// 5 s; the universal chain's, estimated at 3 million, prints in 0.3 s).
+  double max_multiplied_out_size = 1e7;
 };
 
 /// Number of expression-tree nodes of the selected parts with every intermediate written out,
 /// computed without writing them out (linear in the size of the shared graph).
 double written_out_size(const Model& model, const ModelEquations& eom, const EquationParts& parts);
+
+/// Number of expression nodes of the selected parts written out and multiplied out, before
+/// like terms combine (an upper bound), computed without doing either.
+double multiplied_out_size(const Model& model, const ModelEquations& eom, const EquationParts& parts);
 
 /// True if IntermediateForm::automatic would print the shared form.
 bool uses_shared_form(const Model& model, const ModelEquations& eom, const PrintOptions& options);

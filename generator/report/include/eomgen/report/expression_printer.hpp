@@ -13,6 +13,8 @@
 #include <string>
 #include <vector>
 
+#include "eomgen/symbolic/expression_map.hpp"
+
 namespace eomgen {
 
 class ExpressionPrinter {
@@ -53,7 +55,8 @@ class ExpressionPrinter {
     GiNaC::numeric coefficient;
     std::vector<Factor> factors;
   };
-  Monomial monomial(const GiNaC::ex& term) const;
+  const Monomial& monomial(const GiNaC::ex& term) const;
+  Monomial make_monomial(const GiNaC::ex& term) const;
 
   std::string print(const GiNaC::ex& e, Style style, Level level) const;
   std::string print_monomial(const Monomial& m, Style style, Level level) const;
@@ -67,9 +70,15 @@ class ExpressionPrinter {
   int compare_symbols(const GiNaC::ex& a, const GiNaC::ex& b) const;
   int compare_factors(const Factor& a, const Factor& b) const;
   int compare_monomials(const Monomial& a, const Monomial& b) const;
-  std::vector<GiNaC::ex> sorted_terms(const GiNaC::ex& sum) const;
+  const std::vector<GiNaC::ex>& sorted_terms(const GiNaC::ex& sum) const;
 
   std::map<GiNaC::ex, std::size_t, GiNaC::ex_is_less> position_;  // looked up, never iterated
+  // Sorting compares subexpressions by their sorted terms and factors, recursively: without
+  // these memos every comparison re-sorts both sides down to the leaves, and printing a
+  // constraint row of the bicycle took seconds. Not thread-safe, like the rest of a printer's
+  // use (one printer per printing call).
+  mutable ExpressionMap<Monomial> monomials_;
+  mutable ExpressionMap<std::vector<GiNaC::ex>> sorted_terms_;
 };
 
 }  // namespace eomgen

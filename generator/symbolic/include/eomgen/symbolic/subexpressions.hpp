@@ -6,7 +6,7 @@
 // definitions in order, like the temporaries of an optimizing compiler.
 #include <ginac/ginac.h>
 
-#include <map>
+#include "eomgen/symbolic/expression_map.hpp"
 #include <string>
 #include <vector>
 
@@ -30,6 +30,8 @@ class Subexpressions {
   /// `value` with every subexpression that occurs more than once in it bound to a symbol.
   /// Expressions built by compounding rotations are small graphs but exponentially large
   /// trees; after share() every consumer (printing, evaluation, emission) sees the graph.
+  /// The new intermediates are numbered in an order that follows the content of `value`
+  /// alone, not GiNaC's process-dependent order of operands, so printing is the same in every run.
   GiNaC::ex share(const GiNaC::ex& value);
 
   /// Definitions in creation order (each refers only to earlier ones).
@@ -51,7 +53,7 @@ class Subexpressions {
  private:
   std::string prefix_;
   std::vector<Definition> definitions_;
-  std::map<GiNaC::ex, GiNaC::ex, GiNaC::ex_is_less> by_value_;
+  ExpressionMap<GiNaC::ex> by_value_;  // looked up, never iterated
   mutable GiNaC::exmap expanded_;  // symbol -> value written out, filled in order
   mutable std::size_t expanded_count_ = 0;
 };
