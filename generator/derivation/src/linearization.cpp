@@ -12,7 +12,8 @@
 
 #include "eomgen/base/error.hpp"
 #include "eomgen/mechanics/variables.hpp"
-#include "eomgen/symbolic/expression_tape.hpp"
+#include "linearization_program.hpp"
+#include "tangent_space.hpp"
 #include "eomrt/linearization.hpp"
 
 namespace eomgen {
@@ -20,20 +21,6 @@ namespace eomgen {
 using GiNaC::ex;
 using GiNaC::ex_to;
 using GiNaC::symbol;
-
-/// See SymbolicLinearization::program. The registers of each matrix are row-major.
-struct LinearizationProgram {
-  std::vector<GiNaC::ex> inputs;  ///< t, q, qd, u, parameters (numeric_substitution's), qdd, lambda
-  ExpressionTape tape;
-  struct Matrix {
-    Eigen::Index rows = 0, cols = 0;
-    std::vector<std::uint32_t> registers;
-    std::string name;
-  };
-  Matrix M, F, Xi, Xi_t, b, phi, K, D, B_u, S_q, S_qd, C_q;
-
-  explicit LinearizationProgram(std::vector<GiNaC::ex> in) : inputs(std::move(in)), tape(inputs) {}
-};
 
 namespace {
 
@@ -103,15 +90,6 @@ class ChainRule {
   mutable std::vector<std::optional<std::vector<ex>>> derivative_;  // filled on demand
 };
 
-/// The holonomic constraints' rows of Xi, in order.
-std::vector<Eigen::Index> holonomic_rows_of(const Model& model) {
-  std::vector<Eigen::Index> rows;
-  const auto& constraints = model.system.constraints();
-  for (std::size_t r = 0; r < constraints.size(); ++r)
-    if (constraints[r].kind == Constraint::Kind::holonomic) rows.push_back(static_cast<Eigen::Index>(r));
-  return rows;
-}
-
 /// An evaluator at the state `point` that also knows the accelerations and multipliers the
 /// derivatives were taken at, and every derivative intermediate: the terms of `symbolic` can
 /// then be evaluated in doubles (a pole becomes inf and a clear Error, not a GiNaC exception).
@@ -159,41 +137,6 @@ void mark_cyclic_by_evaluation(const Model& model, const ModelEquations& eom, Sy
   }
   if (points == 0) return;
   for (std::size_t k : candidates) lin.cyclic[k] = vanishes[k];
-}
-
-std::shared_ptr<const LinearizationProgram> compile_program(const Model& model, const ModelEquations& eom,
-                                                            const SymbolicLinearization& lin) {
-  const Variables& vars = model.system.variables();
-  std::vector<ex> inputs{vars.time()};
-  for (const Coordinate& c : vars.coordinates()) inputs.push_back(c.q), inputs.push_back(c.qd);
-  for (const Input& u : vars.inputs()) inputs.push_back(u.symbol);
-  for (const Parameter& p : vars.parameters()) inputs.push_back(p.symbol);
-  for (const Coordinate& c : vars.coordinates()) inputs.push_back(c.qdd);
-  for (const auto& l : lin.lambda) inputs.push_back(l);
-  auto program = std::make_shared<LinearizationProgram>(std::move(inputs));
-  ExpressionTape& tape = program->tape;
-  for (const auto& d : eom.subexpressions.definitions()) tape.define(d.symbol, d.value, "intermediate " + d.symbol.get_name());
-  for (const auto& d : lin.derivatives.definitions()) tape.define(d.symbol, d.value, "derivative " + d.symbol.get_name());
-  const auto matrix = [&](const GiNaC::matrix& m, const std::string& name) {
-    LinearizationProgram::Matrix out{m.rows(), m.cols(), {}, name};
-    for (unsigned i = 0; i < m.rows(); ++i)
-      for (unsigned j = 0; j < m.cols(); ++j)
-        out.registers.push_back(tape.compile(m(i, j), fmt::format("{}[{},{}]", name, i + 1, j + 1)));
-    return out;
-  };
-  program->M = matrix(eom.mass_matrix, "M");
-  program->F = matrix(eom.forcing, "F");
-  program->Xi = matrix(eom.constraint_jacobian, "Xi");
-  program->Xi_t = matrix(eom.constraint_rate_term, "Xi_t");
-  program->b = matrix(eom.constraint_acceleration_term, "b");
-  program->phi = matrix(eom.holonomic_residuals, "phi");
-  program->K = matrix(lin.K, "K");
-  program->D = matrix(lin.D, "D");
-  program->B_u = matrix(lin.B_u, "B_u");
-  program->S_q = matrix(lin.S_q, "S_q");
-  program->S_qd = matrix(lin.S_qd, "S_qd");
-  program->C_q = matrix(lin.C_q, "C_q");
-  return program;
 }
 
 }  // namespace
@@ -249,161 +192,9 @@ SymbolicLinearization linearize_symbolic(const Model& model, const ModelEquation
 
 namespace {
 
-/// The `count` columns of `a` a column-pivoted QR takes first: the best-conditioned choice of
-/// dependent coordinates (or rates) for the rows of `a`, in increasing order.
-std::vector<Eigen::Index> pivot_columns(const Eigen::MatrixXd& a, Eigen::Index count) {
-  const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(a);
-  std::vector<Eigen::Index> columns;
-  for (Eigen::Index i = 0; i < count; ++i) columns.push_back(qr.colsPermutation().indices()(i));
-  std::sort(columns.begin(), columns.end());
-  return columns;
-}
-
-std::vector<Eigen::Index> complement(Eigen::Index n, const std::vector<Eigen::Index>& taken) {
-  std::vector<Eigen::Index> rest;
-  for (Eigen::Index i = 0; i < n; ++i)
-    if (std::find(taken.begin(), taken.end(), i) == taken.end()) rest.push_back(i);
-  return rest;
-}
-
-Eigen::MatrixXd columns_of(const Eigen::MatrixXd& a, const std::vector<Eigen::Index>& columns) {
-  Eigen::MatrixXd out(a.rows(), static_cast<Eigen::Index>(columns.size()));
-  for (std::size_t j = 0; j < columns.size(); ++j) out.col(static_cast<Eigen::Index>(j)) = a.col(columns[j]);
-  return out;
-}
-
-/// One operating point run on SymbolicLinearization::program.
-class PointEvaluation {
- public:
-  PointEvaluation(const Model& model, const LinearizationProgram& program, const NamedValues& point)
-      : program_(program) {
-    const GiNaC::exmap values = numeric_substitution(model, point);  // checks the names
-    for (const ex& s : program.inputs) {
-      const auto it = values.find(s);
-      inputs_.push_back(it == values.end() ? 0.0 : ex_to<GiNaC::numeric>(it->second).to_double());
-    }
-    program_.tape.evaluate(inputs_, registers_);
-  }
-
-  /// the accelerations and multipliers the derivatives are taken at; evaluates again
-  void set_accelerations(const Eigen::VectorXd& qdd, const Eigen::VectorXd& lambda) {
-    const std::size_t first = inputs_.size() - static_cast<std::size_t>(qdd.size() + lambda.size());
-    for (Eigen::Index j = 0; j < qdd.size(); ++j) inputs_[first + static_cast<std::size_t>(j)] = qdd(j);
-    for (Eigen::Index r = 0; r < lambda.size(); ++r)
-      inputs_[first + static_cast<std::size_t>(qdd.size() + r)] = lambda(r);
-    program_.tape.evaluate(inputs_, registers_);
-  }
-
-  /// \throws Error as evaluate_matrix does, for an entry that is not finite
-  Eigen::MatrixXd matrix(const LinearizationProgram::Matrix& m) const {
-    Eigen::MatrixXd out(m.rows, m.cols);
-    for (Eigen::Index i = 0; i < m.rows; ++i)
-      for (Eigen::Index j = 0; j < m.cols; ++j) {
-        const double x = registers_[m.registers[static_cast<std::size_t>(i * m.cols + j)]];
-        if (!std::isfinite(x))
-          throw Error(fmt::format("evaluating {}[{},{}] at this state: the result is not finite (a division by zero, "
-                                  "or a root or logarithm of a negative number)",
-                                  m.name, i + 1, j + 1));
-        out(i, j) = x;
-      }
-    return out;
-  }
-
-  /// M, F, Xi, Xi_t, b and phi (what the accelerations and the constraints need; no
-  /// energies or outputs)
-  NumericEquations equations() const {
-    NumericEquations e;
-    e.mass_matrix = matrix(program_.M);
-    e.forcing = matrix(program_.F);
-    e.constraint_jacobian = matrix(program_.Xi);
-    e.constraint_rate_term = matrix(program_.Xi_t);
-    e.constraint_acceleration_term = matrix(program_.b);
-    e.holonomic_residuals = matrix(program_.phi);
-    return e;
-  }
-
-  eomrt::LinearizationTerms<double> terms() const {
-    eomrt::LinearizationTerms<double> t;
-    t.K = matrix(program_.K);
-    t.D = matrix(program_.D);
-    t.B_u = matrix(program_.B_u);
-    t.S_q = matrix(program_.S_q);
-    t.S_qd = matrix(program_.S_qd);
-    return t;
-  }
-
- private:
-  const LinearizationProgram& program_;
-  std::vector<double> inputs_, registers_;
-};
-
 /// -0 from negating a zero would print as "-0"
 void clear_negative_zeros(std::initializer_list<Eigen::MatrixXd*> matrices) {
   for (Eigen::MatrixXd* m : matrices) *m = m->unaryExpr([](double v) { return v == 0 ? 0.0 : v; });
-}
-
-/// Independent coordinates and speeds at a point on the constraints: the full state's
-/// perturbations on the tangent space are dx = T dz, and P picks z out of x (P T = 1).
-struct TangentSpace {
-  std::vector<Eigen::Index> q_dependent, q_kept;       ///< one dependent coordinate per holonomic constraint
-  std::vector<Eigen::Index> v_dependent, v_independent;  ///< one dependent rate per constraint
-  Eigen::MatrixXd T, P;
-};
-
-/// dq = Tq dq_kept: each holonomic constraint's dependent coordinate where its gradient is best
-/// conditioned
-Eigen::MatrixXd dependent_coordinates(const Model& model, const Eigen::MatrixXd& Xi, TangentSpace& space) {
-  const Eigen::Index n = Xi.cols();
-  const std::vector<Eigen::Index> holonomic_rows = holonomic_rows_of(model);
-  const Eigen::Index nh = static_cast<Eigen::Index>(holonomic_rows.size());
-  Eigen::MatrixXd Phi(nh, n);
-  for (Eigen::Index r = 0; r < nh; ++r) Phi.row(r) = Xi.row(holonomic_rows[static_cast<std::size_t>(r)]);
-  space.q_dependent = nh > 0 ? pivot_columns(Phi, nh) : std::vector<Eigen::Index>{};
-  space.q_kept = complement(n, space.q_dependent);
-  const Eigen::Index nk = static_cast<Eigen::Index>(space.q_kept.size());
-  Eigen::MatrixXd Tq = Eigen::MatrixXd::Zero(n, nk);
-  for (Eigen::Index j = 0; j < nk; ++j) Tq(space.q_kept[static_cast<std::size_t>(j)], j) = 1;
-  if (nh > 0) {
-    const Eigen::PartialPivLU<Eigen::MatrixXd> phi_d(columns_of(Phi, space.q_dependent));
-    const Eigen::MatrixXd solved = -phi_d.solve(columns_of(Phi, space.q_kept));
-    for (Eigen::Index i = 0; i < nh; ++i) Tq.row(space.q_dependent[static_cast<std::size_t>(i)]) = solved.row(i);
-  }
-  return Tq;
-}
-
-/// The tangent space at the point: dqd = Gq dq + Gv dnu (dnu the independent rates), with the
-/// dependent rates the complement of the declared independent speeds, else pivoted QR of Xi.
-TangentSpace tangent_space(const Model& model, const Eigen::MatrixXd& Xi, const Eigen::MatrixXd& C_q) {
-  const Eigen::Index n = Xi.cols(), m = Xi.rows();
-  TangentSpace space;
-  const Eigen::MatrixXd Tq = dependent_coordinates(model, Xi, space);
-  for (std::size_t k : model.independent_speeds) space.v_independent.push_back(static_cast<Eigen::Index>(k));
-  std::sort(space.v_independent.begin(), space.v_independent.end());
-  space.v_dependent = space.v_independent.empty() ? pivot_columns(Xi, m) : complement(n, space.v_independent);
-  if (space.v_independent.empty()) space.v_independent = complement(n, space.v_dependent);
-  const Eigen::MatrixXd Xi_d = columns_of(Xi, space.v_dependent);
-  const Eigen::PartialPivLU<Eigen::MatrixXd> xi_d(Xi_d);
-  if (!(std::abs(Xi_d.determinant()) > 1e-12 * std::max(1.0, Xi.cwiseAbs().maxCoeff())))
-    throw Error(fmt::format("linearizing {}: the declared independent speeds leave a singular block of Xi at the "
-                            "operating point",
-                            model.name));
-  const Eigen::Index nk = Tq.cols(), ni = static_cast<Eigen::Index>(space.v_independent.size());
-  Eigen::MatrixXd Gq = Eigen::MatrixXd::Zero(n, n), Gv = Eigen::MatrixXd::Zero(n, ni);
-  for (Eigen::Index j = 0; j < ni; ++j) Gv(space.v_independent[static_cast<std::size_t>(j)], j) = 1;
-  const Eigen::MatrixXd dep_v = -xi_d.solve(columns_of(Xi, space.v_independent));
-  const Eigen::MatrixXd dep_q = -xi_d.solve(C_q);
-  for (Eigen::Index i = 0; i < m; ++i) {
-    Gv.row(space.v_dependent[static_cast<std::size_t>(i)]) = dep_v.row(i);
-    Gq.row(space.v_dependent[static_cast<std::size_t>(i)]) = dep_q.row(i);
-  }
-  space.T = Eigen::MatrixXd::Zero(2 * n, nk + ni);
-  space.T.topLeftCorner(n, nk) = Tq;
-  space.T.bottomLeftCorner(n, nk) = Gq * Tq;
-  space.T.bottomRightCorner(n, ni) = Gv;
-  space.P = Eigen::MatrixXd::Zero(nk + ni, 2 * n);
-  for (Eigen::Index j = 0; j < nk; ++j) space.P(j, space.q_kept[static_cast<std::size_t>(j)]) = 1;
-  for (Eigen::Index j = 0; j < ni; ++j) space.P(nk + j, n + space.v_independent[static_cast<std::size_t>(j)]) = 1;
-  return space;
 }
 
 /// The reduced A and B in the tangent space's states, without the states nothing depends on
