@@ -14,7 +14,7 @@ namespace {
 
 using Indices = std::vector<Eigen::Index>;
 
-bool contains(const Indices& set, Eigen::Index i) { return std::find(set.begin(), set.end(), i) != set.end(); }
+bool is_among(const Indices& set, Eigen::Index i) { return std::find(set.begin(), set.end(), i) != set.end(); }
 
 Eigen::MatrixXd columns_of(const Eigen::MatrixXd& a, const Indices& columns) {
   Eigen::MatrixXd out(a.rows(), static_cast<Eigen::Index>(columns.size()));
@@ -128,7 +128,7 @@ class Completion {
           dependent.push_back(j);
     }
     Indices unknown, others;
-    for (Eigen::Index j : free_qd_) (contains(dependent, j) ? unknown : others).push_back(j);
+    for (Eigen::Index j : free_qd_) (is_among(dependent, j) ? unknown : others).push_back(j);
     unknown = pivoted(Xi, unknown, m);
     const Eigen::Index rank = unknown.empty() ? 0 : columns_of(Xi, unknown).colPivHouseholderQr().rank();
     if (rank < m && !others.empty()) {
