@@ -47,5 +47,24 @@ TEST(Subexpressions, EvaluateComputesDefinitionsInOrder) {
   EXPECT_NEAR(GiNaC::ex_to<GiNaC::numeric>(value).to_double(), std::sqrt(5.0) * 2 + 5, 1e-14);
 }
 
+// GiNaC writes one value as x*(a - b) in one run and as -x*(b - a) in another: share() must
+// see one node there, or the intermediates (and the printed equations) would change from run
+// to run
+TEST(Subexpressions, ShareTakesAValueAndItsNegationAsOneNode) {
+  const GiNaC::realsymbol a("a"), b("b"), x("x"), y("y");
+  const ex difference = GiNaC::sin(a) - GiNaC::cos(b);
+  const ex negated = GiNaC::cos(b) - GiNaC::sin(a);
+  Subexpressions z;
+  const ex shared = z.share(GiNaC::lst{GiNaC::exp(x * difference), GiNaC::exp(y * negated)});
+  ASSERT_EQ(z.size(), 1u) << shared;  // sin(a) - cos(b) once, with one sign
+  const GiNaC::exmap at{{a, 0.3}, {b, 1.1}, {x, 0.7}, {y, -0.4}};
+  for (std::size_t i = 0; i < 2; ++i) {
+    const ex original = i == 0 ? GiNaC::exp(x * difference) : GiNaC::exp(y * negated);
+    const double want = GiNaC::ex_to<GiNaC::numeric>(original.subs(at).evalf()).to_double();
+    const double got = GiNaC::ex_to<GiNaC::numeric>(z.evaluate(shared.op(i), at).evalf()).to_double();
+    EXPECT_NEAR(got, want, 1e-14) << i;
+  }
+}
+
 }  // namespace
 }  // namespace eomgen
