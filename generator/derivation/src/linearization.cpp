@@ -156,30 +156,11 @@ SymbolicLinearization linearize_symbolic(const Model& model, const ModelEquation
   lin.D = GiNaC::matrix(n, n);
   lin.B_u = GiNaC::matrix(n, nu);
   lin.cyclic.assign(n, true);
-  // each entry of M, F and Xi differentiated on its own: GiNaC's diff walks the whole
-  // expression once per symbol in it, so a row of M qdd - F - Xi^T lambda taken whole costs its
-  // size times all its symbols; M's entries (i, j) and (j, i) share one gradient
-  std::map<std::pair<std::size_t, std::size_t>, std::vector<ex>> mass_gradients, jacobian_gradients;
-  const auto mass_gradient = [&](std::size_t i, std::size_t j) -> const std::vector<ex>& {
-    const auto key = std::minmax(i, j);
-    auto it = mass_gradients.find(key);
-    if (it == mass_gradients.end()) it = mass_gradients.emplace(key, chain.total(eom.mass_matrix(i, j))).first;
-    return it->second;
-  };
-  const auto jacobian_gradient = [&](std::size_t r, std::size_t j) -> const std::vector<ex>& {
-    auto it = jacobian_gradients.find({r, j});
-    if (it == jacobian_gradients.end())
-      it = jacobian_gradients.emplace(std::make_pair(r, j), chain.total(eom.constraint_jacobian(r, j))).first;
-    return it->second;
-  };
-  const auto accumulate = [](std::vector<ex>& gradient, const std::vector<ex>& partial, const ex& factor) {
-    for (std::size_t k = 0; k < gradient.size(); ++k)
-      if (!partial[k].is_zero()) gradient[k] += factor * partial[k];
-  };
   for (std::size_t i = 0; i < n; ++i) {
-    std::vector<ex> gradient = chain.total(-eom.forcing(i, 0));
-    for (std::size_t j = 0; j < n; ++j) accumulate(gradient, mass_gradient(i, j), vars.coordinates()[j].qdd);
-    for (std::size_t r = 0; r < m; ++r) accumulate(gradient, jacobian_gradient(r, i), -lin.lambda[r]);
+    ex residual = -eom.forcing(i, 0);
+    for (std::size_t j = 0; j < n; ++j) residual += eom.mass_matrix(i, j) * vars.coordinates()[j].qdd;
+    for (std::size_t r = 0; r < m; ++r) residual -= eom.constraint_jacobian(r, i) * lin.lambda[r];
+    const std::vector<ex> gradient = chain.total(residual);
     for (std::size_t k = 0; k < n; ++k) {
       lin.K(i, k) = lin.derivatives.bind(gradient[k]);
       lin.D(i, k) = lin.derivatives.bind(gradient[n + k]);
@@ -191,14 +172,12 @@ SymbolicLinearization linearize_symbolic(const Model& model, const ModelEquation
   lin.S_qd = GiNaC::matrix(m, n);
   lin.C_q = GiNaC::matrix(m, n);
   for (std::size_t r = 0; r < m; ++r) {
-    // d(b + Xi qdd) and d(Xi_t + Xi qd), the latter's d/dqd_j holding Xi_rj itself
-    std::vector<ex> d_acceleration = chain.total(eom.constraint_acceleration_term(r, 0));
-    std::vector<ex> d_velocity = chain.total(eom.constraint_rate_term(r, 0));
+    ex acceleration = eom.constraint_acceleration_term(r, 0), velocity = eom.constraint_rate_term(r, 0);
     for (std::size_t j = 0; j < n; ++j) {
-      accumulate(d_acceleration, jacobian_gradient(r, j), vars.coordinates()[j].qdd);
-      accumulate(d_velocity, jacobian_gradient(r, j), vars.coordinates()[j].qd);
-      d_velocity[n + j] += eom.constraint_jacobian(r, j);
+      acceleration += eom.constraint_jacobian(r, j) * vars.coordinates()[j].qdd;
+      velocity += eom.constraint_jacobian(r, j) * vars.coordinates()[j].qd;
     }
+    const std::vector<ex> d_acceleration = chain.total(acceleration), d_velocity = chain.total(velocity);
     for (std::size_t k = 0; k < n; ++k) {
       lin.S_q(r, k) = lin.derivatives.bind(d_acceleration[k]);
       lin.S_qd(r, k) = lin.derivatives.bind(d_acceleration[n + k]);
