@@ -109,6 +109,7 @@ void run_derive(const Options& o) {
       throw UsageError(fmt::format("--only: {}", e.what()));
     }
   }
+  eomgen::tools::refuse_to_overwrite_input(o.output_path, o.model_path, "-o");
   if (o.shared) print.intermediates = eomgen::IntermediateForm::shared;
   if (o.expand) print.intermediates = eomgen::IntermediateForm::written_out;
   const eomgen::Model model = load(o);
@@ -160,6 +161,7 @@ std::string forward_dynamics_line(const eomgen::EmittedModel& emitted) {
 }
 
 void run_generate(const Options& o) {
+  eomgen::tools::refuse_to_overwrite_input(o.output_path, o.model_path, "-o");
   using clock = std::chrono::steady_clock;
   const auto milliseconds = [](clock::duration d) { return std::chrono::duration<double, std::milli>(d).count(); };
   const auto start = clock::now();

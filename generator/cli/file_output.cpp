@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "eomgen/base/error.hpp"
+#include "simulate_command.hpp"
 
 namespace eomgen::tools {
 
@@ -116,6 +117,16 @@ void PendingFile::commit() {
   if (std::rename(temporary_.c_str(), target_.c_str()) != 0)
     throw Error(fmt::format("writing '{}': cannot replace the file: {}", target_, std::strerror(errno)));
   committed_ = true;
+}
+
+void refuse_to_overwrite_input(const std::string& output, const std::string& input, const std::string& option) {
+  namespace fs = std::filesystem;
+  if (output.empty()) return;
+  std::error_code ec;
+  if (!fs::exists(output, ec) || !fs::equivalent(output, input, ec) || ec) return;
+  throw UsageError(fmt::format("{}: '{}' is the model file '{}' (the same file); writing it would destroy the model, "
+                               "so choose another output file",
+                               option, output, input));
 }
 
 }  // namespace eomgen::tools

@@ -10,6 +10,11 @@ namespace eomgen::tools {
 /// \throws eomgen::Error if the file cannot be written; the target is then untouched
 void write_atomically(const std::string& path, const std::string& content);
 
+/// Refuses an output that is an input of the run: `output` naming the same file as `input`
+/// (through a symbolic or a hard link too), which writing would destroy.
+/// \throws UsageError naming `option`; nothing when `output` is empty or does not exist yet
+void refuse_to_overwrite_input(const std::string& output, const std::string& input, const std::string& option);
+
 /// A temporary file next to `target`, for a file another program writes (the simulation's
 /// CSV, gnuplot's plot): commit() renames it over the target; otherwise it is removed.
 class PendingFile {

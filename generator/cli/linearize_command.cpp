@@ -308,6 +308,8 @@ void run_sweep(const Options& o, const Model& model, const ModelEquations& eom, 
 }  // namespace
 
 void run_linearize(const Options& o) {
+  refuse_to_overwrite_input(o.output_path, o.model_path, "-o");
+  refuse_to_overwrite_input(o.sweep_plot, o.model_path, "--plot");
   const Model model = load_model(o.model_path, parse_assignments(o.defines, "--define"));
   const NamedValues given = state_and_parameters(o.at, o.set, model);
   if (o.sweep.empty() && !o.sweep_plot.empty()) throw UsageError("--plot: plots a sweep; give --sweep too");

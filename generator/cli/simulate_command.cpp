@@ -310,6 +310,8 @@ int run_simulate(const Model& model, const SimulateRequest& r) {
   const std::string stem = cpp_identifier(model.name);
   const std::string csv_path = r.csv_path.empty() ? stem + ".csv" : r.csv_path;
   const std::string plot_path = r.plot_path.empty() ? stem + ".svg" : r.plot_path;
+  refuse_to_overwrite_input(csv_path, r.model_path, "-o");
+  if (r.plot) refuse_to_overwrite_input(plot_path, r.model_path, "--plot");
   if (r.plot) require_plot_target(plot_path, "--plot", "pass --no-plot");
 
   const ModelEquations eom = derive_equations(model);
