@@ -2,9 +2,22 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
+
 namespace eomgen::tools {
 
 namespace {
+
+// A time, a step or a tolerance: a finite number above zero ("nan" and "inf" parse as doubles,
+// and CLI11's PositiveNumber lets them through)
+const CLI::Validator positive_finite(
+    [](std::string& text) {
+      double value = 0;
+      if (!CLI::detail::lexical_cast(text, value)) return "expected a number, got '" + text + "'";
+      if (!std::isfinite(value) || !(value > 0)) return "expected a finite number above 0, got " + text;
+      return std::string();
+    },
+    "POSITIVE");
 
 // the options every subcommand has: the model file and --define
 void add_model_options(CLI::App* sub, Options& o) {
@@ -24,11 +37,11 @@ void add_integrator_options(CLI::App* simulate, SimulateRequest& r) {
   const std::string fixed_step = integrator_names(false, "/"), adaptive = integrator_names(true, "/");
   simulate->add_option("--method", r.method, method_help())->check(CLI::IsMember(integrator_names()));
   simulate->add_option("--dt", r.step, fmt::format("Step of {} [s] (default 1e-3)", fixed_step))
-      ->check(CLI::PositiveNumber);
+      ->check(positive_finite);
   simulate->add_option("--rtol", r.rtol, fmt::format("Relative tolerance of {} (default 1e-8)", adaptive))
-      ->check(CLI::PositiveNumber);
+      ->check(positive_finite);
   simulate->add_option("--atol", r.atol, fmt::format("Absolute tolerance of {} (default 1e-10)", adaptive))
-      ->check(CLI::PositiveNumber);
+      ->check(positive_finite);
 }
 
 }  // namespace
@@ -119,10 +132,10 @@ CLI::App* add_simulate_command(CLI::App& app, Options& o) {
   SimulateRequest& r = o.simulate;
   simulate->add_option("--t-end", r.t_end, "End time [s] (the run starts at t = 0)")
       ->required()
-      ->check(CLI::PositiveNumber);
+      ->check(positive_finite);
   add_integrator_options(simulate, r);
   simulate->add_option("--sample", r.sample, "Interval between CSV rows [s] (default: about 1000 rows)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_finite);
   add_parameter_option(simulate, o.set, "Override a parameter: NAME=VALUE (repeatable)");
   simulate->add_option("--init", o.init, "Initial coordinate or rate: q=VALUE, q_dot=VALUE (others 0)")
       ->delimiter(',')

@@ -139,6 +139,19 @@ TEST_F(Cli, SimulateRefusesAnUnregisteredMethod) {
   EXPECT_EQ(run.err, "eomgen: error: --method: rk45 not in {euler,rk4,dp5}\nRun with --help for more information.\n");
 }
 
+// nan and inf parse as numbers: they must still be refused before anything is compiled
+TEST_F(Cli, SimulateRefusesTimesStepsAndTolerancesThatAreNotFinitePositiveNumbers) {
+  const std::string dp = quote(model("dp.eom", double_pendulum));
+  for (const std::string option : {"--t-end", "--dt", "--rtol", "--atol", "--sample"})
+    for (const std::string value : {"nan", "inf", "-inf", "0", "-1", "1e400", "x"}) {
+      const std::string t_end = option == "--t-end" ? "" : " --t-end 1";
+      const Outcome run = eomgen("simulate " + dp + t_end + " " + option + " " + value + " --no-plot");
+      EXPECT_EQ(run.status, 2) << option << " " << value;
+      EXPECT_THAT(run.err, StartsWith("eomgen: error: " + option + ": expected a ")) << run.err;
+      EXPECT_THAT(run.err, Not(HasSubstr("compiling")));
+    }
+}
+
 TEST_F(Cli, CheckSummarizesTheModel) {
   const Outcome run = eomgen("check " + quote(model("dp.eom", double_pendulum)));
   EXPECT_EQ(run.status, 0) << run.err;
