@@ -96,6 +96,15 @@ TEST(ModelErrors, ReservedNameT) {
   expect_error(pendulum + "parameter t = 1\n", 6, 11, HasSubstr("'t' is reserved"));
 }
 
+// a keyword as a name would read as the statement it begins (issue 16)
+TEST(ModelErrors, KeywordsAreNotNames) {
+  expect_error(pendulum + "parameter for = 1\n", 6, 11,
+               HasSubstr("'for' is a keyword of the model language: expected a parameter name that is not one"));
+  expect_error(pendulum + "coordinate end\n", 6, 12, HasSubstr("'end' is a keyword of the model language"));
+  expect_error(pendulum + "frame in = a\n", 6, 7, HasSubstr("'in' is a keyword of the model language"));
+  expect_error(pendulum + "output body = theta\n", 6, 8, HasSubstr("'body' is a keyword of the model language"));
+}
+
 TEST(ModelErrors, AccelerationInTheModel) {
   expect_error(pendulum + "output o = theta_ddot\n", 6, 12,
                AllOf(HasSubstr("'theta_ddot' is an acceleration"), HasSubstr("expected coordinates and rates")));

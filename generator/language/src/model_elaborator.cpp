@@ -86,6 +86,9 @@ Elaborator::Elaborator(std::string file, const std::map<std::string, double>& ov
 
 void Elaborator::declare(const std::string& name, const std::string& kind, const SourceLocation& at) {
   if (name == "pi") throw SourceError(at, "'pi' is reserved for the constant 3.14159...");
+  if (is_keyword(name))
+    throw SourceError(at, fmt::format("'{}' is a keyword of the model language: expected a {} name that is not one",
+                                      name, kind));
   auto it = declared_.find(name);
   if (it != declared_.end()) {
     if (it->second.location.line == 0)

@@ -11,6 +11,19 @@ namespace eomgen::syntax {
 struct Expr;
 using ExprPtr = std::shared_ptr<const Expr>;
 
+/// The words that begin or structure statements (docs/model-language.md, "Keywords"): a name
+/// that is one of them would read as the statement it names.
+inline bool is_keyword(const std::string& word) {
+  static const char* const keywords[] = {
+      "model",  "description", "const",   "parameter", "coordinate", "input",      "frame",
+      "point",  "particle",    "body",    "gravity",   "force",      "moment",     "spring",
+      "damper", "torsion",     "potential", "generalized_force", "constraint", "roll", "wheel",
+      "independent", "output", "for",     "in",        "end"};
+  for (const char* k : keywords)
+    if (word == k) return true;
+  return false;
+}
+
 /// An identifier, possibly with `{expression}` pieces filled in per loop iteration: q{i-1}.
 struct Name {
   struct Piece {
