@@ -105,6 +105,16 @@ TEST(ModelErrors, KeywordsAreNotNames) {
   expect_error(pendulum + "output body = theta\n", 6, 8, HasSubstr("'body' is a keyword of the model language"));
 }
 
+// a default that is no finite real number was taken as its real part, or overflowed into an
+// internal error (issue 16)
+TEST(ModelErrors, ParameterDefaultsAreFiniteRealNumbers) {
+  expect_error(pendulum + "parameter k = sqrt(-1)\n", 6, 15,
+               HasSubstr("parameter 'k': expected a real number, got a complex one (0 + 1*I)"));
+  expect_error(pendulum + "parameter k = log(-1)\n", 6, 15, HasSubstr("parameter 'k': expected a real number"));
+  expect_error(pendulum + "parameter k = 1e400\n", 6, 15, HasSubstr("parameter 'k': the value is too large for a double"));
+  expect_error(pendulum + "parameter k = 2^2000\n", 6, 15, HasSubstr("parameter 'k': the value is too large for a double"));
+}
+
 TEST(ModelErrors, AccelerationInTheModel) {
   expect_error(pendulum + "output o = theta_ddot\n", 6, 12,
                AllOf(HasSubstr("'theta_ddot' is an acceleration"), HasSubstr("expected coordinates and rates")));

@@ -1,6 +1,8 @@
 // Evaluation of model-file expressions into scalars, physical vectors, columns and matrices.
 #include <fmt/format.h>
 
+#include <cmath>
+
 #include <algorithm>
 
 #include "eomgen/base/error.hpp"
@@ -103,7 +105,14 @@ GiNaC::numeric Elaborator::constant(const ExprPtr& e, const Environment& env, co
   if (!GiNaC::is_a<GiNaC::numeric>(scalar(e, env, what)) && !GiNaC::is_a<GiNaC::numeric>(value))
     throw SourceError(start_of(*e), fmt::format("{}: expected a constant (numbers and consts only)", what));
   const ex exact = scalar(e, env, what);
-  return GiNaC::ex_to<GiNaC::numeric>(GiNaC::is_a<GiNaC::numeric>(exact) ? exact : value);
+  const GiNaC::numeric n = GiNaC::ex_to<GiNaC::numeric>(GiNaC::is_a<GiNaC::numeric>(exact) ? exact : value);
+  // sqrt(-1) is a number to GiNaC, and its double would be the real part, 0
+  if (!n.is_real())
+    throw SourceError(start_of(*e), fmt::format("{}: expected a real number, got a complex one ({} + {}*I)", what,
+                                                n.real().to_double(), n.imag().to_double()));
+  if (!std::isfinite(n.to_double()))
+    throw SourceError(start_of(*e), fmt::format("{}: the value is too large for a double", what));
+  return n;
 }
 
 int Elaborator::integer(const ExprPtr& e, const Environment& env, const std::string& what) {
