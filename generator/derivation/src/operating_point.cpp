@@ -16,17 +16,12 @@ using Indices = std::vector<Eigen::Index>;
 
 bool is_among(const Indices& set, Eigen::Index i) { return std::find(set.begin(), set.end(), i) != set.end(); }
 
-Eigen::MatrixXd columns_of(const Eigen::MatrixXd& a, const Indices& columns) {
-  Eigen::MatrixXd out(a.rows(), static_cast<Eigen::Index>(columns.size()));
-  for (std::size_t j = 0; j < columns.size(); ++j) out.col(static_cast<Eigen::Index>(j)) = a.col(columns[j]);
-  return out;
-}
 
 /// Up to `count` of `candidates` whose columns of `a` a column-pivoted QR takes first, skipping
 /// columns that add nothing to the rank; in increasing order.
 Indices pivoted(const Eigen::MatrixXd& a, const Indices& candidates, Eigen::Index count) {
   if (candidates.empty() || count <= 0) return {};
-  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(columns_of(a, candidates));
+  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(Eigen::MatrixXd(a(Eigen::all, candidates)));
   qr.setThreshold(1e-12);
   Indices chosen;
   for (Eigen::Index i = 0; i < std::min(count, qr.rank()); ++i)
@@ -88,7 +83,7 @@ class Completion {
     for (int iteration = 0; iteration < 50; ++iteration) {
       const Eigen::VectorXd r = e.holonomic_residuals;
       if (r.cwiseAbs().maxCoeff() <= 1e-3 * operating_point_tolerance) break;
-      const Eigen::VectorXd step = -columns_of(gradients(e), unknown).completeOrthogonalDecomposition().solve(r);
+      const Eigen::VectorXd step = -Eigen::MatrixXd(gradients(e)(Eigen::all, unknown)).completeOrthogonalDecomposition().solve(r);
       bool reduced = false;
       const NamedValues before = result_.point;
       for (double scale = 1; scale > 1e-6 && !reduced; scale /= 2) {
@@ -130,12 +125,12 @@ class Completion {
     Indices unknown, others;
     for (Eigen::Index j : free_qd_) (is_among(dependent, j) ? unknown : others).push_back(j);
     unknown = pivoted(Xi, unknown, m);
-    const Eigen::Index rank = unknown.empty() ? 0 : columns_of(Xi, unknown).colPivHouseholderQr().rank();
+    const Eigen::Index rank = unknown.empty() ? 0 : Eigen::MatrixXd(Xi(Eigen::all, unknown)).colPivHouseholderQr().rank();
     if (rank < m && !others.empty()) {
       // the directions the chosen dependent rates cannot reach, and the independent rates that do
-      Eigen::MatrixXd projected = columns_of(Xi, others);
+      Eigen::MatrixXd projected = Xi(Eigen::all, others);
       if (!unknown.empty()) {
-        const Eigen::HouseholderQR<Eigen::MatrixXd> qr(columns_of(Xi, unknown));
+        const Eigen::HouseholderQR<Eigen::MatrixXd> qr(Eigen::MatrixXd(Xi(Eigen::all, unknown)));
         const Eigen::MatrixXd basis = qr.householderQ() * Eigen::MatrixXd::Identity(m, static_cast<Eigen::Index>(unknown.size()));
         projected -= basis * (basis.transpose() * projected);
       }
@@ -148,7 +143,7 @@ class Completion {
     Eigen::VectorXd qd = rates();
     for (Eigen::Index j : unknown) qd(j) = 0;
     const Eigen::VectorXd rest = Xi * qd + e.constraint_rate_term;
-    const Eigen::VectorXd solved = columns_of(Xi, unknown).completeOrthogonalDecomposition().solve(-rest);
+    const Eigen::VectorXd solved = Eigen::MatrixXd(Xi(Eigen::all, unknown)).completeOrthogonalDecomposition().solve(-rest);
     // a rate that is zero but for rounding (a bicycle's pitch rate) is written as 0
     const double scale = std::max(qd.cwiseAbs().maxCoeff(), solved.cwiseAbs().maxCoeff());
     for (std::size_t k = 0; k < unknown.size(); ++k) {

@@ -28,11 +28,6 @@ std::vector<Eigen::Index> complement(Eigen::Index n, const std::vector<Eigen::In
   return rest;
 }
 
-Eigen::MatrixXd columns_of(const Eigen::MatrixXd& a, const std::vector<Eigen::Index>& columns) {
-  Eigen::MatrixXd out(a.rows(), static_cast<Eigen::Index>(columns.size()));
-  for (std::size_t j = 0; j < columns.size(); ++j) out.col(static_cast<Eigen::Index>(j)) = a.col(columns[j]);
-  return out;
-}
 
 /// dq = Tq dq_kept: each holonomic constraint's dependent coordinate where its gradient is best
 /// conditioned
@@ -48,8 +43,8 @@ Eigen::MatrixXd dependent_coordinates(const Model& model, const Eigen::MatrixXd&
   Eigen::MatrixXd Tq = Eigen::MatrixXd::Zero(n, nk);
   for (Eigen::Index j = 0; j < nk; ++j) Tq(space.q_kept[static_cast<std::size_t>(j)], j) = 1;
   if (nh > 0) {
-    const Eigen::PartialPivLU<Eigen::MatrixXd> phi_d(columns_of(Phi, space.q_dependent));
-    const Eigen::MatrixXd solved = -phi_d.solve(columns_of(Phi, space.q_kept));
+    const Eigen::PartialPivLU<Eigen::MatrixXd> phi_d(Eigen::MatrixXd(Phi(Eigen::all, space.q_dependent)));
+    const Eigen::MatrixXd solved = -phi_d.solve(Eigen::MatrixXd(Phi(Eigen::all, space.q_kept)));
     for (Eigen::Index i = 0; i < nh; ++i) Tq.row(space.q_dependent[static_cast<std::size_t>(i)]) = solved.row(i);
   }
   return Tq;
@@ -65,7 +60,7 @@ TangentSpace tangent_space(const Model& model, const Eigen::MatrixXd& Xi, const 
   std::sort(space.v_independent.begin(), space.v_independent.end());
   space.v_dependent = space.v_independent.empty() ? pivot_columns(Xi, m) : complement(n, space.v_independent);
   if (space.v_independent.empty()) space.v_independent = complement(n, space.v_dependent);
-  const Eigen::MatrixXd Xi_d = columns_of(Xi, space.v_dependent);
+  const Eigen::MatrixXd Xi_d = Xi(Eigen::all, space.v_dependent);
   const Eigen::PartialPivLU<Eigen::MatrixXd> xi_d(Xi_d);
   if (!(std::abs(Xi_d.determinant()) > 1e-12 * std::max(1.0, Xi.cwiseAbs().maxCoeff())))
     throw Error(fmt::format("linearizing {}: the declared independent speeds leave a singular block of Xi at the "
@@ -74,7 +69,7 @@ TangentSpace tangent_space(const Model& model, const Eigen::MatrixXd& Xi, const 
   const Eigen::Index nk = Tq.cols(), ni = static_cast<Eigen::Index>(space.v_independent.size());
   Eigen::MatrixXd Gq = Eigen::MatrixXd::Zero(n, n), Gv = Eigen::MatrixXd::Zero(n, ni);
   for (Eigen::Index j = 0; j < ni; ++j) Gv(space.v_independent[static_cast<std::size_t>(j)], j) = 1;
-  const Eigen::MatrixXd dep_v = -xi_d.solve(columns_of(Xi, space.v_independent));
+  const Eigen::MatrixXd dep_v = -xi_d.solve(Eigen::MatrixXd(Xi(Eigen::all, space.v_independent)));
   const Eigen::MatrixXd dep_q = -xi_d.solve(C_q);
   for (Eigen::Index i = 0; i < m; ++i) {
     Gv.row(space.v_dependent[static_cast<std::size_t>(i)]) = dep_v.row(i);
