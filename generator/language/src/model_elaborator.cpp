@@ -1,10 +1,12 @@
 // Statements of a model file -> MechanicalSystem, through the C++ API.
 #include "model_elaborator.hpp"
 
+#include <Eigen/Dense>
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "eomgen/base/error.hpp"
 #include "eomgen/mechanics/kinematics.hpp"
@@ -149,21 +151,51 @@ void Elaborator::flatten(const std::vector<Statement>& statements, const Environ
     }
     if (s.kind == Kind::loop) {
       const std::string var = resolve(s.name, env);
-      if (env.count(var) || constants_.count(var) || declared_.count(var))
+      if (is_keyword(var))
+        throw SourceError(s.name.location, fmt::format("'{}' is a keyword of the model language: expected a loop "
+                                                       "variable that is not one", var));
+      if (env.count(var) || constants_.count(var) || declared_.count(var) || var == "pi")
         throw SourceError(s.name.location, fmt::format("loop variable '{}' hides another name", var));
+      // names declared later in the file (parameters, coordinates...) are checked once all are known
+      loop_variables_.emplace(var, s.name.location);
       const int first = integer(s.value, env, "the first value of the loop");
       const int last = integer(s.value2, env, "the last value of the loop");
       if (static_cast<long>(last) - first > 100000)  // long: the bounds may be 10^9 apart
         throw SourceError(s.location, "loop has more than 100000 iterations");
       for (int i = first; i <= last; ++i) {
+        expand(s.token_count, s.location);
         Environment inner = env;
         inner[var] = i;
         flatten(s.body, inner);
       }
       continue;
     }
+    expand(s.token_count, s.location);
     EOMGEN_DEMAND(pass_of(s.kind) != Pass::flatten, fmt::format("flatten(): '{}' is not handled", statement_word(s.kind)));
     instances_.push_back(Instance{&s, env});
+  }
+}
+
+// Counts the work of one more iteration or statement instance, so that loops inside loops stop
+// at max_expanded_tokens instead of running for hours or exhausting memory.
+void Elaborator::expand(std::size_t tokens, const SourceLocation& at) {
+  expanded_tokens_ += std::max<std::size_t>(tokens, 1);
+  if (expanded_tokens_ > max_expanded_tokens)
+    throw SourceError(at, fmt::format("the loops expand the model beyond {} tokens (iterations times the "
+                                      "statements they repeat): expected fewer or shorter loops",
+                                      max_expanded_tokens));
+}
+
+// A loop variable is looked up before every other name, so one named like a parameter,
+// coordinate, rate, frame or element would silently replace it inside the loop.
+void Elaborator::reject_hiding_loop_variables() const {
+  for (const auto& [var, at] : loop_variables_) {
+    const auto it = declared_.find(var);
+    if (it == declared_.end()) continue;
+    const SourceLocation& there = it->second.location;
+    throw SourceError(at, fmt::format("loop variable '{}' hides the {} '{}' declared at {}:{}:{}: expected "
+                                      "another loop variable name", var, it->second.kind, var, there.file,
+                                      there.line, there.column));
   }
 }
 
@@ -243,7 +275,7 @@ class InProgress {
 
 // a definition's parent is the leftmost name: `b`, `rotate(b, ...)`, `p + ...`
 static const Expr* leftmost(const Expr* e) {
-  while (e->kind == Expr::Kind::add || e->kind == Expr::Kind::subtract) e = e->args[0].get();
+  while (e->kind == Expr::Kind::sum) e = e->args[0].get();
   return e;
 }
 
@@ -300,10 +332,17 @@ FrameId Elaborator::build_frame(const std::string& name) {
       rotation = Rotation::euler(sequence, angle(2), angle(3), angle(4));
     } else if (f == "axis_angle") {
       expect_args(3, "axis_angle(PARENT, [A1, A2, A3], ANGLE)");
-      rotation = Rotation::axis_angle(col3(1), angle(2));
+      const GiNaC::matrix axis = col3(1);
+      reject_non_unit(axis, GiNaC::matrix(0, 0), start_of(*def.args[1]),
+                      "axis_angle(): the axis", "a unit axis (divide each component by the length)");
+      rotation = Rotation::axis_angle(axis, angle(2));
     } else if (f == "quaternion") {
       expect_args(3, "quaternion(PARENT, [E1, E2, E3], ETA) (scalar last)");
-      rotation = Rotation::quaternion(col3(1), angle(2));
+      const GiNaC::matrix epsilon = col3(1);
+      const ex eta = angle(2);
+      reject_non_unit(epsilon, GiNaC::matrix(1, 1, GiNaC::lst{eta}), start_of(*def.args[1]),
+                      "quaternion(): the quaternion [E1, E2, E3, ETA]", "a unit quaternion");
+      rotation = Rotation::quaternion(epsilon, eta);
     } else if (f == "rodrigues" || f == "mrp") {
       expect_args(2, fmt::format("{}(PARENT, [P1, P2, P3])", f).c_str());
       rotation = f == "rodrigues" ? Rotation::rodrigues(col3(1)) : Rotation::modified_rodrigues(col3(1));
@@ -312,12 +351,58 @@ FrameId Elaborator::build_frame(const std::string& name) {
       const Value m = evaluate(def.args[1], env);
       if (m.kind != Value::Kind::matrix || m.matrix.rows() != 3 || m.matrix.cols() != 3)
         throw SourceError(def.args[1]->location, "dcm(): expected a 3x3 matrix [[...], [...], [...]]");
+      reject_non_rotation(m.matrix, start_of(*def.args[1]));
       rotation = Rotation::explicit_matrix(m.matrix);
     }
     return frames_[name] = model_.system.add_frame(name, parent, rotation);
   } catch (const ModelError& e) {
     throw SourceError(def.location, e.what());
   }
+}
+
+namespace {
+
+// The numbers of a matrix at the parameters' defaults, or nothing when an entry depends on the
+// state (coordinates, rates, inputs, time): such rotation parameters are the model's to keep
+// valid, usually by a constraint (a quaternion's unit norm), and cannot be judged here.
+std::optional<Eigen::MatrixXd> at_defaults(const GiNaC::matrix& m, const GiNaC::exmap& defaults) {
+  Eigen::MatrixXd out(m.rows(), m.cols());
+  for (unsigned i = 0; i < m.rows(); ++i)
+    for (unsigned j = 0; j < m.cols(); ++j) {
+      const std::optional<double> v = value_at(m(i, j), defaults);
+      if (!v) return std::nullopt;
+      out(i, j) = *v;
+    }
+  return out;
+}
+
+}  // namespace
+
+// An axis or a quaternion (part, rest) of constants must have length 1: the rotation formulas
+// assume it, and a longer one gives a matrix that is no rotation (a zero axis gives M = 0).
+void Elaborator::reject_non_unit(const GiNaC::matrix& part, const GiNaC::matrix& rest, const SourceLocation& at,
+                                 const std::string& what, const std::string& expected) const {
+  const GiNaC::exmap defaults = model_.system.parameter_defaults();
+  const auto a = at_defaults(part, defaults), b = at_defaults(rest, defaults);
+  if (!a || !b) return;
+  const double length = std::sqrt(a->squaredNorm() + b->squaredNorm());
+  if (std::fabs(length - 1) <= 1e-9) return;
+  throw SourceError(at, fmt::format("{} has length {:.6g} at the parameters' default values: expected {}", what,
+                                    length, expected));
+}
+
+// A constant dcm(...) must be a rotation: orthogonal, with determinant +1 (not a reflection).
+void Elaborator::reject_non_rotation(const GiNaC::matrix& dcm, const SourceLocation& at) const {
+  const auto c = at_defaults(dcm, model_.system.parameter_defaults());
+  if (!c) return;
+  const double orthogonality = (*c * c->transpose() - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
+  if (orthogonality > 1e-9)
+    throw SourceError(at, fmt::format("dcm(): the matrix is not orthogonal at the parameters' default values (C C^T "
+                                      "differs from the identity by {:.3g}): expected a rotation matrix",
+                                      orthogonality));
+  if (c->determinant() < 0)
+    throw SourceError(at, "dcm(): the matrix is a reflection (determinant -1) at the parameters' default values: "
+                          "expected a rotation matrix (determinant +1)");
 }
 
 PointId Elaborator::build_point(const std::string& name) {
@@ -333,10 +418,11 @@ PointId Elaborator::build_point(const std::string& name) {
   const PointId parent = point_named(parent_expr->name, env);
   // the offset: every term right of the parent along the chain of + and -
   eomgen::Vector offset;
-  for (const Expr* e = s.value.get(); e != parent_expr; e = e->args[0].get()) {
-    const eomgen::Vector term = vector(e->args[1], env, fmt::format("point '{}'", name));
-    offset += e->kind == Expr::Kind::add ? term : -term;
-  }
+  for (const Expr* e = s.value.get(); e != parent_expr; e = e->args[0].get())
+    for (std::size_t k = 1; k < e->args.size(); ++k) {
+      const eomgen::Vector term = vector(e->args[k], env, fmt::format("point '{}'", name));
+      offset += e->operations[k - 1].inverse ? -term : term;
+    }
   try {
     return points_[name] = parent_expr == s.value.get() ? parent : model_.system.add_point(name, parent, offset);
   } catch (const ModelError& e) {
@@ -350,6 +436,7 @@ Model Elaborator::run(const std::vector<Statement>& statements) {
   if (!saw_statement_) throw SourceError({file_, 1, 1}, "empty model: expected statements such as 'coordinate', 'frame', 'point' and 'particle'");
   declarations();
   collect_frames_and_points();
+  reject_hiding_loop_variables();
   // in file order, which numbers the frames and points and so orders the generated code
   for (const Instance& in : instances_)
     if (in.statement->kind == Kind::frame) build_frame(resolve(in.statement->name, in.environment));
@@ -363,6 +450,7 @@ Model Elaborator::run(const std::vector<Statement>& statements) {
     if (in.statement->kind == Kind::body) element(in);
   for (const Instance& in : instances_)
     if (in.statement->kind != Kind::body && pass_of(in.statement->kind) == Pass::elements) element(in);
+  reject_hiding_loop_variables();  // and element names, now declared
   checks();
   return std::move(model_);
 }

@@ -68,6 +68,8 @@ class Elaborator {
  private:
   friend class ExpressionEvaluator;
   Value call(const Expr& e, const Environment& env);
+  Value sum(const Expr& e, const Environment& env);
+  Value product(const Expr& e, const Environment& env);
   Value name_value(const Expr& e, const Environment& env);
   [[noreturn]] void unknown_name(const std::string& name, const SourceLocation& at,
                                  const std::vector<std::string>& candidates, const std::string& what);
@@ -76,10 +78,15 @@ class Elaborator {
   void constants(const std::vector<Statement>& statements);
   void flatten(const std::vector<Statement>& statements, const Environment& env);
   void declare(const std::string& name, const std::string& kind, const SourceLocation& at);
+  void expand(std::size_t tokens, const SourceLocation& at);
+  void reject_hiding_loop_variables() const;
   void declarations();
   void collect_frames_and_points();
   FrameId build_frame(const std::string& name);
   PointId build_point(const std::string& name);
+  void reject_non_unit(const GiNaC::matrix& part, const GiNaC::matrix& rest, const SourceLocation& at,
+                       const std::string& what, const std::string& expected) const;
+  void reject_non_rotation(const GiNaC::matrix& dcm, const SourceLocation& at) const;
 
   // generic states and the checks made at them (model_generic_states.cpp)
   std::vector<GiNaC::exmap> generic_states() const;
@@ -130,6 +137,8 @@ class Elaborator {
   SourceLocation independent_location_;  // of the `independent` keyword, when there is one
   bool kinematics_ready_ = false;
   bool saw_statement_ = false;
+  std::size_t expanded_tokens_ = 0;  // expand()
+  std::map<std::string, SourceLocation> loop_variables_;  // each name at its first loop
 };
 
 }  // namespace eomgen::syntax

@@ -4,6 +4,9 @@
 #include <cmath>
 
 #include <algorithm>
+#include <array>
+#include <map>
+#include <optional>
 
 #include "eomgen/base/error.hpp"
 #include "eomgen/mechanics/kinematics.hpp"
@@ -55,6 +58,49 @@ GiNaC::numeric exact_number(const std::string& text) {
     exponent += written;
   }
   return GiNaC::numeric(digits.c_str()) * GiNaC::pow(GiNaC::numeric(10), GiNaC::numeric(exponent));
+}
+
+// The largest exponent on an expression that varies: see check_exponents.
+constexpr int max_exponent = 100;
+
+// Bits of an exact number: what an exact power of it multiplies by its exponent.
+double exact_bits(const GiNaC::numeric& x) {
+  if (!x.is_real()) return exact_bits(x.real()) + exact_bits(x.imag());
+  if (!x.is_rational()) return 0;  // a float: CLN raises it in constant time
+  return static_cast<double>(GiNaC::numer(x).int_length() + GiNaC::denom(x).int_length());
+}
+
+// GiNaC raises numbers exactly, so 2.5^1000000000 would take hours and 10^1000000 megabytes.
+// Beyond a double's range (either way) the power is refused; a huge exact power within it
+// (1.0000001^1000000000) is taken in floating point.
+std::optional<ex> bounded_numeric_power(const GiNaC::numeric& base, const GiNaC::numeric& exponent,
+                                        const SourceLocation& at) {
+  const GiNaC::numeric magnitude = GiNaC::abs(base);
+  if (base.is_zero() || magnitude == 1 || !exponent.is_real()) return std::nullopt;
+  const double exponent_size = std::fabs(exponent.to_double());
+  if (exact_bits(base) * exponent_size <= 65536) return std::nullopt;
+  const double decimal_exponent = exponent.to_double() * std::log10(magnitude.to_double());
+  if (!std::isfinite(decimal_exponent) || std::fabs(decimal_exponent) > 300)
+    throw SourceError(at, fmt::format("the power is about 10^{:.0f}, beyond the range of a double: expected a "
+                                      "smaller exponent", decimal_exponent));
+  return ex(GiNaC::pow(GiNaC::ex_to<GiNaC::numeric>(base.evalf()), exponent));
+}
+
+// A power of something that varies is expanded and differentiated by the derivation, whose work
+// grows with the exponent: sin(q)^10000 takes half a minute, (q+1)^100000 hours. Products merge
+// powers of one base (x^80 * x^80 is x^160), so a product's factors are checked too.
+void check_exponents(const ex& value, const SourceLocation& at) {
+  auto check = [&](const ex& factor) {
+    if (!GiNaC::is_a<GiNaC::power>(factor) || GiNaC::is_a<GiNaC::numeric>(factor.op(0))) return;
+    const ex exponent = factor.op(1);
+    if (GiNaC::is_a<GiNaC::numeric>(exponent) && GiNaC::abs(GiNaC::ex_to<GiNaC::numeric>(exponent)) > max_exponent)
+      throw SourceError(at, fmt::format("the exponent {:g} on an expression that is not a number is out of range: expected "
+                                        "an exponent between -{} and {}", GiNaC::ex_to<GiNaC::numeric>(exponent).to_double(),
+                                        max_exponent, max_exponent));
+  };
+  check(value);
+  if (GiNaC::is_a<GiNaC::mul>(value))
+    for (const ex& factor : value) check(factor);
 }
 
 }  // namespace
@@ -291,6 +337,71 @@ Value Elaborator::call(const Expr& e, const Environment& env) {
   unknown_name(f, e.location, known, "function");
 }
 
+// a + b - c ...: the terms are collected and summed once, per frame for vectors, because adding
+// them one by one re-sorts a growing sum each time (quadratic in a long sum)
+Value Elaborator::sum(const Expr& e, const Environment& env) {
+  using K = Value::Kind;
+  const Value first = evaluate(e.args[0], env);
+  GiNaC::exvector scalar_terms;
+  std::map<FrameId, std::array<GiNaC::exvector, 3>> vector_terms;
+  auto collect = [&](const Value& v, bool negated) {
+    if (v.kind == K::scalar) {
+      scalar_terms.push_back(negated ? -v.scalar : v.scalar);
+      return;
+    }
+    for (const auto& [frame, components] : v.vector.terms())
+      for (unsigned i = 0; i < 3; ++i)
+        vector_terms[frame][i].push_back(negated ? -components(i, 0) : components(i, 0));
+  };
+  if (first.kind == K::scalar || first.kind == K::vector) collect(first, false);
+  for (std::size_t k = 1; k < e.args.size(); ++k) {
+    const Expr::Operation& op = e.operations[k - 1];
+    const Value v = evaluate(e.args[k], env);
+    if (v.kind != first.kind || (v.kind != K::scalar && v.kind != K::vector))
+      throw SourceError(op.location, fmt::format("cannot {} {} and {}", op.inverse ? "subtract" : "add",
+                                                 kind_name(first.kind), kind_name(v.kind)));
+    collect(v, op.inverse);
+  }
+  if (first.kind == K::scalar) return Value::of(ex(GiNaC::add(scalar_terms)));
+  eomgen::Vector total;
+  for (const auto& [frame, components] : vector_terms)
+    total += eomgen::Vector(frame, GiNaC::add(components[0]), GiNaC::add(components[1]), GiNaC::add(components[2]));
+  return Value::of(total);
+}
+
+// a * b / c ...: scalar factors collected and multiplied once; at most one vector among them
+Value Elaborator::product(const Expr& e, const Environment& env) {
+  using K = Value::Kind;
+  const Value first = evaluate(e.args[0], env);
+  GiNaC::exvector factors;
+  std::optional<eomgen::Vector> vector_factor;
+  if (first.kind == K::scalar) factors.push_back(first.scalar);
+  if (first.kind == K::vector) vector_factor = first.vector;
+  for (std::size_t k = 1; k < e.args.size(); ++k) {
+    const Expr::Operation& op = e.operations[k - 1];
+    const Value v = evaluate(e.args[k], env);
+    const K so_far = vector_factor ? K::vector : first.kind;
+    if (op.inverse) {
+      if (v.kind != K::scalar) throw SourceError(op.location, fmt::format("cannot divide by {}", kind_name(v.kind)));
+      if (v.scalar.is_zero()) throw SourceError(op.location, "division by zero");
+      if (so_far != K::scalar && so_far != K::vector)
+        throw SourceError(op.location, fmt::format("cannot divide {} and {}", kind_name(so_far), kind_name(v.kind)));
+      factors.push_back(GiNaC::pow(v.scalar, -1));
+      continue;
+    }
+    if (so_far == K::vector && v.kind == K::vector)
+      throw SourceError(op.location, "cannot multiply two vectors: use dot(u, v) or cross(u, v)");
+    if ((so_far != K::scalar && so_far != K::vector) || (v.kind != K::scalar && v.kind != K::vector))
+      throw SourceError(op.location, fmt::format("cannot multiply {} and {}", kind_name(so_far), kind_name(v.kind)));
+    if (v.kind == K::scalar) factors.push_back(v.scalar);
+    else vector_factor = v.vector;
+  }
+  const ex scale = GiNaC::mul(factors);
+  check_exponents(scale, e.location);
+  if (vector_factor) return Value::of(scale * *vector_factor);
+  return Value::of(scale);
+}
+
 Value Elaborator::evaluate(const ExprPtr& ptr, const Environment& env) {
   const Expr& e = *ptr;
   auto binary = [&] {
@@ -318,31 +429,10 @@ Value Elaborator::evaluate(const ExprPtr& ptr, const Environment& env) {
       if (v.kind == K::vector) return Value::of(-v.vector);
       throw SourceError(e.location, fmt::format("cannot negate {}", kind_name(v.kind)));
     }
-    case Expr::Kind::add:
-    case Expr::Kind::subtract: {
-      auto [a, b] = binary();
-      const bool add = e.kind == Expr::Kind::add;
-      if (a.kind == K::scalar && b.kind == K::scalar) return Value::of(add ? a.scalar + b.scalar : a.scalar - b.scalar);
-      if (a.kind == K::vector && b.kind == K::vector) return Value::of(add ? a.vector + b.vector : a.vector - b.vector);
-      throw mismatch(add ? "add" : "subtract", a, b);
-    }
-    case Expr::Kind::multiply: {
-      auto [a, b] = binary();
-      if (a.kind == K::scalar && b.kind == K::scalar) return Value::of(a.scalar * b.scalar);
-      if (a.kind == K::scalar && b.kind == K::vector) return Value::of(a.scalar * b.vector);
-      if (a.kind == K::vector && b.kind == K::scalar) return Value::of(b.scalar * a.vector);
-      if (a.kind == K::vector && b.kind == K::vector)
-        throw SourceError(e.location, "cannot multiply two vectors: use dot(u, v) or cross(u, v)");
-      throw mismatch("multiply", a, b);
-    }
-    case Expr::Kind::divide: {
-      auto [a, b] = binary();
-      if (b.kind != K::scalar) throw SourceError(e.location, fmt::format("cannot divide by {}", kind_name(b.kind)));
-      if (b.scalar.is_zero()) throw SourceError(e.location, "division by zero");
-      if (a.kind == K::scalar) return Value::of(a.scalar / b.scalar);
-      if (a.kind == K::vector) return Value::of(GiNaC::ex(1) / b.scalar * a.vector);
-      throw mismatch("divide", a, b);
-    }
+    case Expr::Kind::sum:
+      return sum(e, env);
+    case Expr::Kind::product:
+      return product(e, env);
     case Expr::Kind::power: {
       auto [a, b] = binary();
       if (a.kind != K::scalar || b.kind != K::scalar) throw mismatch("raise to a power", a, b);
@@ -351,8 +441,14 @@ Value Elaborator::evaluate(const ExprPtr& ptr, const Environment& env) {
       if (a.scalar.is_zero() && GiNaC::is_a<GiNaC::numeric>(b.scalar) &&
           GiNaC::ex_to<GiNaC::numeric>(b.scalar).is_negative())
         throw SourceError(e.location, "zero raised to a negative power: expected a non-zero base");
+      if (GiNaC::is_a<GiNaC::numeric>(a.scalar) && GiNaC::is_a<GiNaC::numeric>(b.scalar))
+        if (auto p = bounded_numeric_power(GiNaC::ex_to<GiNaC::numeric>(a.scalar), GiNaC::ex_to<GiNaC::numeric>(b.scalar),
+                                           e.location))
+          return Value::of(*p);
       try {
-        return Value::of(GiNaC::pow(a.scalar, b.scalar));
+        const ex power = GiNaC::pow(a.scalar, b.scalar);
+        check_exponents(power, e.location);
+        return Value::of(power);
       } catch (const GiNaC::pole_error&) {  // 0^-1 is evaluated (and thrown) eagerly
         throw SourceError(e.location, "zero raised to a negative power: expected a non-zero base");
       }

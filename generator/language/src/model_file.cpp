@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <fstream>
-#include <sstream>
 
 #include "eomgen/base/error.hpp"
 #include "eomgen/language/model_file.hpp"
@@ -157,6 +156,10 @@ void Elaborator::checks() {
 
 Model parse_model(const std::string& text, const std::string& file_name,
                   const std::map<std::string, double>& overrides) {
+  if (text.size() > syntax::max_model_bytes)
+    throw SourceError({file_name, 1, 1}, fmt::format("the model is larger than {} MiB: expected a model file "
+                                                     "(loops make large models from short text)",
+                                                     syntax::max_model_bytes >> 20));
   const auto statements = syntax::parse_statements(text, file_name);
   syntax::Elaborator elaborator(file_name, overrides);
   Model model = elaborator.run(statements);
@@ -170,9 +173,12 @@ Model parse_model(const std::string& text, const std::string& file_name,
 Model load_model(const std::string& path, const std::map<std::string, double>& overrides) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(fmt::format("{}: error: cannot read the model file", path));
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  return parse_model(buffer.str(), path, overrides);
+  // read no further than one byte past the limit: the file may be endless (/dev/zero, a pipe)
+  std::string text(syntax::max_model_bytes + 1, '\0');
+  in.read(text.data(), static_cast<std::streamsize>(text.size()));
+  if (in.bad()) throw Error(fmt::format("{}: error: cannot read the model file", path));
+  text.resize(static_cast<std::size_t>(in.gcount()));
+  return parse_model(text, path, overrides);
 }
 
 }  // namespace eomgen

@@ -13,6 +13,27 @@ bool is_ident_start(char c) { return std::isalpha(static_cast<unsigned char>(c))
 bool is_ident_char(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }
 bool is_digit(char c) { return std::isdigit(static_cast<unsigned char>(c)) != 0; }
 
+// Where the text stops being UTF-8 (a truncated or overlong sequence, a surrogate, a stray
+// continuation byte), or npos. Descriptions are written into JSON and C++ string literals.
+std::size_t invalid_utf8_at(const std::string& s) {
+  std::size_t i = 0;
+  while (i < s.size()) {
+    const auto b = static_cast<unsigned char>(s[i]);
+    const std::size_t length = b < 0x80 ? 1 : (b >> 5) == 0x6 ? 2 : (b >> 4) == 0xe ? 3 : (b >> 3) == 0x1e ? 4 : 0;
+    if (length == 0 || i + length > s.size()) return i;
+    unsigned long code = length == 1 ? b : b & (0x7fu >> length);
+    for (std::size_t k = 1; k < length; ++k) {
+      const auto c = static_cast<unsigned char>(s[i + k]);
+      if ((c >> 6) != 0x2) return i;
+      code = (code << 6) | (c & 0x3fu);
+    }
+    const unsigned long least[] = {0, 0, 0x80, 0x800, 0x10000};
+    if (code < least[length] || code > 0x10ffff || (code >= 0xd800 && code <= 0xdfff)) return i;
+    i += length;
+  }
+  return std::string::npos;
+}
+
 }  // namespace
 
 std::string describe(const Token& token) {
@@ -101,6 +122,12 @@ std::vector<Token> tokenize(const std::string& text, const std::string& file, in
         advance(1);
       }
       if (i >= text.size() || text[i] != '"') throw SourceError(loc, "unterminated string: expected '\"'");
+      if (const std::size_t bad = invalid_utf8_at(s); bad != std::string::npos) {
+        SourceLocation at = loc;
+        at.column += static_cast<int>(bad) + 1;
+        throw SourceError(at, fmt::format("byte 0x{:02x} in a string is not UTF-8: expected UTF-8 text",
+                                          static_cast<unsigned char>(s[bad])));
+      }
       advance(1);
       push(Token::Kind::string, s, loc, start);
     } else if (c == '.' && i + 1 < text.size() && text[i + 1] == '.') {
@@ -112,7 +139,11 @@ std::vector<Token> tokenize(const std::string& text, const std::string& file, in
       if (c == '(' || c == '[') open.push_back(tokens.back());
       if ((c == ')' || c == ']') && !open.empty()) open.pop_back();
     } else {
-      throw SourceError(loc, fmt::format("unexpected character '{}'", std::string(1, c)));
+      // a control byte or a byte of UTF-8 is named by its value, not written raw into the message
+      const auto byte = static_cast<unsigned char>(c);
+      throw SourceError(loc, byte >= 32 && byte < 127 ? fmt::format("unexpected character '{}'", std::string(1, c))
+                                                      : fmt::format("unexpected byte 0x{:02x}: expected ASCII "
+                                                                    "model text (names, numbers, operators)", byte));
     }
   }
   if (!open.empty())

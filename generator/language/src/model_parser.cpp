@@ -102,6 +102,7 @@ class Parser {
     if (keyword.kind != Token::Kind::identifier)
       error(keyword, fmt::format("expected a statement keyword, got {}", describe(keyword)));
     const std::string word = keyword.text;
+    const std::size_t first_token = pos_;
     next();
     Statement s;
     s.location = keyword.location;
@@ -162,7 +163,13 @@ class Parser {
       expect_symbol("..", "between the first and last value of the loop (for i in 1..n)");
       s.value2 = expression();
       end_of_statement();
+      s.token_count = pos_ - first_token;
+      if (loop_depth_ == max_loop_depth)
+        error(keyword, fmt::format("loops nest deeper than {} levels: expected fewer loops inside one another",
+                                   max_loop_depth));
+      ++loop_depth_;
       s.body = statements(true);
+      --loop_depth_;
       return s;
     } else if (auto it = element_keywords.find(word); it != element_keywords.end()) {
       s.kind = it->second;
@@ -185,6 +192,7 @@ class Parser {
                                  "wheel, independent, output, for", word));
     }
     end_of_statement();
+    s.token_count = pos_ - first_token;
     return s;
   }
 
@@ -212,31 +220,55 @@ class Parser {
     return e;
   }
 
-  ExprPtr expression() {
-    ExprPtr left = term();
-    while (is_symbol("+") || is_symbol("-")) {
-      const Token& op = next();
-      left = make(op.text == "+" ? Expr::Kind::add : Expr::Kind::subtract, op.location, {left, term()});
+  // One more level of nesting for as long as it lives; refused beyond max_expression_depth.
+  class Deeper {
+   public:
+    Deeper(Parser& parser, const Token& at) : parser_(parser) {
+      if (parser_.depth_ == max_expression_depth)
+        parser.error(at, fmt::format("expressions nest deeper than {} levels (parentheses, calls, brackets, signs "
+                                     "and powers): expected a flatter expression",
+                                     max_expression_depth));
+      ++parser_.depth_;
     }
-    return left;
+    Deeper(const Deeper&) = delete;
+    Deeper& operator=(const Deeper&) = delete;
+    ~Deeper() { --parser_.depth_; }
+
+   private:
+    Parser& parser_;
+  };
+
+  ExprPtr expression() {
+    const Deeper level(*this, peek());
+    return chain(Expr::Kind::sum, "+", "-", &Parser::term);
   }
 
-  ExprPtr term() {
-    ExprPtr left = unary();
-    while (is_symbol("*") || is_symbol("/")) {
-      const Token& op = next();
-      left = make(op.text == "*" ? Expr::Kind::multiply : Expr::Kind::divide, op.location, {left, unary()});
+  ExprPtr term() { return chain(Expr::Kind::product, "*", "/", &Parser::unary); }
+
+  // operand (op operand)*, as one flat node when there is more than one operand
+  ExprPtr chain(Expr::Kind kind, const char* op, const char* inverse_op, ExprPtr (Parser::*operand)()) {
+    ExprPtr first = (this->*operand)();
+    if (!is_symbol(op) && !is_symbol(inverse_op)) return first;
+    auto node = std::make_shared<Expr>();
+    node->kind = kind;
+    node->location = peek().location;
+    node->args.push_back(std::move(first));
+    while (is_symbol(op) || is_symbol(inverse_op)) {
+      const Token& t = next();
+      node->operations.push_back(Expr::Operation{t.text == inverse_op, t.location});
+      node->args.push_back((this->*operand)());
     }
-    return left;
+    return node;
   }
 
   ExprPtr unary() {
     if (is_symbol("-")) {
       const Token& op = next();
+      const Deeper level(*this, op);
       return make(Expr::Kind::negate, op.location, {unary()});
     }
     if (is_symbol("+")) {
-      next();
+      const Deeper level(*this, next());
       return unary();
     }
     return power();
@@ -246,6 +278,7 @@ class Parser {
     ExprPtr base = postfix();
     if (is_symbol("^")) {
       const Token& op = next();
+      const Deeper level(*this, op);
       return make(Expr::Kind::power, op.location, {base, unary()});  // right associative
     }
     return base;
@@ -327,16 +360,16 @@ class Parser {
   std::vector<Token> tokens_;
   std::string text_;
   std::size_t pos_ = 0;
+  int depth_ = 0;       // expression nesting (Deeper)
+  int loop_depth_ = 0;  // `for` loops open around the current statement
 };
 
 }  // namespace
 
 const SourceLocation& start_of(const Expr& e) {
   switch (e.kind) {
-    case Expr::Kind::add:
-    case Expr::Kind::subtract:
-    case Expr::Kind::multiply:
-    case Expr::Kind::divide:
+    case Expr::Kind::sum:
+    case Expr::Kind::product:
     case Expr::Kind::power: return start_of(*e.args[0]);
     case Expr::Kind::number:
     case Expr::Kind::name:

@@ -37,14 +37,36 @@ struct Name {
 };
 
 struct Expr {
-  enum class Kind { number, name, negate, add, subtract, multiply, divide, power, call, list, in_frame, basis };
+  /// sum and product are flat, one node for `a + b - c + ...`: a sum of any length is then a
+  /// loop, not a recursion as deep as it is long.
+  enum class Kind { number, name, negate, sum, product, power, call, list, in_frame, basis };
+  /// The operator before an operand of a sum (+, or - when inverse) or a product (*, or /).
+  struct Operation {
+    bool inverse = false;
+    SourceLocation location;
+  };
   Kind kind;
-  SourceLocation location;
+  SourceLocation location;    // sum and product: their first operator
   std::string number_text;    // number
   Name name;                  // name, call (function), in_frame and basis (frame)
   int basis_index = 0;        // basis: 1, 2 or 3
   std::vector<ExprPtr> args;  // operands, call arguments, list elements; in_frame: the list
+  std::vector<Operation> operations;  // sum, product: the operator before args[1], args[2], ...
 };
+
+/// How deeply expressions may nest: parentheses, calls, brackets, prefix signs and powers
+/// (a^b^c) each add a level. Deeper input is refused where it crosses the limit, before any
+/// recursion over the tree could exhaust the stack.
+inline constexpr int max_expression_depth = 100;
+/// How deeply `for` loops may nest.
+inline constexpr int max_loop_depth = 32;
+/// How large loops may make a model: iterations plus the tokens of every statement they repeat.
+/// A chain of 1,000 links is about 100,000; nested loops of 100,000 iterations each would
+/// otherwise run for hours or exhaust memory.
+inline constexpr std::size_t max_expanded_tokens = 2000000;
+/// The largest model text accepted, in bytes. Hand-written models are a few KB; loops make
+/// large ones.
+inline constexpr std::size_t max_model_bytes = 4u << 20;
 
 /// Where an expression starts. An operator node sits at its operator, which is right for
 /// "cannot add ..." but not for a message about the whole expression ("expected a vector").
@@ -71,6 +93,8 @@ struct Statement {
   Name frame;               // output ... in FRAME
   bool has_frame = false;
   std::vector<Statement> body;  // loop body
+  std::size_t token_count = 0;  // tokens the statement spans (a loop: its header): its share of the
+                                // work once loops repeat it
 };
 
 /// Parses the text of a model file. \throws SourceError.
