@@ -93,7 +93,7 @@ TEST(HostileInput, AFlatSumOfHundredThousandTermsHasItsValue) {
   std::string terms = "1";
   for (int i = 1; i < 100000; ++i) terms += i % 2 ? "+2" : "-1";
   const Model m = parse_model("parameter k = " + terms + "\n" + point_mass, "h.eom");
-  EXPECT_EQ(parameter_default(m, "k"), 50001.0);  // 1 + 50000*2 - 49999*1
+  EXPECT_EQ(parameter_default(m, "k"), 50002.0);  // 1 + 50000*2 - 49999*1
 }
 
 TEST(HostileInput, AFlatVectorSumOfSixtyThousandTermsPlacesThePoint) {
