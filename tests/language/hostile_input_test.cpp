@@ -87,6 +87,24 @@ TEST(HostileInput, TwentyThousandNestedLoopsAreRefusedAtTheThirtyThird) {
             "h.eom:33:1: error: loops nest deeper than 32 levels: expected fewer loops inside one another");
 }
 
+TEST(HostileInput, AChainOfTwentyThousandFramesWrittenBackwardsIsRefused) {
+  EXPECT_EQ(error_of("coordinate q\nfor i in 1..20000\nframe b{i} = rotate(b{i+1}, 3, q)\nend\nframe b20001 = a\n"
+                     "body B(frame = b1, mass = 1, centre = w, inertia = diag(1, 2, 3))\n"),
+            "h.eom:3:7: error: frame 'b257' is defined through more than 256 frames and points that come later in the "
+            "file: expected parents defined before their children");
+  EXPECT_EQ(error_of("coordinate q\nfor i in 1..20000\npoint p{i} = p{i+1} + q*a.1\nend\npoint p20001 = w\n"
+                     "particle m(mass = 1, at = p1)\n"),
+            "h.eom:3:7: error: point 'p257' is defined through more than 256 frames and points that come later in the "
+            "file: expected parents defined before their children");
+}
+
+TEST(HostileInput, AChainOfTwentyThousandFramesInOrderIsAModel) {
+  const Model m = parse_model("coordinate q\nframe b0 = a\nfor i in 1..20000\nframe b{i} = rotate(b{i-1}, 3, q)\nend\n"
+                              "body B(frame = b20000, mass = 1, centre = w, inertia = diag(1, 2, 3))\n",
+                              "h.eom");
+  EXPECT_EQ(m.system.frames().size(), 20001u);  // a and b1..b20000: b0 is an alias of a, no frame of its own
+}
+
 // --- long flat sums and products: loops, not recursions; and the right value ---
 
 TEST(HostileInput, AFlatSumOfHundredThousandTermsHasItsValue) {

@@ -261,6 +261,11 @@ class InProgress {
       for (auto it = start; it != stack.end(); ++it) cycle += *it + " -> ";
       throw SourceError(at, fmt::format("{} '{}' is defined through a cycle: {}{}", kind, name, cycle, name));
     }
+    // each definition built ahead of its turn is a level of recursion
+    if (stack.size() == max_definitions_ahead)
+      throw SourceError(at, fmt::format("{} '{}' is defined through more than {} frames and points that come later "
+                                        "in the file: expected parents defined before their children",
+                                        kind, name, max_definitions_ahead));
     stack_.push_back(name);
   }
   InProgress(const InProgress&) = delete;

@@ -64,6 +64,9 @@ inline constexpr int max_loop_depth = 32;
 /// A chain of 1,000 links is about 100,000; nested loops of 100,000 iterations each would
 /// otherwise run for hours or exhaust memory.
 inline constexpr std::size_t max_expanded_tokens = 2000000;
+/// How many frames and points a definition may wait for: one defined from one later in the
+/// file is built first, recursively (a chain of 20,000 written backwards overflowed the stack).
+inline constexpr std::size_t max_definitions_ahead = 256;
 /// The largest model text accepted, in bytes. Hand-written models are a few KB; loops make
 /// large ones.
 inline constexpr std::size_t max_model_bytes = 4u << 20;
