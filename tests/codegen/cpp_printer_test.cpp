@@ -102,7 +102,7 @@ TEST(CppPrinter, ParametersAreReadThroughTheirIdentifiers) {
   CppPrintOptions options;
   options.parameter_names = {"int", "_hidden"};
   EXPECT_EQ(cpp_variable({VariableKind::parameter, 0}, options), "p.int_");
-  EXPECT_EQ(cpp_variable({VariableKind::parameter, 1}, options), "p.v_hidden");
+  EXPECT_EQ(cpp_variable({VariableKind::parameter, 1}, options), "p.v_0_hidden_");
 }
 
 TEST(CppPrinter, TargetsAreEntriesOfTheOutputArguments) {

@@ -93,12 +93,24 @@ std::string metadata_source(const Model& model, const ModelEquations& eom, std::
 
 std::string parameters_source(const Model& model) {
   std::string fields, pointers;
+  bool renamed = false;
   for (const Parameter& p : model.system.variables().parameters()) {
-    pointers += fmt::format("{}&{}", pointers.empty() ? "" : ", ", cpp_identifier(p.name));
-    fields += fmt::format("    Scalar {} = {};{}\n", cpp_identifier(p.name), cpp_number(p.default_value, "Scalar"),
-                          p.unit.empty() ? "" : " // [" + cpp_comment_text(p.unit) + "]");
+    const std::string field = cpp_identifier(p.name);
+    const std::string unit = p.unit.empty() ? "" : "[" + cpp_comment_text(p.unit) + "]";
+    // a renamed field says whose it is
+    const std::string comment = field == p.name ? unit : fmt::format("'{}'{}{}", cpp_comment_text(p.name),
+                                                                     unit.empty() ? "" : " ", unit);
+    renamed = renamed || field != p.name;
+    pointers += fmt::format("{}&{}", pointers.empty() ? "" : ", ", field);
+    fields += fmt::format("    Scalar {} = {};{}\n", field, cpp_number(p.default_value, "Scalar"),
+                          comment.empty() ? "" : " // " + comment);
   }
-  std::string s = "  /// Parameters, defaulted to the model's values.\n  template <class Scalar>\n  struct Parameters {\n";
+  std::string s = "  /// Parameters, defaulted to the model's values.\n";
+  if (renamed)
+    s += "  /// A field has its parameter's name, unless that name is a C++ keyword, a name of this\n"
+         "  /// header or a macro of the standard headers, or begins, ends or doubles '_': then the\n"
+         "  /// field ends in '_' and its comment gives the parameter (eomgen's docs/model-language.md).\n";
+  s += "  template <class Scalar>\n  struct Parameters {\n";
   s += fields;
   s += "    /// The fields in the order of parameter_names, to set parameters by index or name.\n";
   s += fmt::format("    std::array<Scalar*, np> fields() noexcept {{ return {{{{{}}}}}; }}\n", pointers);
