@@ -226,6 +226,13 @@ TEST(HostileInput, StringsMustBeUtf8) {
             "caf\xc3\xa9 \xe2\x82\xac \xf0\x9f\x9a\xb2");
 }
 
+TEST(HostileInput, AModelNamedAfterItsFileGetsAnIdentifier) {
+  EXPECT_EQ(parse_model(point_mass, "models/my-model.v2.eom").name, "my_model");
+  EXPECT_EQ(parse_model(point_mass, "2link.eom").name, "model_2link");
+  EXPECT_EQ(parse_model(point_mass, "/tmp/caf\xc3\xa9 \xff.eom").name, "caf___");
+  EXPECT_EQ(parse_model("model given\n" + point_mass, "my-model.eom").name, "given");
+}
+
 // --- names a loop variable would hide ---
 
 TEST(HostileInput, ALoopVariableMayNotHideAParameter) {

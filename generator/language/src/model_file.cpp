@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cctype>
 #include <fstream>
 
 #include "eomgen/base/error.hpp"
@@ -164,8 +165,12 @@ Model parse_model(const std::string& text, const std::string& file_name,
   syntax::Elaborator elaborator(file_name, overrides);
   Model model = elaborator.run(statements);
   if (model.name.empty()) {
-    std::string stem = file_name.substr(file_name.find_last_of('/') + 1);
-    model.name = stem.substr(0, stem.find('.'));
+    // an identifier, as a `model` statement would give: the name is written into JSON, CSV
+    // headers and file names, and a file name may hold any byte but '/'
+    const std::string stem = file_name.substr(file_name.find_last_of('/') + 1);
+    for (const char c : stem.substr(0, stem.find('.')))
+      model.name += std::isalnum(static_cast<unsigned char>(c)) && static_cast<unsigned char>(c) < 128 ? c : '_';
+    if (model.name.empty() || std::isdigit(static_cast<unsigned char>(model.name[0]))) model.name = "model_" + model.name;
   }
   return model;
 }
