@@ -229,7 +229,7 @@ TEST(HostileInput, StringsMustBeUtf8) {
 TEST(HostileInput, AModelNamedAfterItsFileGetsAnIdentifier) {
   EXPECT_EQ(parse_model(point_mass, "models/my-model.v2.eom").name, "my_model");
   EXPECT_EQ(parse_model(point_mass, "2link.eom").name, "model_2link");
-  EXPECT_EQ(parse_model(point_mass, "/tmp/caf\xc3\xa9 \xff.eom").name, "caf___");
+  EXPECT_EQ(parse_model(point_mass, "/tmp/caf\xc3\xa9 \xff.eom").name, "caf____");  // one _ per byte
   EXPECT_EQ(parse_model("model given\n" + point_mass, "my-model.eom").name, "given");
 }
 
