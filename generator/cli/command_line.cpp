@@ -4,6 +4,8 @@
 
 #include <cmath>
 
+#include "eomgen/codegen/cpp_identifier.hpp"
+
 namespace eomgen::tools {
 
 namespace {
@@ -18,6 +20,16 @@ const CLI::Validator positive_finite(
       return std::string();
     },
     "POSITIVE");
+
+// the generated code's outer namespace is written as given, so it must be a name the mapping of
+// model names leaves alone (docs/model-language.md, "Names in generated code")
+const CLI::Validator cpp_namespace(
+    [](std::string& text) {
+      if (eomgen::cpp_identifier(text) == text) return std::string();
+      return "expected a C++ identifier (a letter, then letters, digits and single _, not a keyword, a macro or a "
+             "name the generated header uses), got '" + text + "'";
+    },
+    "IDENTIFIER");
 
 // the options every subcommand has: the model file and --define
 void add_model_options(CLI::App* sub, Options& o) {
@@ -87,6 +99,7 @@ CLI::App* add_generate_command(CLI::App& app, Options& o) {
   generate->add_option("-o,--output", o.output_path, "Write to FILE instead of standard output (atomically)")
       ->type_name("FILE");
   generate->add_option("--namespace", o.outer_namespace, "Outer namespace of the generated code")
+      ->check(cpp_namespace)
       ->capture_default_str();
   generate->add_flag("--no-cse", o.no_cse,
                      "Write every output as its own expression tree, without shared temporaries (for comparison)");

@@ -152,6 +152,20 @@ TEST_F(Cli, SimulateRefusesTimesStepsAndTolerancesThatAreNotFinitePositiveNumber
     }
 }
 
+TEST_F(Cli, GenerateRefusesANamespaceThatIsNoPlainIdentifier) {
+  const std::string dp = quote(model("dp.eom", double_pendulum));
+  for (const std::string name : {"a::b", "my-models", "int", "NULL", "_x", "x__y", "Eigen", "2d", "''"}) {
+    const fs::path header = dir_ / "dp.hpp";
+    const Outcome run = eomgen("generate " + dp + " --namespace " + name + " -o " + quote(header.string()));
+    EXPECT_EQ(run.status, 2) << name;
+    EXPECT_THAT(run.err, StartsWith("eomgen: error: --namespace: expected a C++ identifier")) << run.err;
+    EXPECT_FALSE(fs::exists(header));
+  }
+  const Outcome run = eomgen("generate " + dp + " --namespace my_models");
+  EXPECT_EQ(run.status, 0) << run.err;
+  EXPECT_THAT(run.out, HasSubstr("namespace my_models {"));
+}
+
 TEST_F(Cli, CheckSummarizesTheModel) {
   const Outcome run = eomgen("check " + quote(model("dp.eom", double_pendulum)));
   EXPECT_EQ(run.status, 0) << run.err;
