@@ -74,13 +74,16 @@ while IFS= read -r -d '' f; do found+=("$f"); done \
 if [ ${#found[@]} -gt 0 ] || [ "$status" -ne 0 ]; then
   for log in "$logs"/fuzz-*.log; do
     [ -f "$log" ] || continue
-    # the report: from the sanitizer's or the target's first line to the saved input
-    sed -n '/^==[0-9]*==ERROR\|^==eomgen fuzz finding\|^==[0-9]*== ERROR: libFuzzer\|runtime error:\|^ALARM: working on the last Unit/,/Test unit written to/p' "$log" | head -60
+    # the report: from the sanitizer's or the target's first line to the saved input, with the
+    # top 20 frames of its stack (a stack overflow has thousands) and its summary
+    awk '/^==[0-9]+==ERROR|^==eomgen fuzz finding|^==[0-9]+== ERROR: libFuzzer|runtime error:|^ALARM: working on the last Unit/ { on = 1; n = 0 }
+         on && (++n <= 24 || /^SUMMARY|Test unit written to/) { print }
+         /Test unit written to/ { on = 0 }' "$log"
   done
-  echo "== FAILED: libFuzzer exited with $status; ${#found[@]} finding(s):"
+  echo "== FAILED: libFuzzer exited with $status; ${#found[@]} finding(s) (replay with LSAN_OPTIONS=$LSAN_OPTIONS):"
   for f in "${found[@]}"; do
     echo "   $f"
-    echo "     replay:   $fuzzer $f"
+    echo "     replay:   LSAN_OPTIONS=\$LSAN_OPTIONS $fuzzer $f"
     echo "     minimize: $fuzzer -minimize_crash=1 -max_total_time=60 -exact_artifact_path=$f.min $f"
   done
   exit 1
