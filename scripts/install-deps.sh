@@ -1,5 +1,11 @@
 #!/usr/bin/env bash
 # Installs everything eomgen needs on Debian 12 with apt-get; does nothing when all is present.
+#
+#   scripts/install-deps.sh [--fuzz]
+#
+# --fuzz adds what the parser fuzzer needs (scripts/fuzz.sh): clang 14 and its runtime libraries
+# (libFuzzer, the sanitizers) and llvm-symbolizer for the reports' stack traces. The README's
+# two commands do not ask for them.
 set -euo pipefail
 
 packages=(
@@ -10,6 +16,12 @@ packages=(
   texlive-latex-base
   gnuplot-nox
 )
+for arg in "$@"; do
+  case "$arg" in
+    --fuzz) packages+=(clang-14 libclang-rt-14-dev llvm-14) ;;
+    *) echo "usage: scripts/install-deps.sh [--fuzz]" >&2; exit 2 ;;
+  esac
+done
 
 missing=()
 for p in "${packages[@]}"; do

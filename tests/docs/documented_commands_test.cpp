@@ -48,6 +48,9 @@ const NotRun not_run[] = {
     {"bench/compare_peers.sh", "the peer benchmark: 20-30 min, installs MuJoCo and SymPy"},
     {"bench/compare_peers.sh > report.md", "the peer benchmark: 20-30 min, installs MuJoCo and SymPy"},
     {"PEERS_QUICK=1 bench/compare_peers.sh", "installs MuJoCo and SymPy; a benchmark, not a test"},
+    {"scripts/fuzz.sh 60 2", "installs clang 14 and builds the fuzzer in a second, instrumented build folder; "
+                             "CI's fuzz phase runs it, with as many workers as cores (.ci/run)"},
+    {"scripts/fuzz.sh 1800 2", "the issue's 30-minute fuzzing run: CI runs the same script for 60 s (.ci/run)"},
     {"bench/model_times.sh build/generator/eomgen",
      "a benchmark, not a test: times commands and compiles a simulation three times (minutes)"},
 };
