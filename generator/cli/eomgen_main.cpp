@@ -37,6 +37,7 @@
 #include "command_values.hpp"
 #include "linearize_command.hpp"
 #include "file_output.hpp"
+#include "interruption.hpp"
 #include "simulate_command.hpp"
 
 namespace {
@@ -333,6 +334,7 @@ int succeeds(Options& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  eomgen::tools::interruption::install();  // first: before any thread, child or temporary file
   CLI::App app{"eomgen: equations of motion M(q) qdd = F(q, qd, t, u) + Xi^T lambda from a model file", "eomgen"};
   app.set_version_flag("--version", std::string("eomgen ") + eomgen::version);
   app.require_subcommand(1);

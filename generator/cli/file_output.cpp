@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "eomgen/base/error.hpp"
+#include "interruption.hpp"
 #include "simulate_command.hpp"
 
 namespace eomgen::tools {
@@ -20,15 +21,20 @@ namespace eomgen::tools {
 namespace {
 
 // Creates a new empty file next to `path` (O_EXCL: never someone else's) and returns its
-// descriptor and name; the caller closes or unlinks it.
+// descriptor and name, registered for removal if the run is interrupted; the caller closes it
+// and renames or removes it (discard_temporary).
 int create_temporary(const std::string& path, std::string& temporary) {
   namespace fs = std::filesystem;
+  interruption::Hold hold;
   const fs::path target(path);
   const fs::path directory = target.has_parent_path() ? target.parent_path() : fs::path(".");
   for (int attempt = 0;; ++attempt) {
     temporary = (directory / fmt::format(".{}.{}-{}.tmp", target.filename().string(), ::getpid(), attempt)).string();
     const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);  // 0666 & ~umask
-    if (fd >= 0) return fd;
+    if (fd >= 0) {
+      interruption::remember(temporary);
+      return fd;
+    }
     if (errno != EEXIST || attempt >= 100)
       throw Error(fmt::format("writing '{}': cannot create a file in '{}': {}", path, directory.string(),
                               std::strerror(errno)));
@@ -75,6 +81,20 @@ void write_in_place(const std::string& path, const std::string& content) {
   if (::close(fd) != 0) throw Error(fmt::format("writing '{}': close failed: {}", path, std::strerror(errno)));
 }
 
+void discard_temporary(const std::string& temporary) {
+  interruption::Hold hold;
+  ::unlink(temporary.c_str());
+  interruption::forget(temporary);
+}
+
+// rename(2) of a registered temporary over `target`, as one step for an interruption
+bool rename_temporary(const std::string& temporary, const std::string& target) {
+  interruption::Hold hold;
+  if (std::rename(temporary.c_str(), target.c_str()) != 0) return false;
+  interruption::forget(temporary);
+  return true;
+}
+
 }  // namespace
 
 void write_atomically(const std::string& requested, const std::string& content) {
@@ -85,7 +105,7 @@ void write_atomically(const std::string& requested, const std::string& content) 
   const auto fail = [&](const std::string& what) {
     const std::string reason = std::strerror(errno);
     if (fd >= 0) ::close(fd);
-    ::unlink(temporary.c_str());
+    discard_temporary(temporary);
     throw Error(fmt::format("writing '{}': {}: {}", requested, what, reason));
   };
   write_all(fd, content.data(), content.size(), fail);
@@ -93,7 +113,7 @@ void write_atomically(const std::string& requested, const std::string& content) 
   const int closed = ::close(fd);
   fd = -1;
   if (closed != 0) fail("close failed");
-  if (std::rename(temporary.c_str(), path.c_str()) != 0) fail("cannot replace the file");
+  if (!rename_temporary(temporary, path)) fail("cannot replace the file");
 }
 
 PendingFile::PendingFile(std::string target) : target_(resolve_links(target)) {
@@ -101,7 +121,7 @@ PendingFile::PendingFile(std::string target) : target_(resolve_links(target)) {
 }
 
 PendingFile::~PendingFile() {
-  if (!committed_) ::unlink(temporary_.c_str());
+  if (!committed_) discard_temporary(temporary_);
 }
 
 void PendingFile::commit() {
@@ -110,11 +130,11 @@ void PendingFile::commit() {
     std::ostringstream content;
     content << in.rdbuf();
     write_in_place(target_, content.str());
-    ::unlink(temporary_.c_str());
+    discard_temporary(temporary_);
     committed_ = true;
     return;
   }
-  if (std::rename(temporary_.c_str(), target_.c_str()) != 0)
+  if (!rename_temporary(temporary_, target_))
     throw Error(fmt::format("writing '{}': cannot replace the file: {}", target_, std::strerror(errno)));
   committed_ = true;
 }

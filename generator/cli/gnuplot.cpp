@@ -8,6 +8,7 @@
 
 #include "eomgen/base/error.hpp"
 #include "file_output.hpp"
+#include "interruption.hpp"
 #include "process.hpp"
 #include "simulate_command.hpp"
 
@@ -47,14 +48,23 @@ void plot_with_gnuplot(const std::string& plot_path, const std::function<std::st
   // absolute paths: gnuplot runs a data file named "<cmd" and an output named "|cmd" as shell
   // commands, whatever the quoting; a path starting with '/' is never one
   write_atomically(script_file.path(), script(fs::absolute(image.path()).string()));
-  const fs::path log = fs::path(script_file.path()).replace_extension(".log");
-  const int plotted = run_process({"gnuplot", fs::absolute(script_file.path()).string()}, log.string());
-  std::ifstream in(log, std::ios::binary);
+  // gnuplot's output, read and removed whatever happens (posix_spawn creates it even when
+  // gnuplot cannot be started)
+  struct Log {
+    fs::path path;
+    explicit Log(fs::path p) : path(std::move(p)) { interruption::remember(path.string()); }
+    ~Log() {
+      interruption::Hold hold;
+      std::error_code ec;
+      fs::remove(path, ec);
+      interruption::forget(path.string());
+    }
+  } log(fs::path(script_file.path()).replace_extension(".log"));
+  const int plotted = run_process({"gnuplot", fs::absolute(script_file.path()).string()}, log.path.string());
+  std::ifstream in(log.path, std::ios::binary);
   std::ostringstream output;
   output << in.rdbuf();
   in.close();
-  std::error_code ec;
-  fs::remove(log, ec);
   if (plotted != 0) throw Error(fmt::format("gnuplot failed (exit status {}):\n{}", plotted, output.str()));
   image.commit();
 }

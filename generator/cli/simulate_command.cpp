@@ -23,6 +23,7 @@
 #include "eomrt/integrators.hpp"
 #include "file_output.hpp"
 #include "gnuplot.hpp"
+#include "interruption.hpp"
 #include "process.hpp"
 
 namespace eomgen::tools {
@@ -219,9 +220,18 @@ fs::path simulation_program(const Model& model, const std::string& header, const
   fs::create_directories(cache, ec);
   if (ec) throw Error(fmt::format("cannot create the cache directory '{}': {}", cache.string(), ec.message()));
   const fs::path building = cache / fmt::format(".{}.{}.tmp", key, ::getpid());
-  fs::remove_all(building, ec);
-  fs::create_directories(building, ec);
-  if (ec) throw Error(fmt::format("cannot create '{}': {}", building.string(), ec.message()));
+  const auto discard_building = [&] {
+    interruption::Hold hold;
+    fs::remove_all(building, ec);
+    interruption::forget(building.string());
+  };
+  {
+    interruption::Hold hold;  // an interrupted run removes it, with the compiler's output
+    fs::remove_all(building, ec);
+    fs::create_directories(building, ec);
+    if (ec) throw Error(fmt::format("cannot create '{}': {}", building.string(), ec.message()));
+    interruption::remember(building.string(), true);
+  }
   write_atomically((building / "model.hpp").string(), header);
   write_atomically((building / "driver.cpp").string(), driver);
   const std::vector<std::string> cmd =
@@ -232,7 +242,7 @@ fs::path simulation_program(const Model& model, const std::string& header, const
   const int status = run_process(cmd, log.string());
   if (status != 0) {
     const std::string output = read_file(log);
-    fs::remove_all(building, ec);
+    discard_building();
     throw Error(fmt::format("compiling the generated simulation failed (exit status {}); this is a bug in eomgen "
                             "or a broken compiler setup. Compiler output:\n{}",
                             status, output.substr(0, 4000)));
@@ -240,9 +250,13 @@ fs::path simulation_program(const Model& model, const std::string& header, const
   std::cerr << fmt::format(
       "eomgen: compiled in {:.1f} s, cached in {}\n",
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), directory.string());
-  fs::rename(building, directory, ec);
+  {
+    interruption::Hold hold;  // in place whole, or removed
+    fs::rename(building, directory, ec);
+    if (!ec) interruption::forget(building.string());
+  }
   if (ec) {
-    fs::remove_all(building, ec);  // another run finished the same build first: use its
+    discard_building();  // another run finished the same build first: use its
     if (!fs::exists(program))
       throw Error(fmt::format("cannot move the build into '{}' ({}); delete that directory and run again",
                               directory.string(), ec.message()));
