@@ -80,9 +80,14 @@ nlohmann::ordered_json json_rows(const Eigen::MatrixXd& a) {
 }
 
 std::string json_document(const nlohmann::ordered_json& j) {
+  // a name need not be UTF-8 (a model is named after its file when it has no `model` line), and
+  // JSON must be: each byte that starts no UTF-8 character is written as U+FFFD
+  const auto dump = [](const nlohmann::ordered_json& value) {
+    return value.dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace);
+  };
   std::string out = "{";
   for (auto it = j.begin(); it != j.end(); ++it)
-    out += (it == j.begin() ? "\n  " : ",\n  ") + nlohmann::ordered_json(it.key()).dump() + ": " + it.value().dump();
+    out += (it == j.begin() ? "\n  " : ",\n  ") + dump(nlohmann::ordered_json(it.key())) + ": " + dump(it.value());
   return out + "\n}\n";
 }
 
