@@ -42,13 +42,20 @@ int create_temporary(const std::string& path, std::string& temporary) {
 }
 
 // The file a rename should replace: a symbolic link is followed, so the link stays and the file
-// it names gets the content (as any program writing through the link would do).
+// it names gets the content (as any program writing through the link would do). A link whose
+// file does not exist yet is followed too (weakly_canonical alone would stop at it).
 std::string resolve_links(const std::string& path) {
   namespace fs = std::filesystem;
   std::error_code error;
-  if (!fs::is_symlink(fs::symlink_status(path, error))) return path;
-  const fs::path resolved = fs::weakly_canonical(path, error);
-  return error ? path : resolved.string();
+  fs::path resolved(path);
+  for (int hop = 0; hop < 40 && fs::is_symlink(fs::symlink_status(resolved, error)); ++hop) {
+    const fs::path target = fs::read_symlink(resolved, error);
+    if (error) return path;
+    resolved = target.is_absolute() ? target : resolved.parent_path() / target;
+  }
+  if (resolved == fs::path(path)) return path;
+  const fs::path canonical = fs::weakly_canonical(resolved, error);
+  return error ? path : canonical.string();
 }
 
 // A device, FIFO or socket (`-o /dev/null`, `-o /dev/stdout`, a pipe): renaming a file over it
@@ -139,14 +146,51 @@ void PendingFile::commit() {
   committed_ = true;
 }
 
-void refuse_to_overwrite_input(const std::string& output, const std::string& input, const std::string& option) {
+namespace {
+
+// whether `a` and `b` name one file: the same existing file (through links, hard ones too), or
+// the same file to be (the same path once symbolic links and "." and ".." are resolved)
+bool same_file(const std::string& a, const std::string& b) {
   namespace fs = std::filesystem;
-  if (output.empty()) return;
   std::error_code ec;
-  if (!fs::exists(output, ec) || !fs::equivalent(output, input, ec) || ec) return;
-  throw UsageError(fmt::format("{}: '{}' is the model file '{}' (the same file); writing it would destroy the model, "
-                               "so choose another output file",
-                               option, output, input));
+  if (fs::exists(a, ec) && fs::exists(b, ec)) return fs::equivalent(a, b, ec) && !ec;
+  const fs::path ca = fs::weakly_canonical(fs::absolute(resolve_links(a)), ec);
+  const fs::path cb = fs::weakly_canonical(fs::absolute(resolve_links(b)), ec);
+  return !ec && ca == cb;
+}
+
+void check_output_file(const OutputFile& output, const std::string& model_path) {
+  namespace fs = std::filesystem;
+  const std::string& path = output.path;
+  std::error_code ec;
+  if (fs::exists(path, ec) && fs::equivalent(path, model_path, ec) && !ec)
+    throw UsageError(fmt::format("{}: '{}' is the model file '{}' (the same file); writing it would destroy the "
+                                 "model, so choose another output file",
+                                 output.option, path, model_path));
+  if (fs::is_directory(path, ec))
+    throw UsageError(fmt::format("{}: '{}' is a directory; give the name of a file", output.option, path));
+  // the directory a rename into place needs (of the file a symbolic link names)
+  const fs::path target(resolve_links(path));
+  const fs::path directory = target.has_parent_path() ? target.parent_path() : fs::path(".");
+  if (!fs::is_directory(directory, ec))
+    throw UsageError(fmt::format("{}: cannot write '{}': the directory '{}' does not exist", output.option, path,
+                                 directory.string()));
+  if (::access(directory.c_str(), W_OK) != 0 && !is_special(target.string()))
+    throw UsageError(fmt::format("{}: cannot write '{}': no permission to create files in '{}'", output.option, path,
+                                 directory.string()));
+}
+
+}  // namespace
+
+void check_output_files(const std::vector<OutputFile>& outputs, const std::string& model_path) {
+  for (std::size_t i = 0; i < outputs.size(); ++i) {
+    if (outputs[i].path.empty()) continue;
+    check_output_file(outputs[i], model_path);
+    for (std::size_t k = 0; k < i; ++k)
+      if (!outputs[k].path.empty() && same_file(outputs[k].path, outputs[i].path))
+        throw UsageError(fmt::format("{}: '{}' is the same file as {} '{}'; each output needs a file of its own",
+                                     outputs[i].option, outputs[i].path, outputs[k].option, outputs[k].path));
+  }
 }
 
 }  // namespace eomgen::tools

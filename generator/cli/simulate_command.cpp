@@ -274,18 +274,18 @@ std::string plot_script(const Model& model, const std::string& csv, const std::s
   const std::size_t nu = vars.inputs().size();
   const std::size_t energy_column = 1 + 2 * nq + nc + nu + 1;  // of T; gnuplot counts from 1 (t)
   std::string s = gnuplot_terminal(image_name, 1000, 800);
-  s += "set output " + gnuplot_quoted(image) + "\n";
+  s += "set output " + gnuplot_path(image) + "\n";
   s += "set datafile separator ','\n";
   s += "set grid\nset key outside right top\nset xlabel 't [s]'\n";
-  s += "set multiplot layout 2,1 title " + gnuplot_quoted(title) + "\n";
+  s += "set multiplot layout 2,1 title " + gnuplot_text(title) + "\n";
   s += "set ylabel 'coordinates'\n";
   s += fmt::format("plot for [i=2:{}] {} using 1:i with lines lw 1.5 title columnheader(i)\n", 1 + nq,
-                   gnuplot_quoted(csv));
+                   gnuplot_path(csv));
   s += "set ylabel 'energy [J]'\n";
   s += fmt::format(
       "plot {0} using 1:{1} with lines lw 1.5 title 'T', '' using 1:{2} with lines lw 1.5 title 'V', "
       "'' using 1:{3} with lines lw 2 title 'T + V'\n",
-      gnuplot_quoted(csv), energy_column, energy_column + 1, energy_column + 2);
+      gnuplot_path(csv), energy_column, energy_column + 1, energy_column + 2);
   s += "unset multiplot\nset output\n";
   return s;
 }
@@ -324,9 +324,11 @@ int run_simulate(const Model& model, const SimulateRequest& r) {
   const std::string stem = cpp_identifier(model.name);
   const std::string csv_path = r.csv_path.empty() ? stem + ".csv" : r.csv_path;
   const std::string plot_path = r.plot_path.empty() ? stem + ".svg" : r.plot_path;
-  refuse_to_overwrite_input(csv_path, r.model_path, "-o");
-  if (r.plot) refuse_to_overwrite_input(plot_path, r.model_path, "--plot");
-  if (r.plot) require_plot_target(plot_path, "--plot", "pass --no-plot");
+  check_output_files({{"-o", csv_path}, {"--plot", r.plot ? plot_path : std::string()}}, r.model_path);
+  if (r.plot) {
+    require_plot_target(plot_path, "--plot", "pass --no-plot");
+    require_gnuplot_path(csv_path, "-o");  // gnuplot reads the CSV
+  }
 
   const ModelEquations eom = derive_equations(model);
   EmitOptions emit;
@@ -357,13 +359,17 @@ int run_simulate(const Model& model, const SimulateRequest& r) {
   if (status != 0)
     throw Error(fmt::format("the simulation program of {} ended with status {}", model.name, status));
   csv.commit();
-  std::cout << fmt::format("CSV:  {}\n", csv_path);
+  std::cout << fmt::format("CSV:  {}\n", csv_path) << std::flush;
 
   if (r.plot) {
     const std::string title = fmt::format("{}: {}", model.name, model.description);
-    plot_with_gnuplot(plot_path, [&](const std::string& image) {
-      return plot_script(model, fs::absolute(csv_path).string(), image, plot_path, title);
-    });
+    try {
+      plot_with_gnuplot(plot_path, [&](const std::string& image) {
+        return plot_script(model, fs::absolute(csv_path).string(), image, plot_path, title);
+      });
+    } catch (const Error& e) {
+      return report_plot_failure(plot_path, fmt::format("the CSV '{}'", csv_path), e);
+    }
     std::cout << fmt::format("plot: {}\n", plot_path);
   }
   return 0;
