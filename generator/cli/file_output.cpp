@@ -154,9 +154,7 @@ bool same_file(const std::string& a, const std::string& b) {
   namespace fs = std::filesystem;
   std::error_code ec;
   if (fs::exists(a, ec) && fs::exists(b, ec)) return fs::equivalent(a, b, ec) && !ec;
-  const fs::path ca = fs::weakly_canonical(fs::absolute(resolve_links(a)), ec);
-  const fs::path cb = fs::weakly_canonical(fs::absolute(resolve_links(b)), ec);
-  return !ec && ca == cb;
+  return written_file(a) == written_file(b);
 }
 
 void check_output_file(const OutputFile& output, const std::string& model_path) {
@@ -182,10 +180,25 @@ void check_output_file(const OutputFile& output, const std::string& model_path) 
 
 }  // namespace
 
-void check_output_files(const std::vector<OutputFile>& outputs, const std::string& model_path) {
+std::string written_file(const std::string& path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::path absolute = fs::absolute(resolve_links(path), ec);
+  if (ec) return path;
+  const fs::path canonical = fs::weakly_canonical(absolute, ec);
+  return (ec ? absolute : canonical).string();
+}
+
+void check_output_files(const std::vector<OutputFile>& outputs, const std::string& model_path,
+                        const std::vector<std::string>& other_inputs, const std::string& what) {
   for (std::size_t i = 0; i < outputs.size(); ++i) {
     if (outputs[i].path.empty()) continue;
     check_output_file(outputs[i], model_path);
+    for (const std::string& input : other_inputs)
+      if (same_file(outputs[i].path, input))
+        throw UsageError(fmt::format("{}: '{}' is '{}', one of {} this run reads; writing it would destroy it, so "
+                                     "choose another output file",
+                                     outputs[i].option, outputs[i].path, input, what));
     for (std::size_t k = 0; k < i; ++k)
       if (!outputs[k].path.empty() && same_file(outputs[k].path, outputs[i].path))
         throw UsageError(fmt::format("{}: '{}' is the same file as {} '{}'; each output needs a file of its own",

@@ -196,7 +196,7 @@ std::string methods_of(const eomrt::IntegratorInfo& method, const SimulateReques
 }
 
 fs::path simulation_program(const Model& model, const std::string& header, const std::string& methods,
-                            const fs::path& cache) {
+                            const fs::path& runtime, const fs::path& program_dir, const fs::path& cache) {
   const std::string driver = fmt::format(
       "// The simulation program of model '{}', written by eomgen simulate.\n"
       "#include \"model.hpp\"\n#include \"simulation_main.hpp\"\n\n"
@@ -204,7 +204,6 @@ fs::path simulation_program(const Model& model, const std::string& header, const
       "  return eomgen::simulation_program::simulation_main<eomgen_models::{}::Model,\n"
       "                                                     {}>(argc, argv);\n}}\n",
       cpp_string_contents(model.name), cpp_identifier(model.name), methods);
-  const fs::path runtime = runtime_include_dir(), program_dir = simulation_program_dir();
   const std::string key = cache_key(model, header, driver, runtime, program_dir);
 
   const fs::path directory = cache / key;
@@ -262,6 +261,21 @@ fs::path simulation_program(const Model& model, const std::string& header, const
                               directory.string(), ec.message()));
   }
   return program;
+}
+
+/// The cache holds the programs simulate runs, and the builds of concurrent runs: no output of a
+/// run goes in there.
+void refuse_outputs_in(const fs::path& cache, const std::vector<OutputFile>& outputs) {
+  fs::path root = written_file(cache.string());
+  if (!root.has_filename()) root = root.parent_path();  // "cache/"
+  for (const OutputFile& output : outputs) {
+    if (output.path.empty()) continue;
+    const fs::path target = written_file(output.path);
+    if (std::mismatch(root.begin(), root.end(), target.begin(), target.end()).first == root.end())
+      throw UsageError(fmt::format("{}: '{}' is in the cache directory '{}', whose compiled programs eomgen runs; "
+                                   "choose a file outside it",
+                                   output.option, output.path, cache.string()));
+  }
 }
 
 /// gnuplot script: coordinates against time above, T, V and T+V below; `image` is where gnuplot
@@ -324,7 +338,13 @@ int run_simulate(const Model& model, const SimulateRequest& r) {
   const std::string stem = cpp_identifier(model.name);
   const std::string csv_path = r.csv_path.empty() ? stem + ".csv" : r.csv_path;
   const std::string plot_path = r.plot_path.empty() ? stem + ".svg" : r.plot_path;
-  check_output_files({{"-o", csv_path}, {"--plot", r.plot ? plot_path : std::string()}}, r.model_path);
+  const std::vector<OutputFile> outputs{{"-o", csv_path}, {"--plot", r.plot ? plot_path : std::string()}};
+  const fs::path runtime = runtime_include_dir(), program_dir = simulation_program_dir(), cache = cache_root(r);
+  std::vector<std::string> sources;
+  for (const fs::path& dir : {program_dir, runtime / "eomrt"})
+    for (const fs::path& h : headers_in(dir)) sources.push_back(h.string());
+  check_output_files(outputs, r.model_path, sources, "the sources of the simulation program");
+  refuse_outputs_in(cache, outputs);
   if (r.plot) {
     require_plot_target(plot_path, "--plot", "pass --no-plot");
     require_gnuplot_path(csv_path, "-o");  // gnuplot reads the CSV
@@ -334,7 +354,7 @@ int run_simulate(const Model& model, const SimulateRequest& r) {
   EmitOptions emit;
   emit.source_name = fs::path(r.model_path).filename().string();
   const std::string header = emit_model(model, eom, emit).header;
-  const fs::path program = simulation_program(model, header, methods_of(method_info, r), cache_root(r));
+  const fs::path program = simulation_program(model, header, methods_of(method_info, r), runtime, program_dir, cache);
 
   std::vector<std::string> cmd{program.string(), "--t-end", exact(r.t_end), "--method", method,
                                "--solver", r.solver, "--stabilization", r.stabilization};
