@@ -348,6 +348,12 @@ int run_simulate(const Model& model, const SimulateRequest& r) {
   if (r.plot) {
     require_plot_target(plot_path, "--plot", "pass --no-plot");
     require_gnuplot_path(csv_path, "-o");  // gnuplot reads the CSV
+    std::error_code ec;
+    const fs::file_status csv_status = fs::status(csv_path, ec);
+    if (fs::exists(csv_status) && !fs::is_regular_file(csv_status))
+      throw UsageError(fmt::format("-o: '{}' is not a regular file, which gnuplot could read the CSV back from for the "
+                                   "plot; pass --no-plot, or write the CSV to a file",
+                                   csv_path));
   }
 
   const ModelEquations eom = derive_equations(model);

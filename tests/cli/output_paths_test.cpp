@@ -182,6 +182,10 @@ TEST_F(OutputPaths, OutputsThatCannotOrMustNotBeWrittenAreRefusedBeforeAnyWork) 
        "--plot: '" + link + "' is the same file as -o '" + svg + "'"},
       {"linearize " + m + " --sweep l=0.5:1:0.5 -f csv -o " + shell(link) + " --plot " + shell(svg),
        "--plot: '" + svg + "' is the same file as -o '" + link + "'"},
+      // gnuplot reads the CSV back: not from a device or a pipe
+      {"simulate " + m + " --t-end 1 -o /dev/null --plot " + shell(svg),
+       "-o: '/dev/null' is not a regular file, which gnuplot could read the CSV back from for the plot; pass "
+       "--no-plot, or write the CSV to a file"},
   };
   for (const auto& c : cases) {
     SCOPED_TRACE(c.arguments);
