@@ -84,6 +84,14 @@ class Interruption : public eomgen::testing::CliFixture {
     return status;
   }
 
+  // whether an entry of `dir` (which may not exist yet) satisfies `test`
+  static bool any_entry(const fs::path& dir, const std::function<bool(const fs::path&)>& test) {
+    std::error_code ec;
+    for (const auto& entry : fs::directory_iterator(dir, ec))
+      if (test(entry.path())) return true;
+    return false;
+  }
+
   static std::vector<std::string> entries(const fs::path& dir) {
     std::vector<std::string> names;
     for (const auto& entry : fs::directory_iterator(dir)) names.push_back(entry.path().filename().string());
@@ -123,10 +131,9 @@ TEST_F(Interruption, SigintWhileTheSimulationRunsLeavesNothing) {
   // the simulation program is writing its rows into the temporary CSV
   const bool writing = eventually(
       [&] {
-        for (const auto& entry : fs::directory_iterator(out))
-          if (entry.path().filename().string().rfind(".run.csv.", 0) == 0 && fs::file_size(entry.path()) > 0)
-            return true;
-        return false;
+        return any_entry(out, [](const fs::path& p) {
+          return p.filename().string().rfind(".run.csv.", 0) == 0 && fs::file_size(p) > 0;
+        });
       },
       60);
   ASSERT_TRUE(writing) << slurp(dir_ / "stderr");
@@ -148,15 +155,9 @@ TEST_F(Interruption, SigtermWhileCompilingLeavesTheCacheEmptyAndUsable) {
   const std::vector<std::string> request{"simulate", models_dir + "simple_pendulum.eom", "--t-end", "0.1", "--no-plot",
                                          "-o", (out / "run.csv").string(), "--cache-dir", cache.string()};
   const pid_t pid = start(request);
-  // the build directory holds the driver: the compiler has been started
+  // the build directory has the compiler's log: the compiler has been started
   const bool compiling = eventually(
-      [&] {
-        if (!fs::exists(cache)) return false;
-        for (const auto& entry : fs::directory_iterator(cache))
-          if (fs::exists(entry.path() / "compile.log")) return true;
-        return false;
-      },
-      60);
+      [&] { return any_entry(cache, [](const fs::path& p) { return fs::exists(p / "compile.log"); }); }, 60);
   ASSERT_TRUE(compiling) << slurp(dir_ / "stderr");
   ASSERT_EQ(::kill(pid, SIGTERM), 0);
   const int status = finish(pid, 10);
