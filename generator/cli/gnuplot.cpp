@@ -77,12 +77,14 @@ std::string gnuplot_path(const std::string& path) {
 }
 
 void require_gnuplot_path(const std::string& path, const std::string& option) {
-  const std::string absolute = fs::absolute(path).string();
-  if (absolute.find_first_of("\n\r") == std::string::npos) return;
-  throw UsageError(fmt::format("{}: '{}'{} has a line break, which ends a command of gnuplot whatever the quoting; "
-                               "choose a path without one",
-                               option, shown(path),
-                               absolute == path ? std::string() : fmt::format(" (absolute: '{}')", shown(absolute))));
+  // gnuplot gets the path made absolute, and writes next to the file a symbolic link names
+  for (const std::string& seen : {fs::absolute(path).string(), written_file(path)}) {
+    if (seen.find_first_of("\n\r") == std::string::npos) continue;
+    throw UsageError(fmt::format("{}: '{}'{} has a line break, which ends a command of gnuplot whatever the quoting; "
+                                 "choose a path without one",
+                                 option, shown(path),
+                                 seen == path ? std::string() : fmt::format(" (as gnuplot gets it: '{}')", shown(seen))));
+  }
 }
 
 void require_plot_target(const std::string& plot_path, const std::string& option, const std::string& alternative) {

@@ -15,8 +15,9 @@ std::string gnuplot_text(const std::string& text);
 /// \throws eomgen::Error for a line break (require_gnuplot_path refuses such paths first)
 std::string gnuplot_path(const std::string& path);
 
-/// \throws UsageError naming `option` if `path`, made absolute as gnuplot gets it, holds a line
-/// break (LF or CR), which ends a gnuplot command whatever the quoting
+/// \throws UsageError naming `option` if `path`, made absolute as gnuplot gets it (also with
+/// symbolic links followed, as a plot is written), holds a line break (LF or CR), which ends a
+/// gnuplot command whatever the quoting
 void require_gnuplot_path(const std::string& path, const std::string& option);
 
 /// \throws UsageError unless `plot_path` ends in .svg or .png and gnuplot can take it

@@ -96,9 +96,19 @@ TEST_F(OutputPaths, PathsWithALineBreakThatGnuplotWouldGetAreRefusedBeforeAnyWor
                               shell((dir_ / "err").string());
   const int raw = std::system(command.c_str());
   EXPECT_EQ(WEXITSTATUS(raw), 2);
-  EXPECT_EQ(slurp(dir_ / "err"), "eomgen: error: --plot: 'p.svg' (absolute: '" + (work / "dir\\nname/p.svg").string() +
+  EXPECT_EQ(slurp(dir_ / "err"), "eomgen: error: --plot: 'p.svg' (as gnuplot gets it: '" + (work / "dir\\nname/p.svg").string() +
                                      "') has a line break, which ends a command of gnuplot whatever the quoting; "
                                      "choose a path without one\n");
+  EXPECT_THAT(entries(odd), IsEmpty());
+  // and a symbolic link can name a file in such a directory
+  fs::create_symlink(odd / "p.svg", work / "link.svg");
+  const Outcome linked = eomgen("linearize " + shell(pendulum) + " --sweep l=0.5:1:0.5 --plot " +
+                                shell((work / "link.svg").string()));
+  EXPECT_EQ(linked.status, 2);
+  EXPECT_EQ(linked.err, "eomgen: error: --plot: '" + (work / "link.svg").string() + "' (as gnuplot gets it: '" +
+                            (work / "dir\\nname/p.svg").string() +
+                            "') has a line break, which ends a command of gnuplot whatever the quoting; choose a "
+                            "path without one\n");
   EXPECT_THAT(entries(odd), IsEmpty());
 }
 
