@@ -30,6 +30,10 @@ std::map<std::string, double> parse_assignments(const std::vector<std::string>& 
     double value = 0.0;
     // from_chars: locale-independent, and must consume the whole text
     const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+    if (ec == std::errc::result_out_of_range && end == text.data() + text.size())  // 1e400, 1e-400
+      throw UsageError(fmt::format("{}: '{}' in '{}' is beyond the range of a double (magnitudes from 2.2e-308 to "
+                                   "1.8e308, or 0)",
+                                   option, item.substr(eq + 1), item));
     if (ec != std::errc() || end != text.data() + text.size() || !std::isfinite(value))
       throw UsageError(fmt::format("{}: '{}' in '{}' is not a finite number", option, item.substr(eq + 1), item));
     if (!out.emplace(name, value).second) throw UsageError(fmt::format("{}: '{}' is given twice", option, name));
@@ -80,9 +84,14 @@ nlohmann::ordered_json json_rows(const Eigen::MatrixXd& a) {
 }
 
 std::string json_document(const nlohmann::ordered_json& j) {
+  // a name need not be UTF-8 (a model is named after its file when it has no `model` line), and
+  // JSON must be: each byte that starts no UTF-8 character is written as U+FFFD
+  const auto dump = [](const nlohmann::ordered_json& value) {
+    return value.dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace);
+  };
   std::string out = "{";
   for (auto it = j.begin(); it != j.end(); ++it)
-    out += (it == j.begin() ? "\n  " : ",\n  ") + nlohmann::ordered_json(it.key()).dump() + ": " + it.value().dump();
+    out += (it == j.begin() ? "\n  " : ",\n  ") + dump(nlohmann::ordered_json(it.key())) + ": " + dump(it.value());
   return out + "\n}\n";
 }
 

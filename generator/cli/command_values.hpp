@@ -35,7 +35,8 @@ std::string matrix_text(const std::string& title, const Eigen::MatrixXd& a);
 nlohmann::ordered_json json_rows(const Eigen::MatrixXd& a);
 
 /// one key per line, each value compact (a matrix on one line as an array of rows);
-/// nlohmann writes the shortest decimal that reads back to the same double
+/// nlohmann writes the shortest decimal that reads back to the same double; a byte of a string
+/// that starts no UTF-8 character becomes U+FFFD (JSON is UTF-8), so the document is always whole
 std::string json_document(const nlohmann::ordered_json& j);
 
 }  // namespace eomgen::tools

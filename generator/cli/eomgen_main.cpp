@@ -2,7 +2,10 @@
 // command_line.cpp), loads the model, calls the library and prints. No algebra lives here.
 //
 // Exit status: 0 success; 1 an error in the model or at the requested state (eomgen::Error;
-// a model file error reads "file:line:col: error: ..."); 2 a malformed command line.
+// a model file error reads "file:line:col: error: ..."); 2 a malformed command line; 3 the data
+// (simulate's CSV, a sweep's table) was written in full but its plot was not. Interrupted
+// (SIGINT, SIGTERM, SIGHUP), it removes its temporary files and dies by the signal
+// (interruption.hpp).
 #include <CLI/CLI.hpp>
 #include <fcntl.h>
 #include <fmt/format.h>
@@ -37,6 +40,7 @@
 #include "command_values.hpp"
 #include "linearize_command.hpp"
 #include "file_output.hpp"
+#include "interruption.hpp"
 #include "simulate_command.hpp"
 
 namespace {
@@ -109,7 +113,7 @@ void run_derive(const Options& o) {
       throw UsageError(fmt::format("--only: {}", e.what()));
     }
   }
-  eomgen::tools::refuse_to_overwrite_input(o.output_path, o.model_path, "-o");
+  eomgen::tools::check_output_files({{"-o", o.output_path}}, o.model_path);
   if (o.shared) print.intermediates = eomgen::IntermediateForm::shared;
   if (o.expand) print.intermediates = eomgen::IntermediateForm::written_out;
   const eomgen::Model model = load(o);
@@ -161,7 +165,7 @@ std::string forward_dynamics_line(const eomgen::EmittedModel& emitted) {
 }
 
 void run_generate(const Options& o) {
-  eomgen::tools::refuse_to_overwrite_input(o.output_path, o.model_path, "-o");
+  eomgen::tools::check_output_files({{"-o", o.output_path}}, o.model_path);
   using clock = std::chrono::steady_clock;
   const auto milliseconds = [](clock::duration d) { return std::chrono::duration<double, std::milli>(d).count(); };
   const auto start = clock::now();
@@ -333,10 +337,13 @@ int succeeds(Options& o) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  eomgen::tools::interruption::install();  // first: before any thread, child or temporary file
   CLI::App app{"eomgen: equations of motion M(q) qdd = F(q, qd, t, u) + Xi^T lambda from a model file", "eomgen"};
   app.set_version_flag("--version", std::string("eomgen ") + eomgen::version);
   app.require_subcommand(1);
-  app.footer("Exit status: 0 success, 1 error in the model or at the state, 2 usage error.");
+  app.footer(
+      "Exit status: 0 success, 1 error in the model or at the state, 2 usage error, 3 the data (CSV, table) was written "
+      "in full but its plot was not; on SIGINT or SIGTERM eomgen removes its temporary files and dies by the signal.");
   Options o;
   namespace tools = eomgen::tools;
   const std::vector<std::pair<CLI::App*, int (*)(Options&)>> commands = {
@@ -344,7 +351,7 @@ int main(int argc, char** argv) {
       {tools::add_derive_command(app, o), succeeds<run_derive>},
       {tools::add_eval_command(app, o), succeeds<run_eval>},
       {tools::add_generate_command(app, o), succeeds<run_generate>},
-      {tools::add_linearize_command(app, o), succeeds<eomgen::tools::run_linearize>},
+      {tools::add_linearize_command(app, o), [](Options& opts) { return eomgen::tools::run_linearize(opts); }},
       {tools::add_simulate_command(app, o), run_simulate},
   };
   try {

@@ -2,6 +2,7 @@
 // Output files that appear whole or not at all: a temporary file in the target's directory,
 // renamed over the target once complete (rename is atomic within a file system).
 #include <string>
+#include <vector>
 
 namespace eomgen::tools {
 
@@ -10,10 +11,24 @@ namespace eomgen::tools {
 /// \throws eomgen::Error if the file cannot be written; the target is then untouched
 void write_atomically(const std::string& path, const std::string& content);
 
-/// Refuses an output that is an input of the run: `output` naming the same file as `input`
-/// (through a symbolic or a hard link too), which writing would destroy.
-/// \throws UsageError naming `option`; nothing when `output` is empty or does not exist yet
-void refuse_to_overwrite_input(const std::string& output, const std::string& input, const std::string& option);
+/// An output file of a run and the option that names it ("-o", "--plot").
+struct OutputFile {
+  std::string option;
+  std::string path;  ///< empty: not written (standard output, or no plot)
+};
+
+/// The file a write to `path` replaces, absolute, with symbolic links followed (also a link whose
+/// file does not exist yet) and "." and ".." resolved.
+std::string written_file(const std::string& path);
+
+/// Checks a run's output files before anything runs, so that no work is lost to a path that
+/// cannot be written and no file to one that should not be: an output must not be the model
+/// file (through a symbolic or a hard link too), a directory, or in a directory that does not
+/// exist, and no two outputs may be the same file (the plot would replace the CSV). Nor may an
+/// output be one of `other_inputs`, further files the run reads (`what` says what they are).
+/// \throws UsageError naming the option
+void check_output_files(const std::vector<OutputFile>& outputs, const std::string& model_path,
+                        const std::vector<std::string>& other_inputs = {}, const std::string& what = {});
 
 /// A temporary file next to `target`, for a file another program writes (the simulation's
 /// CSV, gnuplot's plot): commit() renames it over the target; otherwise it is removed.

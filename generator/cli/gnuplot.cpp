@@ -4,10 +4,12 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <sstream>
 
 #include "eomgen/base/error.hpp"
 #include "file_output.hpp"
+#include "interruption.hpp"
 #include "process.hpp"
 #include "simulate_command.hpp"
 
@@ -15,20 +17,81 @@ namespace eomgen::tools {
 
 namespace fs = std::filesystem;
 
-std::string gnuplot_quoted(const std::string& text) {
+namespace {
+
+std::string single_quoted(const std::string& text) {
   std::string out = "'";
-  for (char c : text) {
-    if (c == '\'') out += '\'';
-    if (c == '\n' || c == '\r') continue;
-    out += c;
-  }
+  for (char c : text) out += c == '\'' ? std::string("''") : std::string(1, c);
   return out + "'";
+}
+
+// the length of the well-formed UTF-8 sequence at text[i] (RFC 3629: no overlong forms, no
+// surrogates, nothing above U+10FFFF), or 0
+std::size_t utf8_sequence(const std::string& text, std::size_t i) {
+  const auto byte = [&](std::size_t k) { return k < text.size() ? static_cast<unsigned char>(text[k]) : 0u; };
+  const unsigned b0 = byte(i);
+  const auto continuation = [&](std::size_t k, unsigned low = 0x80, unsigned high = 0xBF) {
+    return byte(k) >= low && byte(k) <= high;
+  };
+  if (b0 < 0x80) return 1;
+  if (b0 >= 0xC2 && b0 <= 0xDF) return continuation(i + 1) ? 2 : 0;
+  if (b0 >= 0xE0 && b0 <= 0xEF) {
+    const unsigned low = b0 == 0xE0 ? 0xA0 : 0x80, high = b0 == 0xED ? 0x9F : 0xBF;
+    return continuation(i + 1, low, high) && continuation(i + 2) ? 3 : 0;
+  }
+  if (b0 >= 0xF0 && b0 <= 0xF4) {
+    const unsigned low = b0 == 0xF0 ? 0x90 : 0x80, high = b0 == 0xF4 ? 0x8F : 0xBF;
+    return continuation(i + 1, low, high) && continuation(i + 2) && continuation(i + 3) ? 4 : 0;
+  }
+  return 0;
+}
+
+// a path in a message, its line breaks visible
+std::string shown(const std::string& path) {
+  std::string out;
+  for (char c : path) out += c == '\n' ? std::string("\\n") : c == '\r' ? std::string("\\r") : std::string(1, c);
+  return out;
+}
+
+}  // namespace
+
+std::string gnuplot_text(const std::string& text) {
+  std::string clean;
+  for (std::size_t i = 0; i < text.size();) {
+    const std::size_t n = utf8_sequence(text, i);
+    if (n == 0) {
+      clean += "\xEF\xBF\xBD";  // U+FFFD for the byte that starts no character
+      ++i;
+      continue;
+    }
+    if (text[i] != '\n' && text[i] != '\r') clean += text.substr(i, n);
+    i += n;
+  }
+  return single_quoted(clean);
+}
+
+std::string gnuplot_path(const std::string& path) {
+  if (path.find_first_of("\n\r") != std::string::npos)
+    throw Error(fmt::format("gnuplot cannot take the path '{}': it has a line break", shown(path)));
+  return single_quoted(path);
+}
+
+void require_gnuplot_path(const std::string& path, const std::string& option) {
+  // gnuplot gets the path made absolute, and writes next to the file a symbolic link names
+  for (const std::string& seen : {fs::absolute(path).string(), written_file(path)}) {
+    if (seen.find_first_of("\n\r") == std::string::npos) continue;
+    throw UsageError(fmt::format("{}: '{}'{} has a line break, which ends a command of gnuplot whatever the quoting; "
+                                 "choose a path without one",
+                                 option, shown(path),
+                                 seen == path ? std::string() : fmt::format(" (as gnuplot gets it: '{}')", shown(seen))));
+  }
 }
 
 void require_plot_target(const std::string& plot_path, const std::string& option, const std::string& alternative) {
   const std::string ext = fs::path(plot_path).extension().string();
   if (ext != ".svg" && ext != ".png")
-    throw UsageError(fmt::format("{}: expected a .svg or .png file, got '{}'", option, plot_path));
+    throw UsageError(fmt::format("{}: expected a .svg or .png file, got '{}'", option, shown(plot_path)));
+  require_gnuplot_path(plot_path, option);
   if (!program_available("gnuplot"))
     throw Error(fmt::format("gnuplot is not installed (on Debian: apt-get install gnuplot-nox); install it or {}",
                             alternative));
@@ -41,21 +104,39 @@ std::string gnuplot_terminal(const std::string& plot_path, int width, int height
                            width, height);
 }
 
+int report_plot_failure(const std::string& plot_path, const std::string& kept, const std::exception& failure) {
+  std::cerr << fmt::format("eomgen: error: the plot '{}' was not written ({} is complete and kept): {}\n", plot_path,
+                           kept, failure.what());
+  return plot_failed_status;
+}
+
 void plot_with_gnuplot(const std::string& plot_path, const std::function<std::string(const std::string& image)>& script) {
   PendingFile image(plot_path);
   PendingFile script_file(plot_path + ".gp");
   // absolute paths: gnuplot runs a data file named "<cmd" and an output named "|cmd" as shell
   // commands, whatever the quoting; a path starting with '/' is never one
   write_atomically(script_file.path(), script(fs::absolute(image.path()).string()));
-  const fs::path log = fs::path(script_file.path()).replace_extension(".log");
-  const int plotted = run_process({"gnuplot", fs::absolute(script_file.path()).string()}, log.string());
-  std::ifstream in(log, std::ios::binary);
+  // gnuplot's output, read and removed whatever happens (posix_spawn creates it even when
+  // gnuplot cannot be started)
+  struct Log {
+    fs::path path;
+    explicit Log(fs::path p) : path(std::move(p)) { interruption::remember(path.string()); }
+    ~Log() {
+      interruption::Hold hold;
+      std::error_code ec;
+      fs::remove(path, ec);
+      interruption::forget(path.string());
+    }
+  } log(fs::path(script_file.path()).replace_extension(".log"));
+  const int plotted = run_process({"gnuplot", fs::absolute(script_file.path()).string()}, log.path.string());
+  std::ifstream in(log.path, std::ios::binary);
   std::ostringstream output;
   output << in.rdbuf();
   in.close();
-  std::error_code ec;
-  fs::remove(log, ec);
   if (plotted != 0) throw Error(fmt::format("gnuplot failed (exit status {}):\n{}", plotted, output.str()));
+  std::error_code ec;
+  if (fs::file_size(image.path(), ec) == 0 || ec)
+    throw Error(fmt::format("gnuplot ended with status 0 but wrote no image:\n{}", output.str()));
   image.commit();
 }
 

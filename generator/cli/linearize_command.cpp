@@ -262,7 +262,7 @@ std::string sweep_plot_script(const Model& model, const StabilitySweep& sweep, c
                               const std::string& plot_path) {
   const Eigen::Index most = most_eigenvalues(sweep);
   std::string s = gnuplot_terminal(plot_path, 1000, 650);
-  s += "set output " + gnuplot_quoted(image) + "\n";
+  s += "set output " + gnuplot_path(image) + "\n";
   s += "$eigenvalues << EOD\n";
   for (const SweepPoint& p : sweep.points) {
     s += fmt::format("{:.17g}", p.value);
@@ -272,12 +272,12 @@ std::string sweep_plot_script(const Model& model, const StabilitySweep& sweep, c
     s += "\n";
   }
   s += "EOD\n";
-  s += "set title " + gnuplot_quoted(fmt::format("{}: eigenvalues against {}", model.name, sweep.name)) + "\n";
-  s += "set xlabel " + gnuplot_quoted(sweep.name) + "\nset ylabel 'eigenvalue [1/s]'\nset grid\n";
+  s += "set title " + gnuplot_text(fmt::format("{}: eigenvalues against {}", model.name, sweep.name)) + "\n";
+  s += "set xlabel " + gnuplot_text(sweep.name) + "\nset ylabel 'eigenvalue [1/s]'\nset grid\n";
   s += "set key inside left bottom opaque box\nset xzeroaxis lt -1\n";
   for (const StabilityChange& c : sweep.changes) {
     s += fmt::format("set arrow from {0:.17g}, graph 0 to {0:.17g}, graph 1 nohead dt 2 lc rgb 'gray40'\n", c.value);
-    s += fmt::format("set label {} at {:.17g}, graph 0.96 left offset 0.5,0\n", gnuplot_quoted(fmt::format("{:.6g}", c.value)),
+    s += fmt::format("set label {} at {:.17g}, graph 0.96 left offset 0.5,0\n", gnuplot_text(fmt::format("{:.6g}", c.value)),
                      c.value);
   }
   s += fmt::format("plot for [k=1:{0}] $eigenvalues using 1:(column(2*k)) with points pt 7 ps 0.4 lc rgb '#1f5fbf' "
@@ -288,7 +288,7 @@ std::string sweep_plot_script(const Model& model, const StabilitySweep& sweep, c
   return s + "set output\n";
 }
 
-void run_sweep(const Options& o, const Model& model, const ModelEquations& eom, const SymbolicLinearization& symbolic,
+int run_sweep(const Options& o, const Model& model, const ModelEquations& eom, const SymbolicLinearization& symbolic,
                const NamedValues& given, const SweepRange& range, const LinearizeOptions& options) {
   const StabilitySweep sweep = sweep_stability(model, eom, symbolic, given, range, options);
   const std::string document = o.format == "json" ? sweep_json(model, sweep)
@@ -300,16 +300,25 @@ void run_sweep(const Options& o, const Model& model, const ModelEquations& eom, 
     (o.output_path.empty() ? std::cerr : std::cout) << changes_text(sweep);
   if (!o.output_path.empty()) std::cout << fmt::format("{}: {}\n", o.format, o.output_path);
   if (!o.sweep_plot.empty()) {
-    plot_with_gnuplot(o.sweep_plot, [&](const std::string& image) { return sweep_plot_script(model, sweep, image, o.sweep_plot); });
+    std::cout << std::flush;
+    try {
+      plot_with_gnuplot(o.sweep_plot,
+                        [&](const std::string& image) { return sweep_plot_script(model, sweep, image, o.sweep_plot); });
+    } catch (const Error& e) {
+      return report_plot_failure(o.sweep_plot,
+                                 o.output_path.empty() ? "the sweep printed above"
+                                                       : fmt::format("the sweep's {} '{}'", o.format, o.output_path),
+                                 e);
+    }
     std::cout << fmt::format("plot: {}\n", o.sweep_plot);
   }
+  return 0;
 }
 
 }  // namespace
 
-void run_linearize(const Options& o) {
-  refuse_to_overwrite_input(o.output_path, o.model_path, "-o");
-  refuse_to_overwrite_input(o.sweep_plot, o.model_path, "--plot");
+int run_linearize(const Options& o) {
+  check_output_files({{"-o", o.output_path}, {"--plot", o.sweep_plot}}, o.model_path);
   const Model model = load_model(o.model_path, parse_assignments(o.defines, "--define"));
   const NamedValues given = state_and_parameters(o.at, o.set, model);
   if (o.sweep.empty() && !o.sweep_plot.empty()) throw UsageError("--plot: plots a sweep; give --sweep too");
@@ -348,6 +357,7 @@ void run_linearize(const Options& o) {
     emit(o, point_json(model, lin, report));
   else
     emit(o, point_text(model, at, lin, found, report));
+  return 0;
 }
 
 }  // namespace eomgen::tools

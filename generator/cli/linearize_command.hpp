@@ -5,8 +5,9 @@
 
 namespace eomgen::tools {
 
+/// \return the exit status: 0, or plot_failed_status when a sweep was written but its plot was not
 /// \throws UsageError for a malformed --sweep, a format the request cannot have, or names
 ///   given twice; eomgen::Error for a model or a point that cannot be linearized
-void run_linearize(const Options& o);
+int run_linearize(const Options& o);
 
 }  // namespace eomgen::tools

@@ -11,6 +11,8 @@ namespace eomgen::tools {
 /// \param[in] argv        program and arguments
 /// \param[in] output_log  if not empty, the program's standard output and error go to this
 ///                        file instead of ours
+/// The program is registered with interruption.hpp while it runs: an interrupted eomgen stops it
+/// (with `output_log`, its whole process group: it gets one of its own, and no standard input).
 /// \return its exit status; 128 + the signal number if a signal ended it
 /// \throws eomgen::Error if the program cannot be started (e.g. it is not installed)
 int run_process(const std::vector<std::string>& argv, const std::string& output_log = {});

@@ -23,6 +23,7 @@
 #include "eomrt/integrators.hpp"
 #include "file_output.hpp"
 #include "gnuplot.hpp"
+#include "interruption.hpp"
 #include "process.hpp"
 
 namespace eomgen::tools {
@@ -195,7 +196,7 @@ std::string methods_of(const eomrt::IntegratorInfo& method, const SimulateReques
 }
 
 fs::path simulation_program(const Model& model, const std::string& header, const std::string& methods,
-                            const fs::path& cache) {
+                            const fs::path& runtime, const fs::path& program_dir, const fs::path& cache) {
   const std::string driver = fmt::format(
       "// The simulation program of model '{}', written by eomgen simulate.\n"
       "#include \"model.hpp\"\n#include \"simulation_main.hpp\"\n\n"
@@ -203,7 +204,6 @@ fs::path simulation_program(const Model& model, const std::string& header, const
       "  return eomgen::simulation_program::simulation_main<eomgen_models::{}::Model,\n"
       "                                                     {}>(argc, argv);\n}}\n",
       cpp_string_contents(model.name), cpp_identifier(model.name), methods);
-  const fs::path runtime = runtime_include_dir(), program_dir = simulation_program_dir();
   const std::string key = cache_key(model, header, driver, runtime, program_dir);
 
   const fs::path directory = cache / key;
@@ -219,9 +219,18 @@ fs::path simulation_program(const Model& model, const std::string& header, const
   fs::create_directories(cache, ec);
   if (ec) throw Error(fmt::format("cannot create the cache directory '{}': {}", cache.string(), ec.message()));
   const fs::path building = cache / fmt::format(".{}.{}.tmp", key, ::getpid());
-  fs::remove_all(building, ec);
-  fs::create_directories(building, ec);
-  if (ec) throw Error(fmt::format("cannot create '{}': {}", building.string(), ec.message()));
+  const auto discard_building = [&] {
+    interruption::Hold hold;
+    fs::remove_all(building, ec);
+    interruption::forget(building.string());
+  };
+  {
+    interruption::Hold hold;  // an interrupted run removes it, with the compiler's output
+    fs::remove_all(building, ec);
+    fs::create_directories(building, ec);
+    if (ec) throw Error(fmt::format("cannot create '{}': {}", building.string(), ec.message()));
+    interruption::remember(building.string(), true);
+  }
   write_atomically((building / "model.hpp").string(), header);
   write_atomically((building / "driver.cpp").string(), driver);
   const std::vector<std::string> cmd =
@@ -232,7 +241,7 @@ fs::path simulation_program(const Model& model, const std::string& header, const
   const int status = run_process(cmd, log.string());
   if (status != 0) {
     const std::string output = read_file(log);
-    fs::remove_all(building, ec);
+    discard_building();
     throw Error(fmt::format("compiling the generated simulation failed (exit status {}); this is a bug in eomgen "
                             "or a broken compiler setup. Compiler output:\n{}",
                             status, output.substr(0, 4000)));
@@ -240,14 +249,33 @@ fs::path simulation_program(const Model& model, const std::string& header, const
   std::cerr << fmt::format(
       "eomgen: compiled in {:.1f} s, cached in {}\n",
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), directory.string());
-  fs::rename(building, directory, ec);
+  {
+    interruption::Hold hold;  // in place whole, or removed
+    fs::rename(building, directory, ec);
+    if (!ec) interruption::forget(building.string());
+  }
   if (ec) {
-    fs::remove_all(building, ec);  // another run finished the same build first: use its
+    discard_building();  // another run finished the same build first: use its
     if (!fs::exists(program))
       throw Error(fmt::format("cannot move the build into '{}' ({}); delete that directory and run again",
                               directory.string(), ec.message()));
   }
   return program;
+}
+
+/// The cache holds the programs simulate runs, and the builds of concurrent runs: no output of a
+/// run goes in there.
+void refuse_outputs_in(const fs::path& cache, const std::vector<OutputFile>& outputs) {
+  fs::path root = written_file(cache.string());
+  if (!root.has_filename()) root = root.parent_path();  // "cache/"
+  for (const OutputFile& output : outputs) {
+    if (output.path.empty()) continue;
+    const fs::path target = written_file(output.path);
+    if (std::mismatch(root.begin(), root.end(), target.begin(), target.end()).first == root.end())
+      throw UsageError(fmt::format("{}: '{}' is in the cache directory '{}', whose compiled programs eomgen runs; "
+                                   "choose a file outside it",
+                                   output.option, output.path, cache.string()));
+  }
 }
 
 /// gnuplot script: coordinates against time above, T, V and T+V below; `image` is where gnuplot
@@ -260,18 +288,18 @@ std::string plot_script(const Model& model, const std::string& csv, const std::s
   const std::size_t nu = vars.inputs().size();
   const std::size_t energy_column = 1 + 2 * nq + nc + nu + 1;  // of T; gnuplot counts from 1 (t)
   std::string s = gnuplot_terminal(image_name, 1000, 800);
-  s += "set output " + gnuplot_quoted(image) + "\n";
+  s += "set output " + gnuplot_path(image) + "\n";
   s += "set datafile separator ','\n";
   s += "set grid\nset key outside right top\nset xlabel 't [s]'\n";
-  s += "set multiplot layout 2,1 title " + gnuplot_quoted(title) + "\n";
+  s += "set multiplot layout 2,1 title " + gnuplot_text(title) + "\n";
   s += "set ylabel 'coordinates'\n";
   s += fmt::format("plot for [i=2:{}] {} using 1:i with lines lw 1.5 title columnheader(i)\n", 1 + nq,
-                   gnuplot_quoted(csv));
+                   gnuplot_path(csv));
   s += "set ylabel 'energy [J]'\n";
   s += fmt::format(
       "plot {0} using 1:{1} with lines lw 1.5 title 'T', '' using 1:{2} with lines lw 1.5 title 'V', "
       "'' using 1:{3} with lines lw 2 title 'T + V'\n",
-      gnuplot_quoted(csv), energy_column, energy_column + 1, energy_column + 2);
+      gnuplot_path(csv), energy_column, energy_column + 1, energy_column + 2);
   s += "unset multiplot\nset output\n";
   return s;
 }
@@ -310,15 +338,29 @@ int run_simulate(const Model& model, const SimulateRequest& r) {
   const std::string stem = cpp_identifier(model.name);
   const std::string csv_path = r.csv_path.empty() ? stem + ".csv" : r.csv_path;
   const std::string plot_path = r.plot_path.empty() ? stem + ".svg" : r.plot_path;
-  refuse_to_overwrite_input(csv_path, r.model_path, "-o");
-  if (r.plot) refuse_to_overwrite_input(plot_path, r.model_path, "--plot");
-  if (r.plot) require_plot_target(plot_path, "--plot", "pass --no-plot");
+  const std::vector<OutputFile> outputs{{"-o", csv_path}, {"--plot", r.plot ? plot_path : std::string()}};
+  const fs::path runtime = runtime_include_dir(), program_dir = simulation_program_dir(), cache = cache_root(r);
+  std::vector<std::string> sources;
+  for (const fs::path& dir : {program_dir, runtime / "eomrt"})
+    for (const fs::path& h : headers_in(dir)) sources.push_back(h.string());
+  check_output_files(outputs, r.model_path, sources, "the sources of the simulation program");
+  refuse_outputs_in(cache, outputs);
+  if (r.plot) {
+    require_plot_target(plot_path, "--plot", "pass --no-plot");
+    require_gnuplot_path(csv_path, "-o");  // gnuplot reads the CSV
+    std::error_code ec;
+    const fs::file_status csv_status = fs::status(csv_path, ec);
+    if (fs::exists(csv_status) && !fs::is_regular_file(csv_status))
+      throw UsageError(fmt::format("-o: '{}' is not a regular file, which gnuplot could read the CSV back from for the "
+                                   "plot; pass --no-plot, or write the CSV to a file",
+                                   csv_path));
+  }
 
   const ModelEquations eom = derive_equations(model);
   EmitOptions emit;
   emit.source_name = fs::path(r.model_path).filename().string();
   const std::string header = emit_model(model, eom, emit).header;
-  const fs::path program = simulation_program(model, header, methods_of(method_info, r), cache_root(r));
+  const fs::path program = simulation_program(model, header, methods_of(method_info, r), runtime, program_dir, cache);
 
   std::vector<std::string> cmd{program.string(), "--t-end", exact(r.t_end), "--method", method,
                                "--solver", r.solver, "--stabilization", r.stabilization};
@@ -343,13 +385,17 @@ int run_simulate(const Model& model, const SimulateRequest& r) {
   if (status != 0)
     throw Error(fmt::format("the simulation program of {} ended with status {}", model.name, status));
   csv.commit();
-  std::cout << fmt::format("CSV:  {}\n", csv_path);
+  std::cout << fmt::format("CSV:  {}\n", csv_path) << std::flush;
 
   if (r.plot) {
     const std::string title = fmt::format("{}: {}", model.name, model.description);
-    plot_with_gnuplot(plot_path, [&](const std::string& image) {
-      return plot_script(model, fs::absolute(csv_path).string(), image, plot_path, title);
-    });
+    try {
+      plot_with_gnuplot(plot_path, [&](const std::string& image) {
+        return plot_script(model, fs::absolute(csv_path).string(), image, plot_path, title);
+      });
+    } catch (const Error& e) {
+      return report_plot_failure(plot_path, fmt::format("the CSV '{}'", csv_path), e);
+    }
     std::cout << fmt::format("plot: {}\n", plot_path);
   }
   return 0;

@@ -48,7 +48,8 @@ std::string integrator_names(bool adaptive, const std::string& separator);
 std::string method_help();
 
 /// Runs the request for an already loaded model.
-/// \return the exit status: 0, or 1 when the simulation failed (its message is on stderr)
+/// \return the exit status: 0; 1 when the simulation failed (its message is on stderr, and no CSV
+///   or plot was written); plot_failed_status when the CSV was written but the plot was not
 /// \throws UsageError for names or settings the model does not have
 /// \throws eomgen::Error when compiling, running or plotting fails
 int run_simulate(const Model& model, const SimulateRequest& request);

@@ -166,6 +166,38 @@ TEST_F(Cli, GenerateRefusesANamespaceThatIsNoPlainIdentifier) {
   EXPECT_THAT(run.out, HasSubstr("namespace my_models {"));
 }
 
+// every other number of the command line: NAME=VALUE lists and a sweep's range refuse nan, inf
+// and values beyond a double with status 2, naming the option and the value, before any work
+TEST_F(Cli, EveryNumberOfTheCommandLineIsFiniteOrRefusedBeforeAnyWork) {
+  const std::string dp = quote(model("dp.eom", double_pendulum));
+  const std::pair<std::string, std::string> requests[] = {
+      {"eval " + dp + " --at q1=", "--at"},          {"eval " + dp + " --set g=", "--set"},
+      {"linearize " + dp + " --at q1=", "--at"},     {"linearize " + dp + " --set l=", "--set"},
+      {"simulate " + dp + " --t-end 1 --no-plot --init q1_dot=", "--init"},
+      {"simulate " + dp + " --t-end 1 --no-plot --input u=", "--input"},
+      {"simulate " + dp + " --t-end 1 --no-plot --set m=", "--set"},
+      {"check " + dp + " -D n=", "--define"},         {"derive " + dp + " --define n=", "--define"},
+  };
+  for (const auto& [request, option] : requests)
+    for (const std::string value : {"nan", "-nan", "NaN", "inf", "-inf", "infinity", "1e400", "-1e400", "1e-400"}) {
+      SCOPED_TRACE(request + value);
+      const Outcome run = eomgen(request + value);
+      EXPECT_EQ(run.status, 2);
+      const std::string item = request.substr(request.rfind(' ') + 1) + value;
+      const bool range = value.find("e") != std::string::npos && value.find("n") == std::string::npos;
+      EXPECT_EQ(run.err, "eomgen: error: " + option + ": '" + value + "' in '" + item + "'" +
+                             (range ? " is beyond the range of a double (magnitudes from 2.2e-308 to 1.8e308, or 0)\n"
+                                    : " is not a finite number\n"));
+      EXPECT_EQ(run.out, "");
+    }
+  for (const std::string range : {"g=nan:10:1", "g=0:inf:1", "g=0:10:-nan", "g=1e400:1:1", "q1=0:1:1e-400"}) {
+    const Outcome run = eomgen("linearize " + dp + " --sweep " + range);
+    EXPECT_EQ(run.status, 2) << range;
+    EXPECT_EQ(run.err, "eomgen: error: --sweep: expected NAME=FROM:TO:STEP with finite numbers, got '" + range + "'\n");
+    EXPECT_EQ(run.out, "");
+  }
+}
+
 TEST_F(Cli, CheckSummarizesTheModel) {
   const Outcome run = eomgen("check " + quote(model("dp.eom", double_pendulum)));
   EXPECT_EQ(run.status, 0) << run.err;
@@ -233,11 +265,13 @@ TEST_F(Cli, OutputFileIsWrittenWholeOrNotAtAll) {
   const fs::path fresh = dir_ / "work" / "never.txt";
   EXPECT_EQ(eomgen("derive " + quote(bad) + " -o " + quote(fresh.string())).status, 1);
   EXPECT_FALSE(fs::exists(fresh));
-  // an unwritable target (a directory) is an error that leaves no temporary file behind
+  // an unwritable target (a directory) is refused before the derivation and leaves no
+  // temporary file behind
   fs::create_directories(dir_ / "work" / "adir");
   const Outcome to_directory = eomgen("derive " + quote(good) + " -o " + quote((dir_ / "work" / "adir").string()));
-  EXPECT_EQ(to_directory.status, 1);
-  EXPECT_THAT(to_directory.err, StartsWith("eomgen: error: writing"));
+  EXPECT_EQ(to_directory.status, 2);
+  EXPECT_EQ(to_directory.err, "eomgen: error: -o: '" + (dir_ / "work" / "adir").string() +
+                                  "' is a directory; give the name of a file\n");
   for (const auto& entry : fs::directory_iterator(dir_ / "work"))
     EXPECT_THAT(entry.path().filename().string(), Not(HasSubstr(".tmp"))) << "left behind";
 }

@@ -8,7 +8,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -258,6 +260,33 @@ TEST_F(Simulate, FileNamesThatGnuplotWouldRunAreOnlyFileNames) {
   EXPECT_FALSE(fs::exists(work / "pwned2"));
   EXPECT_TRUE(fs::exists(work / "<touch pwned;.csv"));
   EXPECT_TRUE(fs::exists(work / "|touch pwned2;.svg"));
+}
+
+// the CSV is complete when the plot fails (here a gnuplot that refuses): it is kept, the message
+// says so and why, the status is 3 (only the plot is missing), and no temporary file remains
+TEST_F(Simulate, APlotThatFailsAfterTheCsvKeepsTheCsvAndSaysSo) {
+  const fs::path work = dir_ / "work", bin = dir_ / "bin";
+  const std::string request = quote(models_dir + "simple_pendulum.eom") + " --t-end 0.5 --init theta=0.4 -o ";
+  const Outcome reference = simulate(request + quote((work / "reference.csv").string()) + " --no-plot");
+  ASSERT_EQ(reference.status, 0) << reference.err;
+
+  fs::create_directories(bin);
+  std::ofstream(bin / "gnuplot") << "#!/bin/sh\necho 'gnuplot: cannot do it, on purpose' >&2\nexit 1\n";
+  fs::permissions(bin / "gnuplot", fs::perms::owner_all);
+  const std::string path = std::getenv("PATH");
+  ::setenv("PATH", (bin.string() + ":" + path).c_str(), 1);
+  const Outcome run = simulate(request + quote((work / "run.csv").string()) + " --plot " + quote((work / "run.svg").string()));
+  ::setenv("PATH", path.c_str(), 1);
+
+  EXPECT_EQ(run.status, 3);
+  EXPECT_THAT(run.out, HasSubstr("CSV:  " + (work / "run.csv").string() + "\n"));
+  EXPECT_THAT(run.out, Not(HasSubstr("plot:")));
+  EXPECT_THAT(run.err, ::testing::EndsWith("eomgen: error: the plot '" + (work / "run.svg").string() +
+                                           "' was not written (the CSV '" + (work / "run.csv").string() +
+                                           "' is complete and kept): gnuplot failed (exit status 1):\n"
+                                           "gnuplot: cannot do it, on purpose\n\n"));
+  EXPECT_EQ(slurp(work / "run.csv"), slurp(work / "reference.csv"));
+  EXPECT_THAT(files_in(work), ::testing::UnorderedElementsAre("reference.csv", "run.csv"));
 }
 
 // all coordinates 0 put the Cartesian pendulum's bob on the pivot, where its rod constraint has
