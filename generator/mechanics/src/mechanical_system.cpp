@@ -38,9 +38,7 @@ MechanicalSystem::MechanicalSystem(const std::string& inertial_frame, const std:
 
 void MechanicalSystem::require_unique_element_name(const std::string& name, const std::string& what) {
   if (name.empty()) throw ModelError(fmt::format("{}: the name is empty", what));
-  if (std::find(element_names_.begin(), element_names_.end(), name) != element_names_.end())
-    throw ModelError(fmt::format("{} '{}': the name is already used", what, name));
-  element_names_.push_back(name);
+  if (!element_names_.insert(name).second) throw ModelError(fmt::format("{} '{}': the name is already used", what, name));
 }
 
 void MechanicalSystem::add_load(Load load) {

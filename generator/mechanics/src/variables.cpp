@@ -71,7 +71,7 @@ std::string tex_name(const std::string& name) {
 }
 
 Variables::Variables() : time_("t") {
-  names_.push_back("t");
+  names_.insert("t");
   kinds_[time_] = code(SymbolKind::time);
 }
 
@@ -79,13 +79,13 @@ void Variables::check_name(const std::string& name) const {
   if (!is_identifier(name))
     throw ModelError(fmt::format("declaring '{}': a name must be an identifier "
                                  "(a letter or '_' followed by letters, digits or '_')", name));
-  if (std::find(names_.begin(), names_.end(), name) != names_.end())
+  if (names_.count(name))
     throw ModelError(fmt::format("declaring '{}': the name is already used", name));
 }
 
 void Variables::claim_name(const std::string& name) {
   check_name(name);
-  names_.push_back(name);
+  names_.insert(name);
 }
 
 Coordinate Variables::add_coordinate(const std::string& name) {

@@ -10,6 +10,7 @@
 #include <type_traits>
 #include <utility>
 #include <variant>
+#include <set>
 #include <vector>
 
 #include "eomgen/base/overloaded.hpp"
@@ -225,7 +226,7 @@ class MechanicalSystem {
   Vector gravity_;
   std::vector<Load> loads_;
   std::vector<Constraint> constraints_;
-  std::vector<std::string> element_names_;
+  std::set<std::string> element_names_;
 };
 
 /// Inertia about a point o from the inertia J_c about the mass centre (same frame) and

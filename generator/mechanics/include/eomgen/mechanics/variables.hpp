@@ -6,6 +6,7 @@
 
 #include <optional>
 #include <string>
+#include <set>
 #include <vector>
 
 namespace eomgen {
@@ -94,7 +95,7 @@ class Variables {
   std::vector<Coordinate> coordinates_;
   std::vector<Parameter> parameters_;
   std::vector<Input> inputs_;
-  std::vector<std::string> names_;
+  std::set<std::string> names_;  // every declared name, for the duplicate check
   GiNaC::exmap kinds_;  // symbol -> numeric code of SymbolKind
   GiNaC::exmap rate_to_zero_;
   GiNaC::exmap acceleration_to_zero_;
