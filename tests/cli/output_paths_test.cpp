@@ -219,7 +219,7 @@ TEST_F(OutputPaths, AModelNamedByAFileNameThatIsNotUtf8GivesWholeValidJsonAndPlo
   ASSERT_NE(line, std::string::npos);
   text.erase(line + 1, text.find('\n', line + 1) - line);
   const std::string path = model("p\xff.eom", text);
-  const std::string replaced = "p\xEF\xBF\xBD";  // U+FFFD in UTF-8
+  const std::string replaced = "p_";  // a model named after its file gets an identifier
 
   for (const std::string& request : {"eval " + shell(path) + " --at theta=0.5 -f json",
                                     "linearize " + shell(path) + " --at theta=0.5 -f json",
