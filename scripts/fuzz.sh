@@ -43,11 +43,12 @@ run_findings="$findings/$(date +%Y%m%d-%H%M%S)"
 mkdir -p "$corpus" "$run_findings"
 rm -rf "$logs" && mkdir -p "$logs"
 export ASAN_SYMBOLIZER_PATH=/usr/lib/llvm-14/bin/llvm-symbolizer
-# ASan's own bookkeeping, not the parser, is what grows over a long run: the allocation stacks it
-# keeps (every distinct one, and a fuzzer makes many) and its quarantine of freed memory took a
-# worker past 1 GB in ten minutes and would reach -rss_limit_mb in thirty; shorter stacks and a
-# smaller quarantine keep it near 200 MB (a crash's own stack trace is unaffected)
-export ASAN_OPTIONS="detect_leaks=1:malloc_context_size=5:quarantine_size_mb=64:${ASAN_OPTIONS:-}"
+# ASan's own bookkeeping, not the parser, is what grows over a long run: the allocation stack of
+# every live and quarantined block (a fuzzer makes a great many distinct ones) and the quarantine
+# of freed memory took a worker past 1 GB in ten minutes and toward -rss_limit_mb in thirty.
+# Without allocation stacks and with a smaller quarantine it stays small; a crash's own stack
+# trace is unaffected, and replaying a finding (below, default options) shows the allocation's.
+export ASAN_OPTIONS="detect_leaks=1:malloc_context_size=0:quarantine_size_mb=64:${ASAN_OPTIONS:-}"
 export LSAN_OPTIONS="suppressions=$root/tests/lsan.supp:print_suppressions=0"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 
