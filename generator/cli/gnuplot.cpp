@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "eomgen/base/error.hpp"
+#include "eomgen/base/utf8.hpp"
 #include "file_output.hpp"
 #include "interruption.hpp"
 #include "process.hpp"
@@ -25,27 +26,6 @@ std::string single_quoted(const std::string& text) {
   return out + "'";
 }
 
-// the length of the well-formed UTF-8 sequence at text[i] (RFC 3629: no overlong forms, no
-// surrogates, nothing above U+10FFFF), or 0
-std::size_t utf8_sequence(const std::string& text, std::size_t i) {
-  const auto byte = [&](std::size_t k) { return k < text.size() ? static_cast<unsigned char>(text[k]) : 0u; };
-  const unsigned b0 = byte(i);
-  const auto continuation = [&](std::size_t k, unsigned low = 0x80, unsigned high = 0xBF) {
-    return byte(k) >= low && byte(k) <= high;
-  };
-  if (b0 < 0x80) return 1;
-  if (b0 >= 0xC2 && b0 <= 0xDF) return continuation(i + 1) ? 2 : 0;
-  if (b0 >= 0xE0 && b0 <= 0xEF) {
-    const unsigned low = b0 == 0xE0 ? 0xA0 : 0x80, high = b0 == 0xED ? 0x9F : 0xBF;
-    return continuation(i + 1, low, high) && continuation(i + 2) ? 3 : 0;
-  }
-  if (b0 >= 0xF0 && b0 <= 0xF4) {
-    const unsigned low = b0 == 0xF0 ? 0x90 : 0x80, high = b0 == 0xF4 ? 0x8F : 0xBF;
-    return continuation(i + 1, low, high) && continuation(i + 2) && continuation(i + 3) ? 4 : 0;
-  }
-  return 0;
-}
-
 // a path in a message, its line breaks visible
 std::string shown(const std::string& path) {
   std::string out;
@@ -58,7 +38,7 @@ std::string shown(const std::string& path) {
 std::string gnuplot_text(const std::string& text) {
   std::string clean;
   for (std::size_t i = 0; i < text.size();) {
-    const std::size_t n = utf8_sequence(text, i);
+    const std::size_t n = utf8_sequence_length(text, i);
     if (n == 0) {
       clean += "\xEF\xBF\xBD";  // U+FFFD for the byte that starts no character
       ++i;

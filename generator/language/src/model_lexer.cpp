@@ -5,6 +5,7 @@
 #include <cctype>
 
 #include "eomgen/base/error.hpp"
+#include "eomgen/base/utf8.hpp"
 
 namespace eomgen::syntax {
 namespace {
@@ -12,27 +13,6 @@ namespace {
 bool is_ident_start(char c) { return std::isalpha(static_cast<unsigned char>(c)) || c == '_'; }
 bool is_ident_char(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }
 bool is_digit(char c) { return std::isdigit(static_cast<unsigned char>(c)) != 0; }
-
-// Where the text stops being UTF-8 (a truncated or overlong sequence, a surrogate, a stray
-// continuation byte), or npos. Descriptions are written into JSON and C++ string literals.
-std::size_t invalid_utf8_at(const std::string& s) {
-  std::size_t i = 0;
-  while (i < s.size()) {
-    const auto b = static_cast<unsigned char>(s[i]);
-    const std::size_t length = b < 0x80 ? 1 : (b >> 5) == 0x6 ? 2 : (b >> 4) == 0xe ? 3 : (b >> 3) == 0x1e ? 4 : 0;
-    if (length == 0 || i + length > s.size()) return i;
-    unsigned long code = length == 1 ? b : b & (0x7fu >> length);
-    for (std::size_t k = 1; k < length; ++k) {
-      const auto c = static_cast<unsigned char>(s[i + k]);
-      if ((c >> 6) != 0x2) return i;
-      code = (code << 6) | (c & 0x3fu);
-    }
-    const unsigned long least[] = {0, 0, 0x80, 0x800, 0x10000};
-    if (code < least[length] || code > 0x10ffff || (code >= 0xd800 && code <= 0xdfff)) return i;
-    i += length;
-  }
-  return std::string::npos;
-}
 
 }  // namespace
 
