@@ -15,6 +15,7 @@ namespace {
 
 using ::testing::AllOf;
 using ::testing::ContainsRegex;
+using ::testing::Eq;
 using ::testing::HasSubstr;
 using ::testing::Matcher;
 
@@ -216,10 +217,25 @@ TEST(ModelErrors, RigidBodyWithoutInertia) {
                AllOf(HasSubstr("body 'disk': missing argument 'inertia'"), HasSubstr("diag(J1, J2, J3)")));
 }
 
-TEST(ModelErrors, InertiaNotPositiveDefinite) {
+TEST(ModelErrors, InertiaWithANegativePrincipalMoment) {
   expect_error(pendulum + "body disk(mass = 1, centre = p, frame = b, inertia = [[1, 2, 0], [2, 1, 0], [0, 0, 1]])\n",
                6, 6,
-               AllOf(HasSubstr("rigid body 'disk'"), ContainsRegex("must be positive definite; .* are 1, -3, -3")));
+               AllOf(HasSubstr("rigid body 'disk'"), HasSubstr("the principal moments -1, 1, 3 at the default "
+                                                              "parameters; a negative one belongs to no body")));
+}
+
+TEST(ModelErrors, MomentOnAFrameThatNoBodyHasActsOnNothing) {
+  // the pendulum's frame b carries a particle, no body
+  expect_error(pendulum + "moment drive(on = b, moment = a.3)\n", 6, 19,
+               Eq("moment 'drive': no body has the frame 'b', so the moment would act on nothing: expected the "
+                  "frame of a body (the model has none)"));
+  // a body defined after the moment counts; one on another frame is listed
+  const std::string rod = "frame c = rotate(b, 1, 0.2)\n"
+                          "body rod(mass = 1, centre = p, frame = b, inertia = diag(0, 1, 1))\n";
+  expect_error(pendulum + "moment drive(on = c, moment = a.3)\n" + rod, 6, 19,
+               Eq("moment 'drive': no body has the frame 'c', so the moment would act on nothing: expected the "
+                  "frame of a body: 'b' (rod)"));
+  EXPECT_NO_THROW(parse_model(pendulum + "moment drive(on = b, moment = a.3)\n" + rod, "test.eom"));
 }
 
 TEST(ModelErrors, NonPositiveMass) {

@@ -66,23 +66,45 @@ TEST(MechanicalSystem, NonPositiveMassIsRejected) {
                        "particle 'bad': the mass must be a constant (parameters and numbers)");
 }
 
-TEST(MechanicalSystem, InertiaMustBeSymmetricPositiveDefinite) {
+TEST(MechanicalSystem, InertiaMustBeSymmetricWithNonNegativePrincipalMomentsThatFormATriangle) {
   Fixture f;
   matrix J = diag(1, 1, 1);
   J(0, 1) = 0.1;
   EXPECT_THROW_MESSAGE(f.s.add_rigid_body("body", f.m, f.p, f.b, J), ModelError,
                        "rigid body 'body': the inertia matrix must be symmetric, but entry (1,2) differs from (2,1)");
   EXPECT_THROW_MESSAGE(f.s.add_rigid_body("body", f.m, f.p, f.b, diag(1, -1, 1)), ModelError,
-                       "rigid body 'body': the inertia matrix must be positive definite; its leading minors at the "
-                       "default parameters are 1, -1, -1");
-  // positive diagonal but indefinite
+                       "rigid body 'body': the inertia matrix has the principal moments -1, 1, 1 at the default "
+                       "parameters; a negative one belongs to no body: expected a positive semidefinite matrix");
+  // positive diagonal but indefinite: the eigenvalues of [[1, 2], [2, 1]] are -1 and 3
   matrix K = diag(1, 1, 1);
   K(0, 1) = K(1, 0) = 2;
   EXPECT_THROW_MESSAGE(f.s.add_rigid_body("body", f.m, f.p, f.b, K), ModelError,
-                       "rigid body 'body': the inertia matrix must be positive definite; its leading minors at the "
-                       "default parameters are 1, -3, -3");
+                       "rigid body 'body': the inertia matrix has the principal moments -1, 1, 3 at the default "
+                       "parameters; a negative one belongs to no body: expected a positive semidefinite matrix");
+  // positive definite, but Izz = Ixx + Iyy + 1 needs a negative sum of squares
+  EXPECT_THROW_MESSAGE(f.s.add_rigid_body("body", f.m, f.p, f.b, diag(1, 2, 4)), ModelError,
+                       "rigid body 'body': the inertia matrix has the principal moments 1, 2, 4 at the default "
+                       "parameters, and 4 exceeds the sum of the other two, which no mass distribution gives: "
+                       "expected each principal moment at most the sum of the other two");
+  // the same in a rotated frame: the principal moments are what is checked, not the diagonal
+  const matrix R{{GiNaC::numeric(3, 5), GiNaC::numeric(-4, 5), 0}, {GiNaC::numeric(4, 5), GiNaC::numeric(3, 5), 0}, {0, 0, 1}};
+  const matrix rotated = R.mul(diag(4, 1, 2)).mul(R.transpose());
+  EXPECT_THROW(f.s.add_rigid_body("body", f.m, f.p, f.b, rotated), ModelError);
   EXPECT_THROW_MESSAGE(f.s.add_rigid_body("body", f.m, f.p, f.b, matrix(2, 2)), ModelError,
                        "rigid body 'body': expected a 3x3 inertia matrix, got 2x2");
+}
+
+TEST(MechanicalSystem, SlenderRodAndThinDiskInertiasOnTheBoundaryAreAccepted) {
+  Fixture f;
+  // a rod along its x axis: no moment about the axis, m l^2 / 12 about the other two
+  f.s.add_rigid_body("rod", f.m, f.p, f.b, diag(0, f.m / 12, f.m / 12));
+  // a thin disk in its xy plane: J3 = J1 + J2 exactly
+  f.s.add_rigid_body("disk", f.m, f.p, f.b, diag(f.m / 4, f.m / 4, f.m / 2));
+  // a point mass treated as a body, and a rod whose axis is no basis vector
+  f.s.add_rigid_body("point", f.m, f.p, f.b, matrix(3, 3));
+  const matrix R{{GiNaC::numeric(3, 5), GiNaC::numeric(-4, 5), 0}, {GiNaC::numeric(4, 5), GiNaC::numeric(3, 5), 0}, {0, 0, 1}};
+  f.s.add_rigid_body("tilted_rod", f.m, f.p, f.b, R.mul(diag(0, 1, 1)).mul(R.transpose()));
+  EXPECT_EQ(f.s.rigid_bodies().size(), 4u);
 }
 
 TEST(MechanicalSystem, NonholonomicConstraintMustBeLinearInRates) {

@@ -6,7 +6,8 @@
 namespace eomgen::testing {
 
 // two rods, a torque input on the elbow, a force at the tip, a moment on rod 1, a spring and a
-// damper from the tip to a fixed point and a torsional spring on the elbow
+// damper from the tip to a fixed point and a torsional spring on the elbow; the rods' inertia is
+// one a mass distribution has (each principal moment at most the sum of the other two)
 inline Model loaded_double_rod() {
   Model model;
   MechanicalSystem& s = model.system;
@@ -15,7 +16,7 @@ inline Model loaded_double_rod() {
   const GiNaC::ex torque = s.add_input("torque"), push = s.add_input("push");
   const FrameId b = s.add_frame("b", s.inertial_frame(), Rotation::principal(3, q1.q));
   const FrameId c = s.add_frame("c", b, Rotation::principal(3, q2.q));
-  const GiNaC::matrix J = GiNaC::ex_to<GiNaC::matrix>(GiNaC::diag_matrix(GiNaC::lst{0.01, m * l * l / 12, 0.02}));
+  const GiNaC::matrix J = GiNaC::ex_to<GiNaC::matrix>(GiNaC::diag_matrix(GiNaC::lst{0.01, m * l * l / 12, m * l * l / 12 + 0.005}));
   const PointId elbow = s.add_point("elbow", s.origin(), Vector(b, l, 0, 0));
   s.add_rigid_body("rod1", m, s.add_point("c1", s.origin(), Vector(b, l / 2, 0, 0)), b, J);
   s.add_rigid_body("rod2", m, s.add_point("c2", elbow, Vector(c, l / 2, 0.05, 0)), c, J);

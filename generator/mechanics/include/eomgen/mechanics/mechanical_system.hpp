@@ -168,8 +168,10 @@ class MechanicalSystem {
 
   /// \throws ModelError for a mass that is numerically non-positive.
   void add_particle(const std::string& name, const GiNaC::ex& mass, PointId point);
-  /// \throws ModelError for non-positive mass or an inertia that is not symmetric positive
-  /// definite (checked numerically at the parameters' default values).
+  /// \throws ModelError for non-positive mass or an inertia that no mass distribution has: not
+  /// symmetric, a negative principal moment, or one larger than the sum of the other two
+  /// (checked numerically at the parameters' default values). A slender rod's or a thin disk's
+  /// inertia, on the boundary, is accepted.
   void add_rigid_body(const std::string& name, const GiNaC::ex& mass, PointId mass_centre,
                       FrameId frame, const GiNaC::matrix& inertia);
 
