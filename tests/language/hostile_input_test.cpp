@@ -136,8 +136,8 @@ TEST(HostileInput, AFlatProductOfOneHundredThousandFactorsHasItsValue) {
 TEST(HostileInput, AMismatchInsideAFlatSumIsReportedAtItsOperator) {
   EXPECT_EQ(error_of(point_mass + "output o = q*a.1 + q*a.2 - q + q*a.3\n"),
             "h.eom:4:26: error: cannot subtract a vector and a scalar");
-  EXPECT_EQ(error_of("parameter k = 2 * 3 * a.1 * a.2\n" + point_mass),
-            "h.eom:1:27: error: cannot multiply two vectors: use dot(u, v) or cross(u, v)");
+  EXPECT_EQ(error_of(point_mass + "output o = 2 * 3 * a.1 * a.2\n"),
+            "h.eom:4:24: error: cannot multiply two vectors: use dot(u, v) or cross(u, v)");
   EXPECT_EQ(error_of("parameter k = 2 * 3 / (1 - 1)\n" + point_mass), "h.eom:1:21: error: division by zero");
 }
 

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <sstream>
 #include <vector>
 
 #include "eomgen/base/version.hpp"
@@ -112,6 +113,14 @@ std::string parameters_source(const Model& model) {
          "  /// field ends in '_' and its comment gives the parameter (eomgen's docs/model-language.md).\n";
   s += "  template <class Scalar>\n  struct Parameters {\n";
   s += fields;
+  if (!model.derived_parameters.empty())
+    s += "    // The model's derived parameters are no fields: each is computed from these where it is used.\n";
+  for (const DerivedParameter& d : model.derived_parameters) {
+    std::ostringstream definition;
+    definition << d.definition;
+    s += fmt::format("    //   {} = {}{}\n", cpp_comment_text(d.name), cpp_comment_text(definition.str()),
+                     d.unit.empty() ? "" : " [" + cpp_comment_text(d.unit) + "]");
+  }
   s += "    /// The fields in the order of parameter_names, to set parameters by index or name.\n";
   s += fmt::format("    std::array<Scalar*, np> fields() noexcept {{ return {{{{{}}}}}; }}\n", pointers);
   return s + "  };\n";

@@ -11,6 +11,7 @@
 #include "eomgen/base/error.hpp"
 #include "eomgen/mechanics/kinematics.hpp"
 #include "eomgen/symbolic/simplify.hpp"
+#include "definition_in_progress.hpp"
 
 namespace eomgen::syntax {
 
@@ -201,21 +202,34 @@ void Elaborator::reject_hiding_loop_variables() const {
 
 void Elaborator::declarations() {
   Variables& vars = model_.system.variables();
+  // every name first: a derived parameter may use a parameter defined later in the file, and
+  // must be told so when it names a coordinate or an input declared later
+  for (std::size_t i = 0; i < instances_.size(); ++i) {
+    const Statement& s = *instances_[i].statement;
+    if (s.kind == Kind::parameter) {
+      const std::string name = resolve(s.name, instances_[i].environment);
+      declare(name, "parameter", s.name.location);
+      parameter_instances_[name] = i;
+    } else if (s.kind == Kind::coordinate || s.kind == Kind::input) {
+      for (const Name& n : s.names) {
+        const std::string name = resolve(n, instances_[i].environment);
+        declare(name, s.kind == Kind::coordinate ? "coordinate" : "input", n.location);
+        if (s.kind != Kind::coordinate) continue;
+        declare(name + "_dot", "rate", n.location);
+        declare(name + "_ddot", "acceleration", n.location);
+      }
+    }
+  }
+  // symbols in the order of the file, which GiNaC's order of terms follows
   for (const Instance& in : instances_) {
     const Statement& s = *in.statement;
     if (s.kind == Kind::parameter) {
-      const std::string name = resolve(s.name, in.environment);
-      declare(name, "parameter", s.name.location);
-      const double value = constant(s.value, in.environment, fmt::format("parameter '{}'", name)).to_double();
-      vars.add_parameter(name, value, s.text);
+      parameter_value(resolve(s.name, in.environment));
     } else if (s.kind == Kind::coordinate || s.kind == Kind::input) {
       for (const Name& n : s.names) {
         const std::string name = resolve(n, in.environment);
-        declare(name, s.kind == Kind::coordinate ? "coordinate" : "input", n.location);
         try {
           if (s.kind == Kind::coordinate) {
-            declare(name + "_dot", "rate", n.location);
-            declare(name + "_ddot", "acceleration", n.location);
             vars.add_coordinate(name);
             model_.coordinate_locations.push_back(n.location);
           } else {
@@ -227,6 +241,7 @@ void Elaborator::declarations() {
       }
     }
   }
+  list_derived_parameters();
 }
 
 void Elaborator::collect_frames_and_points() {
@@ -247,37 +262,6 @@ void Elaborator::collect_frames_and_points() {
   }
 }
 
-namespace {
-
-// Marks a definition as being built while it is: frames and points are built on demand, when an
-// expression names them, so meeting one of them again before it is done is a cycle.
-class InProgress {
- public:
-  InProgress(std::vector<std::string>& stack, const char* kind, const std::string& name, const SourceLocation& at)
-      : stack_(stack) {
-    auto start = std::find(stack.begin(), stack.end(), name);
-    if (start != stack.end()) {
-      std::string cycle;
-      for (auto it = start; it != stack.end(); ++it) cycle += *it + " -> ";
-      throw SourceError(at, fmt::format("{} '{}' is defined through a cycle: {}{}", kind, name, cycle, name));
-    }
-    // each definition built ahead of its turn is a level of recursion
-    if (stack.size() == max_definitions_ahead)
-      throw SourceError(at, fmt::format("{} '{}' is defined through more than {} frames and points that come later "
-                                        "in the file: expected parents defined before their children",
-                                        kind, name, max_definitions_ahead));
-    stack_.push_back(name);
-  }
-  InProgress(const InProgress&) = delete;
-  InProgress& operator=(const InProgress&) = delete;
-  ~InProgress() { stack_.pop_back(); }
-
- private:
-  std::vector<std::string>& stack_;
-};
-
-}  // namespace
-
 // a definition's parent is the leftmost name: `b`, `rotate(b, ...)`, `p + ...`
 static const Expr* leftmost(const Expr* e) {
   while (e->kind == Expr::Kind::sum) e = e->args[0].get();
@@ -289,7 +273,7 @@ FrameId Elaborator::build_frame(const std::string& name) {
   const Instance& in = instances_[frame_instances_.at(name)];
   const Statement& s = *in.statement;
   const Environment& env = in.environment;
-  const InProgress building(in_progress_, "frame", name, s.name.location);
+  const DefinitionInProgress building(in_progress_, "frame", name, s.name.location, "frames and points");
   const Expr& def = *s.value;
   const std::vector<std::string> kinds = {"rotate", "euler", "axis_angle", "quaternion", "rodrigues", "mrp", "dcm"};
   const bool is_call = def.kind == Expr::Kind::call && def.name.is_plain() &&
@@ -415,7 +399,7 @@ PointId Elaborator::build_point(const std::string& name) {
   const Instance& in = instances_[point_instances_.at(name)];
   const Statement& s = *in.statement;
   const Environment& env = in.environment;
-  const InProgress building(in_progress_, "point", name, s.name.location);
+  const DefinitionInProgress building(in_progress_, "point", name, s.name.location, "frames and points");
   if (s.kind == Kind::wheel) return points_[name] = wheel_contact(in, name);
   const Expr* parent_expr = leftmost(s.value.get());
   if (parent_expr->kind != Expr::Kind::name)

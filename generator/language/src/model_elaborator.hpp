@@ -81,6 +81,10 @@ class Elaborator {
   void expand(std::size_t tokens, const SourceLocation& at);
   void reject_hiding_loop_variables() const;
   void declarations();
+  // parameters, derived ones built on demand (model_parameters.cpp)
+  GiNaC::ex parameter_value(const std::string& name);
+  [[noreturn]] void reject_in_parameter(const std::string& kind, const std::string& name, const SourceLocation& at) const;
+  void list_derived_parameters();
   void collect_frames_and_points();
   FrameId build_frame(const std::string& name);
   PointId build_point(const std::string& name);
@@ -134,6 +138,10 @@ class Elaborator {
   std::map<std::string, PointId> points_;
   std::vector<std::string> in_progress_;  // frames and points being built, innermost last
   std::set<std::string> used_coordinates_;
+  std::map<std::string, std::size_t> parameter_instances_;  // name -> index in instances_
+  std::map<std::string, GiNaC::ex> parameter_values_;  // the symbol, or a derived parameter's definition
+  std::map<std::string, DerivedParameter> derived_parameters_;
+  std::vector<std::string> parameters_in_progress_;  // innermost last
   SourceLocation independent_location_;  // of the `independent` keyword, when there is one
   bool kinematics_ready_ = false;
   bool saw_statement_ = false;

@@ -188,6 +188,7 @@ eomgen::Vector Elaborator::vector(const ExprPtr& e, const Environment& env, cons
 
 FrameId Elaborator::frame_named(const Name& name, const Environment& env) {
   const std::string n = resolve(name, env);
+  if (!parameters_in_progress_.empty()) reject_in_parameter("frame", n, name.location);
   auto it = frames_.find(n);
   if (it != frames_.end()) return it->second;
   // statements come in any order: a frame named before its definition is built first
@@ -200,6 +201,7 @@ FrameId Elaborator::frame_named(const Name& name, const Environment& env) {
 
 PointId Elaborator::point_named(const Name& name, const Environment& env) {
   const std::string n = resolve(name, env);
+  if (!parameters_in_progress_.empty()) reject_in_parameter("point", n, name.location);
   auto it = points_.find(n);
   if (it != points_.end()) return it->second;
   if (point_instances_.count(n)) return build_point(n);
@@ -214,9 +216,11 @@ Value Elaborator::name_value(const Expr& e, const Environment& env) {
   if (auto it = env.find(n); it != env.end()) return Value::of(ex(it->second));
   if (auto it = constants_.find(n); it != constants_.end()) return Value::of(it->second);
   if (n == "pi") return Value::of(GiNaC::Pi);
+  if (parameter_instances_.count(n)) return Value::of(parameter_value(n));
   const Variables& vars = model_.system.variables();
   if (auto symbol = vars.find(n)) {
     const auto kind = vars.kind_of(*symbol);
+    if (!parameters_in_progress_.empty()) reject_in_parameter(declared_.at(n).kind, n, e.location);
     if (kind == SymbolKind::acceleration)
       throw SourceError(e.location, fmt::format("'{}' is an acceleration; accelerations may not appear in a model "
                                                 "(the equations of motion give them): expected coordinates and "
@@ -225,11 +229,13 @@ Value Elaborator::name_value(const Expr& e, const Environment& env) {
       used_coordinates_.insert(vars.coordinates()[*vars.coordinate_index(*symbol)].name);
     return Value::of(ex(*symbol));
   }
-  if (auto it = declared_.find(n); it != declared_.end())
+  if (auto it = declared_.find(n); it != declared_.end()) {
+    if (!parameters_in_progress_.empty()) reject_in_parameter(it->second.kind, n, e.location);
     throw SourceError(e.location, fmt::format("expected a scalar or a vector, got the {} '{}'{}", it->second.kind, n,
                                               it->second.kind == "frame"
                                                   ? fmt::format(" (its basis vectors are {0}.1, {0}.2, {0}.3)", n)
                                                   : ""));
+  }
   std::vector<std::string> known = {"t", "pi"};
   for (const auto& [k, v] : env) known.push_back(k);
   for (const auto& [k, v] : constants_) known.push_back(k);

@@ -325,6 +325,10 @@ void print_text(std::ostream& out, const Model& model, const ModelEquations& eom
   out << fmt::format("Coordinates (n = {}): {}\n", v.coordinate_count(), join(coordinate_names(v), ", "));
   out << "Parameters:" << (v.parameters().empty() ? " none" : "") << "\n";
   for (const Parameter& p : v.parameters()) out << "  " << parameter_text(p) << "\n";
+  if (!model.derived_parameters.empty()) out << "Derived parameters (their definitions stand where they are used):\n";
+  for (const DerivedParameter& d : model.derived_parameters)
+    out << fmt::format("  {} = {} = {}{}\n", d.name, printer.text(d.definition), d.default_value,
+                       d.unit.empty() ? "" : " [" + d.unit + "]");
   out << "Inputs: " << (v.inputs().empty() ? "none" : join(input_names(v), ", ")) << "\n";
   out << fmt::format("Constraints (m = {}):", eom.constraint_count) << (eom.constraint_count ? "" : " none") << "\n";
   for (const std::string& c : constraint_texts(model.system)) out << "  " << c << "\n";
@@ -352,6 +356,11 @@ void print_markdown(std::ostream& out, const Model& model, const ModelEquations&
   if (!v.parameters().empty()) {
     out << "\n| Parameter | Default | Unit |\n| --- | --- | --- |\n";
     for (const Parameter& p : v.parameters()) out << fmt::format("| `{}` | {} | {} |\n", p.name, p.default_value, p.unit);
+  }
+  if (!model.derived_parameters.empty()) {
+    out << "\n| Derived parameter | Definition | Default | Unit |\n| --- | --- | --- | --- |\n";
+    for (const DerivedParameter& d : model.derived_parameters)
+      out << fmt::format("| `{}` | `{}` | {} | {} |\n", d.name, printer.text(d.definition), d.default_value, d.unit);
   }
   out << "\n`" << equation_text << "`" << (eom.constraint_count ? ", `Xi qd + Xi_t = 0`" : "") << "\n";
   for (const Section& s : sections) {
@@ -383,11 +392,16 @@ void print_latex(std::ostream& out, const Model& model, const ModelEquations& eo
   for (const Parameter& p : v.parameters())
     parameters.push_back(fmt::format("${} = {}$", printer.latex(p.symbol), p.default_value) +
                          (p.unit.empty() ? "" : "~" + tex_escape(p.unit)));
+  std::vector<std::string> derived;
+  for (const DerivedParameter& d : model.derived_parameters)
+    derived.push_back(fmt::format("${} = {} = {}$", tex_name(d.name), printer.latex(d.definition), d.default_value) +
+                      (d.unit.empty() ? "" : "~" + tex_escape(d.unit)));
   std::vector<std::string> inputs;
   for (const Input& u : v.inputs()) inputs.push_back("$" + printer.latex(u.symbol) + "$");
   out << "\\begin{itemize}\n";
   out << fmt::format("\\item Coordinates ($n = {}$): {}\n", v.coordinate_count(), join(coordinates, ", "));
   out << "\\item Parameters: " << (parameters.empty() ? "none" : join(parameters, "; ")) << "\n";
+  if (!derived.empty()) out << "\\item Derived parameters: " << join(derived, "; ") << "\n";
   out << "\\item Inputs: " << (inputs.empty() ? "none" : join(inputs, ", ")) << "\n";
   out << fmt::format("\\item Constraints ($m = {}$): ", eom.constraint_count)
       << (eom.constraint_count ? tex_escape(join(constraint_texts(model.system), "; ")) : "none") << "\n";

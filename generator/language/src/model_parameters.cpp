@@ -1,0 +1,55 @@
+// Parameters of a model file: those with a number for a value become symbols of the system;
+// those defined from other parameters (`parameter d1 = 0.45*L1`) are derived, and their
+// definition stands wherever they are named (Model::derived_parameters says why).
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "eomgen/base/error.hpp"
+#include "definition_in_progress.hpp"
+#include "model_elaborator.hpp"
+
+namespace eomgen::syntax {
+
+using GiNaC::ex;
+
+void Elaborator::reject_in_parameter(const std::string& kind, const std::string& name, const SourceLocation& at) const {
+  throw SourceError(at, fmt::format("parameter '{}': expected an expression of numbers, consts and other parameters, "
+                                    "got the {} '{}'", parameters_in_progress_.back(), kind, name));
+}
+
+// Built on demand, from the first expression that names the parameter or in its turn in the
+// file, so a derived parameter may use one defined after it and a cycle is found where it closes.
+ex Elaborator::parameter_value(const std::string& name) {
+  if (auto it = parameter_values_.find(name); it != parameter_values_.end()) return it->second;
+  const Instance& in = instances_[parameter_instances_.at(name)];
+  const Statement& s = *in.statement;
+  const DefinitionInProgress building(parameters_in_progress_, "parameter", name, s.name.location, "parameters");
+  const std::string what = fmt::format("parameter '{}'", name);
+  const ex value = scalar(s.value, in.environment, what);
+  Variables& vars = model_.system.variables();
+  if (GiNaC::is_a<GiNaC::numeric>(value) || GiNaC::is_a<GiNaC::numeric>(value.evalf())) {
+    const double number = constant(s.value, in.environment, what).to_double();
+    return parameter_values_[name] = vars.add_parameter(name, number, s.text).symbol;
+  }
+  // every name in it was a number, a const or a parameter (name_value refuses the others), so
+  // it is a function of the system's parameters: its value at their defaults is its default
+  const auto number = value_at(value, model_.system.parameter_defaults());
+  if (!number || !std::isfinite(*number))
+    throw SourceError(start_of(*s.value), fmt::format("{}: the value at the other parameters' default values is not a "
+                                                      "finite real number: expected a definition that has one",
+                                                      what));
+  derived_parameters_[name] = DerivedParameter{name, value, *number, s.text, s.name.location};
+  return parameter_values_[name] = value;
+}
+
+// Model::derived_parameters in the order of the file, whatever order they were built in.
+void Elaborator::list_derived_parameters() {
+  for (const Instance& in : instances_) {
+    if (in.statement->kind != Statement::Kind::parameter) continue;
+    auto it = derived_parameters_.find(resolve(in.statement->name, in.environment));
+    if (it != derived_parameters_.end()) model_.derived_parameters.push_back(it->second);
+  }
+}
+
+}  // namespace eomgen::syntax

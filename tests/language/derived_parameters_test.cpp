@@ -1,0 +1,148 @@
+// Derived parameters (`parameter d = 0.45*L`): defined from other parameters in any order of the
+// file, substituted where they are used, so the equations follow a change of what they are
+// defined from; cycles and definitions that are no function of parameters are refused where they
+// are written.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "eomgen/base/error.hpp"
+#include "eomgen/codegen/emit_model.hpp"
+#include "eomgen/derivation/equations_of_motion.hpp"
+#include "eomgen/derivation/numeric_evaluation.hpp"
+#include "eomgen/language/model_file.hpp"
+#include "eomgen/report/equation_printer.hpp"
+
+namespace eomgen {
+namespace {
+
+// A point mass on a massless rod of length d = 0.45 L, d written before L.
+const std::string pendulum =
+    "parameter m = 2 [kg]\n"
+    "parameter g = 9.81 [m/s^2]\n"
+    "parameter d = 0.45*L [m]\n"
+    "parameter L = 2 [m]\n"
+    "coordinate theta\n"
+    "frame b = rotate(a, 3, theta)\n"
+    "point p = w + d*b.1\n"
+    "particle bob(mass = m, at = p)\n"
+    "gravity = -g*a.2\n";
+
+std::string error_of(const std::string& text) {
+  try {
+    parse_model(text, "h.eom");
+  } catch (const SourceError& e) {
+    return e.what();
+  } catch (const std::exception& e) {
+    return std::string("not a SourceError: ") + e.what();
+  }
+  return "no error";
+}
+
+std::vector<std::string> parameter_names(const Model& model) {
+  std::vector<std::string> names;
+  for (const Parameter& p : model.system.variables().parameters()) names.push_back(p.name);
+  return names;
+}
+
+TEST(DerivedParameters, AreNoSymbolOfTheSystemAndAreListedWithTheirDefinitionAndDefault) {
+  const Model model = parse_model(pendulum, "h.eom");
+  // L is created when d needs it, before its own line: still each parameter once
+  EXPECT_EQ(parameter_names(model), (std::vector<std::string>{"m", "g", "L"}));
+  ASSERT_EQ(model.derived_parameters.size(), 1u);
+  const DerivedParameter& d = model.derived_parameters[0];
+  EXPECT_EQ(d.name, "d");
+  EXPECT_DOUBLE_EQ(d.default_value, 0.9);
+  EXPECT_EQ(d.unit, "m");
+  EXPECT_EQ(d.location.line, 3);
+  EXPECT_EQ(d.location.column, 11);
+  EXPECT_TRUE((d.definition - GiNaC::numeric(9, 20) * *model.system.variables().find("L")).expand().is_zero());
+}
+
+TEST(DerivedParameters, TheEquationsFollowTheParameterTheyAreDefinedFrom) {
+  const Model model = parse_model(pendulum, "h.eom");
+  const ModelEquations eom = derive_equations(model);
+  // M = m d^2, F = -m g d cos(theta) with d = 0.45 L
+  for (const double L : {2.0, 3.0}) {
+    const NumericEquations x = evaluate_equations(model, eom, {{"theta", 0.3}, {"L", L}});
+    const double d = 0.45 * L;
+    EXPECT_NEAR(x.mass_matrix(0, 0), 2 * d * d, 1e-13);
+    EXPECT_NEAR(x.forcing(0), -2 * 9.81 * d * std::cos(0.3), 1e-12);
+    EXPECT_NEAR(x.potential_energy, 2 * 9.81 * d * std::sin(0.3), 1e-12);
+  }
+}
+
+TEST(DerivedParameters, MayBeDefinedFromDerivedOnesInAnyOrder) {
+  const Model model = parse_model("parameter e = d/3 [m]\n" + pendulum + "point q = w + e*b.2\n"
+                                  "particle second(mass = m, at = q)\n", "h.eom");
+  ASSERT_EQ(model.derived_parameters.size(), 2u);
+  EXPECT_EQ(model.derived_parameters[0].name, "e");  // the file's order, not the order they were built in
+  EXPECT_DOUBLE_EQ(model.derived_parameters[0].default_value, 0.3);
+  const NumericEquations x = evaluate_equations(model, derive_equations(model), {{"L", 3.0}});
+  EXPECT_NEAR(x.mass_matrix(0, 0), 2 * (1.35 * 1.35 + 0.45 * 0.45), 1e-13);
+}
+
+TEST(DerivedParameters, AParameterWhoseValueIsAConstantExpressionStaysAParameter) {
+  const Model model = parse_model("const n = 4\nparameter k = 2*pi/n\n" + pendulum, "h.eom");
+  EXPECT_EQ(parameter_names(model), (std::vector<std::string>{"k", "m", "g", "L"}));
+  EXPECT_DOUBLE_EQ(model.system.variables().parameters()[0].default_value, M_PI / 2);
+}
+
+TEST(DerivedParameters, TheGeneratedParametersHaveNoFieldForThemAndSayHowTheyAreComputed) {
+  const Model model = parse_model(pendulum, "h.eom");
+  const std::string header = emit_model(model, derive_equations(model)).header;
+  EXPECT_NE(header.find("    Scalar L = Scalar(2); // [m]\n"), std::string::npos);
+  EXPECT_EQ(header.find("Scalar d ="), std::string::npos);
+  EXPECT_NE(header.find("    //   d = 9/20*L [m]\n"), std::string::npos) << header.substr(0, 3000);
+}
+
+TEST(DerivedParameters, TheReportsListThemWithTheirDefinitionsAndDefaults) {
+  const Model model = parse_model(pendulum, "h.eom");
+  const ModelEquations eom = derive_equations(model);
+  PrintOptions options;
+  EXPECT_NE(format_equations(model, eom, options)
+                .find("  L = 2 [m]\nDerived parameters (their definitions stand where they are used):\n"
+                      "  d = 9*L/20 = 0.9 [m]\n"),
+            std::string::npos);
+  options.format = EquationFormat::markdown;
+  EXPECT_NE(format_equations(model, eom, options).find("| `d` | `9*L/20` | 0.9 | m |\n"), std::string::npos);
+  options.format = EquationFormat::latex;
+  EXPECT_NE(format_equations(model, eom, options).find("\\item Derived parameters: $d = \\frac{9 L}{20} = 0.9$~m\n"),
+            std::string::npos)
+      << format_equations(model, eom, options).substr(0, 1500);
+}
+
+TEST(DerivedParameters, ACycleIsReportedWhereItCloses) {
+  EXPECT_EQ(error_of("parameter k1 = 2*k2\nparameter k2 = k3 + 1\nparameter k3 = k1\n" + pendulum),
+            "h.eom:1:11: error: parameter 'k1' is defined through a cycle: k1 -> k2 -> k3 -> k1");
+  EXPECT_EQ(error_of("parameter k = k + 1\n" + pendulum),
+            "h.eom:1:11: error: parameter 'k' is defined through a cycle: k -> k");
+}
+
+TEST(DerivedParameters, ADefinitionFromACoordinateARateAnInputTimeOrAPointIsRefusedAtTheName) {
+  const std::string expected = ": error: parameter 'k': expected an expression of numbers, consts and other "
+                               "parameters, got the ";
+  EXPECT_EQ(error_of("parameter k = 2*theta\n" + pendulum), "h.eom:1:17" + expected + "coordinate 'theta'");
+  EXPECT_EQ(error_of(pendulum + "parameter k = 2*theta_dot\n"), "h.eom:10:17" + expected + "rate 'theta_dot'");
+  EXPECT_EQ(error_of("input u\nparameter k = u\n" + pendulum), "h.eom:2:15" + expected + "input 'u'");
+  EXPECT_EQ(error_of("parameter k = L*t\n" + pendulum), "h.eom:1:17" + expected + "time 't'");
+  EXPECT_EQ(error_of("parameter k = norm(position(p))\n" + pendulum), "h.eom:1:29" + expected + "point 'p'");
+  EXPECT_EQ(error_of("parameter k = dot(b.1, a.1)\n" + pendulum), "h.eom:1:19" + expected + "frame 'b'");
+}
+
+TEST(DerivedParameters, ADefinitionWithoutAFiniteRealValueAtTheDefaultsIsRefused) {
+  const std::string expected = ": the value at the other parameters' default values is not a finite real number: "
+                               "expected a definition that has one";
+  EXPECT_EQ(error_of("parameter k = sqrt(1 - L)\n" + pendulum), "h.eom:1:15: error: parameter 'k'" + expected);
+  EXPECT_EQ(error_of("parameter z = 0\nparameter k = L/z\n" + pendulum), "h.eom:2:15: error: parameter 'k'" + expected);
+}
+
+TEST(DerivedParameters, DuplicateNamesAreStillFoundInTheFilesOrder) {
+  EXPECT_EQ(error_of("parameter d = 1\n" + pendulum),
+            "h.eom:4:11: error: duplicate name 'd': already declared as a parameter at h.eom:1:11");
+}
+
+}  // namespace
+}  // namespace eomgen
