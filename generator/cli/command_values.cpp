@@ -41,6 +41,45 @@ std::map<std::string, double> parse_assignments(const std::vector<std::string>& 
   return out;
 }
 
+std::string not_a_parameter(const Model& model, const std::string& name, const std::string& state,
+                            const std::string& input) {
+  const Variables& v = model.system.variables();
+  for (const DerivedParameter& d : model.derived_parameters) {
+    if (d.name != name) continue;
+    std::vector<std::string> sources;
+    for (const Parameter& p : v.parameters())
+      if (d.definition.has(p.symbol)) sources.push_back(p.name);
+    return fmt::format("'{}' is defined from other parameters of {}, and follows them: expected one of those it is "
+                       "defined from: {}", name, model.name, join(sources));
+  }
+  if (const auto symbol = v.find(name)) {
+    switch (*v.kind_of(*symbol)) {
+      case SymbolKind::coordinate:
+      case SymbolKind::rate:
+        return fmt::format("'{}' is a {} of {}, not a parameter: give its value with {} {}=VALUE", name,
+                           v.kind_of(*symbol) == SymbolKind::coordinate ? "coordinate" : "rate", model.name, state,
+                           name);
+      case SymbolKind::input:
+        return fmt::format("'{}' is an input of {}, not a parameter: give its value with {} {}=VALUE", name,
+                           model.name, input, name);
+      case SymbolKind::time:
+        return state == "--at" ? "'t' is the time, not a parameter: give it with --at t=VALUE"
+                               : "'t' is the time, not a parameter: the run starts at t = 0 and ends at --t-end";
+      case SymbolKind::acceleration:
+        return fmt::format("'{}' is an acceleration of {}, which the equations of motion give, not a parameter",
+                           name, model.name);
+      case SymbolKind::parameter: break;
+    }
+    EOMGEN_UNREACHABLE("not_a_parameter: asked about a parameter of the model");
+  }
+  if (model.constants.count(name))
+    return fmt::format("'{}' is a const of {}, fixed when the model is read, not a parameter: change it with "
+                       "--define {}=VALUE", name, model.name, name);
+  std::vector<std::string> parameters;
+  for (const Parameter& p : v.parameters()) parameters.push_back(p.name);
+  return fmt::format("'{}' is not a parameter of {}; its parameters: {}", name, model.name, join(parameters));
+}
+
 NamedValues state_and_parameters(const std::vector<std::string>& at_items, const std::vector<std::string>& set_items,
                                  const Model& model) {
   const std::map<std::string, double> at = parse_assignments(at_items, "--at");
@@ -50,9 +89,9 @@ NamedValues state_and_parameters(const std::vector<std::string>& at_items, const
     if (!values.emplace(name, value).second) throw UsageError(fmt::format("--set: '{}' is also given in --at", name));
   const Variables& v = model.system.variables();
   for (const auto& [name, value] : set) {
-    bool is_parameter = false;
-    for (const auto& p : v.parameters()) is_parameter = is_parameter || p.name == name;
-    if (!is_parameter) throw Error(fmt::format("--set: '{}' is not a parameter of the model", name));
+    const auto symbol = v.find(name);
+    if (!symbol || v.kind_of(*symbol) != SymbolKind::parameter)
+      throw Error("--set: " + not_a_parameter(model, name, "--at", "--at"));
   }
   return values;
 }

@@ -23,6 +23,12 @@ std::string number(double x);
 /// \throws UsageError for a malformed item, a value that is not a finite number, a name twice
 std::map<std::string, double> parse_assignments(const std::vector<std::string>& items, const std::string& option);
 
+/// Why `name`, given to --set, is no parameter of the model, and where its value goes instead:
+/// `state` and `input` are the options that take a coordinate's or rate's value and an input's
+/// ("--at" for eval and linearize; "--init" and "--input" for simulate).
+std::string not_a_parameter(const Model& model, const std::string& name, const std::string& state,
+                            const std::string& input);
+
 /// --at (the state) and --set (parameters) as one set of named values for the evaluation
 /// \throws UsageError for a name in both; Error for a --set name that is not a parameter
 NamedValues state_and_parameters(const std::vector<std::string>& at, const std::vector<std::string>& set,

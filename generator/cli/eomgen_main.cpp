@@ -23,6 +23,7 @@
 #include <iostream>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -36,6 +37,7 @@
 #include "eomgen/language/model_file.hpp"
 #include "eomgen/derivation/numeric_evaluation.hpp"
 #include "eomgen/base/version.hpp"
+#include "eomgen/symbolic/double_evaluator.hpp"
 #include "command_line.hpp"
 #include "command_values.hpp"
 #include "linearize_command.hpp"
@@ -89,6 +91,14 @@ void run_check(const Options& o) {
   std::cout << fmt::format("Parameters ({}):", v.parameters().size()) << (v.parameters().empty() ? " none" : "") << "\n";
   for (const auto& p : v.parameters())
     std::cout << fmt::format("  {} = {}", p.name, p.default_value) << (p.unit.empty() ? "" : " [" + p.unit + "]") << "\n";
+  if (!model.derived_parameters.empty())
+    std::cout << fmt::format("Derived parameters ({}):\n", model.derived_parameters.size());
+  for (const eomgen::DerivedParameter& d : model.derived_parameters) {
+    std::ostringstream definition;
+    definition << d.definition;
+    std::cout << fmt::format("  {} = {} = {}", d.name, definition.str(), d.default_value)
+              << (d.unit.empty() ? "" : " [" + d.unit + "]") << "\n";
+  }
   if (!model.constants.empty()) {
     std::vector<std::string> constants;
     for (const auto& [name, value] : model.constants) constants.push_back(fmt::format("{} = {}", name, value));
@@ -239,6 +249,12 @@ void run_eval(const Options& o) {
   }
   for (const auto& u : v.inputs()) state.emplace_back(u.name, value_of(u.name, 0.0));
   for (const auto& p : v.parameters()) parameters.emplace_back(p.name, value_of(p.name, p.default_value));
+  // what the derived parameters came to with these parameters
+  std::vector<std::pair<std::string, double>> derived;
+  eomgen::DoubleEvaluator at_parameters;  // in doubles: 1/L at L = 0 is inf, as in the equations
+  for (const auto& p : v.parameters()) at_parameters.set(p.symbol, value_of(p.name, p.default_value));
+  for (const eomgen::DerivedParameter& d : model.derived_parameters)
+    derived.emplace_back(d.name, at_parameters.value(d.definition, "derived parameter '" + d.name + "'"));
   for (const auto& c : model.system.constraints()) {
     constraints.push_back(c.name);
     lambda.emplace_back(c.name, sol.lambda(static_cast<Eigen::Index>(lambda.size())));
@@ -258,6 +274,7 @@ void run_eval(const Options& o) {
     j["constraints"] = constraints;
     j["state"] = object(state);
     j["parameters"] = object(parameters);
+    if (!derived.empty()) j["derived_parameters"] = object(derived);
     j["M"] = json_rows(eq.mass_matrix);
     j["F"] = column(eq.forcing);
     j["Xi"] = json_rows(eq.constraint_jacobian);
@@ -275,6 +292,7 @@ void run_eval(const Options& o) {
   std::cout << "Model " << model.name << "\n";
   print_named("State", state);
   print_named("Parameters", parameters);
+  if (!derived.empty()) print_named("Derived parameters", derived);
   print_matrix("M", eq.mass_matrix);
   print_matrix("F", eq.forcing);
   if (!constraints.empty()) {

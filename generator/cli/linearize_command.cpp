@@ -191,8 +191,11 @@ void check_swept_name(const Model& model, const NamedValues& given, const std::s
   for (const auto& c : v.coordinates()) names.push_back(c.name), names.push_back(c.name + "_dot");
   for (const auto& u : v.inputs()) names.push_back(u.name);
   for (const auto& p : v.parameters()) names.push_back(p.name);
-  if (std::find(names.begin(), names.end(), name) == names.end())
+  if (std::find(names.begin(), names.end(), name) == names.end()) {
+    for (const DerivedParameter& d : model.derived_parameters)
+      if (d.name == name) throw UsageError("--sweep: " + not_a_parameter(model, name, "--at", "--at"));
     throw UsageError(fmt::format("--sweep: '{}' is not a parameter, coordinate, rate, input or t of {}", name, model.name));
+  }
   if (given.count(name)) throw UsageError(fmt::format("--sweep: '{}' is also given in --at or --set", name));
 }
 

@@ -21,6 +21,7 @@
 #include "eomgen/base/version.hpp"
 #include "eomgen_build_config.hpp"
 #include "eomrt/integrators.hpp"
+#include "command_values.hpp"
 #include "file_output.hpp"
 #include "gnuplot.hpp"
 #include "interruption.hpp"
@@ -39,12 +40,6 @@ std::string read_file(const fs::path& path) {
   return s.str();
 }
 
-std::string join(const std::vector<std::string>& items) {
-  std::string out;
-  for (std::size_t i = 0; i < items.size(); ++i) out += (i ? ", " : "") + items[i];
-  return items.empty() ? "none" : out;
-}
-
 /// %.17g: the value the user gave, exactly, for the simulation program to read back
 std::string exact(double v) { return fmt::format("{:.17g}", v); }
 
@@ -59,9 +54,7 @@ void check_names(const Model& model, const SimulateRequest& r) {
     return std::find(names.begin(), names.end(), n) != names.end();
   };
   for (const auto& [name, value] : r.parameters)
-    if (!has(parameters, name))
-      throw UsageError(fmt::format("--set: '{}' is not a parameter of {}; its parameters: {}", name, model.name,
-                                   join(parameters)));
+    if (!has(parameters, name)) throw UsageError("--set: " + not_a_parameter(model, name, "--init", "--input"));
   for (const auto& [name, value] : r.initial)
     if (!has(coordinates, name) && !has(rates, name))
       throw UsageError(fmt::format("--init: '{}' is not a coordinate or rate of {}; expected one of {} or {}", name,

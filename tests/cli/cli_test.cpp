@@ -370,6 +370,34 @@ TEST_F(Cli, EvalTextAndEvaluationErrors) {
   EXPECT_EQ(eomgen("eval " + quote(path) + " --set q1=1").status, 1);  // not a parameter
 }
 
+TEST_F(Cli, SetOnANameThatIsNoParameterSaysWhereItsValueGoes) {
+  const auto error_of = [&](const std::string& model_file, const std::string& args) {
+    const Outcome run = eomgen("eval " + quote(model_file) + " " + args);
+    EXPECT_EQ(run.status, 1) << args;
+    return run.err;
+  };
+  const std::string cart_pole = std::string(EOMGEN_SOURCE_DIR) + "/models/cart_pole.eom";
+  EXPECT_EQ(error_of(cart_pole, "--set u=1"),
+            "eomgen: error: --set: 'u' is an input of cart_pole, not a parameter: give its value with --at u=VALUE\n");
+  EXPECT_EQ(error_of(cart_pole, "--set x=1"),
+            "eomgen: error: --set: 'x' is a coordinate of cart_pole, not a parameter: give its value with --at x=VALUE\n");
+  EXPECT_EQ(error_of(cart_pole, "--set t=1"),
+            "eomgen: error: --set: 't' is the time, not a parameter: give it with --at t=VALUE\n");
+  EXPECT_EQ(error_of(std::string(EOMGEN_SOURCE_DIR) + "/models/planar_chain.eom", "--set n=3"),
+            "eomgen: error: --set: 'n' is a const of planar_chain, fixed when the model is read, not a parameter: "
+            "change it with --define n=VALUE\n");
+  const std::string derived = model("derived.eom",
+                                    "parameter L = 2 [m]\nparameter d = L/2 [m]\nparameter m = 1 [kg]\n"
+                                    "coordinate x\npoint p = w + (x + d)*a.1\nparticle bob(mass = m, at = p)\n");
+  EXPECT_EQ(error_of(derived, "--set d=1"),
+            "eomgen: error: --set: 'd' is defined from other parameters of derived, and follows them: expected one "
+            "of those it is defined from: L\n");
+  // eval reports what they come to with the parameters it was given
+  const Outcome follows = eomgen("eval " + quote(derived) + " --set L=6 -f json");
+  EXPECT_EQ(follows.status, 0) << follows.err;
+  EXPECT_THAT(follows.out, HasSubstr("\n  \"parameters\": {\"L\":6.0,\"m\":1.0},\n  \"derived_parameters\": {\"d\":3.0},\n"));
+}
+
 TEST_F(Cli, EveryShippedModelChecksAndDerivesTheSameBytesEveryRun) {
   const fs::path models = fs::path(EOMGEN_SOURCE_DIR) / "models";
   ASSERT_TRUE(fs::exists(models)) << "no models/ directory at " << models;

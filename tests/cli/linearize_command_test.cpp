@@ -85,6 +85,16 @@ TEST_F(Linearize, MalformedSweepsAreUsageErrors) {
   }
 }
 
+TEST_F(Linearize, ASweepOfADerivedParameterNamesWhatToSweepInstead) {
+  const std::string derived = model("derived.eom",
+                                    "parameter L = 2 [m]\nparameter d = L/2 [m]\nparameter m = 1 [kg]\n"
+                                    "coordinate x\npoint p = w + (x + d)*a.1\nparticle bob(mass = m, at = p)\n");
+  const auto run = eomgen("linearize " + eomgen::testing::quote(derived) + " --sweep d=0:1:0.5");
+  EXPECT_EQ(run.status, 2);
+  EXPECT_EQ(run.err, "eomgen: error: --sweep: 'd' is defined from other parameters of derived, and follows them: "
+                     "expected one of those it is defined from: L\n");
+}
+
 TEST_F(Linearize, APointOffTheConstraintsNamesTheConstraint) {
   const auto run = eomgen("linearize " + bicycle + " --at x_dot=5,theta_r_dot=1,y_dot=0,psi_dot=0,theta_dot=0");
   EXPECT_EQ(run.status, 1);

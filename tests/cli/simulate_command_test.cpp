@@ -306,6 +306,12 @@ TEST_F(Simulate, MalformedRequestsAreUsageErrorsBeforeAnythingIsBuilt) {
     std::string args, message;
   } cases[] = {
       {" --t-end 1 --set mass=2", "'mass' is not a parameter of simple_pendulum; its parameters: m, l, g"},
+      {" --t-end 1 --set theta=1",
+       "--set: 'theta' is a coordinate of simple_pendulum, not a parameter: give its value with --init theta=VALUE"},
+      {" --t-end 1 --set theta_dot=1",
+       "--set: 'theta_dot' is a rate of simple_pendulum, not a parameter: give its value with --init theta_dot=VALUE"},
+      {" --t-end 1 --set t=1",
+       "--set: 't' is the time, not a parameter: the run starts at t = 0 and ends at --t-end"},
       {" --t-end 1 --init phi=1", "'phi' is not a coordinate or rate of simple_pendulum; expected one of theta or theta_dot"},
       {" --t-end 1 --input u=1", "'u' is not an input of simple_pendulum; its inputs: none"},
       {" --t-end 1 --method dp5 --dt 0.01", "dp5 chooses its own steps"},

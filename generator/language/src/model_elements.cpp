@@ -55,6 +55,17 @@ void Elaborator::add_element(const Instance& in, const std::string& name, const 
     case Kind::moment: {
       const Arguments args(*this, in, what, {"on", "moment"});
       const FrameId f = args.frame("on", "the body frame");
+      // the bodies are built before every other element, so all are known here
+      const auto& bodies = sys.rigid_bodies();
+      if (std::none_of(bodies.begin(), bodies.end(), [&](const RigidBody& b) { return b.frame == f; })) {
+        std::string frames;
+        for (const RigidBody& b : bodies) frames += fmt::format("{}'{}' ({})", frames.empty() ? "" : ", ",
+                                                               sys.frame(b.frame).name, b.name);
+        throw SourceError(args.require("on", "").value->location,
+                          fmt::format("{}: no body has the frame '{}', so the moment would act on nothing: expected "
+                                      "the frame of a body{}", what, sys.frame(f).name,
+                                      bodies.empty() ? " (the model has none)" : ": " + frames));
+      }
       sys.add_moment(f, args.vector("moment"));
       break;
     }
