@@ -11,6 +11,7 @@
 #include "eomgen/base/error.hpp"
 #include "eomgen/mechanics/kinematics.hpp"
 #include "eomgen/symbolic/simplify.hpp"
+#include "model_matrices.hpp"
 
 namespace eomgen::syntax {
 
@@ -355,7 +356,9 @@ FrameId Elaborator::build_frame(const std::string& name) {
       expect_args(2, "dcm(PARENT, [[C11, C12, C13], [C21, C22, C23], [C31, C32, C33]])");
       const Value m = evaluate(def.args[1], env);
       if (m.kind != Value::Kind::matrix || m.matrix.rows() != 3 || m.matrix.cols() != 3)
-        throw SourceError(def.args[1]->location, "dcm(): expected a 3x3 matrix [[...], [...], [...]]");
+        throw SourceError(start_of(*def.args[1]), fmt::format("dcm(): expected a 3x3 matrix such as [[C11, C12, C13], "
+                                                              "[C21, C22, C23], [C31, C32, C33]] or dcm(B, A), got {}",
+                                                              shape_name(m)));
       reject_non_rotation(m.matrix, start_of(*def.args[1]));
       rotation = Rotation::explicit_matrix(m.matrix);
     }
