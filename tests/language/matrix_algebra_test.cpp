@@ -325,6 +325,19 @@ TEST(MatrixAlgebra, AFrameDcmNamesTheShapeItGotAndChecksAConstantProduct) {
             "expected a rotation matrix (determinant +1)");
 }
 
+// --- the arity of frame functions counts the parent, as the usage does ---
+
+TEST(MatrixAlgebra, FrameFunctionsCountTheirArgumentsAsWritten) {
+  EXPECT_EQ(error_of("coordinate x, y\nframe b = euler(a, 313, x, y)\n" + point_mass),
+            "m.eom:2:11: error: euler(PARENT, SEQUENCE, ANGLE1, ANGLE2, ANGLE3) takes 5 arguments, got 4");
+  EXPECT_EQ(error_of("frame b = rotate(a, 3)\n" + point_mass),
+            "m.eom:1:11: error: rotate(PARENT, AXIS, ANGLE) takes 3 arguments, got 2");
+  EXPECT_EQ(error_of("frame b = mrp(a, [0, 0, 1], 2)\n" + point_mass),
+            "m.eom:1:11: error: mrp(PARENT, [P1, P2, P3]) takes 2 arguments, got 3");
+  EXPECT_EQ(error_of("frame b = dcm(a)\n" + point_mass),
+            "m.eom:1:11: error: dcm(PARENT, MATRIX) takes 2 arguments, got 1");
+}
+
 TEST(MatrixAlgebra, OtherFrameFunctionsInExpressionsStillDefineFramesOnly) {
   EXPECT_EQ(error_of("output o = rotate(a, 3, q)\n" + point_mass),
             "m.eom:1:12: error: rotate() defines a frame: use it as 'frame NAME = rotate(...)'");
