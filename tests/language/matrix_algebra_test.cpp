@@ -317,6 +317,9 @@ TEST(MatrixAlgebra, AFrameDcmNamesTheShapeItGotAndChecksAConstantProduct) {
   EXPECT_EQ(error_of("frame c = dcm(a, [1, 0, 0]^T)\n" + point_mass),
             "m.eom:1:18: error: dcm(): expected a 3x3 matrix such as [[C11, C12, C13], [C21, C22, C23], [C31, C32, "
             "C33]] or dcm(B, A), got a 1x3 matrix");
+  EXPECT_EQ(error_of("frame b = rotate(a, 3, q)\nframe c = dcm(b, a)\n" + point_mass),
+            "m.eom:2:18: error: dcm(): expected a 3x3 matrix after the parent frame, got the frame 'a' (the DCM of "
+            "two frames is the matrix dcm(B, A): dcm(PARENT, dcm(B, A)))");
   EXPECT_EQ(error_of("frame b = rotate(a, 3, 0.5)\nframe c = dcm(a, 2*dcm(b, a))\n" + point_mass),
             "m.eom:2:18: error: dcm(): the matrix is not orthogonal at the parameters' default values (C C^T differs "
             "from the identity by 3): expected a rotation matrix");

@@ -354,6 +354,14 @@ FrameId Elaborator::build_frame(const std::string& name) {
       rotation = f == "rodrigues" ? Rotation::rodrigues(col3(1)) : Rotation::modified_rodrigues(col3(1));
     } else {
       expect_args(2, "dcm(PARENT, MATRIX)");
+      // dcm(B, A) of two frames is a matrix in expressions; here the first frame is the parent
+      if (const Expr& matrix = *def.args[1]; matrix.kind == Expr::Kind::name) {
+        const std::string other = resolve(matrix.name, env);
+        if (frames_.count(other) || frame_instances_.count(other))
+          throw SourceError(matrix.location, fmt::format("dcm(): expected a 3x3 matrix after the parent frame, got the "
+                                                         "frame '{}' (the DCM of two frames is the matrix dcm(B, A): "
+                                                         "dcm(PARENT, dcm(B, A)))", other));
+      }
       const Value m = evaluate(def.args[1], env);
       if (m.kind != Value::Kind::matrix || m.matrix.rows() != 3 || m.matrix.cols() != 3)
         throw SourceError(start_of(*def.args[1]), fmt::format("dcm(): expected a 3x3 matrix such as [[C11, C12, C13], "
