@@ -3,8 +3,7 @@
 
 #include <fmt/format.h>
 
-#include <unordered_map>
-
+#include "eomgen/symbolic/tree_size.hpp"
 
 namespace eomgen::syntax {
 
@@ -24,20 +23,6 @@ std::string shape_name(const Value& v) {
                      v.kind == Value::Kind::column ? "column" : "matrix");
 }
 
-namespace {
-
-// The size of e written out as a tree, which is what substituting, differentiating and printing
-// it costs; counted once per shared node, so that counting is linear in what memory holds.
-double written_size(const GiNaC::ex& e, std::unordered_map<const GiNaC::basic*, double>& known) {
-  const GiNaC::basic* node = &GiNaC::ex_to<GiNaC::basic>(e);
-  if (auto it = known.find(node); it != known.end()) return it->second;
-  double size = 1;
-  for (std::size_t i = 0; i < e.nops(); ++i) size += written_size(e.op(i), known);
-  return known[node] = size;
-}
-
-}  // namespace
-
 Value matrix_product(const Value& left, const Value& right, const SourceLocation& at) {
   EOMGEN_DEMAND(has_shape(left) && has_shape(right), "matrix_product: a factor without a shape");
   const unsigned inner = left.matrix.cols();
@@ -48,10 +33,9 @@ Value matrix_product(const Value& left, const Value& right, const SourceLocation
   const GiNaC::matrix product = left.matrix.mul(right.matrix);
   // Each product refers to its factors' entries, shared in memory, but the derivation works on
   // them written out: a chain of n rotations that vary is 3^n times as large as one.
-  std::unordered_map<const GiNaC::basic*, double> known;
   for (unsigned i = 0; i < product.rows(); ++i)
     for (unsigned j = 0; j < product.cols(); ++j)
-      if (written_size(product(i, j), known) > max_matrix_entry_size)
+      if (tree_size(product(i, j)) > max_matrix_entry_size)
         throw SourceError(at, fmt::format("the product's entries grow beyond {} operations written out: expected "
                                           "fewer products of matrices that vary (the derivation's work grows with "
                                           "their size)", max_matrix_entry_size));
