@@ -12,6 +12,7 @@
 #include "eomgen/mechanics/kinematics.hpp"
 #include "eomgen/symbolic/simplify.hpp"
 #include "definition_in_progress.hpp"
+#include "model_matrices.hpp"
 
 namespace eomgen::syntax {
 
@@ -289,10 +290,10 @@ FrameId Elaborator::build_frame(const std::string& name) {
   if (!is_call) return frames_[name] = parent;  // an alias of its parent
 
   const std::string f = def.name.plain();
-  auto expect_args = [&](std::size_t n, const char* usage) {
+  // counts what the user wrote, parent included, as the usage does
+  auto expect_args = [&](std::size_t n, const std::string& usage) {
     if (def.args.size() != n)
-      throw SourceError(def.location, fmt::format("{}: expected {}, got {} argument{}", f, usage, def.args.size(),
-                                                  def.args.size() == 1 ? "" : "s"));
+      throw SourceError(def.location, fmt::format("{} takes {} arguments, got {}", usage, n, def.args.size()));
   };
   auto col3 = [&](std::size_t i) {
     const Value v = evaluate(def.args[i], env);
@@ -304,12 +305,12 @@ FrameId Elaborator::build_frame(const std::string& name) {
   try {
     Rotation rotation = Rotation::identity();
     if (f == "rotate") {
-      expect_args(3, "rotate(PARENT, AXIS, ANGLE) with AXIS 1, 2 or 3");
+      expect_args(3, "rotate(PARENT, AXIS, ANGLE)");
       const int axis = integer(def.args[1], env, "rotate(): the axis");
       if (axis < 1 || axis > 3) throw SourceError(def.args[1]->location, fmt::format("rotate(): expected axis 1, 2 or 3, got {}", axis));
       rotation = Rotation::principal(axis, angle(2));
     } else if (f == "euler") {
-      expect_args(5, "euler(PARENT, SEQUENCE, ANGLE1, ANGLE2, ANGLE3) with SEQUENCE such as 313 or 321");
+      expect_args(5, "euler(PARENT, SEQUENCE, ANGLE1, ANGLE2, ANGLE3)");
       const int seq = integer(def.args[1], env, "euler(): the sequence");
       const EulerSequence sequence = [&] {
         try {  // reported at the sequence, not at euler(
@@ -326,20 +327,30 @@ FrameId Elaborator::build_frame(const std::string& name) {
                       "axis_angle(): the axis", "a unit axis (divide each component by the length)");
       rotation = Rotation::axis_angle(axis, angle(2));
     } else if (f == "quaternion") {
-      expect_args(3, "quaternion(PARENT, [E1, E2, E3], ETA) (scalar last)");
+      expect_args(3, "quaternion(PARENT, [E1, E2, E3], ETA)");
       const GiNaC::matrix epsilon = col3(1);
       const ex eta = angle(2);
       reject_non_unit(epsilon, GiNaC::matrix(1, 1, GiNaC::lst{eta}), start_of(*def.args[1]),
                       "quaternion(): the quaternion [E1, E2, E3, ETA]", "a unit quaternion");
       rotation = Rotation::quaternion(epsilon, eta);
     } else if (f == "rodrigues" || f == "mrp") {
-      expect_args(2, fmt::format("{}(PARENT, [P1, P2, P3])", f).c_str());
+      expect_args(2, f + "(PARENT, [P1, P2, P3])");
       rotation = f == "rodrigues" ? Rotation::rodrigues(col3(1)) : Rotation::modified_rodrigues(col3(1));
     } else {
-      expect_args(2, "dcm(PARENT, [[C11, C12, C13], [C21, C22, C23], [C31, C32, C33]])");
+      expect_args(2, "dcm(PARENT, MATRIX)");
+      // dcm(B, A) of two frames is a matrix in expressions; here the first frame is the parent
+      if (const Expr& matrix = *def.args[1]; matrix.kind == Expr::Kind::name) {
+        const std::string other = resolve(matrix.name, env);
+        if (frames_.count(other) || frame_instances_.count(other))
+          throw SourceError(matrix.location, fmt::format("dcm(): expected a 3x3 matrix after the parent frame, got the "
+                                                         "frame '{}' (the DCM of two frames is the matrix dcm(B, A): "
+                                                         "dcm(PARENT, dcm(B, A)))", other));
+      }
       const Value m = evaluate(def.args[1], env);
       if (m.kind != Value::Kind::matrix || m.matrix.rows() != 3 || m.matrix.cols() != 3)
-        throw SourceError(def.args[1]->location, "dcm(): expected a 3x3 matrix [[...], [...], [...]]");
+        throw SourceError(start_of(*def.args[1]), fmt::format("dcm(): expected a 3x3 matrix such as [[C11, C12, C13], "
+                                                              "[C21, C22, C23], [C31, C32, C33]] or dcm(B, A), got {}",
+                                                              shape_name(m)));
       reject_non_rotation(m.matrix, start_of(*def.args[1]));
       rotation = Rotation::explicit_matrix(m.matrix);
     }

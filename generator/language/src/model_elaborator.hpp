@@ -15,7 +15,7 @@
 namespace eomgen::syntax {
 
 /// The value of an expression: the language has scalars, physical vectors, columns (rotation
-/// parameters) and matrices (inertia, explicit DCMs).
+/// parameters) and matrices (inertia, DCMs, and the algebra of model_matrices.hpp).
 struct Value {
   enum class Kind { scalar, vector, column, matrix };
   Kind kind = Kind::scalar;
@@ -24,6 +24,13 @@ struct Value {
   GiNaC::matrix matrix;  // column: n x 1
   static Value of(GiNaC::ex e) { Value v; v.kind = Kind::scalar; v.scalar = std::move(e); return v; }
   static Value of(eomgen::Vector u) { Value v; v.kind = Kind::vector; v.vector = std::move(u); return v; }
+  /// A column when m has one column, else a matrix.
+  static Value of_matrix(GiNaC::matrix m) {
+    Value v;
+    v.kind = m.cols() == 1 ? Kind::column : Kind::matrix;
+    v.matrix = std::move(m);
+    return v;
+  }
 };
 
 std::string kind_name(Value::Kind kind);

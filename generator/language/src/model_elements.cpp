@@ -8,6 +8,7 @@
 #include "eomgen/symbolic/simplify.hpp"
 #include "model_arguments.hpp"
 #include "model_elaborator.hpp"
+#include "model_matrices.hpp"
 
 namespace eomgen::syntax {
 
@@ -111,7 +112,8 @@ void Elaborator::body(const Instance& in, const std::string& name, const std::st
                                                     "frame, e.g. inertia = diag(J1, J2, J3)");
   const Value J = evaluate(inertia.value, in.environment);
   if (J.kind != Value::Kind::matrix || J.matrix.rows() != 3 || J.matrix.cols() != 3)
-    throw SourceError(inertia.value->location, fmt::format("{}: 'inertia' must be a 3x3 matrix, e.g. diag(J1, J2, J3)", what));
+    throw SourceError(start_of(*inertia.value), fmt::format("{}: 'inertia' must be a 3x3 matrix, e.g. diag(J1, J2, J3), "
+                                                            "got {}", what, shape_name(J)));
   model_.system.add_rigid_body(name, mass, c, f, J.matrix);
 }
 

@@ -12,6 +12,7 @@
 #include "eomgen/mechanics/kinematics.hpp"
 #include "eomgen/mechanics/lean_products.hpp"
 #include "model_elaborator.hpp"
+#include "model_matrices.hpp"
 
 namespace eomgen::syntax {
 namespace {
@@ -20,10 +21,10 @@ using GiNaC::ex;
 
 const std::vector<std::string> scalar_functions = {"sin",  "cos",  "tan",  "asin", "acos", "atan", "atan2",
                                                    "sinh", "cosh", "tanh", "sqrt", "exp",  "log",  "abs"};
-const std::vector<std::string> other_functions = {"dot", "norm", "cross", "unit", "position", "velocity",
-                                                  "angular_velocity", "diag"};
-const std::vector<std::string> frame_functions = {"rotate", "euler", "axis_angle", "quaternion", "rodrigues",
-                                                  "mrp", "dcm"};
+const std::vector<std::string> other_functions = {"dot",      "norm",        "cross",     "unit", "position",
+                                                  "velocity", "angular_velocity", "diag", "transpose", "dcm"};
+// dcm is one only with a matrix: dcm(B, A) of two frames is a matrix (call())
+const std::vector<std::string> frame_functions = {"rotate", "euler", "axis_angle", "quaternion", "rodrigues", "mrp"};
 
 std::size_t edit_distance(const std::string& a, const std::string& b) {
   std::vector<std::size_t> row(b.size() + 1);
@@ -298,6 +299,24 @@ Value Elaborator::call(const Expr& e, const Environment& env) {
     for (unsigned i = 0; i < 3; ++i) v.matrix(i, i) = arg_scalar(i);
     return v;
   }
+  if (f == "transpose") {
+    arity(1, 1);
+    const Value m = evaluate(e.args[0], env);
+    if (!has_shape(m))
+      throw SourceError(start_of(*e.args[0]), fmt::format("argument 1 of transpose(): expected a matrix or a column, "
+                                                          "got {}", kind_name(m.kind)));
+    return transposed(m);
+  }
+  if (f == "dcm") {
+    // dcm(PARENT, MATRIX) defines a frame (build_frame); in an expression only two frames make sense
+    arity(2, 2);
+    for (std::size_t i = 0; i < 2; ++i)
+      if (e.args[i]->kind != Expr::Kind::name)
+        throw SourceError(start_of(*e.args[i]), fmt::format("argument {} of dcm(): expected a frame: dcm(B, A) is the "
+                                                            "matrix C_BA of two frames (dcm(PARENT, MATRIX) defines "
+                                                            "a frame: 'frame NAME = dcm(...)')", i + 1));
+    return Value::of_matrix(eomgen::dcm(s, frame_named(arg_name(0), env), frame_named(arg_name(1), env)));
+  }
   // in a definition, the lean forms: a position or an attitude enters every later derivation,
   // whereas elsewhere (loads, constraints, outputs of large models) simplifying would cost more
   // than it saves
@@ -343,79 +362,113 @@ Value Elaborator::call(const Expr& e, const Environment& env) {
   unknown_name(f, e.location, known, "function");
 }
 
-// a + b - c ...: the terms are collected and summed once, per frame for vectors, because adding
-// them one by one re-sorts a growing sum each time (quadratic in a long sum)
+// a + b - c ...: the terms are collected and summed once, per frame for vectors and per entry for
+// matrices, because adding them one by one re-sorts a growing sum each time (quadratic in a long sum)
 Value Elaborator::sum(const Expr& e, const Environment& env) {
   using K = Value::Kind;
   const Value first = evaluate(e.args[0], env);
+  const unsigned rows = has_shape(first) ? first.matrix.rows() : 0;
+  const unsigned cols = has_shape(first) ? first.matrix.cols() : 0;
   GiNaC::exvector scalar_terms;
   std::map<FrameId, std::array<GiNaC::exvector, 3>> vector_terms;
+  std::vector<GiNaC::exvector> entry_terms(rows * cols);  // row by row
   auto collect = [&](const Value& v, bool negated) {
-    if (v.kind == K::scalar) {
-      scalar_terms.push_back(negated ? -v.scalar : v.scalar);
-      return;
+    auto signed_term = [&](const ex& term) { return negated ? -term : term; };
+    switch (v.kind) {
+      case K::scalar: scalar_terms.push_back(signed_term(v.scalar)); return;
+      case K::vector:
+        for (const auto& [frame, components] : v.vector.terms())
+          for (unsigned i = 0; i < 3; ++i) vector_terms[frame][i].push_back(signed_term(components(i, 0)));
+        return;
+      case K::column:
+      case K::matrix:
+        for (unsigned i = 0; i < rows; ++i)
+          for (unsigned j = 0; j < cols; ++j) entry_terms[i * cols + j].push_back(signed_term(v.matrix(i, j)));
+        return;
     }
-    for (const auto& [frame, components] : v.vector.terms())
-      for (unsigned i = 0; i < 3; ++i)
-        vector_terms[frame][i].push_back(negated ? -components(i, 0) : components(i, 0));
   };
-  if (first.kind == K::scalar || first.kind == K::vector) collect(first, false);
+  collect(first, false);
   for (std::size_t k = 1; k < e.args.size(); ++k) {
     const Expr::Operation& op = e.operations[k - 1];
     const Value v = evaluate(e.args[k], env);
-    if (v.kind != first.kind || (v.kind != K::scalar && v.kind != K::vector))
-      throw SourceError(op.location, fmt::format("cannot {} {} and {}", op.inverse ? "subtract" : "add",
-                                                 kind_name(first.kind), kind_name(v.kind)));
+    const char* operation = op.inverse ? "subtract" : "add";
+    if (v.kind != first.kind && !(has_shape(v) && has_shape(first)))
+      throw SourceError(op.location, fmt::format("cannot {} {} and {}", operation, shape_name(first), shape_name(v)));
+    if (has_shape(v) && (v.matrix.rows() != rows || v.matrix.cols() != cols))
+      throw SourceError(op.location, fmt::format("cannot {} {} and {}: expected the same shape, {}x{}", operation,
+                                                 shape_name(first), shape_name(v), rows, cols));
     collect(v, op.inverse);
   }
-  if (first.kind == K::scalar) return Value::of(ex(GiNaC::add(scalar_terms)));
-  eomgen::Vector total;
-  for (const auto& [frame, components] : vector_terms)
-    total += eomgen::Vector(frame, GiNaC::add(components[0]), GiNaC::add(components[1]), GiNaC::add(components[2]));
-  return Value::of(total);
+  switch (first.kind) {
+    case K::scalar: return Value::of(ex(GiNaC::add(scalar_terms)));
+    case K::vector: {
+      eomgen::Vector total;
+      for (const auto& [frame, c] : vector_terms)
+        total += eomgen::Vector(frame, GiNaC::add(c[0]), GiNaC::add(c[1]), GiNaC::add(c[2]));
+      return Value::of(total);
+    }
+    case K::column:
+    case K::matrix: {
+      GiNaC::matrix total(rows, cols);
+      for (unsigned i = 0; i < rows; ++i)
+        for (unsigned j = 0; j < cols; ++j) total(i, j) = GiNaC::add(entry_terms[i * cols + j]);
+      return Value::of_matrix(total);
+    }
+  }
+  EOMGEN_UNREACHABLE("sum: a Value::Kind outside its enumerators");
 }
 
-// a * b / c ...: scalar factors collected and multiplied once; at most one vector among them
+// a * b / c ...: scalar factors collected and multiplied once, and either at most one vector or the
+// columns and matrices multiplied in their order (their products do not commute)
 Value Elaborator::product(const Expr& e, const Environment& env) {
   using K = Value::Kind;
-  const Value first = evaluate(e.args[0], env);
   GiNaC::exvector factors;
   std::optional<eomgen::Vector> vector_factor;
-  if (first.kind == K::scalar) factors.push_back(first.scalar);
-  if (first.kind == K::vector) vector_factor = first.vector;
-  for (std::size_t k = 1; k < e.args.size(); ++k) {
-    const Expr::Operation& op = e.operations[k - 1];
+  std::optional<Value> matrix_factor;  // the product of the columns and matrices so far
+  for (std::size_t k = 0; k < e.args.size(); ++k) {
     const Value v = evaluate(e.args[k], env);
-    const K so_far = vector_factor ? K::vector : first.kind;
-    if (op.inverse) {
-      if (v.kind != K::scalar) throw SourceError(op.location, fmt::format("cannot divide by {}", kind_name(v.kind)));
-      if (v.scalar.is_zero()) throw SourceError(op.location, "division by zero");
-      if (so_far != K::scalar && so_far != K::vector)
-        throw SourceError(op.location, fmt::format("cannot divide {} and {}", kind_name(so_far), kind_name(v.kind)));
+    const SourceLocation& at = k == 0 ? e.location : e.operations[k - 1].location;
+    if (k > 0 && e.operations[k - 1].inverse) {
+      if (v.kind != K::scalar) throw SourceError(at, fmt::format("cannot divide by {}", shape_name(v)));
+      if (v.scalar.is_zero()) throw SourceError(at, "division by zero");
       factors.push_back(GiNaC::pow(v.scalar, -1));
       continue;
     }
-    if (so_far == K::vector && v.kind == K::vector)
-      throw SourceError(op.location, "cannot multiply two vectors: use dot(u, v) or cross(u, v)");
-    if ((so_far != K::scalar && so_far != K::vector) || (v.kind != K::scalar && v.kind != K::vector))
-      throw SourceError(op.location, fmt::format("cannot multiply {} and {}", kind_name(so_far), kind_name(v.kind)));
-    if (v.kind == K::scalar) factors.push_back(v.scalar);
-    else vector_factor = v.vector;
+    switch (v.kind) {
+      case K::scalar: factors.push_back(v.scalar); break;
+      case K::vector:
+        if (vector_factor) throw SourceError(at, "cannot multiply two vectors: use dot(u, v) or cross(u, v)");
+        if (matrix_factor)
+          throw SourceError(at, fmt::format("cannot multiply {} and a vector: expected a scalar, a column or a "
+                                            "matrix", shape_name(*matrix_factor)));
+        vector_factor = v.vector;
+        break;
+      case K::column:
+      case K::matrix:
+        if (vector_factor)
+          throw SourceError(at, fmt::format("cannot multiply a vector and {}: expected a scalar", shape_name(v)));
+        if (!matrix_factor) {
+          matrix_factor = v;
+          break;
+        }
+        if (Value p = matrix_product(*matrix_factor, v, at); p.kind == K::scalar) {
+          factors.push_back(p.scalar);  // a row times a column
+          matrix_factor.reset();
+        } else {
+          matrix_factor = std::move(p);
+        }
+        break;
+    }
   }
   const ex scale = GiNaC::mul(factors);
   check_exponents(scale, e.location);
   if (vector_factor) return Value::of(scale * *vector_factor);
+  if (matrix_factor) return Value::of_matrix(matrix_factor->matrix.mul_scalar(scale));
   return Value::of(scale);
 }
 
 Value Elaborator::evaluate(const ExprPtr& ptr, const Environment& env) {
   const Expr& e = *ptr;
-  auto binary = [&] {
-    return std::pair<Value, Value>{evaluate(e.args[0], env), evaluate(e.args[1], env)};
-  };
-  auto mismatch = [&](const char* operation, const Value& a, const Value& b) -> SourceError {
-    return SourceError(e.location, fmt::format("cannot {} {} and {}", operation, kind_name(a.kind), kind_name(b.kind)));
-  };
   using K = Value::Kind;
   switch (e.kind) {
     case Expr::Kind::number:
@@ -433,15 +486,21 @@ Value Elaborator::evaluate(const ExprPtr& ptr, const Environment& env) {
       Value v = evaluate(e.args[0], env);
       if (v.kind == K::scalar) return Value::of(-v.scalar);
       if (v.kind == K::vector) return Value::of(-v.vector);
-      throw SourceError(e.location, fmt::format("cannot negate {}", kind_name(v.kind)));
+      return Value::of_matrix(v.matrix.mul_scalar(-1));
     }
     case Expr::Kind::sum:
       return sum(e, env);
     case Expr::Kind::product:
       return product(e, env);
     case Expr::Kind::power: {
-      auto [a, b] = binary();
-      if (a.kind != K::scalar || b.kind != K::scalar) throw mismatch("raise to a power", a, b);
+      const Value a = evaluate(e.args[0], env);
+      // M^T: a matrix has no other exponent, so T here is the transpose whatever else it names
+      const Expr& exponent = *e.args[1];
+      if (has_shape(a) && exponent.kind == Expr::Kind::name && exponent.name.is_plain() && exponent.name.plain() == "T")
+        return transposed(a);
+      if (a.kind != K::scalar) throw non_scalar_power(a, nullptr, e.location);
+      const Value b = evaluate(e.args[1], env);
+      if (b.kind != K::scalar) throw non_scalar_power(a, &b, e.location);
       // GiNaC evaluates 0^-k eagerly and throws from inside pow(), leaking the half-built
       // power: reject it before GiNaC sees it
       if (a.scalar.is_zero() && GiNaC::is_a<GiNaC::numeric>(b.scalar) &&
