@@ -28,7 +28,7 @@ const std::string rod_pendulum =
     "frame b = rotate(a, 3, theta)\n"
     "point c = w + l/2*b.1\n"
     "gravity = -g*a.2\n"
-    "body rod(mass = m, centre = c, frame = b, inertia = diag(0, m*l^2/12, m*l^2/12))\n";
+    "body rod(mass = m, centre = c, frame = b, inertia = m*l^2/12*diag(0, 1, 1))\n";  // a factor times a matrix
 
 TEST(SlenderBodies, ARodHingedAtItsEndHasTheTextbookMomentOfInertia) {
   const NumericEquations x = equations_at(rod_pendulum, {{"theta", 0.4}, {"theta_dot", 1.1}});
