@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "eomgen/mechanics/dimension.hpp"
 #include "eomgen/mechanics/mechanical_system.hpp"
 #include "eomgen/base/source_location.hpp"
 
@@ -33,6 +34,9 @@ struct Model {
   /// order of the `independent` statement (nq - nc of them); empty when the model declares none
   /// and the runtime takes the null space of Xi from a QR decomposition instead.
   std::vector<std::size_t> independent_speeds;
+  /// The dimension of every symbol (time, coordinates, rates, accelerations, parameters, inputs)
+  /// where the model gives units; empty where it gives none, and nothing is checked.
+  DimensionMap dimensions;
   /// Integer/real constants of the file after overrides (e.g. n of a chain).
   std::map<std::string, double> constants;
 };
