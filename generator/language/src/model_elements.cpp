@@ -49,7 +49,7 @@ void Elaborator::add_element(const Instance& in, const std::string& name, const 
       if (!sys.gravity().is_zero()) throw SourceError(s.location, "gravity is given twice");
       sys.set_gravity(vector(s.value, in.environment, "gravity"));
       units_.require(sys.gravity(), UnitChecks::expect(dimension::m() / (dimension::s() * dimension::s()),
-                                                       start_of(*s.value), what, "gravity (an acceleration)"));
+                                                       start_of(*s.value), "gravity", "gravity (an acceleration)"));
       break;
     case Kind::force: {
       const Arguments args(*this, in, what, {"at", "force"});
@@ -258,7 +258,8 @@ void Elaborator::roll(const Instance& in) {
   const RigidBody& body = rigid_body(args, env);
   const PointId contact = point_named(args.name_of(args.require("contact", "the contact point"), "a point"), env);
   if (const Argument* normal = args.find("normal")) {
-    units_.require(vector(normal->value, env, what), args.expect("normal", dimension::none(), "a normal (a direction)"));
+    if (units_.active())
+      units_.require(vector(normal->value, env, what), args.expect("normal", dimension::none(), "a normal (a direction)"));
     add_rolling_rows(name, no_slip_rows(body, contact, plane_normal(*normal, env, what)), s.name.location);
   } else {
     const GiNaC::matrix v = eomgen::resolve(sys, material_velocity(body, contact), sys.inertial_frame());

@@ -140,6 +140,9 @@ std::optional<Dimension> DimensionAnalysis::measure(const ex& e) {
         common = d;
         first = term;
       } else if (*d != *common) {
+        // in the order of their text: GiNaC orders terms by hashes, which differ from process to process
+        if (term_text(term) < term_text(first))
+          throw DimensionError({DimensionMismatch::Kind::sum, term, first, *d, *common});
         throw DimensionError({DimensionMismatch::Kind::sum, first, term, *common, *d});
       }
     }
