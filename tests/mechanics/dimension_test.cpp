@@ -77,8 +77,8 @@ TEST(DimensionAnalysis, TermsOfASumThatDisagreeAreNamedWithTheirDimensions) {
   GiNaC::realsymbol l("l"), f("f");
   DimensionAnalysis analysis({{l, m}, {f, newton}});
   EXPECT_EQ(mismatch_of(analysis, l + f),
-            "the terms 'l' and 'f' have different dimensions, m and kg m s^-2 (N)");
-  EXPECT_EQ(mismatch_of(analysis, l + 1), "the terms 'l' and '1' have different dimensions, m and dimensionless");
+            "the terms 'f' and 'l' have different dimensions, kg m s^-2 (N) and m");
+  EXPECT_EQ(mismatch_of(analysis, l + 1), "the terms '1' and 'l' have different dimensions, dimensionless and m");
 }
 
 TEST(DimensionAnalysis, FunctionsOfANumberNeedADimensionlessArgument) {
