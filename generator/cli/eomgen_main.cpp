@@ -30,6 +30,7 @@
 
 #include "eomgen/codegen/emit_model.hpp"
 #include "eomgen/report/equation_printer.hpp"
+#include "eomgen/derivation/dimension_check.hpp"
 #include "eomgen/derivation/equations_of_motion.hpp"
 #include "eomgen/base/error.hpp"
 #include "eomgen/derivation/linearization.hpp"
@@ -65,6 +66,7 @@ void run_check(const Options& o) {
   const eomgen::Variables& v = s.variables();
   // deriving is cheap (linear in the model) and catches what only the derivation can see
   const eomgen::EquationsOfMotion eom = eomgen::derive_equations(s);
+  eomgen::check_dimensions(eom, v, model.dimensions);
   std::vector<std::string> coordinates, holonomic, nonholonomic, bodies, particles, inputs, outputs;
   for (const auto& c : v.coordinates()) coordinates.push_back(c.name);
   for (const auto& c : s.constraints())
@@ -107,6 +109,7 @@ void run_check(const Options& o) {
   std::cout << fmt::format("Inputs ({}): {}\nOutputs ({}): {}\n", inputs.size(), join(inputs), outputs.size(),
                            join(outputs));
   std::cout << fmt::format("Derivation: ok ({} shared intermediates)\n", eom.subexpressions.size());
+  if (!model.dimensions.empty()) std::cout << "Units: consistent (the model, then the derived equations)\n";
 }
 
 void run_derive(const Options& o) {

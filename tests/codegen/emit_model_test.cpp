@@ -20,9 +20,9 @@ namespace {
 
 const char* const pendulum_on_cart = R"(
 model cart "cart with a pendulum; tricky \ description */ ??="
-parameter int = 2 [kg]
+parameter int = 2
 parameter _hidden = 1
-parameter l = 0.5 [m]
+parameter l = 0.5
 parameter g = 9.81
 coordinate x, theta
 input push

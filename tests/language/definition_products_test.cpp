@@ -26,8 +26,8 @@ using testing::expect_model_error;
 using testing::matrices_near;
 
 const std::string declarations =
-    "parameter l = 0.7 [m]\n"
-    "parameter g = 9.81 [m/s^2]\n"
+    "parameter l = 0.7\n"
+    "parameter g = 9.81\n"
     "coordinate psi, theta, q3\n"
     "gravity = -g*a.3\n"
     "particle bead(mass = 1.5, at = p)\n"
@@ -78,7 +78,7 @@ TEST(DefinitionProducts, DefinitionsThatNameLaterOnesGiveTheSameEquations) {
 TEST(DefinitionProducts, APositionInsideAFrameDefinitionIsBuiltFirst) {
   // the angle of c is the a.1 coordinate of p, which is defined after c from b
   const std::string text =
-      "parameter l = 0.7 [m]\n"
+      "parameter l = 0.7\n"
       "coordinate psi\n"
       "frame c = rotate(a, 3, dot(position(p), a.1))\n"
       "frame b = rotate(a, 3, psi)\n"
@@ -100,8 +100,8 @@ TEST(DefinitionProducts, ACycleThroughADotProductIsReportedAsACycleAtTheDefiniti
 }
 
 const std::string pendulum =
-    "parameter l = 1 [m]\n"
-    "parameter s = 0 [m]\n"
+    "parameter l = 1\n"
+    "parameter s = 0\n"
     "coordinate theta\n"
     "frame b = rotate(a, 3, theta)\n"
     "particle bob(mass = 1, at = p)\n";

@@ -85,7 +85,7 @@ TEST(DerivedParameters, MayBeDefinedFromDerivedOnesInAnyOrder) {
 }
 
 TEST(DerivedParameters, AParameterWhoseValueIsAConstantExpressionStaysAParameter) {
-  const Model model = parse_model("const n = 4\nparameter k = 2*pi/n\n" + pendulum, "h.eom");
+  const Model model = parse_model("const n = 4\nparameter k = 2*pi/n [rad]\n" + pendulum, "h.eom");
   EXPECT_EQ(parameter_names(model), (std::vector<std::string>{"k", "m", "g", "L"}));
   EXPECT_DOUBLE_EQ(model.system.variables().parameters()[0].default_value, M_PI / 2);
 }
@@ -126,7 +126,7 @@ TEST(DerivedParameters, ADefinitionFromACoordinateARateAnInputTimeOrAPointIsRefu
                                "parameters, got the ";
   EXPECT_EQ(error_of("parameter k = 2*theta\n" + pendulum), "h.eom:1:17" + expected + "coordinate 'theta'");
   EXPECT_EQ(error_of(pendulum + "parameter k = 2*theta_dot\n"), "h.eom:10:17" + expected + "rate 'theta_dot'");
-  EXPECT_EQ(error_of("input u\nparameter k = u\n" + pendulum), "h.eom:2:15" + expected + "input 'u'");
+  EXPECT_EQ(error_of("input u [N]\nparameter k = u\n" + pendulum), "h.eom:2:15" + expected + "input 'u'");
   EXPECT_EQ(error_of("parameter k = L*t\n" + pendulum), "h.eom:1:17" + expected + "time 't'");
   EXPECT_EQ(error_of("parameter k = norm(position(p))\n" + pendulum), "h.eom:1:29" + expected + "point 'p'");
   EXPECT_EQ(error_of("parameter k = dot(b.1, a.1)\n" + pendulum), "h.eom:1:19" + expected + "frame 'b'");
@@ -136,7 +136,17 @@ TEST(DerivedParameters, ADefinitionWithoutAFiniteRealValueAtTheDefaultsIsRefused
   const std::string expected = ": the value at the other parameters' default values is not a finite real number: "
                                "expected a definition that has one";
   EXPECT_EQ(error_of("parameter k = sqrt(1 - L)\n" + pendulum), "h.eom:1:15: error: parameter 'k'" + expected);
-  EXPECT_EQ(error_of("parameter z = 0\nparameter k = L/z\n" + pendulum), "h.eom:2:15: error: parameter 'k'" + expected);
+  EXPECT_EQ(error_of("parameter z = 0 [m]\nparameter k = L/z\n" + pendulum), "h.eom:2:15: error: parameter 'k'" + expected);
+}
+
+TEST(DerivedParameters, InAModelWithUnitsTheirDefinitionHasTheirUnitOrGivesThemOne) {
+  EXPECT_EQ(error_of("parameter k = 0.45*L [kg]\n" + pendulum),
+            "h.eom:1:15: error: parameter 'k': the term '9/20*L' has dimension m, expected kg for its unit [kg]");
+  // without a unit, the definition's: a length, which is no mass
+  EXPECT_EQ(error_of("parameter k = 0.45*L\n" + pendulum + "particle second(mass = k, at = p)\n"),
+            "h.eom:11:24: error: particle 'second': the term '9/20*L' has dimension m, expected kg for a mass");
+  EXPECT_NO_THROW(parse_model("parameter k = 0.45*L\n" + pendulum + "point q = w + k*b.2\n"
+                              "particle second(mass = m, at = q)\n", "h.eom"));
 }
 
 TEST(DerivedParameters, DuplicateNamesAreStillFoundInTheFilesOrder) {

@@ -82,7 +82,7 @@ Eigen::Matrix3d C3(double x) {
 
 // A rigid body turning about a fixed point, in inertia given by `inertia` in frame `body_frame`.
 std::string top(const std::string& definitions, const std::string& body_frame, const std::string& inertia) {
-  return "parameter l = 0.8 [m]\n"
+  return "parameter l = 0.8\n"
          "parameter alpha = 0.4\n"
          "parameter J1 = 1\nparameter J2 = 2\nparameter J3 = 3\n"
          "coordinate q1, q2, q3\n"

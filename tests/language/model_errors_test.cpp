@@ -21,7 +21,7 @@ using ::testing::Matcher;
 
 // A valid planar pendulum on lines 1-5; the cases below append their statements from line 6.
 const std::string pendulum =
-    "parameter l = 1 [m]\n"
+    "parameter l = 1\n"
     "coordinate theta\n"
     "frame b = rotate(a, 3, theta)\n"
     "point p = w + l*b.1\n"
@@ -30,7 +30,7 @@ const std::string pendulum =
 // Two free coordinates x, y of a point mass in the plane, on lines 1-4; cases append from line 5.
 const std::string planar_mass =
     "coordinate x, y\n"
-    "parameter m0 = 1 [kg]\n"
+    "parameter m0 = 1\n"
     "point p = w + x*a.1 + y*a.2\n"
     "particle m(mass = m0, at = p)\n";
 

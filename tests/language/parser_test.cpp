@@ -62,10 +62,10 @@ TEST(Parser, ModelNameDescriptionAndParametersWithUnits) {
   const Model m = parse(R"(model demo "A demo"
 parameter g = 9.81 [m/s^2]
 parameter mass = 2 [ kg ]
-parameter c = 0.5
+parameter c = 0.5 [m]
 coordinate q
 frame b = rotate(a, 3, q)
-point p = w + b.1
+point p = w + c*b.1
 particle bob(mass = mass, at = p)
 )");
   EXPECT_EQ(m.name, "demo");
@@ -76,7 +76,7 @@ particle bob(mass = mass, at = p)
   EXPECT_EQ(parameters[0].unit, "m/s^2");
   EXPECT_DOUBLE_EQ(parameters[0].default_value, 9.81);
   EXPECT_EQ(parameters[1].unit, "kg");
-  EXPECT_EQ(parameters[2].unit, "");
+  EXPECT_EQ(parameters[2].unit, "m");
   EXPECT_DOUBLE_EQ(parameters[2].default_value, 0.5);
   EXPECT_EQ(parse_model("coordinate q\npoint p = w + q*a.1\nparticle m(mass = 1, at = p)\n", "dir/slider.eom").name,
             "slider");
@@ -85,7 +85,7 @@ particle bob(mass = mass, at = p)
 TEST(Parser, ParameterDefaultsFromConstExpressions) {
   const Model m = parse(R"(const n = 4
 const half = 1/2
-parameter l = 2/n + half [m]
+parameter l = 2/n + half
 parameter s = sqrt(2)*pi
 parameter k = n^2 - 1
 coordinate q

@@ -1,11 +1,13 @@
 #include "eomgen/derivation/model_equations.hpp"
 
+#include "eomgen/derivation/dimension_check.hpp"
 #include "eomgen/symbolic/tree_size.hpp"
 
 namespace eomgen {
 
 ModelEquations derive_equations(const Model& model) {
   EquationsOfMotion eom = derive_equations(model.system);
+  check_dimensions(eom, model.system.variables(), model.dimensions);
   // outputs of long chains (positions through compounded rotations) are bound to shared
   // intermediates so printing and evaluation stay linear; small ones stay as written
   const double large = 20000;

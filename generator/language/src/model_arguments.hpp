@@ -61,6 +61,11 @@ class Elaborator::Arguments {
   eomgen::Vector vector(const char* key) const {
     return elaborator_.vector(require(key, "a vector").value, env_, what_);
   }
+  // what the unit check asks of the argument `key`, which the statement has
+  UnitChecks::Obligation expect(const char* key, const Dimension& d, const char* role,
+                                const char* preferred = "") const {
+    return UnitChecks::expect(d, start_of(*find(key)->value), what_, role, preferred);
+  }
 
  private:
   std::string list() const {

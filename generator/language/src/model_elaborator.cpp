@@ -203,6 +203,7 @@ void Elaborator::reject_hiding_loop_variables() const {
 
 void Elaborator::declarations() {
   Variables& vars = model_.system.variables();
+  for (const Instance& in : instances_) units_.note(*in.statement);
   // every name first: a derived parameter may use a parameter defined later in the file, and
   // must be told so when it names a coordinate or an input declared later
   for (std::size_t i = 0; i < instances_.size(); ++i) {
@@ -227,14 +228,16 @@ void Elaborator::declarations() {
     if (s.kind == Kind::parameter) {
       parameter_value(resolve(s.name, in.environment));
     } else if (s.kind == Kind::coordinate || s.kind == Kind::input) {
-      for (const Name& n : s.names) {
+      for (std::size_t i = 0; i < s.names.size(); ++i) {
+        const Name& n = s.names[i];
+        const std::optional<Unit>& unit = s.units[i];
         const std::string name = resolve(n, in.environment);
         try {
           if (s.kind == Kind::coordinate) {
-            vars.add_coordinate(name);
+            units_.coordinate(vars.add_coordinate(name, unit ? unit->text : ""), unit);
             model_.coordinate_locations.push_back(n.location);
           } else {
-            vars.add_input(name);
+            units_.input(vars.add_input(name, unit ? unit->text : ""), unit, n.location);
           }
         } catch (const ModelError& e) {
           throw SourceError(n.location, e.what());
@@ -295,13 +298,23 @@ FrameId Elaborator::build_frame(const std::string& name) {
     if (def.args.size() != n)
       throw SourceError(def.location, fmt::format("{} takes {} arguments, got {}", usage, n, def.args.size()));
   };
+  // angles, axes, rotation parameters and direction cosines are numbers
+  auto dimensionless = [&](std::size_t i) {
+    return UnitChecks::expect(dimension::none(), start_of(*def.args[i]), fmt::format("frame '{}'", name),
+                              "an angle or a parameter of a rotation", "", UnitChecks::Evidence::rotation);
+  };
   auto col3 = [&](std::size_t i) {
     const Value v = evaluate(def.args[i], env);
     if (v.kind != Value::Kind::column || v.matrix.rows() != 3)
       throw SourceError(def.args[i]->location, fmt::format("{}(): expected a column of three scalars [x, y, z]", f));
+    units_.require(v.matrix, dimensionless(i));
     return v.matrix;
   };
-  auto angle = [&](std::size_t i) { return scalar(def.args[i], env, fmt::format("argument {} of {}()", i + 1, f)); };
+  auto angle = [&](std::size_t i) {
+    const ex value = scalar(def.args[i], env, fmt::format("argument {} of {}()", i + 1, f));
+    units_.require(value, dimensionless(i));
+    return value;
+  };
   try {
     Rotation rotation = Rotation::identity();
     if (f == "rotate") {
@@ -352,6 +365,7 @@ FrameId Elaborator::build_frame(const std::string& name) {
                                                               "[C21, C22, C23], [C31, C32, C33]] or dcm(B, A), got {}",
                                                               shape_name(m)));
       reject_non_rotation(m.matrix, start_of(*def.args[1]));
+      units_.require(m.matrix, dimensionless(1));
       rotation = Rotation::explicit_matrix(m.matrix);
     }
     return frames_[name] = model_.system.add_frame(name, parent, rotation);
@@ -421,6 +435,8 @@ PointId Elaborator::build_point(const std::string& name) {
   for (const Expr* e = s.value.get(); e != parent_expr; e = e->args[0].get())
     for (std::size_t k = 1; k < e->args.size(); ++k) {
       const eomgen::Vector term = vector(e->args[k], env, fmt::format("point '{}'", name));
+      units_.require(term, UnitChecks::expect(dimension::m(), start_of(*e->args[k]), fmt::format("point '{}'", name),
+                                              "a position", "", UnitChecks::Evidence::position));
       offset += e->operations[k - 1].inverse ? -term : term;
     }
   try {
@@ -452,6 +468,7 @@ Model Elaborator::run(const std::vector<Statement>& statements) {
     if (in.statement->kind != Kind::body && pass_of(in.statement->kind) == Pass::elements) element(in);
   reject_hiding_loop_variables();  // and element names, now declared
   checks();
+  model_.dimensions = units_.finish(model_.system.variables(), model_.coordinate_locations);
   return std::move(model_);
 }
 

@@ -11,6 +11,7 @@
 
 #include "eomgen/mechanics/model.hpp"
 #include "model_syntax.hpp"
+#include "model_units.hpp"
 
 namespace eomgen::syntax {
 
@@ -154,6 +155,7 @@ class Elaborator {
   bool saw_statement_ = false;
   std::size_t expanded_tokens_ = 0;  // expand()
   std::map<std::string, SourceLocation> loop_variables_;  // each name at its first loop
+  UnitChecks units_;  // model_units.cpp: what the model's expressions must measure
 };
 
 }  // namespace eomgen::syntax

@@ -40,17 +40,23 @@ void Elaborator::add_element(const Instance& in, const std::string& name, const 
   switch (s.kind) {
     case Kind::particle: {
       const Arguments args(*this, in, what, {"mass", "at"});
-      sys.add_particle(name, args.scalar("mass", "the particle's mass"), args.point("at"));
+      const ex mass = args.scalar("mass", "the particle's mass");
+      units_.require(mass, args.expect("mass", dimension::kg(), "a mass"));
+      sys.add_particle(name, mass, args.point("at"));
       break;
     }
     case Kind::body: body(in, name, what); break;
     case Kind::gravity:
       if (!sys.gravity().is_zero()) throw SourceError(s.location, "gravity is given twice");
       sys.set_gravity(vector(s.value, in.environment, "gravity"));
+      units_.require(sys.gravity(), UnitChecks::expect(dimension::m() / (dimension::s() * dimension::s()),
+                                                       start_of(*s.value), "gravity", "gravity (an acceleration)"));
       break;
     case Kind::force: {
       const Arguments args(*this, in, what, {"at", "force"});
-      sys.add_force(args.point("at"), args.vector("force"));
+      const eomgen::Vector force = args.vector("force");
+      units_.require(force, args.expect("force", dimension::newton(), "a force"));
+      sys.add_force(args.point("at"), force);
       break;
     }
     case Kind::moment: {
@@ -67,23 +73,38 @@ void Elaborator::add_element(const Instance& in, const std::string& name, const 
                                       "the frame of a body{}", what, sys.frame(f).name,
                                       bodies.empty() ? " (the model has none)" : ": " + frames));
       }
-      sys.add_moment(f, args.vector("moment"));
+      const eomgen::Vector moment = args.vector("moment");
+      units_.require(moment, args.expect("moment", dimension::joule(), "a moment", "N m"));
+      sys.add_moment(f, moment);
       break;
     }
     case Kind::spring: {
       const Arguments args(*this, in, what, {"from", "to", "stiffness", "length"});
-      sys.add_spring(name, args.point("from"), args.point("to"), args.scalar("stiffness", "k"),
-                     args.optional_scalar("length"));
+      const ex stiffness = args.scalar("stiffness", "k"), length = args.optional_scalar("length");
+      units_.require(stiffness, args.expect("stiffness", dimension::newton() / dimension::m(), "a spring's stiffness"));
+      if (args.find("length")) units_.require(length, args.expect("length", dimension::m(), "a spring's length"));
+      sys.add_spring(name, args.point("from"), args.point("to"), stiffness, length);
       break;
     }
     case Kind::damper: damper(in, name, what); break;
     case Kind::torsion: {
       const Arguments args(*this, in, what, {"angle", "stiffness", "rest"});
-      sys.add_torsional_spring(name, args.scalar("angle", "an angle expression"), args.scalar("stiffness", "k"),
-                               args.optional_scalar("rest"));
+      const ex angle = args.scalar("angle", "an angle expression"), stiffness = args.scalar("stiffness", "k");
+      const ex rest = args.optional_scalar("rest");
+      units_.require_consistent(angle, args.expect("angle", dimension::none(), "").at, what);
+      units_.require(stiffness, args.expect("stiffness", dimension::joule(), "a torsion spring's stiffness (J per "
+                                            "the angle's unit squared)", "J").per(angle, -2));
+      if (args.find("rest")) units_.require(rest, args.expect("rest", dimension::none(), "a rest angle (the angle's "
+                                                              "unit)").per(angle, 1));
+      sys.add_torsional_spring(name, angle, stiffness, rest);
       break;
     }
-    case Kind::potential: sys.add_potential(name, scalar(s.value, in.environment, what)); break;
+    case Kind::potential: {
+      const ex potential = scalar(s.value, in.environment, what);
+      units_.require(potential, UnitChecks::expect(dimension::joule(), start_of(*s.value), what, "an energy", "J"));
+      sys.add_potential(name, potential);
+      break;
+    }
     case Kind::generalized_force: generalized_force(in, what); break;
     case Kind::constraint: constraint(in, name, what); break;
     case Kind::roll: roll(in); break;
@@ -114,6 +135,8 @@ void Elaborator::body(const Instance& in, const std::string& name, const std::st
   if (J.kind != Value::Kind::matrix || J.matrix.rows() != 3 || J.matrix.cols() != 3)
     throw SourceError(start_of(*inertia.value), fmt::format("{}: 'inertia' must be a 3x3 matrix, e.g. diag(J1, J2, J3), "
                                                             "got {}", what, shape_name(J)));
+  units_.require(mass, args.expect("mass", dimension::kg(), "a mass"));
+  units_.require(J.matrix, args.expect("inertia", dimension::kg() * dimension::m() * dimension::m(), "an inertia"));
   model_.system.add_rigid_body(name, mass, c, f, J.matrix);
 }
 
@@ -124,8 +147,14 @@ void Elaborator::damper(const Instance& in, const std::string& name, const std::
     if (args.find("from") || args.find("to"))
       throw SourceError(in.statement->location,
                         fmt::format("{}: give either 'on' (a coordinate expression) or 'from' and 'to' (points)", what));
-    model_.system.add_coordinate_damper(name, scalar(on->value, in.environment, what), c);
+    const ex e = scalar(on->value, in.environment, what);
+    // the power c (de/dt)^2 is W
+    units_.require_consistent(e, start_of(*on->value), what);
+    units_.require(c, args.expect("damping", dimension::joule() * dimension::s(), "a damping (W per the squared rate "
+                                  "of 'on')").per(e, -2));
+    model_.system.add_coordinate_damper(name, e, c);
   } else {
+    units_.require(c, args.expect("damping", dimension::newton() * dimension::s() / dimension::m(), "a damping", "N s/m"));
     model_.system.add_damper(name, args.point("from"), args.point("to"), c);
   }
 }
@@ -139,13 +168,17 @@ void Elaborator::generalized_force(const Instance& in, const std::string& what) 
   if (!symbol || sys.variables().kind_of(*symbol) != SymbolKind::coordinate)
     throw SourceError(on.value->location, fmt::format("{}: '{}' is not a coordinate", what, coordinate));
   used_coordinates_.insert(coordinate);
-  sys.add_generalized_force(*sys.variables().coordinate_index(*symbol), args.scalar("value", "the force"));
+  const ex value = args.scalar("value", "the force");
+  units_.require(value, args.expect("value", dimension::joule(), "a generalized force (J per the unit of 'on')")
+                            .per(*symbol, -1));
+  sys.add_generalized_force(*sys.variables().coordinate_index(*symbol), value);
 }
 
 void Elaborator::constraint(const Instance& in, const std::string& name, const std::string& what) {
   const Statement& s = *in.statement;
   MechanicalSystem& sys = model_.system;
   const ex expression = scalar(s.value, in.environment, what) - scalar(s.value2, in.environment, what);
+  units_.require_consistent(expression, start_of(*s.value), what);
   bool has_rate = false;
   for (const auto& c : sys.variables().coordinates()) has_rate = has_rate || expression.has(c.qd);
   if (has_rate) {
@@ -238,6 +271,8 @@ void Elaborator::roll(const Instance& in) {
   const RigidBody& body = rigid_body(args, env);
   const PointId contact = point_named(args.name_of(args.require("contact", "the contact point"), "a point"), env);
   if (const Argument* normal = args.find("normal")) {
+    if (units_.active())
+      units_.require(vector(normal->value, env, what), args.expect("normal", dimension::none(), "a normal (a direction)"));
     add_rolling_rows(name, no_slip_rows(body, contact, plane_normal(*normal, env, what)), s.name.location);
   } else {
     const GiNaC::matrix v = eomgen::resolve(sys, material_velocity(body, contact), sys.inertial_frame());
@@ -265,7 +300,10 @@ void Elaborator::output(const Instance& in) {
   } else {
     throw SourceError(s.value->location, fmt::format("output '{}': expected a scalar or a vector, got {}", name, kind_name(v.kind)));
   }
-  for (const ex& c : out.components) model_.system.variables().require_known_symbols(c, fmt::format("output '{}'", name));
+  for (const ex& c : out.components) {
+    model_.system.variables().require_known_symbols(c, fmt::format("output '{}'", name));
+    units_.require_consistent(c, start_of(*s.value), fmt::format("output '{}'", name));
+  }
   model_.outputs.push_back(std::move(out));
 }
 

@@ -30,7 +30,9 @@ ex Elaborator::parameter_value(const std::string& name) {
   Variables& vars = model_.system.variables();
   if (GiNaC::is_a<GiNaC::numeric>(value) || GiNaC::is_a<GiNaC::numeric>(value.evalf())) {
     const double number = constant(s.value, in.environment, what).to_double();
-    return parameter_values_[name] = vars.add_parameter(name, number, s.text).symbol;
+    const Parameter p = vars.add_parameter(name, number, s.unit ? s.unit->text : "");
+    units_.parameter(p, s.unit, s.name.location);
+    return parameter_values_[name] = p.symbol;
   }
   // every name in it was a number, a const or a parameter (name_value refuses the others), so
   // it is a function of the system's parameters: its value at their defaults is its default
@@ -39,7 +41,10 @@ ex Elaborator::parameter_value(const std::string& name) {
     throw SourceError(start_of(*s.value), fmt::format("{}: the value at the other parameters' default values is not a "
                                                       "finite real number: expected a definition that has one",
                                                       what));
-  derived_parameters_[name] = DerivedParameter{name, value, *number, s.text, s.name.location};
+  // without a unit it has its definition's; with one, the definition must have that unit
+  if (s.unit)
+    units_.require(value, UnitChecks::expect(s.unit->dimension, start_of(*s.value), what, "its unit [" + s.unit->text + "]"));
+  derived_parameters_[name] = DerivedParameter{name, value, *number, s.unit ? s.unit->text : "", s.name.location};
   return parameter_values_[name] = value;
 }
 

@@ -6,6 +6,7 @@
 #include "eomgen/base/error.hpp"
 #include "model_lexer.hpp"
 #include "model_syntax.hpp"
+#include "model_unit.hpp"
 
 namespace eomgen::syntax {
 namespace {
@@ -119,14 +120,15 @@ class Parser {
       s.name = name(word == "potential" ? "the potential's name" : "a name");
       expect_symbol("=", fmt::format("after the name in a {} statement", word).c_str());
       s.value = expression();
-      if (s.kind == Kind::parameter && is_symbol("[")) s.text = unit();
+      if (s.kind == Kind::parameter && is_symbol("[")) s.unit = unit();
     } else if (word == "coordinate" || word == "input" || word == "independent") {
       s.kind = word == "coordinate" ? Kind::coordinate : word == "input" ? Kind::input : Kind::independent;
       const char* what = s.kind == Kind::input ? "an input name" : "a coordinate name";
-      s.names.push_back(name(what));
-      while (is_symbol(",")) {
-        next();
+      for (;;) {
         s.names.push_back(name(what));
+        s.units.push_back(s.kind != Kind::independent && is_symbol("[") ? std::optional<Unit>(unit()) : std::nullopt);
+        if (!is_symbol(",")) break;
+        next();
       }
     } else if (word == "frame" || word == "point") {
       s.kind = word == "frame" ? Kind::frame : Kind::point;
@@ -196,20 +198,21 @@ class Parser {
     return s;
   }
 
-  // the raw text between [ and ], kept as written: [m/s^2]
-  std::string unit() {
+  // [m/s^2]: its dimension, and its text as written for the generated code and reports
+  Unit unit() {
     const Token& open = next();
     std::size_t start = open.end_offset;
+    std::vector<Token> inside;
     while (!is_symbol("]")) {
       if (peek().kind == Token::Kind::newline || peek().kind == Token::Kind::end)
         error(open, "unterminated unit: expected ']'");
-      next();
+      inside.push_back(next());
     }
     const Token& close = next();
     std::string u = text_.substr(start, close.offset - start);
     while (!u.empty() && u.front() == ' ') u.erase(u.begin());
     while (!u.empty() && u.back() == ' ') u.pop_back();
-    return u;
+    return Unit{u, open.location, unit_dimension(inside, open.location)};
   }
 
   static ExprPtr make(Expr::Kind kind, SourceLocation loc, std::vector<ExprPtr> args = {}) {

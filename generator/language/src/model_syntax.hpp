@@ -1,10 +1,12 @@
 #pragma once
 // Syntax tree of a model file, before names are resolved and loops expanded.
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "eomgen/base/source_location.hpp"
+#include "eomgen/mechanics/dimension.hpp"
 
 namespace eomgen::syntax {
 
@@ -81,6 +83,13 @@ struct Argument {
   SourceLocation location;
 };
 
+/// A unit in brackets after a parameter, coordinate or input: [kg m^2], [N s/m], [-].
+struct Unit {
+  std::string text;         // as written, without the brackets and outer spaces
+  SourceLocation location;  // of the '['
+  Dimension dimension;
+};
+
 struct Statement {
   enum class Kind { model, description, constant, parameter, coordinate, input, frame, point, particle,
                     body, gravity, force, moment, spring, damper, torsion, potential, generalized_force,
@@ -89,9 +98,11 @@ struct Statement {
   SourceLocation location;  // of the keyword
   Name name;                // the declared name (most statements)
   std::vector<Name> names;  // coordinate, input and independent-speed lists
+  std::vector<std::optional<Unit>> units;  // coordinate and input: one per name
+  std::optional<Unit> unit;  // parameter
   ExprPtr value;            // `= EXPR`; constraint left side; loop first value
   ExprPtr value2;           // constraint right side; loop last value
-  std::string text;         // model description, parameter unit
+  std::string text;         // model description
   std::vector<Argument> arguments;  // NAME(key = value, ...)
   Name frame;               // output ... in FRAME
   bool has_frame = false;

@@ -109,6 +109,14 @@ void Elaborator::wheel(const Instance& in, const std::string& name, const std::s
                                     "(the plane does not move)", what));
 
   const GiNaC::matrix n = plane_normal(args.require("normal", "the plane's unit normal"), env, what);
+  if (units_.active()) {
+    units_.require(vector(args.require("normal", "").value, env, what),
+                   args.expect("normal", dimension::none(), "a normal (a direction)"));
+    units_.require(args.scalar("radius", "the wheel's radius"), args.expect("radius", dimension::m(), "a radius"));
+    // the axle is normalized, so any unit will do, but one for all its components
+    units_.require_consistent(GiNaC::pow(axle_in_body(0, 0), 2) + GiNaC::pow(axle_in_body(1, 0), 2) +
+                                  GiNaC::pow(axle_in_body(2, 0), 2), start_of(*axle_arg.value), what);
+  }
   const PointId contact = points_.at(wheel_contact_name(name));
   std::vector<ex> rows = no_slip_rows(body, contact, n);
   add_rolling_rows(name, rows, st.name.location);

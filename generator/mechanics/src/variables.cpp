@@ -88,7 +88,7 @@ void Variables::claim_name(const std::string& name) {
   names_.insert(name);
 }
 
-Coordinate Variables::add_coordinate(const std::string& name) {
+Coordinate Variables::add_coordinate(const std::string& name, const std::string& unit) {
   // the rate and acceleration names are reserved too, so "x_dot" cannot be declared twice;
   // all three are checked before any is claimed, so a failed declaration changes nothing
   check_name(name);
@@ -99,7 +99,7 @@ Coordinate Variables::add_coordinate(const std::string& name) {
   claim_name(name + "_ddot");
   Coordinate c{name, GiNaC::realsymbol(name, tex_name(name)),
                GiNaC::realsymbol(name + "_dot", tex_name(name + "_dot")),
-               GiNaC::realsymbol(name + "_ddot", tex_name(name + "_ddot"))};
+               GiNaC::realsymbol(name + "_ddot", tex_name(name + "_ddot")), unit};
   kinds_[c.q] = code(SymbolKind::coordinate);
   kinds_[c.qd] = code(SymbolKind::rate);
   kinds_[c.qdd] = code(SymbolKind::acceleration);
@@ -118,9 +118,9 @@ Parameter Variables::add_parameter(const std::string& name, double default_value
   return parameters_.back();
 }
 
-Input Variables::add_input(const std::string& name) {
+Input Variables::add_input(const std::string& name, const std::string& unit) {
   claim_name(name);
-  Input u{name, GiNaC::realsymbol(name, tex_name(name))};
+  Input u{name, GiNaC::realsymbol(name, tex_name(name)), unit};
   kinds_[u.symbol] = code(SymbolKind::input);
   inputs_.push_back(u);
   return inputs_.back();

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "eomgen/mechanics/dimension.hpp"
 #include "eomgen/mechanics/mechanical_system.hpp"
 #include "eomgen/base/source_location.hpp"
 
@@ -47,6 +48,9 @@ struct Model {
   std::vector<std::size_t> independent_speeds;
   /// In the order of the file.
   std::vector<DerivedParameter> derived_parameters;
+  /// The dimension of every symbol (time, coordinates, rates, accelerations, parameters, inputs)
+  /// where the model gives units; empty where it gives none, and nothing is checked.
+  DimensionMap dimensions;
   /// Integer/real constants of the file after overrides (e.g. n of a chain).
   std::map<std::string, double> constants;
 };

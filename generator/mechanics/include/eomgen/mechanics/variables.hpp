@@ -17,6 +17,7 @@ struct Coordinate {
   GiNaC::realsymbol q;
   GiNaC::realsymbol qd;
   GiNaC::realsymbol qdd;
+  std::string unit;  // as the model wrote it, or empty
 };
 
 /// A constant of the model (length, mass, stiffness...) with its default value.
@@ -31,6 +32,7 @@ struct Parameter {
 struct Input {
   std::string name;
   GiNaC::realsymbol symbol;
+  std::string unit;  // as the model wrote it, or empty
 };
 
 /// What kind of quantity a symbol of the model stands for.
@@ -49,10 +51,10 @@ class Variables {
 
   /// Declares a symbol; returns it by value (symbols are cheap handles).
   /// \throws ModelError if the name is empty, not an identifier, or already used.
-  Coordinate add_coordinate(const std::string& name);
+  Coordinate add_coordinate(const std::string& name, const std::string& unit = "");
   Parameter add_parameter(const std::string& name, double default_value,
                                  const std::string& unit = "");
-  Input add_input(const std::string& name);
+  Input add_input(const std::string& name, const std::string& unit = "");
 
   const GiNaC::realsymbol& time() const { return time_; }
   const std::vector<Coordinate>& coordinates() const { return coordinates_; }
