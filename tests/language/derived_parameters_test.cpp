@@ -13,6 +13,7 @@
 #include "eomgen/derivation/equations_of_motion.hpp"
 #include "eomgen/derivation/numeric_evaluation.hpp"
 #include "eomgen/language/model_file.hpp"
+#include "support/expect_model_error.hpp"
 #include "eomgen/report/equation_printer.hpp"
 
 namespace eomgen {
@@ -30,16 +31,7 @@ const std::string pendulum =
     "particle bob(mass = m, at = p)\n"
     "gravity = -g*a.2\n";
 
-std::string error_of(const std::string& text) {
-  try {
-    parse_model(text, "h.eom");
-  } catch (const SourceError& e) {
-    return e.what();
-  } catch (const std::exception& e) {
-    return std::string("not a SourceError: ") + e.what();
-  }
-  return "no error";
-}
+std::string error_of(const std::string& text) { return testing::model_error_text(text, "h.eom"); }
 
 std::vector<std::string> parameter_names(const Model& model) {
   std::vector<std::string> names;

@@ -8,6 +8,7 @@
 
 #include "eomgen/base/error.hpp"
 #include "eomgen/language/model_file.hpp"
+#include "support/expect_model_error.hpp"
 
 namespace eomgen {
 namespace {
@@ -24,17 +25,7 @@ std::string repeat(const std::string& piece, int times) {
   return out;
 }
 
-// The full message (file:line:col: error: ...) of the SourceError that parsing text throws.
-std::string error_of(const std::string& text) {
-  try {
-    parse_model(text, "h.eom");
-  } catch (const SourceError& e) {
-    return e.what();
-  } catch (const std::exception& e) {
-    return std::string("not a SourceError: ") + e.what();
-  }
-  return "no error";
-}
+std::string error_of(const std::string& text) { return testing::model_error_text(text, "h.eom"); }
 
 double parameter_default(const Model& model, const std::string& name) {
   for (const Parameter& p : model.system.variables().parameters())

@@ -16,6 +16,7 @@
 #include "eomgen/derivation/model_equations.hpp"
 #include "eomgen/derivation/numeric_evaluation.hpp"
 #include "eomgen/language/model_file.hpp"
+#include "support/expect_model_error.hpp"
 #include "support/numeric_checks.hpp"
 
 namespace eomgen {
@@ -29,17 +30,7 @@ const std::string point_mass =
     "point p = w + q*a.1\n"
     "particle m(mass = 1, at = p)\n";
 
-// The full message (file:line:col: error: ...) of the SourceError that parsing text throws.
-std::string error_of(const std::string& text) {
-  try {
-    parse_model(text, "m.eom");
-  } catch (const SourceError& e) {
-    return e.what();
-  } catch (const std::exception& e) {
-    return std::string("not a SourceError: ") + e.what();
-  }
-  return "no error";
-}
+std::string error_of(const std::string& text) { return testing::model_error_text(text, "m.eom"); }
 
 double parameter_default(const Model& model, const std::string& name) {
   for (const Parameter& p : model.system.variables().parameters())

@@ -9,6 +9,7 @@
 #include "eomgen/base/error.hpp"
 #include "eomgen/derivation/model_equations.hpp"
 #include "eomgen/language/model_file.hpp"
+#include "support/expect_model_error.hpp"
 #include "support/source_dir.hpp"
 
 namespace eomgen {
@@ -27,17 +28,7 @@ const std::string pendulum =
     "point p = w + l*b.1\n"
     "body bob(mass = mass, centre = p, frame = b, inertia = mass*l^2*diag(0, 1, 1))\n";
 
-// The full message (file:line:col: error: ...) of the SourceError that parsing text throws.
-std::string error_of(const std::string& text) {
-  try {
-    parse_model(text, "h.eom");
-  } catch (const SourceError& e) {
-    return e.what();
-  } catch (const std::exception& e) {
-    return std::string("not a SourceError: ") + e.what();
-  }
-  return "no error";
-}
+std::string error_of(const std::string& text) { return testing::model_error_text(text, "h.eom"); }
 
 Dimension dimension_of(const Model& model, const std::string& name) {
   const auto symbol = model.system.variables().find(name);

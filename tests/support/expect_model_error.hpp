@@ -1,6 +1,7 @@
 #pragma once
 // expect_model_error(text, line, column, message): parsing the model text throws a SourceError at
-// that line and column whose message contains `message`.
+// that line and column whose message contains `message`. model_error_text(text, file): the whole
+// message, for tests that assert it all.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -21,6 +22,19 @@ inline void expect_model_error(const std::string& text, int line, int column, co
     EXPECT_EQ(e.location().column, column) << e.what();
     EXPECT_THAT(e.message(), ::testing::HasSubstr(message));
   }
+}
+
+/// The full message (file:line:col: error: ...) of the SourceError that parsing `text` as the file
+/// `file` throws; "no error" when it parses, and what else it threw otherwise.
+inline std::string model_error_text(const std::string& text, const std::string& file) {
+  try {
+    parse_model(text, file);
+  } catch (const SourceError& e) {
+    return e.what();
+  } catch (const std::exception& e) {
+    return std::string("not a SourceError: ") + e.what();
+  }
+  return "no error";
 }
 
 }  // namespace eomgen::testing

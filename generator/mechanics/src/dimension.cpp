@@ -199,16 +199,11 @@ std::optional<Dimension> DimensionAnalysis::measure(const ex& e) {
   }
   if (GiNaC::is_a<GiNaC::add>(e)) {
     std::optional<Dimension> common;
-    ex first;
     for (const ex& term : e) {
       const std::optional<Dimension> d = of(term);
       if (!d) continue;
-      if (!common) {
-        common = d;
-        first = term;
-      } else if (*d != *common) {
-        throw DimensionError(first_disagreement(e));
-      }
+      if (!common) common = d;
+      else if (*d != *common) throw DimensionError(first_disagreement(e));  // named in a fixed order
     }
     return common;
   }
