@@ -188,66 +188,6 @@ void Elaborator::expand(std::size_t tokens, const SourceLocation& at) {
                                       max_expanded_tokens));
 }
 
-// A loop variable is looked up before every other name, so one named like a parameter,
-// coordinate, rate, frame or element would silently replace it inside the loop.
-void Elaborator::reject_hiding_loop_variables() const {
-  for (const auto& [var, at] : loop_variables_) {
-    const auto it = declared_.find(var);
-    if (it == declared_.end()) continue;
-    const SourceLocation& there = it->second.location;
-    throw SourceError(at, fmt::format("loop variable '{}' hides the {} '{}' declared at {}:{}:{}: expected "
-                                      "another loop variable name", var, it->second.kind, var, there.file,
-                                      there.line, there.column));
-  }
-}
-
-void Elaborator::declarations() {
-  Variables& vars = model_.system.variables();
-  for (const Instance& in : instances_) units_.note(*in.statement);
-  // every name first: a derived parameter may use a parameter defined later in the file, and
-  // must be told so when it names a coordinate or an input declared later
-  for (std::size_t i = 0; i < instances_.size(); ++i) {
-    const Statement& s = *instances_[i].statement;
-    if (s.kind == Kind::parameter) {
-      const std::string name = resolve(s.name, instances_[i].environment);
-      declare(name, "parameter", s.name.location);
-      parameter_instances_[name] = i;
-    } else if (s.kind == Kind::coordinate || s.kind == Kind::input) {
-      for (const Name& n : s.names) {
-        const std::string name = resolve(n, instances_[i].environment);
-        declare(name, s.kind == Kind::coordinate ? "coordinate" : "input", n.location);
-        if (s.kind != Kind::coordinate) continue;
-        declare(name + "_dot", "rate", n.location);
-        declare(name + "_ddot", "acceleration", n.location);
-      }
-    }
-  }
-  // symbols in the order of the file, which GiNaC's order of terms follows
-  for (const Instance& in : instances_) {
-    const Statement& s = *in.statement;
-    if (s.kind == Kind::parameter) {
-      parameter_value(resolve(s.name, in.environment));
-    } else if (s.kind == Kind::coordinate || s.kind == Kind::input) {
-      for (std::size_t i = 0; i < s.names.size(); ++i) {
-        const Name& n = s.names[i];
-        const std::optional<Unit>& unit = s.units[i];
-        const std::string name = resolve(n, in.environment);
-        try {
-          if (s.kind == Kind::coordinate) {
-            units_.coordinate(vars.add_coordinate(name, unit ? unit->text : ""), unit);
-            model_.coordinate_locations.push_back(n.location);
-          } else {
-            units_.input(vars.add_input(name, unit ? unit->text : ""), unit, n.location);
-          }
-        } catch (const ModelError& e) {
-          throw SourceError(n.location, e.what());
-        }
-      }
-    }
-  }
-  list_derived_parameters();
-}
-
 void Elaborator::collect_frames_and_points() {
   for (std::size_t i = 0; i < instances_.size(); ++i) {
     const Statement& s = *instances_[i].statement;

@@ -89,7 +89,7 @@ class Elaborator {
   void expand(std::size_t tokens, const SourceLocation& at);
   void reject_hiding_loop_variables() const;
   void declarations();
-  // parameters, derived ones built on demand (model_parameters.cpp)
+  // parameters, derived ones built on demand (model_declarations.cpp)
   GiNaC::ex parameter_value(const std::string& name);
   [[noreturn]] void reject_in_parameter(const std::string& kind, const std::string& name, const SourceLocation& at) const;
   void list_derived_parameters();
