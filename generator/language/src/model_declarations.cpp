@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "eomgen/base/error.hpp"
+#include "eomgen/symbolic/double_evaluator.hpp"
 #include "definition_in_progress.hpp"
 #include "model_elaborator.hpp"
 
@@ -98,15 +99,18 @@ ex Elaborator::parameter_value(const std::string& name) {
   }
   // every name in it was a number, a const or a parameter (name_value refuses the others), so
   // it is a function of the system's parameters: its value at their defaults is its default
-  const auto number = value_at(value, model_.system.parameter_defaults());
-  if (!number || !std::isfinite(*number))
+  // in doubles: GiNaC would throw from inside a substitution at a pole (L/z at z = 0) and leak
+  DoubleEvaluator at_defaults;
+  for (const Parameter& p : vars.parameters()) at_defaults.set(p.symbol, p.default_value);
+  const double number = at_defaults.value(value, what);
+  if (!std::isfinite(number))
     throw SourceError(start_of(*s.value), fmt::format("{}: the value at the other parameters' default values is not a "
                                                       "finite real number: expected a definition that has one",
                                                       what));
   // without a unit it has its definition's; with one, the definition must have that unit
   if (s.unit)
     units_.require(value, UnitChecks::expect(s.unit->dimension, start_of(*s.value), what, "its unit [" + s.unit->text + "]"));
-  derived_parameters_[name] = DerivedParameter{name, value, *number, s.unit ? s.unit->text : "", s.name.location};
+  derived_parameters_[name] = DerivedParameter{name, value, number, s.unit ? s.unit->text : "", s.name.location};
   return parameter_values_[name] = value;
 }
 
