@@ -23,7 +23,6 @@
 #include <iostream>
 #include <map>
 #include <nlohmann/json.hpp>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -39,6 +38,7 @@
 #include "eomgen/derivation/numeric_evaluation.hpp"
 #include "eomgen/base/version.hpp"
 #include "eomgen/symbolic/double_evaluator.hpp"
+#include "eomgen/symbolic/ordered_text.hpp"
 #include "command_line.hpp"
 #include "command_values.hpp"
 #include "linearize_command.hpp"
@@ -95,12 +95,9 @@ void run_check(const Options& o) {
     std::cout << fmt::format("  {} = {}", p.name, p.default_value) << (p.unit.empty() ? "" : " [" + p.unit + "]") << "\n";
   if (!model.derived_parameters.empty())
     std::cout << fmt::format("Derived parameters ({}):\n", model.derived_parameters.size());
-  for (const eomgen::DerivedParameter& d : model.derived_parameters) {
-    std::ostringstream definition;
-    definition << d.definition;
-    std::cout << fmt::format("  {} = {} = {}", d.name, definition.str(), d.default_value)
+  for (const eomgen::DerivedParameter& d : model.derived_parameters)
+    std::cout << fmt::format("  {} = {} = {}", d.name, eomgen::ordered_text(d.definition), d.default_value)
               << (d.unit.empty() ? "" : " [" + d.unit + "]") << "\n";
-  }
   if (!model.constants.empty()) {
     std::vector<std::string> constants;
     for (const auto& [name, value] : model.constants) constants.push_back(fmt::format("{} = {}", name, value));

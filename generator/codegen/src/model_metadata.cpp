@@ -2,12 +2,12 @@
 
 #include <fmt/format.h>
 
-#include <sstream>
 #include <vector>
 
 #include "eomgen/base/version.hpp"
 #include "eomgen/codegen/cpp_identifier.hpp"
 #include "eomgen/codegen/cpp_printer.hpp"
+#include "eomgen/symbolic/ordered_text.hpp"
 
 namespace eomgen {
 namespace {
@@ -116,9 +116,7 @@ std::string parameters_source(const Model& model) {
   if (!model.derived_parameters.empty())
     s += "    // The model's derived parameters are no fields: each is computed from these where it is used.\n";
   for (const DerivedParameter& d : model.derived_parameters) {
-    std::ostringstream definition;
-    definition << d.definition;
-    s += fmt::format("    //   {} = {}{}\n", cpp_comment_text(d.name), cpp_comment_text(definition.str()),
+    s += fmt::format("    //   {} = {}{}\n", cpp_comment_text(d.name), cpp_comment_text(ordered_text(d.definition)),
                      d.unit.empty() ? "" : " [" + cpp_comment_text(d.unit) + "]");
   }
   s += "    /// The fields in the order of parameter_names, to set parameters by index or name.\n";

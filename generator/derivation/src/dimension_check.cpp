@@ -13,9 +13,6 @@ namespace {
 
 using GiNaC::ex;
 
-const Dimension second = Dimension::time();
-const Dimension joule = Dimension::mass() * Dimension::length() * Dimension::length() / (second * second);
-
 class Checker {
  public:
   explicit Checker(const DimensionMap& dimensions) : analysis_(dimensions) {}
@@ -30,13 +27,12 @@ class Checker {
 
   // every term of `value` has dimension `expected`
   void terms(const ex& value, const Dimension& expected, const std::string& where) {
-    const GiNaC::exvector terms = GiNaC::is_a<GiNaC::add>(value) ? GiNaC::exvector(value.begin(), value.end())
-                                                                 : GiNaC::exvector{value};
-    for (const ex& term : terms) {
-      const std::optional<Dimension> d = measure(term, where);
-      if (d && *d != expected)
-        fail(where, fmt::format("the term '{}' has dimension {}, expected {}", term_text(term), to_string(*d, "J"),
-                                to_string(expected, "J")));
+    try {
+      if (const auto wrong = first_term_not_of(analysis_, value, expected))
+        fail(where, fmt::format("the term '{}' has dimension {}, expected {}", term_text(wrong->first),
+                                to_string(wrong->second, "J"), to_string(expected, "J")));
+    } catch (const DimensionError& e) {
+      fail(where, e.mismatch().describe());
     }
   }
 
@@ -69,15 +65,15 @@ void check_dimensions(const EquationsOfMotion& eom, const Variables& vars, const
   const std::size_t n = coordinates.size();
   for (std::size_t i = 0; i < n; ++i) {
     // row i is the equation of q_i: generalized forces, J per unit of q_i
-    const Dimension row = joule / check.of(coordinates[i].q);
+    const Dimension row = dimension::joule() / check.of(coordinates[i].q);
     for (std::size_t j = 0; j < n; ++j)
       check.terms(eom.mass_matrix(i, j), row / check.of(coordinates[j].qdd),
                   fmt::format("M({}, {}), row of '{}', column of '{}'", i + 1, j + 1, coordinates[i].name,
                               coordinates[j].name));
     check.terms(eom.forcing(i, 0), row, fmt::format("F({}), row of '{}'", i + 1, coordinates[i].name));
   }
-  check.terms(eom.kinetic_energy, joule, "T");
-  check.terms(eom.potential_energy, joule, "V");
+  check.terms(eom.kinetic_energy, dimension::joule(), "T");
+  check.terms(eom.potential_energy, dimension::joule(), "V");
   for (std::size_t r = 0; r < eom.constraint_count; ++r) {
     // the row's dimension is that of its first term; every other must agree
     GiNaC::exvector parts;
@@ -89,7 +85,7 @@ void check_dimensions(const EquationsOfMotion& eom, const Variables& vars, const
       if (!dimension && !part.is_zero()) dimension = check.measure(part, where);
     if (!dimension) continue;
     for (const ex& part : parts) check.terms(part, *dimension, where);
-    check.terms(eom.constraint_acceleration_term(r, 0), *dimension / second, fmt::format("b({})", r + 1));
+    check.terms(eom.constraint_acceleration_term(r, 0), *dimension / dimension::s(), fmt::format("b({})", r + 1));
   }
   for (unsigned r = 0; r < eom.holonomic_residuals.rows(); ++r)
     check.measure(eom.holonomic_residuals(r, 0), fmt::format("phi({})", r + 1));

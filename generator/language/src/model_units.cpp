@@ -20,12 +20,6 @@ bool before(const SourceLocation& a, const SourceLocation& b) {
   return std::make_pair(a.line, a.column) < std::make_pair(b.line, b.column);
 }
 
-// The terms of a sum, or the expression as its one term.
-std::vector<ex> terms_of(const ex& e) {
-  if (!GiNaC::is_a<GiNaC::add>(e)) return {e};
-  return std::vector<ex>(e.begin(), e.end());
-}
-
 // functions whose arguments are dimensionless (the rest keep or compare theirs)
 bool takes_a_number(const ex& f) {
   const std::string name = GiNaC::ex_to<GiNaC::function>(f).get_name();
@@ -178,17 +172,9 @@ void UnitChecks::check(const Obligation& o, DimensionAnalysis& analysis) const {
       if (!relative) return;  // zero: nothing to compare with
       expected = expected * relative->power(o.power);
     }
-    // of the terms that differ, the first in the order of their text, the same in every run
-    std::optional<std::pair<std::string, Dimension>> wrong;
-    for (const ex& term : terms_of(o.value)) {
-      const std::optional<Dimension> d = analysis.of(term);
-      if (!d || *d == expected) continue;
-      const std::string text = term_text(term);
-      if (!wrong || text < wrong->first) wrong.emplace(text, *d);
-    }
-    if (wrong)
+    if (const auto wrong = first_term_not_of(analysis, o.value, expected))
       throw SourceError(o.at, fmt::format("{}: the term '{}' has dimension {}, expected {} for {}", o.what,
-                                          wrong->first, to_string(wrong->second, o.preferred),
+                                          term_text(wrong->first), to_string(wrong->second, o.preferred),
                                           to_string(expected, o.preferred), o.role));
   } catch (const DimensionError& e) {
     throw SourceError(o.at, fmt::format("{}: {}", o.what, e.mismatch().describe()));

@@ -16,17 +16,6 @@
 
 namespace eomgen::syntax {
 
-/// The dimensions of mechanics that obligations name (functions: constants of other files may
-/// not be initialized yet when these are).
-namespace dimension {
-inline Dimension none() { return Dimension(); }
-inline Dimension kg() { return Dimension::mass(); }
-inline Dimension m() { return Dimension::length(); }
-inline Dimension s() { return Dimension::time(); }
-inline Dimension newton() { return kg() * m() / (s() * s()); }
-inline Dimension joule() { return newton() * m(); }
-}  // namespace dimension
-
 class UnitChecks {
  public:
   /// What an obligation tells about the dimension of a coordinate without a unit: a rotation's

@@ -7,6 +7,8 @@
 #include <sstream>
 #include <vector>
 
+#include "eomgen/symbolic/ordered_text.hpp"
+
 namespace eomgen {
 namespace {
 
@@ -86,53 +88,6 @@ std::string to_string(const Dimension& d, const std::string& preferred) {
     if (u.dimension == d && (preferred == u.symbol || (name.empty() && std::string(u.symbol) != "J"))) name = u.symbol;
   return name.empty() || name == base ? base : fmt::format("{} ({})", base, name);
 }
-
-namespace {
-
-// GiNaC's text of e with the terms of every sum and the factors of every product in the order
-// of their own text: GiNaC orders them by hashes that differ from process to process, and a
-// message must read the same in every run.
-std::string ordered_text(const ex& e) {
-  const bool sum = GiNaC::is_a<GiNaC::add>(e), product = GiNaC::is_a<GiNaC::mul>(e);
-  if (!sum && !product) {
-    if (GiNaC::is_a<GiNaC::power>(e)) {
-      const bool simple = GiNaC::is_a<GiNaC::symbol>(e.op(0)) || GiNaC::is_a<GiNaC::function>(e.op(0));
-      const std::string base = ordered_text(e.op(0)), exponent = ordered_text(e.op(1));
-      const bool plain_exponent = GiNaC::is_a<GiNaC::symbol>(e.op(1)) ||
-                                  (GiNaC::is_a<GiNaC::numeric>(e.op(1)) && GiNaC::ex_to<GiNaC::numeric>(e.op(1)).is_pos_integer());
-      return (simple ? base : "(" + base + ")") + "^" + (plain_exponent ? exponent : "(" + exponent + ")");
-    }
-    if (GiNaC::is_a<GiNaC::function>(e)) {
-      std::string args;
-      for (const ex& a : e) args += (args.empty() ? "" : ",") + ordered_text(a);
-      return GiNaC::ex_to<GiNaC::function>(e).get_name() + "(" + args + ")";
-    }
-    std::ostringstream out;
-    out << e;
-    return out.str();
-  }
-  std::vector<std::string> parts;
-  std::string coefficient;  // of a product, written first: -F*l, 2*F*l
-  for (const ex& part : e) {
-    if (product && GiNaC::is_a<GiNaC::numeric>(part)) {
-      const GiNaC::numeric& c = GiNaC::ex_to<GiNaC::numeric>(part);
-      coefficient = c == -1 ? "-" : ordered_text(part) + "*";
-      continue;
-    }
-    const std::string text = ordered_text(part);
-    parts.push_back(product && GiNaC::is_a<GiNaC::add>(part) ? "(" + text + ")" : text);
-  }
-  std::sort(parts.begin(), parts.end());
-  std::string text = coefficient;
-  for (const std::string& part : parts) {
-    if (text.empty() || text == coefficient) text += part;
-    else if (sum && part[0] == '-') text += part;
-    else text += (sum ? "+" : "*") + part;
-  }
-  return text;
-}
-
-}  // namespace
 
 std::string term_text(const ex& e, std::size_t limit) {
   std::string text = ordered_text(e);
@@ -255,6 +210,21 @@ std::optional<Dimension> DimensionAnalysis::function(const ex& e) {
   // sin, cos, exp, log... and any other function: a series in its argument, which must be a number
   for (const ex& argument : e) require_dimensionless(argument, of(argument), e);
   return Dimension();
+}
+
+std::optional<std::pair<ex, Dimension>> first_term_not_of(DimensionAnalysis& analysis, const ex& value,
+                                                          const Dimension& expected) {
+  const std::vector<ex> terms = GiNaC::is_a<GiNaC::add>(value) ? std::vector<ex>(value.begin(), value.end())
+                                                                : std::vector<ex>{value};
+  std::optional<std::pair<ex, Dimension>> wrong;
+  std::string wrong_text;
+  for (const ex& term : terms) {
+    const std::optional<Dimension> d = analysis.of(term);
+    if (!d || *d == expected) continue;
+    const std::string text = term_text(term, std::string::npos);
+    if (!wrong || text < wrong_text) wrong.emplace(term, *d), wrong_text = text;
+  }
+  return wrong;
 }
 
 }  // namespace eomgen

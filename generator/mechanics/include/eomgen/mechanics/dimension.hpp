@@ -112,6 +112,17 @@ std::optional<Dimension> coherent_unit(const std::string& symbol);
 /// The symbols coherent_unit() accepts, for messages: "kg, m, s, ...".
 std::string coherent_unit_list();
 
+/// The dimensions of mechanics that unit checks name (functions: constants of other files may
+/// not be initialized yet when these are).
+namespace dimension {
+inline Dimension none() { return Dimension(); }
+inline Dimension kg() { return Dimension::mass(); }
+inline Dimension m() { return Dimension::length(); }
+inline Dimension s() { return Dimension::time(); }
+inline Dimension newton() { return kg() * m() / (s() * s()); }
+inline Dimension joule() { return newton() * m(); }
+}  // namespace dimension
+
 /// The dimension in base units, "kg m^2 s^-2", "m^(1/2)"; "dimensionless" for none.
 std::string base_units(const Dimension& d);
 /// base_units(d) followed by a named unit of that dimension where one is known and differs:
@@ -172,5 +183,12 @@ class DimensionAnalysis {
   // them, so a node's address may be freed and reused while its expression lives on
   ExpressionMap<std::optional<Dimension>> memo_;
 };
+
+/// Of the terms of `value` (a sum's, or `value` itself), the first in the order of their text
+/// whose dimension is not `expected`, with its dimension; nothing when every term has it (zero
+/// terms have any). The order of text, not GiNaC's, so a message names the same term in every
+/// run. \throws DimensionError where parts of a term disagree.
+std::optional<std::pair<GiNaC::ex, Dimension>> first_term_not_of(DimensionAnalysis& analysis, const GiNaC::ex& value,
+                                                                 const Dimension& expected);
 
 }  // namespace eomgen
