@@ -9,6 +9,7 @@
 
 #include "eomgen/mechanics/dimension.hpp"
 #include "eomgen/mechanics/mechanical_system.hpp"
+#include "eomgen/mechanics/visual_shape.hpp"
 #include "eomgen/base/source_location.hpp"
 
 namespace eomgen {
@@ -51,6 +52,11 @@ struct Model {
   /// The dimension of every symbol (time, coordinates, rates, accelerations, parameters, inputs)
   /// where the model gives units; empty where it gives none, and nothing is checked.
   DimensionMap dimensions;
+  /// How the bodies look in an animation (`shape` statements), in the order of the file; a body
+  /// or particle without one is drawn as its default (docs/animation.md).
+  std::vector<VisualShape> shapes;
+  /// The contacts of `roll` and `wheel`, whose multipliers are forces at a point.
+  std::vector<ContactForce> contacts;
   /// Integer/real constants of the file after overrides (e.g. n of a chain).
   std::map<std::string, double> constants;
 };
