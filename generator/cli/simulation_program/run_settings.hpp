@@ -4,7 +4,7 @@
 //
 //   program --t-end T --method NAME --solver S --stabilization S [--dt H] [--rtol R]
 //           [--atol A] [--sample S] [--set p=v]... [--init q=v | q_dot=v]... [--input u=v]...
-//           --csv FILE [--progress]
+//           --csv FILE [--scene FILE --scene-first K] [--progress]
 //
 // eomgen has checked every value and name against the model and the integrator registry
 // before it builds the program, and says what is wrong in the user's terms; here a malformed
@@ -40,9 +40,22 @@ struct RunSettings {
   /// the inputs, held constant
   typename Types::Inputs u = Types::Inputs::Zero();
   std::string csv_path;
+  /// with --animate: the file the outputs from component scene_first on go to, one line per
+  /// sample, instead of the CSV (the recording of scene_recording.hpp); empty: none
+  std::string scene_path;
+  int scene_first = -1;
   /// draw a progress line on stderr when it is a terminal
   bool progress = false;
 };
+
+/// The model's output components: ny, or 0 for a model without outputs.
+template <class Model>
+constexpr int output_count() {
+  if constexpr (eomrt::has_outputs_v<Model>)
+    return Model::ny;
+  else
+    return 0;
+}
 
 namespace detail {
 
@@ -124,6 +137,13 @@ bool apply_option(RunSettings<Model>& run, const std::string& option, const std:
     set_named(run, option, value);
   } else if (option == "--csv") {
     run.csv_path = value;
+  } else if (option == "--scene") {
+    run.scene_path = value;
+  } else if (option == "--scene-first") {
+    const double k = number(value, option);
+    if (k < 0 || k != std::floor(k) || k > output_count<Model>())
+      throw ArgumentError(option + " '" + value + "'");
+    run.scene_first = static_cast<int>(k);
   } else {
     return false;
   }
@@ -148,6 +168,7 @@ RunSettings<Model> parse_arguments(int argc, char** argv) {
     ++i;
   }
   if (std::isnan(run.options.t_end) || run.csv_path.empty()) throw ArgumentError("--t-end and --csv are required");
+  if (run.scene_path.empty() != (run.scene_first < 0)) throw ArgumentError("--scene and --scene-first go together");
 
   eomrt::SimulationOptions<double>& o = run.options;
   if (o.sample_interval == 0) {

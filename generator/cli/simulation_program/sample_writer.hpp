@@ -39,8 +39,10 @@ class ProgressLine {
 };
 
 /// Writes the header: t, q, q_dot, lambda_c, inputs, T, V, T+V, phi_c, rate_residual_c, outputs.
+/// \p csv_outputs: how many output components go to the CSV (the others, when there are, are
+/// the animation's recording and go to the scene file)
 template <class Model>
-void write_csv_header(std::FILE* csv) {
+void write_csv_header(std::FILE* csv, int csv_outputs) {
   std::fprintf(csv, "t");
   for (const char* n : Model::coordinate_names) std::fprintf(csv, ",%s", n);
   for (const char* n : Model::coordinate_names) std::fprintf(csv, ",%s_dot", n);
@@ -50,7 +52,7 @@ void write_csv_header(std::FILE* csv) {
   for (int i = 0; i < Model::nh; ++i) std::fprintf(csv, ",phi_%s", Model::constraint_names[Model::holonomic_rows[i]]);
   for (const char* n : Model::constraint_names) std::fprintf(csv, ",rate_residual_%s", n);
   if constexpr (eomrt::has_outputs_v<Model>)
-    for (const char* n : Model::output_names) std::fprintf(csv, ",%s", n);
+    for (int i = 0; i < csv_outputs; ++i) std::fprintf(csv, ",%s", Model::output_names[static_cast<std::size_t>(i)]);
   std::fprintf(csv, "\n");
 }
 
@@ -61,8 +63,12 @@ class SampleWriter {
  public:
   using Types = eomrt::ModelTypes<Model, double>;
 
-  SampleWriter(std::FILE* csv, const typename Types::Parameters& p, ProgressLine progress)
-      : csv_(csv), p_(p), progress_(progress) {}
+  /// \p scene: where the animation's samples go, null when there is none: per sample a line of
+  /// t, q, lambda, T, V and the output components from \p csv_outputs on (the recording of
+  /// scene_recording.hpp), in %.9g (positions to a nanometre in a metre)
+  SampleWriter(std::FILE* csv, const typename Types::Parameters& p, ProgressLine progress, int csv_outputs,
+               std::FILE* scene)
+      : csv_(csv), p_(p), progress_(progress), csv_outputs_(csv_outputs), scene_(scene) {}
 
   void operator()(const eomrt::Sample<Model, double>& s) {
     put(s.t);
@@ -109,15 +115,27 @@ class SampleWriter {
   void write_outputs(const eomrt::Sample<Model, double>& s) {
     Eigen::Matrix<double, Model::ny, 1> y;
     Model::outputs(s.t, s.q, s.qd, s.u, p_, y);
-    for (int i = 0; i < Model::ny; ++i) next(y(i));
+    for (int i = 0; i < csv_outputs_; ++i) next(y(i));
+    if (scene_ != nullptr) write_scene(s, y);
     // the state is fine (simulate checks it) but an output can still leave its domain
     for (int i = 0; i < Model::ny && bad_output_ < 0; ++i)
       if (!std::isfinite(y(i))) bad_output_ = i, bad_output_time_ = s.t;
   }
 
+  void write_scene(const eomrt::Sample<Model, double>& s, const Eigen::Matrix<double, Model::ny, 1>& y) {
+    std::fprintf(scene_, "%.9g", s.t);
+    for (int i = 0; i < Model::nq; ++i) std::fprintf(scene_, ",%.9g", s.q(i));
+    for (int i = 0; i < Model::nc; ++i) std::fprintf(scene_, ",%.9g", s.ws.lambda(i));
+    std::fprintf(scene_, ",%.9g,%.9g", s.kinetic_energy, s.potential_energy);
+    for (int i = csv_outputs_; i < Model::ny; ++i) std::fprintf(scene_, ",%.9g", y(i));
+    std::fputc('\n', scene_);
+  }
+
   std::FILE* csv_;
   const typename Types::Parameters& p_;
   ProgressLine progress_;
+  int csv_outputs_;
+  std::FILE* scene_;
   typename Types::HolonomicVector phi_;
   long long rows_ = 0;
   int bad_output_ = -1;

@@ -91,9 +91,17 @@ int simulation_main(int argc, char** argv) {
       std::fprintf(stderr, "error: cannot write '%s': %s\n", run.csv_path.c_str(), std::strerror(errno));
       return 1;
     }
-    write_csv_header<Model>(csv);
+    std::FILE* scene = nullptr;
+    if (!run.scene_path.empty() && (scene = std::fopen(run.scene_path.c_str(), "w")) == nullptr) {
+      std::fprintf(stderr, "error: cannot write '%s': %s\n", run.scene_path.c_str(), std::strerror(errno));
+      std::fclose(csv);
+      return 1;
+    }
+    const int csv_outputs = run.scene_path.empty() ? output_count<Model>() : run.scene_first;
+    write_csv_header<Model>(csv, csv_outputs);
     SampleWriter<Model> samples(
-        csv, run.p, ProgressLine(run.progress && ::isatty(STDERR_FILENO), run.options.t0, run.options.t_end));
+        csv, run.p, ProgressLine(run.progress && ::isatty(STDERR_FILENO), run.options.t0, run.options.t_end),
+        csv_outputs, scene);
     const auto inputs = [&run](double, const typename Types::State&, typename Types::Inputs& u) { u = run.u; };
 
     const auto start = std::chrono::steady_clock::now();
@@ -101,13 +109,19 @@ int simulation_main(int argc, char** argv) {
         eomrt::simulate_with<Methods, Model>(run.p, run.x0, run.options, inputs, samples);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     samples.finish();
-    const bool written = std::fclose(csv) == 0;
+    const bool csv_written = std::fclose(csv) == 0;
+    const bool written = (scene == nullptr || std::fclose(scene) == 0) && csv_written;
 
     if (r.status != eomrt::SimulationStatus::ok) {
       report_failure(run, r);
       return 1;
     }
     if constexpr (eomrt::has_outputs_v<Model>) {
+      if (samples.bad_output() >= csv_outputs) {
+        std::fprintf(stderr, "error: the animation's recording (a point's position or a frame's attitude) is not a "
+                     "finite number at t = %.17g s\n", samples.bad_output_time());
+        return 1;
+      }
       if (samples.bad_output() >= 0) {
         std::fprintf(stderr, "error: the output %s is not a finite number at t = %.17g s\n",
                      Model::output_names[static_cast<std::size_t>(samples.bad_output())], samples.bad_output_time());
@@ -115,7 +129,9 @@ int simulation_main(int argc, char** argv) {
       }
     }
     if (!written) {
-      std::fprintf(stderr, "error: writing '%s' failed: %s\n", run.csv_path.c_str(), std::strerror(errno));
+      std::fprintf(stderr, "error: writing '%s' failed: %s\n",
+                   (run.scene_path.empty() ? run.csv_path : run.csv_path + "' or '" + run.scene_path).c_str(),
+                   std::strerror(errno));
       return 1;
     }
     report_summary(run, r, samples, seconds);

@@ -19,6 +19,7 @@ struct VisualShape {
   /// `axis`; rod: from `at` to `to`, of `radius`.
   enum class Kind { sphere, box, cylinder, disk, rod };
   Kind kind = Kind::sphere;
+  std::string name;               // the statement's name
   std::string body;               // the rigid body or particle it belongs to (its colour and name in the view)
   std::optional<FrameId> frame;   // its attitude: the body's frame (none: a particle's sphere, a rod)
   PointId at;                     // its centre; a rod's first end
