@@ -15,6 +15,8 @@ packages=(
   libcli11-dev nlohmann-json3-dev
   texlive-latex-base
   gnuplot-nox
+  libjs-three   # three.js (r111), embedded into eomgen for `simulate --animate` pages
+  chromium      # the browser test of those pages (tests/browser/, headless)
 )
 for arg in "$@"; do
   case "$arg" in

@@ -41,6 +41,8 @@ const NotRun not_run[] = {
     {"scripts/test.sh", "this test suite itself: CI runs it as written, and scripts/check-fresh-debian.sh "
                         "runs it in a pristine Debian 12 root"},
     {"scripts/check-fresh-debian.sh", "builds a Debian root and the whole project in it (about 30 min, as root)"},
+    {"ctest --test-dir build -L browser", "the browser tests are part of this suite (label browser); "
+                                          "docs/animation.md's other commands run one of them as written"},
     {"cmake -S . -B build && cmake --build build -j2 && ctest --test-dir build",
      "configures, builds and runs this suite: scripts/test.sh does the same, and CI runs that"},
     {"cmake -S . -B build-asan -DEOMGEN_SANITIZE=ON",

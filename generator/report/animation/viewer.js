@@ -1,0 +1,524 @@
+// The viewer of eomgen's animation page: reads the scene of docs/animation.md from #scene and
+// draws it with three.js (r111) beside two plots of the coordinates and energies. Plain
+// JavaScript, no modules: the page is opened from disk and loads nothing.
+(function () {
+  'use strict';
+
+  var statusElement = document.getElementById('status');
+  var status = { ready: false, errors: window.eomgenErrors, drawn: 0, t: null, requests: 0 };
+  var testHook = null;  // what the URL's #t=...&layers=... asked for (the browser test's hook)
+
+  // #status always holds the state; the title says "ready" or "error: ..." only for the test hook
+  function report() {
+    status.requests = performance.getEntriesByType('resource').length;
+    statusElement.textContent = JSON.stringify(status);
+    if (testHook === null || !status.ready) return;
+    document.title = status.errors.length > 0 ? 'error: ' + status.errors[0] : 'ready t=' + status.t;
+  }
+  window.eomgenOnError = report;
+
+  function showMessage(text) {
+    var m = document.getElementById('message');
+    m.textContent = text;
+    m.hidden = false;
+  }
+
+  // ---- the scene's data, read defensively: a missing array is an empty one --------------------
+
+  var scene;
+  try {
+    scene = JSON.parse(document.getElementById('scene').textContent);
+  } catch (e) {
+    window.eomgenErrors.push('the scene is not JSON: ' + e.message);
+    scene = {};
+  }
+  function list(value) { return Array.isArray(value) ? value : []; }
+  function vector3(value, fallback) {
+    return Array.isArray(value) && value.length === 3 ? new THREE.Vector3(value[0], value[1], value[2]) : fallback;
+  }
+  var times = list(scene.times);
+  var n = times.length;
+  var t0 = n > 0 ? times[0] : 0, t1 = n > 0 ? times[n - 1] : 0;
+  var points = list(scene.points), frames = list(scene.frames), shapes = list(scene.shapes);
+  var particles = list(scene.particles), links = list(scene.links), forces = list(scene.forces);
+  var series = list(scene.series), trailDefaults = list(scene.trails);
+  var up = vector3(scene.up, new THREE.Vector3(0, 0, 1)).normalize();
+
+  document.getElementById('model-name').textContent = scene.model || '';
+  document.getElementById('model-description').textContent =
+      (scene.description || '') + (scene.source ? ' (' + scene.source + ')' : '');
+  if (n === 0) showMessage('The scene has no samples.');
+
+  // the sample interval holding t and the fraction of the way through it
+  function locate(t) {
+    if (n < 2 || t <= t0) return { k: 0, f: 0 };
+    if (t >= t1) return { k: n - 2, f: 1 };
+    var lo = 0, hi = n - 1;
+    while (hi - lo > 1) {
+      var mid = (lo + hi) >> 1;
+      if (times[mid] <= t) lo = mid; else hi = mid;
+    }
+    var span = times[hi] - times[lo];
+    return { k: lo, f: span > 0 ? (t - times[lo]) / span : 0 };
+  }
+
+  // a point's position at the located time, linearly interpolated (the origin if it has none)
+  function pointAt(index, at, out) {
+    var p = points[index] ? list(points[index].positions) : [];
+    if (p.length < 3 * n || n === 0) return out.set(0, 0, 0);
+    var a = 3 * at.k, b = n > 1 ? 3 * (at.k + 1) : a;
+    return out.set(p[a] + at.f * (p[b] - p[a]), p[a + 1] + at.f * (p[b + 1] - p[a + 1]),
+                   p[a + 2] + at.f * (p[b + 2] - p[a + 2]));
+  }
+
+  // a frame's orientation: the rotation matrices' columns are its unit vectors in inertial
+  // components, so the matrix maps frame components to inertial ones; slerp between samples
+  var matrix = new THREE.Matrix4(), qa = new THREE.Quaternion(), qb = new THREE.Quaternion();
+  function quaternionAtSample(r, k, out) {
+    var i = 9 * k;
+    matrix.set(r[i], r[i + 1], r[i + 2], 0, r[i + 3], r[i + 4], r[i + 5], 0, r[i + 6], r[i + 7], r[i + 8], 0, 0, 0, 0, 1);
+    return out.setFromRotationMatrix(matrix);
+  }
+  function frameAt(index, at, out) {
+    var r = index >= 0 && frames[index] ? list(frames[index].rotations) : [];
+    if (r.length < 9 * n || n === 0) return out.set(0, 0, 0, 1);
+    quaternionAtSample(r, at.k, qa);
+    if (n > 1 && at.f > 0) qa.slerp(quaternionAtSample(r, at.k + 1, qb), at.f);
+    return out.copy(qa);
+  }
+
+  // ---- the size of the scene: the box of every point over the run ----------------------------
+
+  var box = new THREE.Box3();
+  points.forEach(function (p) {
+    var x = list(p.positions);
+    for (var i = 0; i + 2 < x.length; i += 3) box.expandByPoint(new THREE.Vector3(x[i], x[i + 1], x[i + 2]));
+  });
+  if (box.isEmpty()) box.set(new THREE.Vector3(-0.5, -0.5, -0.5), new THREE.Vector3(0.5, 0.5, 0.5));
+  var centre = box.getCenter(new THREE.Vector3());
+  var size = Math.max(box.getSize(new THREE.Vector3()).length(), centre.length() * 0.5, 1e-3);
+  shapes.forEach(function (s) { if (s.radius > 0) size = Math.max(size, 4 * s.radius); });
+
+  // ---- renderer, camera, lights ---------------------------------------------------------------
+
+  var view = document.getElementById('view');
+  var background = new THREE.Color(0xf3f4f6);
+  var renderer = new THREE.WebGLRenderer({ antialias: true });
+  renderer.setPixelRatio(window.devicePixelRatio || 1);
+  renderer.setClearColor(background, 1);
+  view.appendChild(renderer.domElement);
+  var world = new THREE.Scene();
+  var camera = new THREE.PerspectiveCamera(40, 1, size * 1e-3, size * 100);
+  camera.up.copy(up);
+  world.add(new THREE.HemisphereLight(0xffffff, 0x8a8f99, 0.75));
+  var sun = new THREE.DirectionalLight(0xffffff, 0.6);
+  world.add(sun);
+
+  // a view from the front, a little from the side and above: "front" is inertial z made
+  // perpendicular to up (or y when up is along z)
+  var controls = new THREE.OrbitControls(camera, renderer.domElement);
+  function frameTheMotion() {
+    var front = new THREE.Vector3(0, 0, 1);
+    if (Math.abs(front.dot(up)) > 0.9) front.set(0, -1, 0);
+    front.addScaledVector(up, -front.dot(up)).normalize();
+    var side = new THREE.Vector3().crossVectors(up, front);
+    var azimuth = 0.45, elevation = 0.3;
+    var direction = front.multiplyScalar(Math.cos(azimuth)).addScaledVector(side, Math.sin(azimuth))
+        .multiplyScalar(Math.cos(elevation)).addScaledVector(up, Math.sin(elevation));
+    var distance = 0.5 * size / Math.sin(camera.fov / 2 * Math.PI / 180) * 1.05;
+    camera.position.copy(centre).addScaledVector(direction, distance);
+    controls.target.copy(centre);
+    controls.update();
+    sun.position.copy(camera.position).addScaledVector(up, size);
+  }
+  frameTheMotion();
+  controls.saveState();
+
+  // ---- what is always drawn: axes, ground, shapes, particles, links ---------------------------
+
+  var axisLength = 0.25 * size;
+  world.add(new THREE.AxesHelper(axisLength));  // x red, y green, z blue
+  ['x', 'y', 'z'].forEach(function (name, i) {
+    var label = textSprite(name, ['#d62728', '#2ca02c', '#1f5fd6'][i], 0.05 * size);
+    label.position.setComponent(i, axisLength * 1.12);
+    world.add(label);
+  });
+  function textSprite(text, colour, height) {
+    var canvas = document.createElement('canvas');
+    canvas.width = 64; canvas.height = 64;
+    var c = canvas.getContext('2d');
+    c.font = 'bold 48px sans-serif'; c.textAlign = 'center'; c.textBaseline = 'middle';
+    c.fillStyle = colour; c.fillText(text, 32, 34);
+    var sprite = new THREE.Sprite(new THREE.SpriteMaterial({ map: new THREE.CanvasTexture(canvas), depthTest: false }));
+    sprite.scale.set(height, height, 1);
+    return sprite;
+  }
+
+  if (scene.ground && typeof scene.ground === 'object') {
+    var normal = vector3(scene.ground.normal, up.clone()).normalize();
+    var divisions = 20, extent = Math.pow(10, Math.ceil(Math.log10(2 * size)));
+    var grid = new THREE.GridHelper(extent, divisions, 0x8d94a0, 0xc3c8d0);
+    grid.quaternion.setFromUnitVectors(new THREE.Vector3(0, 1, 0), normal);  // the grid lies in its x-z plane
+    grid.position.copy(vector3(scene.ground.point, new THREE.Vector3()));
+    world.add(grid);
+  }
+
+  // one colour per body, in the order bodies first appear: a fixed palette, so the same scene
+  // looks the same every time
+  var palette = [0x1f77b4, 0xff7f0e, 0x2ca02c, 0xd62728, 0x9467bd, 0x8c564b, 0xe377c2, 0x17becf, 0xbcbd22, 0x7f7f7f];
+  var bodyColours = {};
+  function colourOf(body) {
+    if (body === null || body === undefined) return 0x9aa0a8;
+    if (!(body in bodyColours)) bodyColours[body] = palette[Object.keys(bodyColours).length % palette.length];
+    return bodyColours[body];
+  }
+
+  var unitY = new THREE.Vector3(0, 1, 0);
+  var drawnShapes = shapes.map(function (s) {
+    var material = new THREE.MeshStandardMaterial({ color: colourOf(s.body), roughness: 0.6, metalness: 0.1,
+                                                    transparent: !!s.inferred, opacity: s.inferred ? 0.55 : 1 });
+    var r = s.radius > 0 ? s.radius : 0.02 * size, geometry = null, turn = null;
+    var axis = vector3(s.axis, new THREE.Vector3(0, 0, 1)).normalize();
+    switch (s.kind) {
+      case 'sphere': geometry = new THREE.SphereBufferGeometry(r, 32, 16); break;
+      case 'box':
+        var e = Array.isArray(s.size) ? s.size : [r, r, r];
+        geometry = new THREE.BoxBufferGeometry(e[0], e[1], e[2]);
+        break;
+      case 'cylinder': case 'disk':
+        var length = s.length > 0 ? s.length : (s.kind === 'disk' ? 0.1 * r : 2 * r);
+        geometry = new THREE.CylinderBufferGeometry(r, r, length, 40);
+        turn = new THREE.Quaternion().setFromUnitVectors(unitY, axis);  // three's cylinder is along y
+        break;
+      case 'rod': geometry = new THREE.CylinderBufferGeometry(r, r, 1, 16); break;  // scaled to the points' distance
+      default: window.eomgenErrors.push('shape ' + s.name + ': unknown kind ' + s.kind); return null;
+    }
+    var mesh = new THREE.Mesh(geometry, material);
+    if (turn) mesh.quaternion.copy(turn);
+    var group = new THREE.Group();
+    group.add(mesh);
+    world.add(group);
+    return { shape: s, group: group, mesh: mesh };
+  });
+
+  var shownAsBody = {};
+  shapes.forEach(function (s) { if (s.body) shownAsBody[s.body] = true; });
+  var masses = particles.map(function (p) { return p.mass > 0 ? p.mass : 0; });
+  var heaviest = Math.max.apply(null, masses.concat([0]));
+  var drawnParticles = particles.filter(function (p) { return !shownAsBody[p.name]; }).map(function (p) {
+    var relative = heaviest > 0 && p.mass > 0 ? Math.cbrt(p.mass / heaviest) : 1;
+    var r = 0.03 * size * Math.max(relative, 0.4);
+    var mesh = new THREE.Mesh(new THREE.SphereBufferGeometry(r, 32, 16),
+                              new THREE.MeshStandardMaterial({ color: colourOf(p.name), roughness: 0.5 }));
+    world.add(mesh);
+    return { point: p.point, mesh: mesh };
+  });
+
+  function dynamicLine(count, material, segments) {
+    var geometry = new THREE.BufferGeometry();
+    geometry.setAttribute('position', new THREE.BufferAttribute(new Float32Array(3 * count), 3));
+    var line = segments ? new THREE.LineSegments(geometry, material) : new THREE.Line(geometry, material);
+    line.frustumCulled = false;  // its vertices move; its bounding sphere is never recomputed
+    world.add(line);
+    return line;
+  }
+  var linkLines = dynamicLine(2 * links.length, new THREE.LineBasicMaterial({ color: 0x2b303a }), true);
+
+  // ---- optional layers: body frames, trails, constraint forces --------------------------------
+
+  var frameAxes = [];
+  frames.forEach(function (f, index) {
+    if (f.body === null || f.body === undefined) return;
+    // drawn where the body is drawn: its shape's point, else its particle's, else the origin
+    var at = -1;
+    shapes.forEach(function (s) { if (at < 0 && s.body === f.body) at = s.at; });
+    particles.forEach(function (p) { if (at < 0 && p.name === f.body) at = p.point; });
+    var axes = new THREE.AxesHelper(0.15 * size);
+    axes.material.depthTest = false;
+    axes.renderOrder = 1;
+    world.add(axes);
+    frameAxes.push({ frame: index, point: at, axes: axes });
+  });
+
+  var trails = points.map(function (p, index) {
+    var line = dynamicLine(n, new THREE.LineBasicMaterial({ color: 0x6b4fbb, transparent: true, opacity: 0.7 }), false);
+    var x = line.geometry.attributes.position.array, source = list(p.positions);
+    for (var i = 0; i < 3 * n && i < source.length; ++i) x[i] = source[i];
+    line.geometry.attributes.position.needsUpdate = true;
+    line.userData.wanted = trailDefaults.indexOf(index) >= 0;
+    return line;
+  });
+
+  var largestForce = 0;
+  forces.forEach(function (f) {
+    var v = list(f.vectors);
+    for (var i = 0; i + 2 < v.length; i += 3) largestForce = Math.max(largestForce, Math.hypot(v[i], v[i + 1], v[i + 2]));
+  });
+  var forceScale = largestForce > 0 ? 0.3 * size / largestForce : 0;
+  var forceArrows = forces.map(function (f) {
+    var arrow = new THREE.ArrowHelper(new THREE.Vector3(0, 0, 1), new THREE.Vector3(), 1, 0xc0392b);
+    world.add(arrow);
+    return { force: f, arrow: arrow };
+  });
+
+  var layers = { frames: false, trails: true, forces: false };
+
+  // ---- the state at time t --------------------------------------------------------------------
+
+  var current = t0, scratch = new THREE.Vector3(), other = new THREE.Vector3(), q = new THREE.Quaternion();
+  function place(t) {
+    var at = locate(t);
+    drawnShapes.forEach(function (d) {
+      if (!d) return;
+      var s = d.shape;
+      if (s.kind === 'rod') {
+        pointAt(s.at, at, scratch);
+        pointAt(s.to, at, other);
+        var length = scratch.distanceTo(other);
+        d.group.position.copy(scratch).add(other).multiplyScalar(0.5);
+        d.mesh.scale.set(1, Math.max(length, 1e-9), 1);
+        if (length > 0) d.mesh.quaternion.setFromUnitVectors(unitY, other.sub(scratch).divideScalar(length));
+        return;
+      }
+      pointAt(s.at, at, d.group.position);
+      frameAt(typeof s.frame === 'number' ? s.frame : -1, at, d.group.quaternion);
+    });
+    drawnParticles.forEach(function (d) { pointAt(d.point, at, d.mesh.position); });
+    var x = linkLines.geometry.attributes.position.array;
+    links.forEach(function (l, i) {
+      pointAt(l[0], at, scratch).toArray(x, 6 * i);
+      pointAt(l[1], at, scratch).toArray(x, 6 * i + 3);
+    });
+    linkLines.geometry.attributes.position.needsUpdate = true;
+    frameAxes.forEach(function (d) {
+      d.axes.visible = layers.frames;
+      if (d.point >= 0) pointAt(d.point, at, d.axes.position);
+      frameAt(d.frame, at, d.axes.quaternion);
+    });
+    var shownSamples = n === 0 ? 0 : at.k + (at.f > 0 ? 2 : 1);
+    trails.forEach(function (line) {
+      line.visible = layers.trails && line.userData.wanted;
+      line.geometry.setDrawRange(0, shownSamples);
+    });
+    forceArrows.forEach(function (d) {
+      var v = list(d.force.vectors);
+      var k = at.f < 0.5 || n < 2 ? at.k : at.k + 1;  // nearest sample: a force can jump
+      if (v.length < 3 * n || n === 0) { d.arrow.visible = false; return; }
+      scratch.set(v[3 * k], v[3 * k + 1], v[3 * k + 2]);
+      var length = scratch.length() * forceScale;
+      d.arrow.visible = layers.forces && length > 1e-6 * size;
+      if (!d.arrow.visible) return;
+      pointAt(d.force.point, at, d.arrow.position);
+      d.arrow.setDirection(scratch.normalize());
+      d.arrow.setLength(length, Math.min(0.25 * length, 0.05 * size), Math.min(0.12 * length, 0.025 * size));
+    });
+  }
+
+  // ---- plots: coordinates and energies against time, with a cursor ----------------------------
+
+  var plotColours = ['#1f77b4', '#ff7f0e', '#2ca02c', '#d62728', '#9467bd', '#8c564b', '#e377c2', '#17becf',
+                     '#bcbd22', '#7f7f7f'];
+  var plots = ['coordinates', 'energy'].map(function (group) {
+    var canvas = document.getElementById('plot-' + group);
+    var members = series.filter(function (s) { return s.group === group; });
+    var legend = document.getElementById('legend-' + group);
+    members.forEach(function (s, i) {
+      var entry = document.createElement('span');
+      entry.textContent = s.name;
+      entry.style.setProperty('--colour', plotColours[i % plotColours.length]);
+      legend.appendChild(entry);
+    });
+    var plot = { canvas: canvas, members: members, image: null, margin: { left: 46, right: 8, top: 6, bottom: 18 } };
+    // clicking or dragging in a plot seeks there
+    var seekFrom = function (event) {
+      var r = canvas.getBoundingClientRect(), m = plot.margin;
+      var u = (event.clientX - r.left - m.left) / Math.max(r.width - m.left - m.right, 1);
+      seek(t0 + Math.min(Math.max(u, 0), 1) * (t1 - t0));
+    };
+    canvas.addEventListener('pointerdown', function (e) { canvas.setPointerCapture(e.pointerId); seekFrom(e); });
+    canvas.addEventListener('pointermove', function (e) { if (e.buttons & 1) seekFrom(e); });
+    return plot;
+  });
+
+  function niceTicks(lo, hi, count) {
+    var step = Math.pow(10, Math.floor(Math.log10((hi - lo) / count)));
+    var err = (hi - lo) / count / step;
+    step *= err >= 7.5 ? 10 : err >= 3.5 ? 5 : err >= 1.5 ? 2 : 1;
+    var ticks = [];
+    for (var v = Math.ceil(lo / step) * step; v <= hi + 1e-9 * step; v += step) ticks.push(Math.abs(v) < 1e-12 * step ? 0 : v);
+    return ticks;
+  }
+
+  // the curves are drawn once per size into an image; each frame copies it and adds the cursor
+  function drawPlot(plot) {
+    var canvas = plot.canvas, ratio = window.devicePixelRatio || 1;
+    var w = Math.max(canvas.clientWidth, 1), h = Math.max(canvas.clientHeight, 1);
+    canvas.width = Math.round(w * ratio); canvas.height = Math.round(h * ratio);
+    var c = canvas.getContext('2d'), m = plot.margin;
+    c.setTransform(ratio, 0, 0, ratio, 0, 0);
+    c.clearRect(0, 0, w, h);
+    c.font = '11px sans-serif'; c.fillStyle = '#555d6b'; c.strokeStyle = '#c9cdd3'; c.lineWidth = 1;
+    var lo = Infinity, hi = -Infinity;
+    plot.members.forEach(function (s) { list(s.values).forEach(function (v) { if (v < lo) lo = v; if (v > hi) hi = v; }); });
+    if (!(lo <= hi) || n === 0) {
+      c.fillText('no data', m.left, 20);
+      plot.image = c.getImageData(0, 0, canvas.width, canvas.height);
+      plot.x = function () { return m.left; };
+      return;
+    }
+    if (hi - lo < 1e-12 * Math.max(1, Math.abs(hi))) { lo -= 0.5; hi += 0.5; }
+    var pad = 0.05 * (hi - lo); lo -= pad; hi += pad;
+    var pw = w - m.left - m.right, ph = h - m.top - m.bottom;
+    var span = t1 > t0 ? t1 - t0 : 1;
+    plot.x = function (t) { return m.left + (t - t0) / span * pw; };
+    var y = function (v) { return m.top + (hi - v) / (hi - lo) * ph; };
+    c.strokeRect(m.left, m.top, pw, ph);
+    c.textAlign = 'right'; c.textBaseline = 'middle';
+    niceTicks(lo, hi, Math.max(2, Math.floor(ph / 30))).forEach(function (v) {
+      c.fillText(Number(v.toPrecision(6)).toString(), m.left - 4, y(v));
+      c.beginPath(); c.moveTo(m.left, y(v)); c.lineTo(m.left + pw, y(v)); c.globalAlpha = 0.4; c.stroke(); c.globalAlpha = 1;
+    });
+    c.textAlign = 'center'; c.textBaseline = 'top';
+    if (t1 > t0) niceTicks(t0, t1, Math.max(2, Math.floor(pw / 70))).forEach(function (t) {
+      c.fillText(Number(t.toPrecision(6)) + (t === t0 ? ' s' : ''), plot.x(t), m.top + ph + 3);
+    });
+    plot.members.forEach(function (s, i) {
+      var v = list(s.values);
+      c.strokeStyle = plotColours[i % plotColours.length]; c.lineWidth = 1.5;
+      c.beginPath();
+      for (var k = 0; k < v.length && k < n; ++k) {
+        if (k === 0) c.moveTo(plot.x(times[k]), y(v[k])); else c.lineTo(plot.x(times[k]), y(v[k]));
+      }
+      c.stroke();
+    });
+    plot.image = c.getImageData(0, 0, canvas.width, canvas.height);
+  }
+
+  function drawCursor(plot) {
+    if (!plot.image) return;
+    var c = plot.canvas.getContext('2d'), ratio = window.devicePixelRatio || 1;
+    c.putImageData(plot.image, 0, 0);
+    var x = plot.x(current);
+    c.setTransform(ratio, 0, 0, ratio, 0, 0);
+    c.strokeStyle = '#1d2330'; c.lineWidth = 1;
+    c.beginPath(); c.moveTo(x, plot.margin.top); c.lineTo(x, plot.canvas.clientHeight - plot.margin.bottom); c.stroke();
+  }
+
+  // ---- controls -------------------------------------------------------------------------------
+
+  var playButton = document.getElementById('play'), speedSelect = document.getElementById('speed');
+  var slider = document.getElementById('time'), readout = document.getElementById('time-readout');
+  var playing = n > 1, dirty = true;
+  slider.max = String(Math.max(n - 1, 0));
+
+  function seek(t) {
+    current = Math.min(Math.max(t, t0), t1);
+    dirty = true;
+  }
+  function setPlaying(on) {
+    playing = on && n > 1;
+    playButton.textContent = playing ? 'pause' : 'play';
+  }
+  playButton.addEventListener('click', function () {
+    if (!playing && current >= t1) current = t0;
+    setPlaying(!playing);
+  });
+  slider.addEventListener('input', function () { setPlaying(false); seek(times[Number(slider.value)] || t0); });
+  document.getElementById('reset-view').addEventListener('click', function () { controls.reset(); dirty = true; });
+  document.addEventListener('keydown', function (e) {
+    if (e.code === 'Space' && e.target.tagName !== 'INPUT' && e.target.tagName !== 'SELECT') {
+      e.preventDefault(); playButton.click();
+    }
+  });
+  controls.addEventListener('change', function () { dirty = true; });
+
+  var layerBoxes = { frames: 'layer-frames', trails: 'layer-trails', forces: 'layer-forces' };
+  Object.keys(layerBoxes).forEach(function (name) {
+    var box = document.getElementById(layerBoxes[name]);
+    box.addEventListener('change', function () { layers[name] = box.checked; dirty = true; });
+  });
+  var trailList = document.getElementById('trail-points');
+  points.forEach(function (p, index) {
+    var label = document.createElement('label'), box = document.createElement('input');
+    box.type = 'checkbox';
+    box.checked = trails[index].userData.wanted;
+    box.addEventListener('change', function () { trails[index].userData.wanted = box.checked; dirty = true; });
+    label.appendChild(box);
+    label.appendChild(document.createTextNode(' ' + p.name));
+    trailList.appendChild(label);
+  });
+  if (points.length === 0) trailList.textContent = 'no points';
+  function syncLayerBoxes() {
+    Object.keys(layerBoxes).forEach(function (name) { document.getElementById(layerBoxes[name]).checked = layers[name]; });
+  }
+
+  function resize() {
+    var w = Math.max(view.clientWidth, 1), h = Math.max(view.clientHeight, 1);
+    renderer.setSize(w, h, false);
+    camera.aspect = w / h;
+    camera.updateProjectionMatrix();
+    plots.forEach(drawPlot);
+    dirty = true;
+  }
+  window.addEventListener('resize', resize);
+
+  // ---- drawing --------------------------------------------------------------------------------
+
+  function draw() {
+    place(current);
+    renderer.render(world, camera);
+    plots.forEach(drawCursor);
+    var k = locate(current);
+    if (n > 0) slider.value = String(k.f >= 0.5 && n > 1 ? k.k + 1 : k.k);
+    readout.textContent = 't = ' + current.toFixed(3) + ' s of ' + t1.toFixed(3) + ' s';
+    dirty = false;
+  }
+
+  // pixels that differ from the background, read back right after rendering (for #status)
+  function drawnPixels() {
+    var gl = renderer.getContext(), w = gl.drawingBufferWidth, h = gl.drawingBufferHeight;
+    var pixels = new Uint8Array(4 * w * h);
+    gl.readPixels(0, 0, w, h, gl.RGBA, gl.UNSIGNED_BYTE, pixels);
+    var r = Math.round(background.r * 255), g = Math.round(background.g * 255), b = Math.round(background.b * 255);
+    var count = 0;
+    for (var i = 0; i < pixels.length; i += 4) {
+      if (Math.abs(pixels[i] - r) > 8 || Math.abs(pixels[i + 1] - g) > 8 || Math.abs(pixels[i + 2] - b) > 8) ++count;
+    }
+    return count;
+  }
+
+  var last = null;
+  function frame(now) {
+    if (playing && last !== null) {
+      current += (now - last) / 1000 * Number(speedSelect.value);
+      if (current > t1) current = t0 + (current - t1) % Math.max(t1 - t0, 1e-9);
+      dirty = true;
+    }
+    last = now;
+    if (dirty) draw();
+    requestAnimationFrame(frame);
+  }
+
+  // ---- start: at the hash's time, paused (the browser test), or playing from the start --------
+
+  var hash = new URLSearchParams(location.hash.replace(/^#/, ''));
+  if (hash.has('t')) {
+    testHook = { t: Number(hash.get('t')) };
+    setPlaying(false);
+    seek(isFinite(testHook.t) ? testHook.t : t0);
+    if (hash.has('layers')) {
+      var asked = hash.get('layers').split(',');
+      Object.keys(layers).forEach(function (name) { layers[name] = asked.indexOf(name) >= 0; });
+    }
+  } else {
+    setPlaying(playing);
+  }
+  syncLayerBoxes();
+  resize();
+  draw();
+  status.drawn = drawnPixels();
+  status.t = current;
+  status.ready = true;
+  report();
+  requestAnimationFrame(frame);
+})();
