@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The main job: check a shipped model, derive and print its equations of motion, generate its
-# optimized C++ header, simulate it (CSV + plot), and run the computed-torque controller built
-# on the generated double pendulum.
+# optimized C++ header, simulate it (CSV, plot and an animated 3D view in one HTML page), and run
+# the computed-torque controller built on the generated double pendulum.
 #
 #   scripts/run-example.sh [MODEL [SIMULATE OPTIONS...]]
 # e.g. scripts/run-example.sh models/heavy_top.eom --t-end 5 --init theta=0.3,phi_dot=60
@@ -34,7 +34,8 @@ echo "== eomgen generate $(basename "$model") -o $header --stats"
 "$eomgen" generate "$model" -o "$header" --stats
 echo
 echo "== eomgen simulate $(basename "$model") $*"
-"$eomgen" simulate "$model" "$@" -o "$out/$name.csv" --plot "$out/$name.svg"
+"$eomgen" simulate "$model" "$@" -o "$out/$name.csv" --plot "$out/$name.svg" --animate "$out/$name.html"
+echo "open $out/$name.html in a browser to watch the motion (it works offline, from disk)"
 echo
 echo "== computed-torque tracking on the generated double pendulum (examples/computed_torque)"
 "$build/examples/computed_torque/computed_torque"

@@ -166,6 +166,9 @@ CLI::App* add_simulate_command(CLI::App& app, Options& o) {
   CLI::Option* plot = simulate->add_option("--plot", r.plot_path, "Plot file, .svg or .png (default: MODELNAME.svg)")
                           ->type_name("FILE");
   simulate->add_flag("--no-plot", o.no_plot, "Write the CSV only")->excludes(plot);
+  simulate->add_option("--animate", r.animation_path,
+                       "Also write an animated 3D view of the run: one self-contained HTML page (docs/animation.md)")
+      ->type_name("FILE.html");
   simulate->add_option("--cache-dir", r.cache_dir,
                        "Where compiled simulations are kept (default: $EOMGEN_CACHE_DIR, else ~/.cache/eomgen)")
       ->type_name("DIR");

@@ -17,10 +17,13 @@
 #include "eomgen/base/content_hash.hpp"
 #include "eomgen/codegen/emit_model.hpp"
 #include "eomgen/derivation/equations_of_motion.hpp"
+#include "eomgen/derivation/scene_recording.hpp"
+#include "eomgen/report/animation_page.hpp"
 #include "eomgen/base/error.hpp"
 #include "eomgen/base/version.hpp"
 #include "eomgen_build_config.hpp"
 #include "eomrt/integrators.hpp"
+#include "animation.hpp"
 #include "command_values.hpp"
 #include "file_output.hpp"
 #include "gnuplot.hpp"
@@ -331,7 +334,8 @@ int run_simulate(const Model& model, const SimulateRequest& r) {
   const std::string stem = cpp_identifier(model.name);
   const std::string csv_path = r.csv_path.empty() ? stem + ".csv" : r.csv_path;
   const std::string plot_path = r.plot_path.empty() ? stem + ".svg" : r.plot_path;
-  const std::vector<OutputFile> outputs{{"-o", csv_path}, {"--plot", r.plot ? plot_path : std::string()}};
+  const std::vector<OutputFile> outputs{
+      {"-o", csv_path}, {"--plot", r.plot ? plot_path : std::string()}, {"--animate", r.animation_path}};
   const fs::path runtime = runtime_include_dir(), program_dir = simulation_program_dir(), cache = cache_root(r);
   std::vector<std::string> sources;
   for (const fs::path& dir : {program_dir, runtime / "eomrt"})
@@ -349,10 +353,18 @@ int run_simulate(const Model& model, const SimulateRequest& r) {
                                    csv_path));
   }
 
-  const ModelEquations eom = derive_equations(model);
+  // the generated code records the scene for an animation, as outputs after the model's, whether
+  // or not this run asks for one: one program per model and methods, so a run with --animate
+  // after one without (or the other way) starts at once from the cache
+  const bool animate = !r.animation_path.empty();
+  const SceneRecording recording = scene_recording(model);
+  const Model simulated = with_scene_output(model, recording);
+  std::size_t model_outputs = 0;
+  for (const Output& output : model.outputs) model_outputs += output.components.size();
+  const ModelEquations eom = derive_equations(simulated);
   EmitOptions emit;
   emit.source_name = fs::path(r.model_path).filename().string();
-  const std::string header = emit_model(model, eom, emit).header;
+  const std::string header = emit_model(simulated, eom, emit).header;
   const fs::path program = simulation_program(model, header, methods_of(method_info, r), runtime, program_dir, cache);
 
   std::vector<std::string> cmd{program.string(), "--t-end", exact(r.t_end), "--method", method,
@@ -368,6 +380,12 @@ int run_simulate(const Model& model, const SimulateRequest& r) {
 
   PendingFile csv(csv_path);
   cmd.insert(cmd.end(), {"--csv", csv.path()});
+  cmd.insert(cmd.end(), {"--scene-first", std::to_string(model_outputs)});
+  std::optional<PendingFile> samples;  // the animation's samples: a temporary file beside the page
+  if (animate) {
+    samples.emplace(r.animation_path + ".samples");
+    cmd.insert(cmd.end(), {"--scene", samples->path()});
+  }
   std::cout << std::flush;
   const int status = run_process(cmd);
   if (status == 1) {
@@ -377,8 +395,21 @@ int run_simulate(const Model& model, const SimulateRequest& r) {
   }
   if (status != 0)
     throw Error(fmt::format("the simulation program of {} ended with status {}", model.name, status));
+  if (animate) {
+    // the page before the CSV is committed: a run whose page cannot be made leaves neither
+    const std::string json =
+        animation_scene_json(model, recording, r.parameters, read_file(samples->path()), emit.source_name);
+    write_atomically(r.animation_path, animation_page(fmt::format("{}: {}", model.name, model.description), json));
+  }
   csv.commit();
   std::cout << fmt::format("CSV:  {}\n", csv_path) << std::flush;
+  if (animate) {
+    std::error_code ec;
+    const std::uintmax_t bytes = fs::file_size(r.animation_path, ec);  // none for a device or pipe
+    std::cout << (ec ? fmt::format("animation: {}\n", r.animation_path)
+                     : fmt::format("animation: {} ({:.2f} MB)\n", r.animation_path, static_cast<double>(bytes) / 1e6))
+              << std::flush;
+  }
 
   if (r.plot) {
     const std::string title = fmt::format("{}: {}", model.name, model.description);

@@ -34,6 +34,7 @@ struct SimulateRequest {
   std::string csv_path;                      ///< empty: <model>.csv
   std::string plot_path;                     ///< empty: <model>.svg
   bool plot = true;
+  std::string animation_path;  ///< empty: no animation
   std::string cache_dir;  ///< empty: $EOMGEN_CACHE_DIR, else $XDG_CACHE_HOME/eomgen, else ~/.cache/eomgen
 };
 

@@ -5,6 +5,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -74,6 +75,26 @@ TEST_F(SimulationProgram, WritesTheCsvAndTheSummaryForTheCommandLineEomgenWrites
   // every number as %.17g, so that it reads back exactly
   EXPECT_THAT(lines[1], StartsWith("0,0.20000000000000001,0.10000000000000001,"));
   EXPECT_THAT(lines.back(), StartsWith("1,"));
+}
+
+// simulate always generates the animation's recording as the last outputs (scene_recording.hpp):
+// they never reach the CSV, and with --scene they go to their own file with t, q, T and V
+TEST_F(SimulationProgram, OutputsFromSceneFirstOnGoToTheSceneFileAndNeverToTheCsv) {
+  const fs::path scene = fs::path(csv_).replace_extension(".scene");
+  const Outcome run = run_program({"--t-end", "1", "--method", "rk4", "--dt", "0.5", "--init", "theta=0.25",
+                                   "--csv", csv_.string(), "--scene-first", "3", "--scene", scene.string()});
+  ASSERT_EQ(run.status, 0) << run.err;
+  const std::vector<std::string> lines = lines_of(csv_), scene_lines = lines_of(scene);
+  fs::remove(scene);
+  ASSERT_EQ(lines.size(), 4u);
+  EXPECT_EQ(lines[0], "t,theta,theta_dot,T,V,T+V,bob_pos_1,bob_pos_2,bob_pos_3");
+  ASSERT_EQ(scene_lines.size(), 3u);  // no header: t, theta, T, V, bob_vel_1..3, height
+  EXPECT_THAT(scene_lines[0], StartsWith("0,0.25,0,"));
+  EXPECT_EQ(std::count(scene_lines[0].begin(), scene_lines[0].end(), ','), 7);
+  EXPECT_THAT(scene_lines[2], StartsWith("1,"));
+  const Outcome without = run_program({"--t-end", "1", "--csv", csv_.string(), "--scene", scene.string()});
+  EXPECT_EQ(without.status, 2);
+  EXPECT_THAT(without.err, HasSubstr("--scene without --scene-first"));
 }
 
 TEST_F(SimulationProgram, SamplesAboutAThousandRowsWhenNoIntervalIsGiven) {

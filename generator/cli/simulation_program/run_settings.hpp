@@ -4,7 +4,7 @@
 //
 //   program --t-end T --method NAME --solver S --stabilization S [--dt H] [--rtol R]
 //           [--atol A] [--sample S] [--set p=v]... [--init q=v | q_dot=v]... [--input u=v]...
-//           --csv FILE [--scene FILE --scene-first K] [--progress]
+//           --csv FILE [--scene-first K [--scene FILE]] [--progress]
 //
 // eomgen has checked every value and name against the model and the integrator registry
 // before it builds the program, and says what is wrong in the user's terms; here a malformed
@@ -40,8 +40,9 @@ struct RunSettings {
   /// the inputs, held constant
   typename Types::Inputs u = Types::Inputs::Zero();
   std::string csv_path;
-  /// with --animate: the file the outputs from component scene_first on go to, one line per
-  /// sample, instead of the CSV (the recording of scene_recording.hpp); empty: none
+  /// The output components from scene_first on (default: none) are the animation's recording
+  /// (scene_recording.hpp), never written to the CSV; with --animate they go to scene_path, one
+  /// line per sample (empty: nowhere).
   std::string scene_path;
   int scene_first = -1;
   /// draw a progress line on stderr when it is a terminal
@@ -168,7 +169,10 @@ RunSettings<Model> parse_arguments(int argc, char** argv) {
     ++i;
   }
   if (std::isnan(run.options.t_end) || run.csv_path.empty()) throw ArgumentError("--t-end and --csv are required");
-  if (run.scene_path.empty() != (run.scene_first < 0)) throw ArgumentError("--scene and --scene-first go together");
+  if (run.scene_first < 0) {
+    if (!run.scene_path.empty()) throw ArgumentError("--scene without --scene-first");
+    run.scene_first = output_count<Model>();  // a header without the recording: every output is the model's
+  }
 
   eomrt::SimulationOptions<double>& o = run.options;
   if (o.sample_interval == 0) {

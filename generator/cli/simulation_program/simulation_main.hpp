@@ -97,7 +97,7 @@ int simulation_main(int argc, char** argv) {
       std::fclose(csv);
       return 1;
     }
-    const int csv_outputs = run.scene_path.empty() ? output_count<Model>() : run.scene_first;
+    const int csv_outputs = run.scene_first;
     write_csv_header<Model>(csv, csv_outputs);
     SampleWriter<Model> samples(
         csv, run.p, ProgressLine(run.progress && ::isatty(STDERR_FILENO), run.options.t0, run.options.t_end),

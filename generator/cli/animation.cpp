@@ -1,0 +1,446 @@
+#include "animation.hpp"
+
+#include <fmt/format.h>
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <vector>
+
+#include "eomgen/base/error.hpp"
+#include "eomgen/mechanics/kinematics.hpp"
+#include "eomgen/symbolic/double_evaluator.hpp"
+
+namespace eomgen::tools {
+
+namespace {
+
+using Rows = std::vector<std::vector<double>>;
+
+/// The scene file's lines, every one of \p width numbers.
+Rows read_samples(const std::string& text, std::size_t width) {
+  Rows rows;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) {
+    std::vector<double> row;
+    const char* p = line.c_str();
+    while (*p != '\0') {
+      char* end = nullptr;
+      row.push_back(std::strtod(p, &end));
+      if (end == p || !std::isfinite(row.back()) || (*end != ',' && *end != '\0'))
+        throw Error(fmt::format("the animation's samples are malformed at line {} (a bug in eomgen)", rows.size() + 1));
+      p = *end == ',' ? end + 1 : end;
+    }
+    if (row.size() != width)
+      throw Error(fmt::format("the animation's samples have {} values at line {}, expected {} (a bug in eomgen)",
+                              row.size(), rows.size() + 1, width));
+    rows.push_back(std::move(row));
+  }
+  if (rows.empty()) throw Error("the simulation wrote no sample for the animation (a bug in eomgen)");
+  return rows;
+}
+
+/// The samples a page keeps: all, or at most max_animation_samples spread evenly, the last kept.
+std::vector<std::size_t> kept_samples(std::size_t n) {
+  std::vector<std::size_t> kept;
+  if (n <= max_animation_samples) {
+    for (std::size_t i = 0; i < n; ++i) kept.push_back(i);
+    return kept;
+  }
+  for (std::size_t k = 0; k < max_animation_samples; ++k)
+    kept.push_back(k * (n - 1) / (max_animation_samples - 1));
+  return kept;
+}
+
+/// JSON text, written by hand for the numbers: six significant digits (a micrometre in a metre)
+/// keep a page of thousands of samples small, and fmt prints them the same in every process.
+class JsonText {
+ public:
+  JsonText& raw(const std::string& s) {
+    out_ += s;
+    return *this;
+  }
+  JsonText& string(const std::string& s) {
+    out_ += nlohmann::json(s).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+    return *this;
+  }
+  JsonText& number(double v) {
+    out_ += fmt::format("{:.6g}", v == 0 ? 0.0 : v);  // no "-0"
+    return *this;
+  }
+  template <class Range>
+  JsonText& numbers(const Range& values) {
+    out_ += '[';
+    bool first = true;
+    for (const double v : values) {
+      if (!first) out_ += ',';
+      first = false;
+      number(v);
+    }
+    out_ += ']';
+    return *this;
+  }
+  const std::string& text() const { return out_; }
+
+ private:
+  std::string out_;
+};
+
+/// The run's parameter values: the defaults, overridden by --set.
+DoubleEvaluator parameter_values(const Model& model, const std::map<std::string, double>& set) {
+  DoubleEvaluator values;
+  for (const Parameter& p : model.system.variables().parameters()) {
+    const auto given = set.find(p.name);
+    values.set(p.symbol, given == set.end() ? p.default_value : given->second);
+  }
+  return values;
+}
+
+/// A shape's dimension at the run's parameters: finite and positive (zero where \p may_be_zero).
+/// The language checked it at the defaults; --set can still make it zero or negative.
+double dimension(const DoubleEvaluator& values, const GiNaC::ex& e, const VisualShape& shape, const char* what,
+                 bool may_be_zero = false) {
+  double v = 0;
+  try {
+    v = values.value(e, what);
+  } catch (const Error&) {
+    v = std::nan("");
+  }
+  if (!std::isfinite(v) || v < 0 || (v == 0 && !may_be_zero))
+    throw SourceError(shape.location, fmt::format("shape '{}': its {} is {} at the parameters of this run: expected a "
+                                                  "finite positive length; check the --set values",
+                                                  shape.name, what, v));
+  return v;
+}
+
+const char* kind_name(VisualShape::Kind kind) {
+  switch (kind) {
+    case VisualShape::Kind::sphere: return "sphere";
+    case VisualShape::Kind::box: return "box";
+    case VisualShape::Kind::cylinder: return "cylinder";
+    case VisualShape::Kind::disk: return "disk";
+    case VisualShape::Kind::rod: return "rod";
+  }
+  EOMGEN_UNREACHABLE("a VisualShape::Kind without a name");
+}
+
+/// Where the recorded values of one sample lie in its line of the scene file.
+struct SampleLayout {
+  std::size_t nq, nc, recording;  // offsets of q, lambda, T, the recording
+  std::size_t width;
+};
+
+/// An extra frame of the page: a body's principal axes, turned from its frame by the constant R
+/// (columns: the axes in the body frame's components), for the box of a body with no shape whose
+/// inertia is not diagonal in its frame.
+struct PrincipalFrame {
+  std::size_t recorded_frame;  // index into recording.frames
+  Eigen::Matrix3d axes;
+};
+
+}  // namespace
+
+namespace {
+
+class SceneWriter {
+ public:
+  SceneWriter(const Model& model, const SceneRecording& recording, const std::map<std::string, double>& parameters,
+              const std::string& samples)
+      : model_(model),
+        system_(model.system),
+        recording_(recording),
+        values_(parameter_values(model, parameters)),
+        nq_(system_.variables().coordinates().size()),
+        nc_(system_.constraints().size()),
+        rows_(read_samples(samples, 3 + nq_ + nc_ + recording.components.size())),
+        kept_(kept_samples(rows_.size())) {}
+
+  std::string write(const std::string& source_name) {
+    json_.raw("{\"format\":1,\"model\":").string(model_.name);
+    json_.raw(",\n\"description\":").string(model_.description);
+    json_.raw(",\n\"source\":").string(source_name);
+    json_.raw(",\n\"times\":").numbers(column(0));
+    json_.raw(",\n\"up\":").numbers(up());
+    std::vector<PrincipalFrame> principal;
+    const std::string shapes = shapes_text(principal);
+    frames(principal);
+    points();
+    json_.raw(",\n\"links\":[");
+    for (std::size_t k = 0; k < recording_.links.size(); ++k)
+      json_.raw(fmt::format("{}[{},{}]", k ? "," : "", recording_.links[k].first, recording_.links[k].second));
+    json_.raw("]");
+    json_.raw(",\n\"shapes\":[").raw(shapes).raw("]");
+    particles();
+    json_.raw(",\n\"trails\":[");
+    for (std::size_t k = 0; k < recording_.trails.size(); ++k) json_.raw(fmt::format("{}{}", k ? "," : "", recording_.trails[k]));
+    json_.raw("]");
+    forces();
+    ground();
+    series();
+    json_.raw("}\n");
+    return json_.text();
+  }
+
+ private:
+  std::size_t recording_offset() const { return 3 + nq_ + nc_; }
+  std::size_t frame_count() const { return recording_.frames.size(); }
+
+  /// Column c of the kept samples.
+  std::vector<double> column(std::size_t c) const {
+    std::vector<double> v;
+    for (const std::size_t i : kept_) v.push_back(rows_[i][c]);
+    return v;
+  }
+  /// C_af of recorded frame k at sample i.
+  Eigen::Matrix3d rotation(std::size_t k, std::size_t i) const {
+    Eigen::Matrix3d c;
+    for (int r = 0; r < 3; ++r)
+      for (int s = 0; s < 3; ++s) c(r, s) = rows_[i][recording_offset() + 9 * k + 3 * r + s];
+    return c;
+  }
+  Eigen::Vector3d position(std::size_t point, std::size_t i) const {
+    const std::size_t at = recording_offset() + 9 * frame_count() + 3 * point;
+    return {rows_[i][at], rows_[i][at + 1], rows_[i][at + 2]};
+  }
+  /// A constant vector of expressions at the run's parameters (coordinates and time at 0, for
+  /// a gravity given in a moving frame).
+  Eigen::Vector3d constant(const std::array<GiNaC::ex, 3>& e, const std::string& what) const {
+    DoubleEvaluator at_zero = values_;
+    at_zero.set(system_.variables().time(), 0);
+    for (const Coordinate& c : system_.variables().coordinates()) at_zero.set(c.q, 0), at_zero.set(c.qd, 0);
+    return {at_zero.finite(e[0], what), at_zero.finite(e[1], what), at_zero.finite(e[2], what)};
+  }
+
+  /// The camera's up: against gravity, else the inertial frame's axis 3.
+  std::vector<double> up() const {
+    if (!system_.gravity().is_zero()) {
+      const GiNaC::matrix g = resolve(system_, system_.gravity(), system_.inertial_frame());
+      try {
+        const Eigen::Vector3d v = constant({g(0, 0), g(1, 0), g(2, 0)}, "gravity");
+        if (v.norm() > 0) return {-v.x() / v.norm(), -v.y() / v.norm(), -v.z() / v.norm()};
+      } catch (const Error&) {
+        // a gravity that turns with the state has no one up: the default
+      }
+    }
+    return {0, 0, 1};
+  }
+
+  /// The size of the scene: the diagonal of the box around every point over the run.
+  double scene_size() const {
+    Eigen::Vector3d lo = Eigen::Vector3d::Constant(INFINITY), hi = -lo;
+    for (const std::size_t i : kept_)
+      for (std::size_t p = 0; p < recording_.points.size(); ++p)
+        lo = lo.cwiseMin(position(p, i)), hi = hi.cwiseMax(position(p, i));
+    const double d = (hi - lo).norm();
+    return std::isfinite(d) && d > 0 ? d : 1.0;
+  }
+
+  std::ptrdiff_t frame_index(std::optional<FrameId> frame) const {
+    if (!frame || *frame == system_.inertial_frame()) return -1;
+    for (std::size_t k = 0; k < frame_count(); ++k)
+      if (recording_.frames[k].first == *frame) return static_cast<std::ptrdiff_t>(k);
+    EOMGEN_UNREACHABLE("a shape's frame is not recorded (scene_recording records every shape's frame)");
+  }
+
+  std::string shapes_text(std::vector<PrincipalFrame>& principal) const {
+    JsonText s;
+    bool first = true;
+    const auto begin = [&](const std::string& name, const char* kind, const std::string& body) {
+      s.raw(first ? "\n" : ",\n");
+      first = false;
+      s.raw("{\"name\":").string(name).raw(fmt::format(",\"kind\":\"{}\",\"body\":", kind));
+      if (body.empty())
+        s.raw("null");
+      else
+        s.string(body);
+    };
+    for (const VisualShape& shape : model_.shapes) {
+      begin(shape.name, kind_name(shape.kind), shape.body);
+      s.raw(fmt::format(",\"frame\":{},\"at\":{}", frame_index(shape.frame), shape.at.index));
+      switch (shape.kind) {
+        case VisualShape::Kind::sphere:
+          s.raw(",\"radius\":").number(dimension(values_, shape.radius, shape, "radius"));
+          break;
+        case VisualShape::Kind::box:
+          s.raw(",\"size\":").numbers(std::vector<double>{dimension(values_, shape.size[0], shape, "length along axis 1"),
+                                                          dimension(values_, shape.size[1], shape, "length along axis 2"),
+                                                          dimension(values_, shape.size[2], shape, "length along axis 3")});
+          break;
+        case VisualShape::Kind::cylinder:
+        case VisualShape::Kind::disk: {
+          s.raw(",\"radius\":").number(dimension(values_, shape.radius, shape, "radius"));
+          s.raw(",\"length\":").number(dimension(values_, shape.length, shape,
+                                                 shape.kind == VisualShape::Kind::disk ? "thickness" : "length"));
+          const Eigen::Vector3d axis = constant(shape.axis, "a shape's axis");
+          if (!(axis.norm() > 0))
+            throw SourceError(shape.location, fmt::format("shape '{}': its axis is zero at the parameters of this run",
+                                                          shape.name));
+          s.raw(",\"axis\":").numbers(std::vector<double>{axis.x() / axis.norm(), axis.y() / axis.norm(), axis.z() / axis.norm()});
+          break;
+        }
+        case VisualShape::Kind::rod:
+          s.raw(fmt::format(",\"to\":{}", shape.to.index));
+          s.raw(",\"radius\":").number(dimension(values_, shape.radius, shape, "radius", true));
+          break;
+      }
+      s.raw(",\"inferred\":false}");
+    }
+    const double fallback = 0.03 * scene_size();
+    for (const RigidBody& body : system_.rigid_bodies()) {
+      const bool shaped = std::any_of(model_.shapes.begin(), model_.shapes.end(),
+                                      [&](const VisualShape& shape) { return shape.body == body.name; });
+      if (shaped) continue;
+      // the box of the body's mass and inertia: x^2 = 6 (trace J - 2 J_x) / m for its edges
+      const std::string what = fmt::format("the inertia of body '{}'", body.name);
+      Eigen::Matrix3d j;
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) j(r, c) = values_.finite(body.inertia(r, c), what);
+      const double m = values_.finite(body.mass, "the mass of body '" + body.name + "'");
+      const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(j);
+      const bool diagonal = (j - Eigen::Matrix3d(j.diagonal().asDiagonal())).cwiseAbs().maxCoeff() <=
+                            1e-12 * j.cwiseAbs().maxCoeff();
+      const Eigen::Vector3d moments = diagonal ? Eigen::Vector3d(j.diagonal()) : eigen.eigenvalues();
+      Eigen::Vector3d edges;
+      for (int k = 0; k < 3; ++k) edges(k) = std::sqrt(std::max(0.0, 6 * (moments.sum() - 2 * moments(k)) / m));
+      const double thinnest = edges.maxCoeff() > 0 ? 0.05 * edges.maxCoeff() : fallback;
+      edges = edges.cwiseMax(thinnest);
+      std::ptrdiff_t frame = frame_index(body.frame);
+      if (!diagonal) {
+        Eigen::Matrix3d axes = eigen.eigenvectors();
+        if (axes.determinant() < 0) axes.col(2) = -axes.col(2);
+        for (std::size_t k = 0; k < frame_count(); ++k)
+          if (recording_.frames[k].first == body.frame) principal.push_back({k, axes});
+        frame = static_cast<std::ptrdiff_t>(frame_count() + principal.size() - 1);
+      }
+      begin(body.name, "box", body.name);
+      s.raw(fmt::format(",\"frame\":{},\"at\":{},\"size\":", frame, body.mass_centre.index))
+          .numbers(std::vector<double>{edges.x(), edges.y(), edges.z()})
+          .raw(",\"inferred\":true}");
+    }
+    return s.text() + (first ? "" : "\n");
+  }
+
+  void frames(const std::vector<PrincipalFrame>& principal) {
+    json_.raw(",\n\"frames\":[");
+    const auto frame = [&](bool first, const std::string& name, const std::string& body, auto&& matrix) {
+      json_.raw(first ? "\n" : ",\n").raw("{\"name\":").string(name).raw(",\"body\":");
+      if (body.empty())
+        json_.raw("null");
+      else
+        json_.string(body);
+      std::vector<double> entries;
+      for (const std::size_t i : kept_) {
+        const Eigen::Matrix3d c = matrix(i);
+        for (int r = 0; r < 3; ++r)
+          for (int s = 0; s < 3; ++s) entries.push_back(c(r, s));
+      }
+      json_.raw(",\"rotations\":").numbers(entries).raw("}");
+    };
+    for (std::size_t k = 0; k < frame_count(); ++k)
+      frame(k == 0, system_.frame(recording_.frames[k].first).name, recording_.frames[k].second,
+            [&](std::size_t i) { return rotation(k, i); });
+    for (const PrincipalFrame& p : principal) {
+      const auto& [id, body] = recording_.frames[p.recorded_frame];
+      frame(frame_count() == 0 && &p == &principal.front(), fmt::format("{} (principal axes of {})", system_.frame(id).name, body), "",
+            [&](std::size_t i) { return Eigen::Matrix3d(rotation(p.recorded_frame, i) * p.axes); });
+    }
+    json_.raw("]");
+  }
+
+  void points() {
+    json_.raw(",\n\"points\":[");
+    for (std::size_t p = 0; p < recording_.points.size(); ++p) {
+      std::vector<double> xyz;
+      for (const std::size_t i : kept_) {
+        const Eigen::Vector3d x = position(p, i);
+        xyz.insert(xyz.end(), {x.x(), x.y(), x.z()});
+      }
+      json_.raw(p ? ",\n" : "\n").raw("{\"name\":").string(system_.point(recording_.points[p]).name);
+      json_.raw(",\"positions\":").numbers(xyz).raw("}");
+    }
+    json_.raw("]");
+  }
+
+  void particles() {
+    json_.raw(",\n\"particles\":[");
+    bool first = true;
+    for (const Particle& particle : system_.particles()) {
+      json_.raw(first ? "" : ",").raw("{\"name\":").string(particle.name);
+      json_.raw(fmt::format(",\"point\":{},\"mass\":", particle.point.index))
+          .number(values_.finite(particle.mass, "the mass of particle '" + particle.name + "'"))
+          .raw("}");
+      first = false;
+    }
+    json_.raw("]");
+  }
+
+  void forces() {
+    json_.raw(",\n\"forces\":[");
+    for (std::size_t c = 0; c < model_.contacts.size(); ++c) {
+      const ContactForce& contact = model_.contacts[c];
+      std::vector<Eigen::Vector3d> directions;
+      for (const ContactForce::Row& row : contact.rows) directions.push_back(constant(row.direction, "a contact's direction"));
+      std::vector<double> xyz;
+      for (const std::size_t i : kept_) {
+        Eigen::Vector3d f = Eigen::Vector3d::Zero();
+        for (std::size_t k = 0; k < contact.rows.size(); ++k) f += rows_[i][1 + nq_ + contact.rows[k].constraint] * directions[k];
+        xyz.insert(xyz.end(), {f.x(), f.y(), f.z()});
+      }
+      json_.raw(c ? ",\n" : "\n").raw("{\"name\":").string(contact.name);
+      json_.raw(fmt::format(",\"point\":{},\"vectors\":", contact.point.index)).numbers(xyz).raw("}");
+    }
+    json_.raw("]");
+  }
+
+  void ground() {
+    json_.raw(",\n\"ground\":");
+    for (const ContactForce& contact : model_.contacts) {
+      if (!contact.plane_normal) continue;
+      const Eigen::Vector3d n = constant(*contact.plane_normal, "a contact's normal").normalized();
+      const Eigen::Vector3d p = position(contact.plane_point.index, kept_.front());
+      json_.raw("{\"normal\":").numbers(std::vector<double>{n.x(), n.y(), n.z()});
+      json_.raw(",\"point\":").numbers(std::vector<double>{p.x(), p.y(), p.z()}).raw("}");
+      return;
+    }
+    json_.raw("null");
+  }
+
+  void series() {
+    json_.raw(",\n\"series\":[");
+    const auto one = [&](bool first, const std::string& name, const char* group, std::size_t col) {
+      json_.raw(first ? "\n" : ",\n").raw("{\"name\":").string(name).raw(fmt::format(",\"group\":\"{}\",\"values\":", group));
+      json_.numbers(column(col)).raw("}");
+    };
+    const std::vector<Coordinate>& q = system_.variables().coordinates();
+    for (std::size_t k = 0; k < q.size(); ++k) one(k == 0, q[k].name, "coordinates", 1 + k);
+    const std::size_t t_col = 1 + nq_ + nc_;
+    one(q.empty(), "T", "energy", t_col);
+    one(false, "V", "energy", t_col + 1);
+    json_.raw(",\n{\"name\":\"T+V\",\"group\":\"energy\",\"values\":");
+    std::vector<double> total;
+    for (const std::size_t i : kept_) total.push_back(rows_[i][t_col] + rows_[i][t_col + 1]);
+    json_.numbers(total).raw("}]");
+  }
+
+  const Model& model_;
+  const MechanicalSystem& system_;
+  const SceneRecording& recording_;
+  DoubleEvaluator values_;
+  std::size_t nq_, nc_;
+  Rows rows_;
+  std::vector<std::size_t> kept_;
+  JsonText json_;
+};
+
+}  // namespace
+
+std::string animation_scene_json(const Model& model, const SceneRecording& recording,
+                                 const std::map<std::string, double>& parameters, const std::string& samples,
+                                 const std::string& source_name) {
+  return SceneWriter(model, recording, parameters, samples).write(source_name);
+}
+
+}  // namespace eomgen::tools

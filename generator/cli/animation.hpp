@@ -1,0 +1,26 @@
+#pragma once
+// The animation of a simulation (`eomgen simulate --animate run.html`, docs/animation.md): the
+// scene the page shows, as the JSON the viewer reads, from the model, the recording the
+// simulation program made with the generated code, and the run's parameter values.
+#include <map>
+#include <string>
+
+#include "eomgen/derivation/scene_recording.hpp"
+#include "eomgen/mechanics/model.hpp"
+
+namespace eomgen::tools {
+
+/// At most this many samples go into a page; a longer run is thinned evenly, its last sample kept.
+inline constexpr std::size_t max_animation_samples = 2500;
+
+/// The scene of docs/animation.md ("The data").
+/// \param parameters  the run's --set values; the others are the defaults
+/// \param samples     the simulation program's scene file: per sample a line of t, q, lambda,
+///                    T, V and the recording's components (simulation_program/sample_writer.hpp)
+/// \throws eomgen::Error for a file that does not have that form (a bug), and for a shape's
+///         dimension that is not a finite positive number at the run's parameters
+std::string animation_scene_json(const Model& model, const SceneRecording& recording,
+                                 const std::map<std::string, double>& parameters, const std::string& samples,
+                                 const std::string& source_name);
+
+}  // namespace eomgen::tools

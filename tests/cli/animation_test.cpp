@@ -1,0 +1,172 @@
+// `eomgen simulate --animate`: the page's scene (docs/animation.md) holds what the generated
+// code recorded, checked against hand formulas of the shipped models, for every shipped model;
+// the CSV is the same with or without it, and bad requests leave no file.
+//
+// The compiled simulations are cached in EOMGEN_TEST_CACHE_DIR (in the build tree).
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "cli/cli_runner.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using eomgen::testing::Outcome;
+using eomgen::testing::quote;
+using eomgen::testing::slurp;
+using ::testing::HasSubstr;
+using nlohmann::json;
+
+/// The scene of a page: the JSON of its <script type="application/json" id="scene">, with the
+/// `<\/` the page writes for `</` read back.
+json scene_of(const std::string& page) {
+  const std::string open = "<script type=\"application/json\" id=\"scene\">";
+  const std::size_t begin = page.find(open);
+  if (begin == std::string::npos) return json();
+  const std::size_t end = page.find("</script>", begin);
+  std::string text = page.substr(begin + open.size(), end - begin - open.size());
+  for (std::size_t at; (at = text.find("<\\/")) != std::string::npos;) text.replace(at, 3, "</");
+  return json::parse(text);
+}
+
+const json& named(const json& list, const std::string& name) {
+  for (const json& item : list)
+    if (item["name"] == name) return item;
+  static const json none;
+  ADD_FAILURE() << "no entry named " << name;
+  return none;
+}
+
+class Animate : public eomgen::testing::CliFixture {
+ protected:
+  Outcome simulate(const std::string& arguments) {
+    return eomgen("simulate " + arguments + " --cache-dir " + quote(EOMGEN_TEST_CACHE_DIR));
+  }
+  std::string shipped(const std::string& model) const {
+    return quote(std::string(EOMGEN_SOURCE_DIR) + "/models/" + model + ".eom");
+  }
+  std::string work(const std::string& name) const { return (dir_ / "work" / name).string(); }
+};
+
+TEST_F(Animate, TheDoublePendulumsBobsAreWhereItsAnglesPutThemAndTheCsvIsUnchanged) {
+  const std::string run = shipped("double_pendulum") + " --t-end 10 --init theta1=1.8,theta2=-0.6 --no-plot";
+  const Outcome plain = simulate(run + " -o " + quote(work("plain.csv")));
+  ASSERT_EQ(plain.status, 0) << plain.err;
+  const Outcome animated = simulate(run + " -o " + quote(work("run.csv")) + " --animate " + quote(work("run.html")));
+  ASSERT_EQ(animated.status, 0) << animated.err;
+  EXPECT_THAT(animated.out, HasSubstr("animation: " + work("run.html") + " ("));
+  EXPECT_EQ(slurp(work("plain.csv")), slurp(work("run.csv")));
+
+  const std::string page = slurp(work("run.html"));
+  EXPECT_LT(page.size(), 2u << 20) << "the issue's bound for a 10 s double pendulum";
+  const json scene = scene_of(page);
+  ASSERT_TRUE(scene.is_object());
+  EXPECT_EQ(scene["model"], "double_pendulum");
+  const std::vector<double> t = scene["times"];
+  ASSERT_EQ(t.size(), 1001u);
+  EXPECT_DOUBLE_EQ(t.back(), 10.0);
+  const std::vector<double> theta1 = named(scene["series"], "theta1")["values"];
+  const std::vector<double> theta2 = named(scene["series"], "theta2")["values"];
+  const std::vector<double> p2 = named(scene["points"], "p2")["positions"];
+  ASSERT_EQ(p2.size(), 3 * t.size());
+  // the outer bob from the hand derivation, l1 = 0.6, l2 = 0.4; the page keeps 6 digits
+  for (std::size_t i = 0; i < t.size(); i += 50) {
+    EXPECT_NEAR(p2[3 * i], 0.6 * std::sin(theta1[i]) + 0.4 * std::sin(theta1[i] + theta2[i]), 2e-5) << t[i];
+    EXPECT_NEAR(p2[3 * i + 1], -0.6 * std::cos(theta1[i]) - 0.4 * std::cos(theta1[i] + theta2[i]), 2e-5) << t[i];
+  }
+  EXPECT_EQ(scene["up"], json::array({0, 1, 0}));  // gravity is -g a.2
+  EXPECT_EQ(scene["links"], json::parse("[[0,1],[1,2]]"));
+  EXPECT_EQ(scene["ground"], json());
+
+  // the same page from a second process, byte for byte
+  const Outcome again = simulate(run + " -o " + quote(work("again.csv")) + " --animate " + quote(work("again.html")));
+  ASSERT_EQ(again.status, 0) << again.err;
+  EXPECT_EQ(slurp(work("again.html")), page);
+}
+
+TEST_F(Animate, AnAnimationThatCannotBeWrittenIsRefusedBeforeAnythingRuns) {
+  const std::string run = shipped("simple_pendulum") + " --t-end 1 --no-plot -o " + quote(work("run.csv"));
+  const Outcome missing_dir = simulate(run + " --animate " + quote(work("no/such/dir/run.html")));
+  EXPECT_EQ(missing_dir.status, 2);
+  EXPECT_THAT(missing_dir.err, HasSubstr("--animate"));
+  const Outcome same_as_csv = simulate(run + " --animate " + quote(work("run.csv")));
+  EXPECT_EQ(same_as_csv.status, 2);
+  EXPECT_THAT(same_as_csv.err, HasSubstr("--animate"));
+  EXPECT_FALSE(fs::exists(work("run.csv")));
+}
+
+/// Each shipped model with a start that satisfies its constraints (rates the simulation projects).
+struct ShippedRun {
+  const char* model;
+  const char* init;
+};
+const ShippedRun shipped_runs[] = {
+    {"bead_on_hoop", "theta=0.5"},
+    {"cart_pole", "theta=3"},
+    {"cartesian_pendulum", "x=0.3,y=-0.4"},
+    {"double_pendulum", "theta1=1.8,theta2=-0.6"},
+    {"heavy_top", "theta=0.3,phi_dot=60"},
+    {"knife_edge", "x_dot=1,theta_dot=0.5"},
+    {"planar_chain", "q1=1"},
+    {"quaternion_rigid_body", "eta=1,e1_dot=0.2,e3_dot=0.5"},
+    {"rolling_coin", "phi_dot=30,y_dot=-0.387,psi_dot=1"},
+    {"simple_pendulum", "theta=1"},
+    {"spacecraft_panel", "theta=0.5,gamma_dot=0.2"},
+    {"spherical_pendulum", "theta=1,phi_dot=2"},
+    {"spring_mass_damper", "q=0.1"},
+    {"universal_chain", "alpha1=0.5,beta1=0.3"},
+    {"whipple_bicycle", "x_dot=5,theta_r_dot=-16.666666666666667,theta_f_dot=-14.285714285714286,phi_dot=0.5"},
+};
+
+/// What every page must hold: arrays of one entry per sample, indices that exist, rotations.
+void expect_consistent_scene(const json& scene) {
+  const std::size_t n = scene["times"].size(), points = scene["points"].size(), frames = scene["frames"].size();
+  ASSERT_GT(n, 1u);
+  for (const json& p : scene["points"]) EXPECT_EQ(p["positions"].size(), 3 * n) << p["name"];
+  for (const json& s : scene["series"]) EXPECT_EQ(s["values"].size(), n) << s["name"];
+  for (const json& f : scene["frames"]) {
+    const std::vector<double> c = f["rotations"];
+    ASSERT_EQ(c.size(), 9 * n) << f["name"];
+    for (std::size_t i = 0; i < n; i += n / 7 + 1)  // columns orthonormal: C^T C = 1 (6 digits kept)
+      for (int a = 0; a < 3; ++a)
+        for (int b = 0; b < 3; ++b) {
+          double dot = 0;
+          for (int k = 0; k < 3; ++k) dot += c[9 * i + 3 * k + a] * c[9 * i + 3 * k + b];
+          EXPECT_NEAR(dot, a == b ? 1.0 : 0.0, 1e-5) << f["name"] << " at sample " << i;
+        }
+  }
+  for (const json& s : scene["shapes"]) {
+    EXPECT_LT(s["at"].get<std::size_t>(), points) << s["name"];
+    EXPECT_GE(s["frame"].get<long>(), -1) << s["name"];
+    EXPECT_LT(s["frame"].get<long>(), static_cast<long>(frames)) << s["name"];
+    if (s["kind"] == "rod") {
+      EXPECT_LT(s["to"].get<std::size_t>(), points) << s["name"];
+    }
+  }
+  for (const json& l : scene["links"]) EXPECT_LT(l[1].get<std::size_t>(), points);
+  for (const json& t : scene["trails"]) EXPECT_LT(t.get<std::size_t>(), points);
+  for (const json& f : scene["forces"]) EXPECT_EQ(f["vectors"].size(), 3 * n) << f["name"];
+}
+
+TEST_F(Animate, EveryShippedModelAnimates) {
+  for (const ShippedRun& run : shipped_runs) {
+    SCOPED_TRACE(run.model);
+    const std::string page = work(std::string(run.model) + ".html");
+    const Outcome r = simulate(shipped(run.model) + " --t-end 1 --init " + run.init + " --no-plot -o " +
+                               quote(work(std::string(run.model) + ".csv")) + " --animate " + quote(page));
+    ASSERT_EQ(r.status, 0) << r.err;
+    const json scene = scene_of(slurp(page));
+    ASSERT_TRUE(scene.is_object());
+    EXPECT_EQ(scene["model"], run.model);
+    expect_consistent_scene(scene);
+    EXPECT_FALSE(scene["shapes"].empty()) << "every shipped model has something to draw";
+  }
+}
+
+}  // namespace
