@@ -8,6 +8,8 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -101,28 +103,22 @@ TEST_F(Animate, AnAnimationThatCannotBeWrittenIsRefusedBeforeAnythingRuns) {
   EXPECT_FALSE(fs::exists(work("run.csv")));
 }
 
-/// Each shipped model with a start that satisfies its constraints (rates the simulation projects).
+/// Each shipped model with a start that satisfies its constraints (tests/support/shipped_runs.txt,
+/// which the browser test reads too).
 struct ShippedRun {
-  const char* model;
-  const char* init;
+  std::string model, init;
 };
-const ShippedRun shipped_runs[] = {
-    {"bead_on_hoop", "theta=0.5"},
-    {"cart_pole", "theta=3"},
-    {"cartesian_pendulum", "x=0.3,y=-0.4"},
-    {"double_pendulum", "theta1=1.8,theta2=-0.6"},
-    {"heavy_top", "theta=0.3,phi_dot=60"},
-    {"knife_edge", "x_dot=1,theta_dot=0.5"},
-    {"planar_chain", "q1=1"},
-    {"quaternion_rigid_body", "eta=1,e1_dot=0.2,e3_dot=0.5"},
-    {"rolling_coin", "phi_dot=30,y_dot=-0.387,psi_dot=1"},
-    {"simple_pendulum", "theta=1"},
-    {"spacecraft_panel", "theta=0.5,gamma_dot=0.2"},
-    {"spherical_pendulum", "theta=1,phi_dot=2"},
-    {"spring_mass_damper", "q=0.1"},
-    {"universal_chain", "alpha1=0.5,beta1=0.3"},
-    {"whipple_bicycle", "x_dot=5,theta_r_dot=-16.666666666666667,theta_f_dot=-14.285714285714286,phi_dot=0.5"},
-};
+std::vector<ShippedRun> shipped_runs() {
+  std::ifstream in(std::string(EOMGEN_SOURCE_DIR) + "/tests/support/shipped_runs.txt");
+  std::vector<ShippedRun> runs;
+  for (std::string line; std::getline(in, line);) {
+    std::istringstream fields(line);
+    ShippedRun run;
+    if (line.empty() || line[0] == '#' || !(fields >> run.model >> run.init)) continue;
+    runs.push_back(run);
+  }
+  return runs;
+}
 
 /// What every page must hold: arrays of one entry per sample, indices that exist, rotations.
 void expect_consistent_scene(const json& scene) {
@@ -155,11 +151,16 @@ void expect_consistent_scene(const json& scene) {
 }
 
 TEST_F(Animate, EveryShippedModelAnimates) {
-  for (const ShippedRun& run : shipped_runs) {
+  const std::vector<ShippedRun> runs = shipped_runs();
+  std::vector<std::string> models;
+  for (const auto& entry : fs::directory_iterator(fs::path(EOMGEN_SOURCE_DIR) / "models"))
+    if (entry.path().extension() == ".eom") models.push_back(entry.path().stem().string());
+  EXPECT_EQ(runs.size(), models.size()) << "tests/support/shipped_runs.txt lists every shipped model";
+  for (const ShippedRun& run : runs) {
     SCOPED_TRACE(run.model);
-    const std::string page = work(std::string(run.model) + ".html");
+    const std::string page = work(run.model + ".html");
     const Outcome r = simulate(shipped(run.model) + " --t-end 1 --init " + run.init + " --no-plot -o " +
-                               quote(work(std::string(run.model) + ".csv")) + " --animate " + quote(page));
+                               quote(work(run.model + ".csv")) + " --animate " + quote(page));
     ASSERT_EQ(r.status, 0) << r.err;
     const json scene = scene_of(slurp(page));
     ASSERT_TRUE(scene.is_object());
