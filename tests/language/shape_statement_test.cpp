@@ -152,6 +152,8 @@ TEST(ShapeStatement, ErrorsSayWhatWasExpected) {
   };
   expect("shape s = cone(body = link, radius = d)", 11, "shape 's': unknown kind of shape 'cone': expected sphere, box, cylinder, disk or rod");
   expect("shape s = sphere(body = lnk, radius = d)", 25, "unknown body or particle 'lnk'");
+  expect("shape s = sphere(body = tip, radius = d)", 25,
+         "shape 's' (sphere): 'tip' is a point, not a body or a particle: expected the name of a 'body' or 'particle'");
   expect("shape s = box(body = bob, size = [d, d, d])", 22,
          "shape 's' (box): 'bob' is a particle, which has no attitude: a box needs one; expected 'frame = FRAME'");
   expect("shape s = disk(body = bob, radius = d, axis = a.3)", 23, "a disk needs one");

@@ -83,6 +83,10 @@ void Elaborator::shape(const Instance& in, const std::string& name, const std::s
       if (b.name == shape.body) body_frame = b.frame, body_point = b.mass_centre;
     for (const Particle& p : sys.particles())
       if (p.name == shape.body) body_point = p.point, particle = true;
+    if (!body_point && declared_.count(shape.body))
+      throw SourceError(body->value->location, fmt::format("{}: '{}' is a {}, not a body or a particle: expected the "
+                                                           "name of a 'body' or 'particle' statement", described,
+                                                           shape.body, declared_.at(shape.body).kind));
     if (!body_point) {
       std::vector<std::string> candidates;
       for (const RigidBody& b : sys.rigid_bodies()) candidates.push_back(b.name);
