@@ -42,6 +42,7 @@ const char* statement_word(Kind kind) {
     case Kind::constraint: return "constraint";
     case Kind::roll: return "roll";
     case Kind::wheel: return "wheel";
+    case Kind::shape: return "shape";
     case Kind::independent: return "independent";
     case Kind::output: return "output";
     case Kind::loop: return "for";
@@ -73,7 +74,8 @@ Pass pass_of(Kind kind) {
     case Kind::constraint:
     case Kind::roll:
     case Kind::wheel:  // and its contact point with the points (collect_frames_and_points)
-    case Kind::output: return Pass::elements;
+    case Kind::output:
+    case Kind::shape: return Pass::elements;  // shapes last: they name bodies and particles
     case Kind::independent: return Pass::independent_speeds;
   }
   EOMGEN_UNREACHABLE("pass_of: a Statement::Kind outside its enumerators");
@@ -405,7 +407,12 @@ Model Elaborator::run(const std::vector<Statement>& statements) {
   for (const Instance& in : instances_)
     if (in.statement->kind == Kind::body) element(in);
   for (const Instance& in : instances_)
-    if (in.statement->kind != Kind::body && pass_of(in.statement->kind) == Pass::elements) element(in);
+    if (in.statement->kind != Kind::body && in.statement->kind != Kind::shape &&
+        pass_of(in.statement->kind) == Pass::elements)
+      element(in);
+  // shapes once every body and particle is known
+  for (const Instance& in : instances_)
+    if (in.statement->kind == Kind::shape) element(in);
   reject_hiding_loop_variables();  // and element names, now declared
   checks();
   model_.dimensions = units_.finish(model_.system.variables(), model_.coordinate_locations);

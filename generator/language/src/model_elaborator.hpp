@@ -3,6 +3,7 @@
 // names resolved, frames and points built in dependency order whatever the file order.
 #include <ginac/ginac.h>
 
+#include <array>
 #include <map>
 #include <optional>
 #include <set>
@@ -51,6 +52,12 @@ const char* statement_word(Statement::Kind kind);
 /// handles does not compile.
 enum class Pass { flatten, declarations, frames_and_points, elements, independent_speeds };
 Pass pass_of(Statement::Kind kind);
+
+/// The unit tangents t1, t2 of a plane of unit normal n (docs/model-language.md, roll), inertial.
+std::array<GiNaC::matrix, 2> plane_tangents(const GiNaC::matrix& n);
+
+/// The three entries of a 3x1 column.
+inline std::array<GiNaC::ex, 3> column_entries(const GiNaC::matrix& c) { return {c(0, 0), c(1, 0), c(2, 0)}; }
 
 /// One statement to elaborate, with the loop variables it was expanded under.
 struct Instance {
@@ -124,7 +131,14 @@ class Elaborator {
   GiNaC::matrix plane_normal(const Argument& normal, const Environment& env, const std::string& what);
   eomgen::Vector material_velocity(const RigidBody& body, PointId at) const;
   std::vector<GiNaC::ex> no_slip_rows(const RigidBody& body, PointId contact, const GiNaC::matrix& unit_normal);
-  void add_rolling_rows(const std::string& name, const std::vector<GiNaC::ex>& rows, const SourceLocation& at);
+  std::vector<ContactForce::Row> add_rolling_rows(const std::string& name, const std::vector<GiNaC::ex>& rows,
+                                                  const std::vector<GiNaC::matrix>& directions,
+                                                  const SourceLocation& at);
+
+  // the shape statement (model_shapes.cpp)
+  void shape(const Instance& instance, const std::string& name, const std::string& what);
+  GiNaC::ex shape_length(const ExprPtr& value, const std::string& what, const std::string& role,
+                         const Environment& env);
 
   // the wheel statement (model_wheel.cpp)
   static std::string wheel_contact_name(const std::string& wheel) { return wheel + "_contact"; }

@@ -109,6 +109,7 @@ void Elaborator::add_element(const Instance& in, const std::string& name, const 
     case Kind::constraint: constraint(in, name, what); break;
     case Kind::roll: roll(in); break;
     case Kind::wheel: wheel(in, name, what); break;
+    case Kind::shape: shape(in, name, what); break;
     case Kind::output: output(in); break;
     case Kind::model:
     case Kind::description:
@@ -227,18 +228,23 @@ GiNaC::matrix Elaborator::plane_normal(const Argument& normal, const Environment
 // The plane's tangents t1 = unit(n x e), t2 = n x t1, e the inertial axis least aligned with n
 // (the first of equals): (t1, t2, n) is right-handed and constant. For n = a.3, t1 = a.2 and
 // t2 = -a.1.
-std::vector<ex> Elaborator::no_slip_rows(const RigidBody& body, PointId contact, const GiNaC::matrix& n) {
-  const MechanicalSystem& sys = model_.system;
+std::array<GiNaC::matrix, 2> plane_tangents(const GiNaC::matrix& n) {
   unsigned least = 0;
   for (unsigned i = 1; i < 3; ++i)
     if (GiNaC::abs(n(i, 0)).evalf() < GiNaC::abs(n(least, 0)).evalf()) least = i;
   const GiNaC::matrix across = cross_matrix(n).mul(unit_column(static_cast<int>(least) + 1));
   const ex length = GiNaC::sqrt(GiNaC::pow(across(0, 0), 2) + GiNaC::pow(across(1, 0), 2) + GiNaC::pow(across(2, 0), 2));
   const GiNaC::matrix t1 = across.mul_scalar(1 / length);
-  const GiNaC::matrix t2 = cross_matrix(n).mul(t1);
+  return {t1, cross_matrix(n).mul(t1)};
+}
+
+// t1 . v and t2 . v for the velocity v of the body's material point at the contact
+std::vector<ex> Elaborator::no_slip_rows(const RigidBody& body, PointId contact, const GiNaC::matrix& n) {
+  const MechanicalSystem& sys = model_.system;
   const GiNaC::matrix v = eomgen::resolve(sys, material_velocity(body, contact), sys.inertial_frame());
   std::vector<ex> rows;
-  for (const GiNaC::matrix& t : {t1, t2}) rows.push_back(t(0, 0) * v(0, 0) + t(1, 0) * v(1, 0) + t(2, 0) * v(2, 0));
+  for (const GiNaC::matrix& t : plane_tangents(n))
+    rows.push_back(t(0, 0) * v(0, 0) + t(1, 0) * v(1, 0) + t(2, 0) * v(2, 0));
   return rows;
 }
 
@@ -250,17 +256,24 @@ eomgen::Vector Elaborator::material_velocity(const RigidBody& body, PointId at) 
                        eomgen::position(sys, at, body.mass_centre));
 }
 
-// rows NAME_1, NAME_2... in order; a row that is identically zero is left out, and its number with it
-void Elaborator::add_rolling_rows(const std::string& name, const std::vector<ex>& rows, const SourceLocation& at) {
-  int index = 0;
-  for (const ex& row : rows) {
-    ++index;
-    if (simplify_for_display(row).is_zero()) continue;
-    model_.system.add_nonholonomic_constraint(fmt::format("{}_{}", name, index), row);
+// rows NAME_1, NAME_2... in order; a row that is identically zero is left out, and its number with
+// it. Returns the rows added, each with its direction (3x1, inertial) from `directions`.
+std::vector<ContactForce::Row> Elaborator::add_rolling_rows(const std::string& name, const std::vector<ex>& rows,
+                                                            const std::vector<GiNaC::matrix>& directions,
+                                                            const SourceLocation& at) {
+  EOMGEN_DEMAND(rows.size() == directions.size(), "add_rolling_rows: one direction per row");
+  std::vector<ContactForce::Row> added;
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    if (simplify_for_display(rows[k]).is_zero()) continue;
+    added.push_back({model_.system.constraints().size(), column_entries(directions[k])});
+    model_.system.add_nonholonomic_constraint(fmt::format("{}_{}", name, k + 1), rows[k]);
     model_.constraint_locations.push_back(at);
   }
+  return added;
 }
 
+// The multipliers of roll: forces at the contact along t1, t2 (with a normal; the plane through
+// the contact's position, which the animation takes at the first sample) or along a.1, a.2, a.3.
 void Elaborator::roll(const Instance& in) {
   const Statement& s = *in.statement;
   const Environment& env = in.environment;
@@ -270,14 +283,20 @@ void Elaborator::roll(const Instance& in) {
   const Arguments args(*this, in, what, {"body", "contact", "normal"});
   const RigidBody& body = rigid_body(args, env);
   const PointId contact = point_named(args.name_of(args.require("contact", "the contact point"), "a point"), env);
+  ContactForce force{name, contact, {}, std::nullopt, contact, s.name.location};
   if (const Argument* normal = args.find("normal")) {
     if (units_.active())
       units_.require(vector(normal->value, env, what), args.expect("normal", dimension::none(), "a normal (a direction)"));
-    add_rolling_rows(name, no_slip_rows(body, contact, plane_normal(*normal, env, what)), s.name.location);
+    const GiNaC::matrix n = plane_normal(*normal, env, what);
+    const auto [t1, t2] = plane_tangents(n);
+    force.rows = add_rolling_rows(name, no_slip_rows(body, contact, n), {t1, t2}, s.name.location);
+    force.plane_normal = column_entries(n);
   } else {
     const GiNaC::matrix v = eomgen::resolve(sys, material_velocity(body, contact), sys.inertial_frame());
-    add_rolling_rows(name, {v(0, 0), v(1, 0), v(2, 0)}, s.name.location);
+    force.rows = add_rolling_rows(name, {v(0, 0), v(1, 0), v(2, 0)}, {unit_column(1), unit_column(2), unit_column(3)},
+                                  s.name.location);
   }
+  model_.contacts.push_back(std::move(force));
 }
 
 void Elaborator::output(const Instance& in) {

@@ -177,25 +177,39 @@ class Parser {
       s.kind = it->second;
       s.name = name(fmt::format("the {}'s name", word).c_str());
       expect_symbol("(", fmt::format("after the {}'s name, then key = value arguments", word).c_str());
-      while (!is_symbol(")")) {
-        const Token& key = peek();
-        if (key.kind != Token::Kind::identifier)
-          error(key, fmt::format("expected an argument name (key = value), got {}", describe(key)));
-        next();
-        expect_symbol("=", fmt::format("after the argument name '{}'", key.text).c_str());
-        s.arguments.push_back(Argument{key.text, expression(), key.location});
-        if (!is_symbol(")")) expect_symbol(",", "or ')' after an argument");
-      }
-      next();
+      s.arguments = arguments();
+    } else if (word == "shape") {
+      s.kind = Kind::shape;
+      s.name = name("the shape's name");
+      expect_symbol("=", "after the shape's name");
+      s.shape_kind = name("the shape's kind (sphere, box, cylinder, disk or rod)");
+      expect_symbol("(", "after the shape's kind, then key = value arguments");
+      s.arguments = arguments();
     } else {
       error(keyword, fmt::format("unknown statement '{}': expected one of model, description, const, parameter, "
                                  "coordinate, input, frame, point, particle, body, gravity, force, moment, "
                                  "spring, damper, torsion, potential, generalized_force, constraint, roll, "
-                                 "wheel, independent, output, for", word));
+                                 "wheel, shape, independent, output, for", word));
     }
     end_of_statement();
     s.token_count = pos_ - first_token;
     return s;
+  }
+
+  // key = value, ... up to and including the ')' (the '(' is read)
+  std::vector<Argument> arguments() {
+    std::vector<Argument> out;
+    while (!is_symbol(")")) {
+      const Token& key = peek();
+      if (key.kind != Token::Kind::identifier)
+        error(key, fmt::format("expected an argument name (key = value), got {}", describe(key)));
+      next();
+      expect_symbol("=", fmt::format("after the argument name '{}'", key.text).c_str());
+      out.push_back(Argument{key.text, expression(), key.location});
+      if (!is_symbol(")")) expect_symbol(",", "or ')' after an argument");
+    }
+    next();
+    return out;
   }
 
   // [m/s^2]: its dimension, and its text as written for the generated code and reports

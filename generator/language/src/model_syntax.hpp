@@ -20,7 +20,7 @@ inline bool is_keyword(const std::string& word) {
       "model",  "description", "const",   "parameter", "coordinate", "input",      "frame",
       "point",  "particle",    "body",    "gravity",   "force",      "moment",     "spring",
       "damper", "torsion",     "potential", "generalized_force", "constraint", "roll", "wheel",
-      "independent", "output", "for",     "in",        "end"};
+      "shape", "independent", "output", "for",     "in",        "end"};
   for (const char* k : keywords)
     if (word == k) return true;
   return false;
@@ -93,7 +93,7 @@ struct Unit {
 struct Statement {
   enum class Kind { model, description, constant, parameter, coordinate, input, frame, point, particle,
                     body, gravity, force, moment, spring, damper, torsion, potential, generalized_force,
-                    constraint, roll, wheel, independent, output, loop };
+                    constraint, roll, wheel, shape, independent, output, loop };
   Kind kind;
   SourceLocation location;  // of the keyword
   Name name;                // the declared name (most statements)
@@ -103,7 +103,8 @@ struct Statement {
   ExprPtr value;            // `= EXPR`; constraint left side; loop first value
   ExprPtr value2;           // constraint right side; loop last value
   std::string text;         // model description
-  std::vector<Argument> arguments;  // NAME(key = value, ...)
+  std::vector<Argument> arguments;  // NAME(key = value, ...); shape: KIND(key = value, ...)
+  Name shape_kind;          // shape: sphere, box, cylinder, disk or rod, as written
   Name frame;               // output ... in FRAME
   bool has_frame = false;
   std::vector<Statement> body;  // loop body

@@ -118,8 +118,9 @@ void Elaborator::wheel(const Instance& in, const std::string& name, const std::s
                                   GiNaC::pow(axle_in_body(2, 0), 2), start_of(*axle_arg.value), what);
   }
   const PointId contact = points_.at(wheel_contact_name(name));
-  std::vector<ex> rows = no_slip_rows(body, contact, n);
-  add_rolling_rows(name, rows, st.name.location);
+  const auto [t1, t2] = plane_tangents(n);
+  ContactForce force{name, contact, add_rolling_rows(name, no_slip_rows(body, contact, n), {t1, t2}, st.name.location),
+                     column_entries(n), plane, st.name.location};
 
   // on the plane: n . (C - plane) = 0, where the model does not already hold C there
   const eomgen::Vector normal(sys.inertial_frame(), n);
@@ -134,9 +135,13 @@ void Elaborator::wheel(const Instance& in, const std::string& name, const std::s
       on_plane = on_plane && value && std::fabs(*value) <= 1e-10 * radius.value_or(1.0);
     }
   }
-  if (on_plane) return;
-  sys.add_holonomic_constraint(fmt::format("{}_3", name), height);
-  model_.constraint_locations.push_back(st.name.location);
+  if (!on_plane) {
+    // its multiplier is the normal force: Xi's row is n . dC/dq, the force along n at C
+    force.rows.push_back({sys.constraints().size(), column_entries(n)});
+    sys.add_holonomic_constraint(fmt::format("{}_3", name), height);
+    model_.constraint_locations.push_back(st.name.location);
+  }
+  model_.contacts.push_back(std::move(force));
 }
 
 }  // namespace eomgen::syntax

@@ -20,8 +20,9 @@ struct VisualShape {
   enum class Kind { sphere, box, cylinder, disk, rod };
   Kind kind = Kind::sphere;
   std::string name;               // the statement's name
-  std::string body;               // the rigid body or particle it belongs to (its colour and name in the view)
-  std::optional<FrameId> frame;   // its attitude: the body's frame (none: a particle's sphere, a rod)
+  std::string body;               // the rigid body or particle it belongs to (its colour and name in the view); empty: none
+  std::optional<FrameId> frame;   // its attitude: the body's frame, the `frame` argument, else the inertial frame
+                                  // (none: a particle's sphere, a rod)
   PointId at;                     // its centre; a rod's first end
   PointId to;                     // a rod's second end (the other kinds: unused)
   GiNaC::ex radius = 0, length = 0;  // numbers and parameters only
