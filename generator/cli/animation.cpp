@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <vector>
@@ -20,30 +21,8 @@ namespace {
 
 using Rows = std::vector<std::vector<double>>;
 
-/// The scene file's lines, every one of \p width numbers.
-Rows read_samples(const std::string& text, std::size_t width) {
-  Rows rows;
-  std::istringstream in(text);
-  for (std::string line; std::getline(in, line);) {
-    std::vector<double> row;
-    const char* p = line.c_str();
-    while (*p != '\0') {
-      char* end = nullptr;
-      row.push_back(std::strtod(p, &end));
-      if (end == p || !std::isfinite(row.back()) || (*end != ',' && *end != '\0'))
-        throw Error(fmt::format("the animation's samples are malformed at line {} (a bug in eomgen)", rows.size() + 1));
-      p = *end == ',' ? end + 1 : end;
-    }
-    if (row.size() != width)
-      throw Error(fmt::format("the animation's samples have {} values at line {}, expected {} (a bug in eomgen)",
-                              row.size(), rows.size() + 1, width));
-    rows.push_back(std::move(row));
-  }
-  if (rows.empty()) throw Error("the simulation wrote no sample for the animation (a bug in eomgen)");
-  return rows;
-}
-
-/// The samples a page keeps: all, or at most max_animation_samples spread evenly, the last kept.
+/// The samples a page keeps of \p n: all, or at most max_animation_samples spread evenly, the
+/// last kept.
 std::vector<std::size_t> kept_samples(std::size_t n) {
   std::vector<std::size_t> kept;
   if (n <= max_animation_samples) {
@@ -53,6 +32,41 @@ std::vector<std::size_t> kept_samples(std::size_t n) {
   for (std::size_t k = 0; k < max_animation_samples; ++k)
     kept.push_back(k * (n - 1) / (max_animation_samples - 1));
   return kept;
+}
+
+/// The kept lines of the scene file, every one of \p width numbers. Read twice, counting and
+/// then parsing the kept lines only, so a run of millions of samples needs no more memory than
+/// its page.
+Rows read_samples(const std::string& path, std::size_t width) {
+  std::size_t lines = 0;
+  {
+    std::ifstream in(path, std::ios::binary);
+    for (std::string line; std::getline(in, line);) ++lines;
+  }
+  if (lines == 0) throw Error("the simulation wrote no sample for the animation (a bug in eomgen)");
+  const std::vector<std::size_t> kept = kept_samples(lines);
+  Rows rows;
+  std::ifstream in(path, std::ios::binary);
+  std::size_t index = 0, next = 0;
+  for (std::string line; next < kept.size() && std::getline(in, line); ++index) {
+    if (index != kept[next]) continue;
+    ++next;
+    std::vector<double> row;
+    const char* p = line.c_str();
+    while (*p != '\0') {
+      char* end = nullptr;
+      row.push_back(std::strtod(p, &end));
+      if (end == p || (*end != ',' && *end != '\0'))
+        throw Error(fmt::format("the animation's samples are malformed at line {} (a bug in eomgen)", index + 1));
+      p = *end == ',' ? end + 1 : end;
+    }
+    if (row.size() != width)
+      throw Error(fmt::format("the animation's samples have {} values at line {}, expected {} (a bug in eomgen)",
+                              row.size(), index + 1, width));
+    rows.push_back(std::move(row));
+  }
+  if (rows.size() != kept.size()) throw Error("the animation's samples ended early (a bug in eomgen)");
+  return rows;
 }
 
 /// JSON text, written by hand for the numbers: six significant digits (a micrometre in a metre)
@@ -67,7 +81,13 @@ class JsonText {
     out_ += nlohmann::json(s).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
     return *this;
   }
+  /// \throws Error for a value JSON cannot hold (inf, NaN): a multiplier or an energy that
+  /// overflowed, a dimension that --set made infinite
   JsonText& number(double v) {
+    if (!std::isfinite(v))
+      throw Error(fmt::format("the animation's scene would hold the value {}, which is no number: a multiplier, an "
+                              "energy or a dimension is not finite in this run",
+                              v));
     out_ += fmt::format("{:.6g}", v == 0 ? 0.0 : v);  // no "-0"
     return *this;
   }
@@ -116,6 +136,38 @@ double dimension(const DoubleEvaluator& values, const GiNaC::ex& e, const Visual
   return v;
 }
 
+/// A cylinder's or disk's unit axis at the run's parameters (its components hold no state).
+Eigen::Vector3d shape_axis(const DoubleEvaluator& values, const VisualShape& shape) {
+  Eigen::Vector3d axis;
+  try {
+    for (int i = 0; i < 3; ++i) axis(i) = values.value(shape.axis[static_cast<std::size_t>(i)], "its axis");
+  } catch (const Error&) {
+    axis.setConstant(std::nan(""));
+  }
+  if (!axis.allFinite() || !(axis.norm() > 0))
+    throw SourceError(shape.location, fmt::format("shape '{}': its axis is not a direction at the parameters of this "
+                                                  "run (zero or not finite); check the --set values",
+                                                  shape.name));
+  return axis.normalized();
+}
+
+/// Every dimension of \p shape at the run's parameters, checked (a rod's radius may be 0).
+std::vector<double> shape_dimensions(const DoubleEvaluator& values, const VisualShape& shape) {
+  switch (shape.kind) {
+    case VisualShape::Kind::sphere: return {dimension(values, shape.radius, shape, "radius")};
+    case VisualShape::Kind::box:
+      return {dimension(values, shape.size[0], shape, "length along axis 1"),
+              dimension(values, shape.size[1], shape, "length along axis 2"),
+              dimension(values, shape.size[2], shape, "length along axis 3")};
+    case VisualShape::Kind::cylinder:
+      return {dimension(values, shape.radius, shape, "radius"), dimension(values, shape.length, shape, "length")};
+    case VisualShape::Kind::disk:
+      return {dimension(values, shape.radius, shape, "radius"), dimension(values, shape.length, shape, "thickness")};
+    case VisualShape::Kind::rod: return {dimension(values, shape.radius, shape, "radius", true)};
+  }
+  EOMGEN_UNREACHABLE("a VisualShape::Kind without dimensions");
+}
+
 const char* kind_name(VisualShape::Kind kind) {
   switch (kind) {
     case VisualShape::Kind::sphere: return "sphere";
@@ -137,9 +189,11 @@ struct SampleLayout {
 /// (columns: the axes in the body frame's components), for the box of a body with no shape whose
 /// inertia is not diagonal in its frame.
 struct PrincipalFrame {
-  std::size_t recorded_frame;  // index into recording.frames
+  std::size_t recorded_frame;  // index into recording.frames, or no_frame for the inertial frame
+  std::string body;
   Eigen::Matrix3d axes;
 };
+inline constexpr std::size_t no_frame = static_cast<std::size_t>(-1);
 
 }  // namespace
 
@@ -218,11 +272,14 @@ class SceneWriter {
   std::vector<double> up() const {
     if (!system_.gravity().is_zero()) {
       const GiNaC::matrix g = resolve(system_, system_.gravity(), system_.inertial_frame());
-      try {
+      const Variables& vars = system_.variables();
+      bool fixed = true;  // a gravity that turns with the state or time has no one up: the default
+      for (unsigned i = 0; i < 3; ++i)
+        for (const SymbolKind kind : {SymbolKind::time, SymbolKind::coordinate, SymbolKind::rate, SymbolKind::input})
+          fixed = fixed && !vars.contains(g(i, 0), kind);
+      if (fixed) {
         const Eigen::Vector3d v = constant({g(0, 0), g(1, 0), g(2, 0)}, "gravity");
         if (v.norm() > 0) return {-v.x() / v.norm(), -v.y() / v.norm(), -v.z() / v.norm()};
-      } catch (const Error&) {
-        // a gravity that turns with the state has no one up: the default
       }
     }
     return {0, 0, 1};
@@ -260,38 +317,29 @@ class SceneWriter {
     for (const VisualShape& shape : model_.shapes) {
       begin(shape.name, kind_name(shape.kind), shape.body);
       s.raw(fmt::format(",\"frame\":{},\"at\":{}", frame_index(shape.frame), shape.at.index));
+      const std::vector<double> d = shape_dimensions(values_, shape);
       switch (shape.kind) {
-        case VisualShape::Kind::sphere:
-          s.raw(",\"radius\":").number(dimension(values_, shape.radius, shape, "radius"));
-          break;
-        case VisualShape::Kind::box:
-          s.raw(",\"size\":").numbers(std::vector<double>{dimension(values_, shape.size[0], shape, "length along axis 1"),
-                                                          dimension(values_, shape.size[1], shape, "length along axis 2"),
-                                                          dimension(values_, shape.size[2], shape, "length along axis 3")});
-          break;
+        case VisualShape::Kind::sphere: s.raw(",\"radius\":").number(d[0]); break;
+        case VisualShape::Kind::box: s.raw(",\"size\":").numbers(d); break;
         case VisualShape::Kind::cylinder:
         case VisualShape::Kind::disk: {
-          s.raw(",\"radius\":").number(dimension(values_, shape.radius, shape, "radius"));
-          s.raw(",\"length\":").number(dimension(values_, shape.length, shape,
-                                                 shape.kind == VisualShape::Kind::disk ? "thickness" : "length"));
-          const Eigen::Vector3d axis = constant(shape.axis, "a shape's axis");
-          if (!(axis.norm() > 0))
-            throw SourceError(shape.location, fmt::format("shape '{}': its axis is zero at the parameters of this run",
-                                                          shape.name));
-          s.raw(",\"axis\":").numbers(std::vector<double>{axis.x() / axis.norm(), axis.y() / axis.norm(), axis.z() / axis.norm()});
+          s.raw(",\"radius\":").number(d[0]).raw(",\"length\":").number(d[1]);
+          const Eigen::Vector3d axis = shape_axis(values_, shape);
+          s.raw(",\"axis\":").numbers(std::vector<double>{axis.x(), axis.y(), axis.z()});
           break;
         }
         case VisualShape::Kind::rod:
-          s.raw(fmt::format(",\"to\":{}", shape.to.index));
-          s.raw(",\"radius\":").number(dimension(values_, shape.radius, shape, "radius", true));
+          s.raw(fmt::format(",\"to\":{},\"radius\":", shape.to.index)).number(d[0]);
           break;
       }
       s.raw(",\"inferred\":false}");
     }
     const double fallback = 0.03 * scene_size();
     for (const RigidBody& body : system_.rigid_bodies()) {
-      const bool shaped = std::any_of(model_.shapes.begin(), model_.shapes.end(),
-                                      [&](const VisualShape& shape) { return shape.body == body.name; });
+      // a rod only takes its body's colour (docs/model-language.md): the body keeps its box
+      const bool shaped = std::any_of(model_.shapes.begin(), model_.shapes.end(), [&](const VisualShape& shape) {
+        return shape.body == body.name && shape.kind != VisualShape::Kind::rod;
+      });
       if (shaped) continue;
       // the box of the body's mass and inertia: x^2 = 6 (trace J - 2 J_x) / m for its edges
       const std::string what = fmt::format("the inertia of body '{}'", body.name);
@@ -304,15 +352,18 @@ class SceneWriter {
                             1e-12 * j.cwiseAbs().maxCoeff();
       const Eigen::Vector3d moments = diagonal ? Eigen::Vector3d(j.diagonal()) : eigen.eigenvalues();
       Eigen::Vector3d edges;
-      for (int k = 0; k < 3; ++k) edges(k) = std::sqrt(std::max(0.0, 6 * (moments.sum() - 2 * moments(k)) / m));
+      // (a mass --set to zero or less has no box: the fallback's cube)
+      for (int k = 0; k < 3; ++k)
+        edges(k) = m > 0 ? std::sqrt(std::max(0.0, 6 * (moments.sum() - 2 * moments(k)) / m)) : 0.0;
+      if (!edges.allFinite()) edges.setZero();
       const double thinnest = edges.maxCoeff() > 0 ? 0.05 * edges.maxCoeff() : fallback;
       edges = edges.cwiseMax(thinnest);
       std::ptrdiff_t frame = frame_index(body.frame);
       if (!diagonal) {
         Eigen::Matrix3d axes = eigen.eigenvectors();
         if (axes.determinant() < 0) axes.col(2) = -axes.col(2);
-        for (std::size_t k = 0; k < frame_count(); ++k)
-          if (recording_.frames[k].first == body.frame) principal.push_back({k, axes});
+        // the body's recorded frame, or none for a body whose frame is the inertial one
+        principal.push_back({frame < 0 ? no_frame : static_cast<std::size_t>(frame), body.name, axes});
         frame = static_cast<std::ptrdiff_t>(frame_count() + principal.size() - 1);
       }
       begin(body.name, "box", body.name);
@@ -343,9 +394,12 @@ class SceneWriter {
       frame(k == 0, system_.frame(recording_.frames[k].first).name, recording_.frames[k].second,
             [&](std::size_t i) { return rotation(k, i); });
     for (const PrincipalFrame& p : principal) {
-      const auto& [id, body] = recording_.frames[p.recorded_frame];
-      frame(frame_count() == 0 && &p == &principal.front(), fmt::format("{} (principal axes of {})", system_.frame(id).name, body), "",
-            [&](std::size_t i) { return Eigen::Matrix3d(rotation(p.recorded_frame, i) * p.axes); });
+      const bool inertial = p.recorded_frame == no_frame;
+      const std::string parent = system_.frame(inertial ? system_.inertial_frame() : recording_.frames[p.recorded_frame].first).name;
+      frame(frame_count() == 0 && &p == &principal.front(), fmt::format("{} (principal axes of {})", parent, p.body), "",
+            [&](std::size_t i) {
+              return Eigen::Matrix3d(inertial ? p.axes : Eigen::Matrix3d(rotation(p.recorded_frame, i) * p.axes));
+            });
     }
     json_.raw("]");
   }
@@ -399,7 +453,9 @@ class SceneWriter {
     json_.raw(",\n\"ground\":");
     for (const ContactForce& contact : model_.contacts) {
       if (!contact.plane_normal) continue;
-      const Eigen::Vector3d n = constant(*contact.plane_normal, "a contact's normal").normalized();
+      const Eigen::Vector3d normal = constant(*contact.plane_normal, "a contact's normal");
+      if (!(normal.norm() > 0)) continue;
+      const Eigen::Vector3d n = normal.normalized();
       const Eigen::Vector3d p = position(contact.plane_point.index, kept_.front());
       json_.raw("{\"normal\":").numbers(std::vector<double>{n.x(), n.y(), n.z()});
       json_.raw(",\"point\":").numbers(std::vector<double>{p.x(), p.y(), p.z()}).raw("}");
@@ -436,6 +492,14 @@ class SceneWriter {
 };
 
 }  // namespace
+
+void check_animation_parameters(const Model& model, const std::map<std::string, double>& parameters) {
+  const DoubleEvaluator values = parameter_values(model, parameters);
+  for (const VisualShape& shape : model.shapes) {
+    shape_dimensions(values, shape);
+    if (shape.kind == VisualShape::Kind::cylinder || shape.kind == VisualShape::Kind::disk) shape_axis(values, shape);
+  }
+}
 
 std::string animation_scene_json(const Model& model, const SceneRecording& recording,
                                  const std::map<std::string, double>& parameters, const std::string& samples,

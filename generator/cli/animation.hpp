@@ -13,14 +13,19 @@ namespace eomgen::tools {
 /// At most this many samples go into a page; a longer run is thinned evenly, its last sample kept.
 inline constexpr std::size_t max_animation_samples = 2500;
 
-/// The scene of docs/animation.md ("The data").
+/// Checks, before a run, that every shape's dimensions and axis are what they must be at the
+/// run's parameters (--set can make a radius zero or negative).
+/// \throws SourceError at the shape's statement
+void check_animation_parameters(const Model& model, const std::map<std::string, double>& parameters);
+
+/// The scene of docs/animation.md ("The scene", format 1).
 /// \param parameters  the run's --set values; the others are the defaults
-/// \param samples     the simulation program's scene file: per sample a line of t, q, lambda,
+/// \param samples     the path of the simulation program's scene file: per sample a line of t, q, lambda,
 ///                    T, V and the recording's components (simulation_program/sample_writer.hpp)
 /// \throws eomgen::Error for a file that does not have that form (a bug), and for a shape's
 ///         dimension that is not a finite positive number at the run's parameters
 std::string animation_scene_json(const Model& model, const SceneRecording& recording,
-                                 const std::map<std::string, double>& parameters, const std::string& samples,
+                                 const std::map<std::string, double>& parameters, const std::string& samples_path,
                                  const std::string& source_name);
 
 }  // namespace eomgen::tools

@@ -353,14 +353,15 @@ int run_simulate(const Model& model, const SimulateRequest& r) {
                                    csv_path));
   }
 
-  // the generated code records the scene for an animation, as outputs after the model's, whether
-  // or not this run asks for one: one program per model and methods, so a run with --animate
-  // after one without (or the other way) starts at once from the cache
+  // with an animation the generated code also records the scene, as outputs after the model's
+  // (its own program in the cache: recording a long three-dimensional chain costs seconds to
+  // generate, which a run without an animation does not pay)
   const bool animate = !r.animation_path.empty();
-  const SceneRecording recording = scene_recording(model);
-  const Model simulated = with_scene_output(model, recording);
+  const SceneRecording recording = animate ? scene_recording(model) : SceneRecording{};
+  const Model simulated = animate ? with_scene_output(model, recording) : model;
   std::size_t model_outputs = 0;
   for (const Output& output : model.outputs) model_outputs += output.components.size();
+  if (animate) check_animation_parameters(model, r.parameters);
   const ModelEquations eom = derive_equations(simulated);
   EmitOptions emit;
   emit.source_name = fs::path(r.model_path).filename().string();
@@ -380,11 +381,10 @@ int run_simulate(const Model& model, const SimulateRequest& r) {
 
   PendingFile csv(csv_path);
   cmd.insert(cmd.end(), {"--csv", csv.path()});
-  cmd.insert(cmd.end(), {"--scene-first", std::to_string(model_outputs)});
   std::optional<PendingFile> samples;  // the animation's samples: a temporary file beside the page
   if (animate) {
     samples.emplace(r.animation_path + ".samples");
-    cmd.insert(cmd.end(), {"--scene", samples->path()});
+    cmd.insert(cmd.end(), {"--scene-first", std::to_string(model_outputs), "--scene", samples->path()});
   }
   std::cout << std::flush;
   const int status = run_process(cmd);
@@ -398,7 +398,7 @@ int run_simulate(const Model& model, const SimulateRequest& r) {
   if (animate) {
     // the page before the CSV is committed: a run whose page cannot be made leaves neither
     const std::string json =
-        animation_scene_json(model, recording, r.parameters, read_file(samples->path()), emit.source_name);
+        animation_scene_json(model, recording, r.parameters, samples->path(), emit.source_name);
     write_atomically(r.animation_path, animation_page(fmt::format("{}: {}", model.name, model.description), json));
   }
   csv.commit();

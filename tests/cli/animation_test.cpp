@@ -23,6 +23,7 @@ using eomgen::testing::Outcome;
 using eomgen::testing::quote;
 using eomgen::testing::slurp;
 using ::testing::HasSubstr;
+using ::testing::Not;
 using nlohmann::json;
 
 /// The scene of a page: the JSON of its <script type="application/json" id="scene">, with the
@@ -101,6 +102,54 @@ TEST_F(Animate, AnAnimationThatCannotBeWrittenIsRefusedBeforeAnythingRuns) {
   EXPECT_EQ(same_as_csv.status, 2);
   EXPECT_THAT(same_as_csv.err, HasSubstr("--animate"));
   EXPECT_FALSE(fs::exists(work("run.csv")));
+}
+
+TEST_F(Animate, AShapeThatTheRunsParametersMakeNoLengthIsRefusedBeforeAnythingRuns) {
+  const Outcome r = simulate(shipped("rolling_coin") + " --t-end 1 --set r=-0.01 --no-plot -o " + quote(work("run.csv")) +
+                             " --animate " + quote(work("run.html")));
+  EXPECT_NE(r.status, 0);
+  EXPECT_THAT(r.err, HasSubstr("rolling_coin.eom:"));
+  EXPECT_THAT(r.err, HasSubstr("shape 'coin_disk': its radius is -0.01 at the parameters of this run: expected a "
+                               "finite positive length"));
+  EXPECT_THAT(r.err, Not(HasSubstr("compiling")));
+  EXPECT_FALSE(fs::exists(work("run.csv")));
+  EXPECT_FALSE(fs::exists(work("run.html")));
+}
+
+// a body with no shape is drawn as the box of its mass and inertia; this one's inertia is not
+// diagonal in its frame, which is the inertial one: principal moments 1, 3, 3 about (1, -1, 0),
+// (1, 1, 0), (0, 0, 1) over root 2, so with m = 6 the edges sqrt(6 (7 - 2 J_k) / 6) = sqrt(5), 1, 1
+TEST_F(Animate, ABodyWithoutAShapeIsTheBoxOfItsInertiaAlongItsPrincipalAxes) {
+  const std::string path = model("slider.eom",
+                                 "model slider\n"
+                                 "coordinate x\n"
+                                 "point c = w + x*a.1\n"
+                                 "body block(mass = 6, centre = c, frame = a, inertia = [[2, 1, 0], [1, 2, 0], [0, 0, 3]])\n");
+  const Outcome r = simulate(quote(path) + " --t-end 1 --init x_dot=1 --no-plot -o " + quote(work("run.csv")) +
+                             " --animate " + quote(work("run.html")));
+  ASSERT_EQ(r.status, 0) << r.err;
+  const json scene = scene_of(slurp(work("run.html")));
+  ASSERT_EQ(scene["shapes"].size(), 1u);
+  const json& box = scene["shapes"][0];
+  EXPECT_EQ(box["kind"], "box");
+  EXPECT_EQ(box["inferred"], true);
+  const std::vector<double> size = box["size"];
+  ASSERT_EQ(size.size(), 3u);
+  EXPECT_NEAR(size[0], std::sqrt(5.0), 1e-5);
+  EXPECT_NEAR(size[1], 1.0, 1e-5);
+  EXPECT_NEAR(size[2], 1.0, 1e-5);
+  ASSERT_EQ(scene["frames"].size(), 1u);
+  const json& frame = scene["frames"][box["frame"].get<std::size_t>()];
+  EXPECT_EQ(frame["name"], "a (principal axes of block)");
+  const std::vector<double> c = frame["rotations"];
+  // the first principal axis, column 0 of every sample: +-(1, -1, 0)/sqrt(2)
+  for (std::size_t i = 0; i < c.size(); i += 9 * 100) {
+    EXPECT_NEAR(std::abs(c[i + 0]), std::sqrt(0.5), 1e-5);
+    EXPECT_NEAR(c[i + 0] + c[i + 3], 0.0, 1e-5);
+    EXPECT_NEAR(c[i + 6], 0.0, 1e-5);
+  }
+  const std::vector<double> x = named(scene["points"], "c")["positions"];
+  EXPECT_NEAR(x[x.size() - 3], 1.0, 1e-5);  // x = t: it slides at 1 m/s
 }
 
 /// Each shipped model with a start that satisfies its constraints (tests/support/shipped_runs.txt,

@@ -118,7 +118,8 @@ class SampleWriter {
     for (int i = 0; i < csv_outputs_; ++i) next(y(i));
     if (scene_ != nullptr) write_scene(s, y);
     // the state is fine (simulate checks it) but an output can still leave its domain
-    for (int i = 0; i < Model::ny && bad_output_ < 0; ++i)
+    // the recording only matters, and is only checked, when it is written
+    for (int i = 0; i < (scene_ != nullptr ? Model::ny : csv_outputs_) && bad_output_ < 0; ++i)
       if (!std::isfinite(y(i))) bad_output_ = i, bad_output_time_ = s.t;
   }
 

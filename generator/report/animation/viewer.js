@@ -30,6 +30,7 @@
     scene = JSON.parse(document.getElementById('scene').textContent);
   } catch (e) {
     window.eomgenErrors.push('the scene is not JSON: ' + e.message);
+    showMessage('This page\'s scene cannot be read (' + e.message + '): it is damaged; write it again with eomgen.');
     scene = {};
   }
   function list(value) { return Array.isArray(value) ? value : []; }
@@ -47,7 +48,7 @@
   document.getElementById('model-name').textContent = scene.model || '';
   document.getElementById('model-description').textContent =
       (scene.description || '') + (scene.source ? ' (' + scene.source + ')' : '');
-  if (n === 0) showMessage('The scene has no samples.');
+  if (n === 0 && document.getElementById('message').hidden) showMessage('The scene has no samples.');
 
   // the sample interval holding t and the fraction of the way through it
   function locate(t) {
@@ -97,7 +98,12 @@
   if (box.isEmpty()) box.set(new THREE.Vector3(-0.5, -0.5, -0.5), new THREE.Vector3(0.5, 0.5, 0.5));
   var centre = box.getCenter(new THREE.Vector3());
   var size = Math.max(box.getSize(new THREE.Vector3()).length(), centre.length() * 0.5, 1e-3);
-  shapes.forEach(function (s) { if (s.radius > 0) size = Math.max(size, 4 * s.radius); });
+  // a body that does not travel (a free body turning about its centre) is as large as its shape
+  shapes.forEach(function (s) {
+    if (s.radius > 0) size = Math.max(size, 4 * s.radius);
+    if (s.length > 0) size = Math.max(size, 2 * s.length);
+    list(s.size).forEach(function (edge) { if (edge > 0) size = Math.max(size, 2 * edge); });
+  });
 
   // ---- renderer, camera, lights ---------------------------------------------------------------
 
@@ -177,7 +183,8 @@
   var drawnShapes = shapes.map(function (s) {
     var material = new THREE.MeshStandardMaterial({ color: colourOf(s.body), roughness: 0.6, metalness: 0.1,
                                                     transparent: !!s.inferred, opacity: s.inferred ? 0.55 : 1 });
-    var r = s.radius > 0 ? s.radius : 0.02 * size, geometry = null, turn = null;
+    // a rod without a radius is a line, drawn thin; other kinds always have one
+    var r = s.radius > 0 ? s.radius : (s.kind === 'rod' ? 0.004 : 0.02) * size, geometry = null, turn = null;
     var axis = vector3(s.axis, new THREE.Vector3(0, 0, 1)).normalize();
     switch (s.kind) {
       case 'sphere': geometry = new THREE.SphereBufferGeometry(r, 32, 16); break;
@@ -202,7 +209,8 @@
   });
 
   var shownAsBody = {};
-  shapes.forEach(function (s) { if (s.body) shownAsBody[s.body] = true; });
+  // a rod only takes its body's colour: the body is still drawn (docs/model-language.md)
+  shapes.forEach(function (s) { if (s.body && s.kind !== 'rod') shownAsBody[s.body] = true; });
   var masses = particles.map(function (p) { return p.mass > 0 ? p.mass : 0; });
   var heaviest = Math.max.apply(null, masses.concat([0]));
   var drawnParticles = particles.filter(function (p) { return !shownAsBody[p.name]; }).map(function (p) {
