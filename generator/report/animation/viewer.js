@@ -99,11 +99,39 @@
   var centre = box.getCenter(new THREE.Vector3());
   var size = Math.max(box.getSize(new THREE.Vector3()).length(), centre.length() * 0.5, 1e-3);
   // a body that does not travel (a free body turning about its centre) is as large as its shape
+  var shapeSize = 0;
   shapes.forEach(function (s) {
-    if (s.radius > 0) size = Math.max(size, 4 * s.radius);
-    if (s.length > 0) size = Math.max(size, 2 * s.length);
-    list(s.size).forEach(function (edge) { if (edge > 0) size = Math.max(size, 2 * edge); });
+    if (s.radius > 0) shapeSize = Math.max(shapeSize, 4 * s.radius);
+    if (s.length > 0) shapeSize = Math.max(shapeSize, 2 * s.length);
+    list(s.size).forEach(function (edge) { if (edge > 0) shapeSize = Math.max(shapeSize, 2 * edge); });
   });
+  size = Math.max(size, shapeSize);
+
+  // A mechanism that travels far beyond its own size (a bicycle riding 25 m) would be a speck in
+  // a view of its whole run: then the camera follows it, and things are sized by the mechanism
+  // (its largest extent at one instant) instead; "follow" can be switched off.
+  var wholeSize = size, wholeCentre = centre.clone();
+  // the points that move: the fixed ones (the origin, a pivot) stay behind and are not followed
+  var moving = [];
+  points.forEach(function (p, index) {
+    var x = list(p.positions);
+    for (var i = 3; x.length >= 3 * n && i < 3 * n; ++i) {
+      if (Math.abs(x[i] - x[i % 3]) > 1e-9 * wholeSize) { moving.push(index); return; }
+    }
+  });
+  if (moving.length === 0) moving = points.map(function (p, index) { return index; });
+  var mechanism = shapeSize;
+  for (var i = 0; i < n; i += Math.max(1, Math.floor(n / 200))) {
+    var instant = new THREE.Box3();
+    moving.forEach(function (index) {
+      var x = list(points[index].positions);
+      if (x.length >= 3 * n) instant.expandByPoint(new THREE.Vector3(x[3 * i], x[3 * i + 1], x[3 * i + 2]));
+    });
+    if (!instant.isEmpty()) mechanism = Math.max(mechanism, instant.getSize(new THREE.Vector3()).length());
+  }
+  var travels = mechanism > 0 && wholeSize > 3 * mechanism;
+  if (travels) size = mechanism;
+  var follow = travels;
 
   // ---- renderer, camera, lights ---------------------------------------------------------------
 
@@ -123,7 +151,9 @@
   // a view from the front, a little from the side and above: "front" is inertial z made
   // perpendicular to up (or y when up is along z)
   var controls = new THREE.OrbitControls(camera, renderer.domElement);
-  function frameTheMotion() {
+  function frameTheMotion(t) {
+    var c = follow ? centroidAt(locate(t), new THREE.Vector3()) : wholeCentre;
+    var extent = follow ? size : wholeSize;
     var front = new THREE.Vector3(0, 0, 1);
     if (Math.abs(front.dot(up)) > 0.9) front.set(0, -1, 0);
     front.addScaledVector(up, -front.dot(up)).normalize();
@@ -131,14 +161,29 @@
     var azimuth = 0.45, elevation = 0.3;
     var direction = front.multiplyScalar(Math.cos(azimuth)).addScaledVector(side, Math.sin(azimuth))
         .multiplyScalar(Math.cos(elevation)).addScaledVector(up, Math.sin(elevation));
-    var distance = 0.5 * size / Math.sin(camera.fov / 2 * Math.PI / 180) * 1.05;
-    camera.position.copy(centre).addScaledVector(direction, distance);
-    controls.target.copy(centre);
+    var distance = 0.5 * extent / Math.sin(camera.fov / 2 * Math.PI / 180) * 1.05;
+    camera.position.copy(c).addScaledVector(direction, distance);
+    controls.target.copy(c);
     controls.update();
-    sun.position.copy(camera.position).addScaledVector(up, size);
+    sun.position.copy(camera.position).addScaledVector(up, extent);
   }
-  frameTheMotion();
-  controls.saveState();
+  // the mean of the moving points at a located time: what a following camera looks at
+  function centroidAt(at, out) {
+    out.set(0, 0, 0);
+    if (moving.length === 0) return out;
+    var p = new THREE.Vector3();
+    moving.forEach(function (index) { out.add(pointAt(index, at, p)); });
+    return out.divideScalar(moving.length);
+  }
+  // a following camera keeps its place relative to the mechanism: both move with the centroid
+  function followTo(t) {
+    var shift = centroidAt(locate(t), new THREE.Vector3()).sub(controls.target);
+    camera.position.add(shift);
+    controls.target.add(shift);
+    controls.update();
+    sun.position.add(shift);
+  }
+  frameTheMotion(t0);
 
   // ---- what is always drawn: axes, ground, shapes, particles, links ---------------------------
 
@@ -162,7 +207,7 @@
 
   if (scene.ground && typeof scene.ground === 'object') {
     var normal = vector3(scene.ground.normal, up.clone()).normalize();
-    var divisions = 20, extent = Math.pow(10, Math.ceil(Math.log10(2 * size)));
+    var divisions = 20, extent = Math.pow(10, Math.ceil(Math.log10(2 * wholeSize)));
     var grid = new THREE.GridHelper(extent, divisions, 0x8d94a0, 0xc3c8d0);
     grid.quaternion.setFromUnitVectors(new THREE.Vector3(0, 1, 0), normal);  // the grid lies in its x-z plane
     grid.position.copy(vector3(scene.ground.point, new THREE.Vector3()));
@@ -432,7 +477,10 @@
     setPlaying(!playing);
   });
   slider.addEventListener('input', function () { setPlaying(false); seek(times[Number(slider.value)] || t0); });
-  document.getElementById('reset-view').addEventListener('click', function () { controls.reset(); dirty = true; });
+  document.getElementById('reset-view').addEventListener('click', function () { frameTheMotion(current); dirty = true; });
+  var followBox = document.getElementById('layer-follow');
+  followBox.checked = follow;
+  followBox.addEventListener('change', function () { follow = followBox.checked; frameTheMotion(current); dirty = true; });
   document.addEventListener('keydown', function (e) {
     if (e.code === 'Space' && e.target.tagName !== 'INPUT' && e.target.tagName !== 'SELECT') {
       e.preventDefault(); playButton.click();
@@ -473,6 +521,7 @@
   // ---- drawing --------------------------------------------------------------------------------
 
   function draw() {
+    if (follow) followTo(current);
     place(current);
     renderer.render(world, camera);
     plots.forEach(drawCursor);
