@@ -98,12 +98,15 @@
   if (box.isEmpty()) box.set(new THREE.Vector3(-0.5, -0.5, -0.5), new THREE.Vector3(0.5, 0.5, 0.5));
   var centre = box.getCenter(new THREE.Vector3());
   var size = Math.max(box.getSize(new THREE.Vector3()).length(), centre.length() * 0.5, 1e-3);
-  // a body that does not travel (a free body turning about its centre) is as large as its shape
+  // a body that does not travel (a free body turning about its centre) is as large as its shapes'
+  // largest diameter; scenery that belongs to no body (a rail, a wall) does not widen the view
   var shapeSize = 0;
   shapes.forEach(function (s) {
-    if (s.radius > 0) shapeSize = Math.max(shapeSize, 4 * s.radius);
-    if (s.length > 0) shapeSize = Math.max(shapeSize, 2 * s.length);
-    list(s.size).forEach(function (edge) { if (edge > 0) shapeSize = Math.max(shapeSize, 2 * edge); });
+    if (!s.body) return;
+    if (s.radius > 0 && s.kind !== 'rod') shapeSize = Math.max(shapeSize, 2 * s.radius);
+    if (s.length > 0) shapeSize = Math.max(shapeSize, s.length);
+    var e = list(s.size);
+    if (e.length === 3) shapeSize = Math.max(shapeSize, Math.hypot(e[0], e[1], e[2]));
   });
   size = Math.max(size, shapeSize);
 
