@@ -8,7 +8,6 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Core>
-#include <chrono>
 #include <cmath>
 #include <string>
 
@@ -107,10 +106,10 @@ TEST(MatrixAlgebra, AHundredThousandMatricesSumToTheirTotal) {
   std::string terms = "diag(1, 2, 3)";
   for (int i = 1; i < 100000; ++i) terms += i % 2 ? " + diag(1, 2, 3)" : " - diag(0, 1, 1)";
   // 50000 + 1 of diag(1, 2, 3), 49999 of -diag(0, 1, 1): diag(50001, 50003, 100004)
-  const auto start = std::chrono::steady_clock::now();
+  // collected once per entry, not re-sorted at each term (which took minutes; 2.7 s now, measured
+  // for issue 17 and no assertion here: the machines are shared, and under the sanitizers it took
+  // 25 s. A return of the quadratic cost runs into ctest's timeout.)
   EXPECT_EQ(constant_value("[1, 1, 1]^T*(" + terms + ")*[1, 1, 1]"), 50001.0 + 50003.0 + 100004.0);
-  // collected once per entry, not re-sorted at each term (which took minutes)
-  EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(20));
 }
 
 // --- products and transposes ---
