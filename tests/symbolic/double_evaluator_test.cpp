@@ -10,6 +10,8 @@
 #include <cmath>
 #include <vector>
 
+#include "support/shared_graphs.hpp"
+
 namespace {
 
 using GiNaC::ex;
@@ -101,6 +103,16 @@ TEST(DoubleEvaluator, NonFiniteOperandsFollowIeee) {
   EXPECT_TRUE(std::isnan(z.eval.value(z.product(), "product")));
   Values big({1e308, 1e308, -1e308});
   EXPECT_EQ(big.eval.value(big.sum(), "sum"), 1e308);  // an intermediate overflow of plain addition
+}
+
+TEST(DoubleEvaluator, EvaluatesEachSharedNodeOnce) {
+  // 2^60 paths through a few hundred nodes: a walk of the tree would not end
+  const realsymbol x("x");
+  eomgen::DoubleEvaluator eval;
+  eval.set(x, 0.001);
+  double expected = 0.001;
+  for (int i = 0; i < 60; ++i) expected = expected * (1 + std::sin(expected * std::pow(0.001, -1.0))) + 0.001;
+  EXPECT_DOUBLE_EQ(eval.value(eomgen::testing::doubling_graph(x, 60), "graph"), expected);
 }
 
 }  // namespace

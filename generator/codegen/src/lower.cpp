@@ -69,8 +69,7 @@ class Lowering {
   }
 
   std::size_t node(const ex& e) {
-    auto it = memo_.find(e);
-    if (it != memo_.end()) return it->second;
+    if (const std::size_t* known = memo_.find(e)) return *known;
     const std::size_t id = build(e);
     memo_.emplace(e, id);
     return id;
@@ -246,8 +245,7 @@ class Lowering {
       return d < 0 ? negate(number(-d)) : number(d);
     }
     if (GiNaC::is_a<GiNaC::symbol>(e)) {
-      auto def = definitions_.find(e);
-      if (def != definitions_.end()) return node(def->second);
+      if (const ex* definition = definitions_.find(e)) return node(*definition);
       auto var = variables_.find(e);
       if (var == variables_.end())
         throw EmitError(fmt::format("code emission: the symbol '{}' is not an input of this function",
@@ -273,7 +271,7 @@ class Lowering {
   }
 
   const VariableNames& variables_;
-  // hashed, not ordered: nothing here is iterated, and GiNaC's ordering compares whole trees
+  // by value, looked up only (expression_map.hpp)
   ExpressionMap<ex> definitions_;
   ExpressionMap<std::size_t> memo_;
   std::vector<Node> nodes_;

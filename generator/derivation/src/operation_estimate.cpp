@@ -38,13 +38,11 @@ class Estimate {
   // the facts of e, its dependence worked out on first sight (references stay valid: the
   // table is node-based)
   Facts& facts(const ex& e) {
-    auto memo = facts_.find(e);
-    if (memo != facts_.end()) return memo->second;
+    if (Facts* memo = facts_.find(e)) return *memo;
     bool dependent = false;
     if (GiNaC::is_a<GiNaC::symbol>(e)) {
-      auto definition = definitions_.find(e);
-      if (definition != definitions_.end()) {
-        dependent = facts(*definition->second).dependent;
+      if (const ex* const* definition = definitions_.find(e)) {
+        dependent = facts(**definition).dependent;
       } else {
         const auto kind = variables_.kind_of(e);
         dependent = !kind || *kind != SymbolKind::parameter;
@@ -52,7 +50,7 @@ class Estimate {
     } else {
       for (std::size_t i = 0; i < e.nops() && !dependent; ++i) dependent = facts(e.op(i)).dependent;
     }
-    return facts_.emplace(e, Facts{dependent, false}).first->second;
+    return *facts_.emplace(e, Facts{dependent, false}).first;
   }
 
   // operations of e, each distinct subexpression once (as emission's common-subexpression pass
@@ -65,8 +63,8 @@ class Estimate {
     if (!f.dependent || f.counted) return 0;
     f.counted = true;
     if (GiNaC::is_a<GiNaC::symbol>(e)) {
-      auto definition = definitions_.find(e);
-      return definition == definitions_.end() ? 0 : count(*definition->second);
+      const ex* const* definition = definitions_.find(e);
+      return definition == nullptr ? 0 : count(**definition);
     }
     const bool signed_node = GiNaC::is_a<GiNaC::add>(e) || GiNaC::is_a<GiNaC::mul>(e);
     if (!signed_node) return operations_of(e);
@@ -105,7 +103,7 @@ class Estimate {
   }
 
   const Variables& variables_;
-  // hashed, not ordered: GiNaC's ordering compares whole trees, and only counts come out
+  // by value, looked up only: only counts come out
   ExpressionMap<const ex*> definitions_;
   ExpressionMap<Facts> facts_;
 };

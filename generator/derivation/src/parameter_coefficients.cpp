@@ -1,7 +1,8 @@
 #include "parameter_coefficients.hpp"
 
-#include <map>
 #include <vector>
+
+#include "eomgen/symbolic/expression_map.hpp"
 
 namespace eomgen {
 namespace {
@@ -25,7 +26,7 @@ ex collect_parameter_coefficients(const ex& sum, const Variables& variables) {
   // the groups in the order of their first term, so the result does not depend on how the
   // monomials compare
   std::vector<ex> monomials;
-  std::map<ex, GiNaC::exvector, GiNaC::ex_is_less> coefficients;
+  ExpressionMap<GiNaC::exvector> coefficients;
   for (std::size_t i = 0; i < sum.nops(); ++i) {
     const ex term = sum.op(i);
     GiNaC::exvector parameter_factors, state_factors;
@@ -35,9 +36,9 @@ ex collect_parameter_coefficients(const ex& sum, const Variables& variables) {
       (parameter_only(factor, variables) ? parameter_factors : state_factors).push_back(factor);
     }
     const ex monomial = GiNaC::mul(state_factors);
-    auto [it, inserted] = coefficients.try_emplace(monomial);
+    auto [coefficient, inserted] = coefficients.emplace(monomial, {});
     if (inserted) monomials.push_back(monomial);
-    it->second.push_back(GiNaC::mul(parameter_factors));
+    coefficient->push_back(GiNaC::mul(parameter_factors));
   }
   GiNaC::exvector terms;
   for (const ex& monomial : monomials) terms.push_back(GiNaC::add(coefficients[monomial]) * monomial);

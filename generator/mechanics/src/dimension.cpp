@@ -138,7 +138,7 @@ std::string DimensionMismatch::describe() const {
 }
 
 std::optional<Dimension> DimensionAnalysis::of(const ex& e) {
-  if (auto it = memo_.find(e); it != memo_.end()) return it->second;
+  if (const std::optional<Dimension>* known = memo_.find(e)) return *known;
   std::optional<Dimension> d = measure(e);
   memo_.emplace(e, d);
   return d;

@@ -1,5 +1,7 @@
 #include "eomgen/mechanics/variables.hpp"
 
+#include "eomgen/symbolic/expression_map.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -36,18 +38,18 @@ GiNaC::ex code(SymbolKind kind) { return static_cast<int>(kind); }
 
 // Collects every symbol of e into out. Expressions from compounded rotations share
 // subtrees, so they are small graphs but exponentially large trees: each shared node is
-// visited once (identical shared nodes compare by pointer, so the visited set is cheap).
-void collect_symbols(const GiNaC::ex& e, GiNaC::exset& out, GiNaC::exset& visited) {
+// visited once (ExpressionMap: one lookup per node, never a comparison of trees).
+void collect_symbols(const GiNaC::ex& e, GiNaC::exset& out, ExpressionMap<bool>& visited) {
   if (GiNaC::is_a<GiNaC::symbol>(e)) {
     out.insert(e);
     return;
   }
-  if (e.nops() == 0 || !visited.insert(e).second) return;
+  if (e.nops() == 0 || !visited.emplace(e, true).second) return;
   for (std::size_t i = 0; i < e.nops(); ++i) collect_symbols(e.op(i), out, visited);
 }
 
 void collect_symbols(const GiNaC::ex& e, GiNaC::exset& out) {
-  GiNaC::exset visited;
+  ExpressionMap<bool> visited;
   collect_symbols(e, out, visited);
 }
 

@@ -1,5 +1,7 @@
 #include "eomgen/report/equation_printer.hpp"
 
+#include "eomgen/symbolic/expression_map.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -162,11 +164,13 @@ class IntermediateIndex {
     if (it == index_.end()) return std::nullopt;
     return it->second;
   }
-  // calls f(i) for every occurrence of intermediate i in e
+  // calls f(i) for every intermediate i in e, at least once each, visiting each node of e not
+  // in `visited` once
   template <class F>
-  void visit(const ex& e, F&& f) const {
+  void visit(const ex& e, F&& f, ExpressionMap<bool>& visited) const {
     if (const auto i = find(e)) return f(*i);
-    for (std::size_t k = 0; k < e.nops(); ++k) visit(e.op(k), f);
+    if (e.nops() == 0 || !visited.emplace(e, true).second) return;
+    for (std::size_t k = 0; k < e.nops(); ++k) visit(e.op(k), f, visited);
   }
 
  private:
@@ -257,11 +261,13 @@ double sections_expanded_size(const std::vector<Section>& sections, const Equati
 Section where_section(const std::vector<Section>& sections, const Subexpressions& z) {
   const IntermediateIndex index(z);
   std::vector<bool> needed(z.size(), false);
+  ExpressionMap<bool> visited;
+  const auto mark = [&](std::size_t i) { needed[i] = true; };
   for (const Section& s : sections)
-    for (const Entry& e : s.entries) index.visit(e.value, [&](std::size_t i) { needed[i] = true; });
+    for (const Entry& e : s.entries) index.visit(e.value, mark, visited);
   // a definition only refers to earlier ones, so one backward pass closes the set
   for (std::size_t i = z.size(); i-- > 0;)
-    if (needed[i]) index.visit(z.definitions()[i].value, [&](std::size_t j) { needed[j] = true; });
+    if (needed[i]) index.visit(z.definitions()[i].value, mark, visited);
   Section where{"", "", "", {}};
   for (std::size_t i = 0; i < z.size(); ++i)
     if (needed[i]) {

@@ -166,9 +166,9 @@ std::vector<std::string> ExpressionPrinter::signed_terms(const ex& sum, Style st
 }
 
 const ExpressionPrinter::Monomial& ExpressionPrinter::monomial(const ex& term) const {
-  if (const auto it = monomials_.find(term); it != monomials_.end()) return it->second;
+  if (const Monomial* m = monomials_.find(term)) return *m;
   Monomial m = make_monomial(term);
-  return monomials_.emplace(term, std::move(m)).first->second;
+  return *monomials_.emplace(term, std::move(m)).first;
 }
 
 ExpressionPrinter::Monomial ExpressionPrinter::make_monomial(const ex& term) const {
@@ -363,11 +363,11 @@ int ExpressionPrinter::compare_monomials(const Monomial& a, const Monomial& b) c
 }
 
 const std::vector<ex>& ExpressionPrinter::sorted_terms(const ex& sum) const {
-  if (const auto it = sorted_terms_.find(sum); it != sorted_terms_.end()) return it->second;
+  if (const std::vector<ex>* terms = sorted_terms_.find(sum)) return *terms;
   std::vector<ex> terms(sum.begin(), sum.end());
   std::stable_sort(terms.begin(), terms.end(),
                    [this](const ex& x, const ex& y) { return compare_monomials(monomial(x), monomial(y)) < 0; });
-  return sorted_terms_.emplace(sum, std::move(terms)).first->second;
+  return *sorted_terms_.emplace(sum, std::move(terms)).first;
 }
 
 }  // namespace eomgen

@@ -34,7 +34,7 @@ std::uint32_t ExpressionTape::emit(Step step, const std::vector<std::uint32_t>& 
 }
 
 std::uint32_t ExpressionTape::node(const ex& e, const std::string& what) {
-  if (const auto it = registered_.find(e); it != registered_.end()) return it->second;
+  if (const std::uint32_t* r = registered_.find(e)) return *r;
   Step step{Op::constant, 0, 0, 0, 0.0, nullptr};
   std::vector<std::uint32_t> operands;
   if (is_a<GiNaC::numeric>(e)) {

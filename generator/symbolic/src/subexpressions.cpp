@@ -34,8 +34,7 @@ bool is_atomic(const ex& e) {
 
 ex Subexpressions::bind(const ex& value) {
   if (is_atomic(value)) return value;
-  auto it = by_value_.find(value);
-  if (it != by_value_.end()) return it->second;
+  if (const ex* bound = by_value_.find(value)) return *bound;
   GiNaC::realsymbol z(prefix_ + std::to_string(definitions_.size() + 1));
   definitions_.push_back(Definition{z, value});
   by_value_.emplace(value, z);
@@ -57,7 +56,7 @@ struct Signature {
 class Signatures {
  public:
   Signature operator()(const ex& e) {
-    if (const auto it = memo_.find(e); it != memo_.end()) return it->second;
+    if (const Signature* s = memo_.find(e)) return *s;
     const Signature s = compute(e);
     memo_.emplace(e, s);
     return s;

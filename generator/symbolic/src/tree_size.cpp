@@ -7,7 +7,7 @@ namespace {
 
 double tree_size(const GiNaC::ex& e, ExpressionMap<double>& memo) {
   if (e.nops() == 0) return 1;
-  if (const auto it = memo.find(e); it != memo.end()) return it->second;
+  if (const double* size = memo.find(e)) return *size;
   double size = 1;
   for (std::size_t i = 0; i < e.nops(); ++i) size += tree_size(e.op(i), memo);
   memo.emplace(e, size);

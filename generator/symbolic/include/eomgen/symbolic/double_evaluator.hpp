@@ -6,6 +6,8 @@
 
 #include <map>
 #include <string>
+#include <unordered_map>
+#include <utility>
 
 namespace eomgen {
 
@@ -14,14 +16,19 @@ class DoubleEvaluator {
   void set(const GiNaC::ex& symbol, double value) { values_[symbol] = value; }
 
   /// e as a real number, possibly inf or NaN. \throws Error for a symbol without a value, a
-  /// complex number or a function with no double form; `what` names e in messages.
+  /// complex number or a function with no double form; `what` names e in messages. Each node
+  /// of e is evaluated once, however often e refers to it.
   double value(const GiNaC::ex& e, const std::string& what) const;
 
   /// e as a finite real number. \throws Error otherwise.
   double finite(const GiNaC::ex& e, const std::string& what) const;
 
  private:
-  double function(const GiNaC::ex& e, const std::string& what) const;
+  // the values of one call's nodes by address, each with the node, so that no address is
+  // freed (op() of a sum or product may build a node for the call) and reused meanwhile
+  using Memo = std::unordered_map<const GiNaC::basic*, std::pair<GiNaC::ex, double>>;
+  double value(const GiNaC::ex& e, const std::string& what, Memo& memo) const;
+  double function(const GiNaC::ex& e, const std::string& what, Memo& memo) const;
 
   std::map<GiNaC::ex, double, GiNaC::ex_is_less> values_;  // looked up, never iterated
 };

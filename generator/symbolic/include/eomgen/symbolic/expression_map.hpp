@@ -1,22 +1,47 @@
 #pragma once
-// Hash tables keyed by expressions, for memos that are looked up but never iterated (iteration
-// order would depend on hashes, and output must not). GiNaC's ordering compares whole trees and
-// class names, which made ordered maps of expressions the slowest part of emitting long chains.
+// Memos keyed by the values of expressions: one table lookup per node, whatever GiNaC's hash
+// values are (expression_ids.hpp says why GiNaC's own hashing and ordering cannot do this).
 #include <ginac/ginac.h>
 
 #include <cstddef>
-#include <unordered_map>
+#include <deque>
+#include <utility>
+#include <vector>
+
+#include "eomgen/symbolic/expression_ids.hpp"
 
 namespace eomgen {
 
-/// GiNaC's own hash of an expression. Deliberately not noexcept: libstdc++ then keeps each key's
-/// hash beside it and compares hashes before it calls the structural equality, which would
-/// otherwise run for every key of a bucket.
-struct ExpressionHash {
-  std::size_t operator()(const GiNaC::ex& e) const { return e.gethash(); }
-};
-
+/// A memo keyed by the values of expressions, for tables that are looked up but never iterated
+/// (an order of iteration would follow the order of first sight). Lookups cost what
+/// ExpressionIds costs; stored values keep their address (references stay valid).
 template <class T>
-using ExpressionMap = std::unordered_map<GiNaC::ex, T, ExpressionHash, GiNaC::ex_is_equal>;
+class ExpressionMap {
+ public:
+  /// The value stored for e's value, or nullptr.
+  T* find(const GiNaC::ex& e) {
+    const ExpressionIds::Id id = ids_(e);
+    return id < slots_.size() && slots_[id] != none ? &values_[slots_[id]] : nullptr;
+  }
+  /// Stores `value` for e unless e has one; returns the stored value and whether it is new.
+  std::pair<T*, bool> emplace(const GiNaC::ex& e, T value) {
+    const ExpressionIds::Id id = ids_(e);
+    if (id >= slots_.size()) slots_.resize(static_cast<std::size_t>(id) + 1, none);
+    if (slots_[id] != none) return {&values_[slots_[id]], false};
+    slots_[id] = values_.size();
+    values_.push_back(std::move(value));
+    return {&values_.back(), true};
+  }
+  /// The value stored for e, default-constructed if it had none.
+  T& operator[](const GiNaC::ex& e) { return *emplace(e, T{}).first; }
+  bool contains(const GiNaC::ex& e) { return find(e) != nullptr; }
+  std::size_t size() const { return values_.size(); }
+
+ private:
+  static constexpr std::size_t none = static_cast<std::size_t>(-1);
+  ExpressionIds ids_;
+  std::vector<std::size_t> slots_;  // by id: the index in values_, or none
+  std::deque<T> values_;
+};
 
 }  // namespace eomgen
