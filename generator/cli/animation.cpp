@@ -109,13 +109,15 @@ class JsonText {
   std::string out_;
 };
 
-/// The run's parameter values: the defaults, overridden by --set.
+/// The run's parameter values: the defaults, overridden by --set, and the derived parameters
+/// computed from them.
 DoubleEvaluator parameter_values(const Model& model, const std::map<std::string, double>& set) {
   DoubleEvaluator values;
   for (const Parameter& p : model.system.variables().parameters()) {
     const auto given = set.find(p.name);
     values.set(p.symbol, given == set.end() ? p.default_value : given->second);
   }
+  model.system.variables().evaluate_derived_parameters(values);
   return values;
 }
 

@@ -77,6 +77,8 @@ CLI::App* add_derive_command(CLI::App& app, Options& o) {
                                          "Print in terms of shared intermediates, then their definitions");
   derive->add_flag("--expand", o.expand, "Write intermediates out even for a large system (may be slow)")
       ->excludes(shared);
+  derive->add_flag("--expand-parameters", o.expand_parameters,
+                   "Write derived parameters out in the parameters they are defined from (may be large)");
   derive->add_option("-o,--output", o.output_path, "Write to FILE instead of standard output (atomically)")
       ->type_name("FILE");
   return derive;

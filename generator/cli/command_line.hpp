@@ -18,6 +18,7 @@ struct Options {
   std::string only;
   bool shared = false;
   bool expand = false;
+  bool expand_parameters = false;
   std::string output_path;
   // eval
   std::vector<std::string> at, set;

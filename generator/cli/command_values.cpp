@@ -44,11 +44,10 @@ std::map<std::string, double> parse_assignments(const std::vector<std::string>& 
 std::string not_a_parameter(const Model& model, const std::string& name, const std::string& state,
                             const std::string& input) {
   const Variables& v = model.system.variables();
-  for (const DerivedParameter& d : model.derived_parameters) {
+  for (const DerivedParameter& d : v.derived_parameters()) {
     if (d.name != name) continue;
     std::vector<std::string> sources;
-    for (const Parameter& p : v.parameters())
-      if (d.definition.has(p.symbol)) sources.push_back(p.name);
+    for (std::size_t k : v.parameters_in(d.definition)) sources.push_back(v.parameters()[k].name);
     return fmt::format("'{}' is defined from other parameters of {}, and follows them: expected one of those it is "
                        "defined from: {}", name, model.name, join(sources));
   }
@@ -68,7 +67,9 @@ std::string not_a_parameter(const Model& model, const std::string& name, const s
       case SymbolKind::acceleration:
         return fmt::format("'{}' is an acceleration of {}, which the equations of motion give, not a parameter",
                            name, model.name);
-      case SymbolKind::parameter: break;
+      case SymbolKind::parameter:
+      case SymbolKind::derived_parameter:  // said above
+        break;
     }
     EOMGEN_UNREACHABLE("not_a_parameter: asked about a parameter of the model");
   }

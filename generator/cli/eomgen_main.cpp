@@ -93,9 +93,9 @@ void run_check(const Options& o) {
   std::cout << fmt::format("Parameters ({}):", v.parameters().size()) << (v.parameters().empty() ? " none" : "") << "\n";
   for (const auto& p : v.parameters())
     std::cout << fmt::format("  {} = {}", p.name, p.default_value) << (p.unit.empty() ? "" : " [" + p.unit + "]") << "\n";
-  if (!model.derived_parameters.empty())
-    std::cout << fmt::format("Derived parameters ({}):\n", model.derived_parameters.size());
-  for (const eomgen::DerivedParameter& d : model.derived_parameters)
+  if (!v.derived_parameters().empty())
+    std::cout << fmt::format("Derived parameters ({}):\n", v.derived_parameters().size());
+  for (const eomgen::DerivedParameter& d : v.derived_parameters())
     std::cout << fmt::format("  {} = {} = {}", d.name, eomgen::ordered_text(d.definition), d.default_value)
               << (d.unit.empty() ? "" : " [" + d.unit + "]") << "\n";
   if (!model.constants.empty()) {
@@ -126,6 +126,7 @@ void run_derive(const Options& o) {
   eomgen::tools::check_output_files({{"-o", o.output_path}}, o.model_path);
   if (o.shared) print.intermediates = eomgen::IntermediateForm::shared;
   if (o.expand) print.intermediates = eomgen::IntermediateForm::written_out;
+  print.expand_derived_parameters = o.expand_parameters;
   const eomgen::Model model = load(o);
   const eomgen::ModelEquations eom = eomgen::derive_equations(model);
   // render completely before writing anything, so an error leaves no output behind
@@ -251,10 +252,11 @@ void run_eval(const Options& o) {
   for (const auto& p : v.parameters()) parameters.emplace_back(p.name, value_of(p.name, p.default_value));
   // what the derived parameters came to with these parameters
   std::vector<std::pair<std::string, double>> derived;
-  eomgen::DoubleEvaluator at_parameters;  // in doubles: 1/L at L = 0 is inf, as in the equations
+  eomgen::DoubleEvaluator at_parameters;
   for (const auto& p : v.parameters()) at_parameters.set(p.symbol, value_of(p.name, p.default_value));
-  for (const eomgen::DerivedParameter& d : model.derived_parameters)
-    derived.emplace_back(d.name, at_parameters.value(d.definition, "derived parameter '" + d.name + "'"));
+  v.evaluate_derived_parameters(at_parameters);
+  for (const eomgen::DerivedParameter& d : v.derived_parameters())
+    derived.emplace_back(d.name, at_parameters.value(d.symbol, "derived parameter '" + d.name + "'"));
   for (const auto& c : model.system.constraints()) {
     constraints.push_back(c.name);
     lambda.emplace_back(c.name, sol.lambda(static_cast<Eigen::Index>(lambda.size())));

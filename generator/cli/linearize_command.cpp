@@ -192,7 +192,7 @@ void check_swept_name(const Model& model, const NamedValues& given, const std::s
   for (const auto& u : v.inputs()) names.push_back(u.name);
   for (const auto& p : v.parameters()) names.push_back(p.name);
   if (std::find(names.begin(), names.end(), name) == names.end()) {
-    for (const DerivedParameter& d : model.derived_parameters)
+    for (const DerivedParameter& d : v.derived_parameters())
       if (d.name == name) throw UsageError("--sweep: " + not_a_parameter(model, name, "--at", "--at"));
     throw UsageError(fmt::format("--sweep: '{}' is not a parameter, coordinate, rate, input or t of {}", name, model.name));
   }

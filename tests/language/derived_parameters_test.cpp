@@ -1,7 +1,8 @@
 // Derived parameters (`parameter d = 0.45*L`): defined from other parameters in any order of the
-// file, substituted where they are used, so the equations follow a change of what they are
+// file, symbols of their own in the equations (which name them as the model does), computed from
+// the parameters once per parameter set, so the equations follow a change of what they are
 // defined from; cycles and definitions that are no function of parameters are refused where they
-// are written.
+// are written, and so is a mistake inside a definition.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -39,18 +40,35 @@ std::vector<std::string> parameter_names(const Model& model) {
   return names;
 }
 
-TEST(DerivedParameters, AreNoSymbolOfTheSystemAndAreListedWithTheirDefinitionAndDefault) {
+TEST(DerivedParameters, AreSymbolsOfTheirOwnListedWithTheirDefinitionDefaultAndPlace) {
   const Model model = parse_model(pendulum, "h.eom");
+  const Variables& v = model.system.variables();
   // L is created when d needs it, before its own line: still each parameter once
   EXPECT_EQ(parameter_names(model), (std::vector<std::string>{"m", "g", "L"}));
-  ASSERT_EQ(model.derived_parameters.size(), 1u);
-  const DerivedParameter& d = model.derived_parameters[0];
+  ASSERT_EQ(v.derived_parameters().size(), 1u);
+  const DerivedParameter& d = v.derived_parameters()[0];
   EXPECT_EQ(d.name, "d");
   EXPECT_DOUBLE_EQ(d.default_value, 0.9);
   EXPECT_EQ(d.unit, "m");
-  EXPECT_EQ(d.location.line, 3);
-  EXPECT_EQ(d.location.column, 11);
-  EXPECT_TRUE((d.definition - GiNaC::numeric(9, 20) * *model.system.variables().find("L")).expand().is_zero());
+  ASSERT_EQ(model.derived_parameter_locations.size(), 1u);
+  EXPECT_EQ(model.derived_parameter_locations[0].line, 3);
+  EXPECT_EQ(model.derived_parameter_locations[0].column, 11);
+  EXPECT_TRUE((d.definition - GiNaC::numeric(9, 20) * *v.find("L")).expand().is_zero());
+  EXPECT_EQ(v.kind_of(d.symbol), SymbolKind::derived_parameter);
+  EXPECT_TRUE(v.find("d")->is_equal(d.symbol));
+  EXPECT_DOUBLE_EQ(GiNaC::ex_to<GiNaC::numeric>(model.system.parameter_defaults().at(d.symbol)).to_double(), 0.9);
+}
+
+TEST(DerivedParameters, TheEquationsNameThemAsTheModelDoes) {
+  const Model model = parse_model(pendulum, "h.eom");
+  const ModelEquations eom = derive_equations(model);
+  const GiNaC::ex d = *model.system.variables().find("d"), m = *model.system.variables().find("m");
+  EXPECT_TRUE((eom.subexpressions.expand(eom.mass_matrix(0, 0)) - m * d * d).expand().is_zero())
+      << eom.mass_matrix(0, 0);
+  PrintOptions options;
+  options.parts = {"M"};
+  EXPECT_NE(format_equations(model, eom, options).find("M[1,1] = m*d^2"), std::string::npos)
+      << format_equations(model, eom, options);
 }
 
 TEST(DerivedParameters, TheEquationsFollowTheParameterTheyAreDefinedFrom) {
@@ -69,9 +87,13 @@ TEST(DerivedParameters, TheEquationsFollowTheParameterTheyAreDefinedFrom) {
 TEST(DerivedParameters, MayBeDefinedFromDerivedOnesInAnyOrder) {
   const Model model = parse_model("parameter e = d/3 [m]\n" + pendulum + "point q = w + e*b.2\n"
                                   "particle second(mass = m, at = q)\n", "h.eom");
-  ASSERT_EQ(model.derived_parameters.size(), 2u);
-  EXPECT_EQ(model.derived_parameters[0].name, "e");  // the file's order, not the order they were built in
-  EXPECT_DOUBLE_EQ(model.derived_parameters[0].default_value, 0.3);
+  const std::vector<DerivedParameter>& derived = model.system.variables().derived_parameters();
+  ASSERT_EQ(derived.size(), 2u);
+  // in the order they are computed: each after those it is defined from
+  EXPECT_EQ(derived[0].name, "d");
+  EXPECT_EQ(derived[1].name, "e");
+  EXPECT_DOUBLE_EQ(derived[1].default_value, 0.3);
+  EXPECT_EQ(model.derived_parameter_locations[1].line, 1);
   const NumericEquations x = evaluate_equations(model, derive_equations(model), {{"L", 3.0}});
   EXPECT_NEAR(x.mass_matrix(0, 0), 2 * (1.35 * 1.35 + 0.45 * 0.45), 1e-13);
 }
@@ -82,28 +104,79 @@ TEST(DerivedParameters, AParameterWhoseValueIsAConstantExpressionStaysAParameter
   EXPECT_DOUBLE_EQ(model.system.variables().parameters()[0].default_value, M_PI / 2);
 }
 
-TEST(DerivedParameters, TheGeneratedParametersHaveNoFieldForThemAndSayHowTheyAreComputed) {
+TEST(DerivedParameters, TheGeneratedConstantsComputeThemAndTheParametersHaveNoFieldForThem) {
   const Model model = parse_model(pendulum, "h.eom");
   const std::string header = emit_model(model, derive_equations(model)).header;
   EXPECT_NE(header.find("    Scalar L = Scalar(2); // [m]\n"), std::string::npos);
-  EXPECT_EQ(header.find("Scalar d ="), std::string::npos);
-  EXPECT_NE(header.find("    //   d = 9/20*L [m]\n"), std::string::npos) << header.substr(0, 3000);
+  EXPECT_EQ(header.find("Scalar d = Scalar(0.9)"), std::string::npos);
+  EXPECT_NE(header.find("  struct DerivedParameters {\n    Scalar d = Scalar(0);  // = 9/20*L [m]\n  };\n"),
+            std::string::npos)
+      << header.substr(0, 4000);
+  EXPECT_NE(header.find("      derived.d = p.L * Scalar(0.45);\n"), std::string::npos) << header.substr(0, 4000);
+  EXPECT_NE(header.find("    DerivedParameters<Scalar> derived;\n"), std::string::npos);
 }
 
-TEST(DerivedParameters, TheReportsListThemWithTheirDefinitionsAndDefaults) {
+TEST(DerivedParameters, TheReportsListThemWithTheirDefinitionsAndDefaultsAndShowThemWrittenOutOnRequest) {
   const Model model = parse_model(pendulum, "h.eom");
   const ModelEquations eom = derive_equations(model);
   PrintOptions options;
-  EXPECT_NE(format_equations(model, eom, options)
-                .find("  L = 2 [m]\nDerived parameters (their definitions stand where they are used):\n"
+  const std::string text = format_equations(model, eom, options);
+  EXPECT_NE(text.find("  L = 2 [m]\nDerived parameters (each computed from the parameters and those before it):\n"
                       "  d = 9*L/20 = 0.9 [m]\n"),
-            std::string::npos);
+            std::string::npos)
+      << text;
+  EXPECT_NE(text.find("M[1,1] = m*d^2\n"), std::string::npos) << text;
+  options.expand_derived_parameters = true;
+  EXPECT_NE(format_equations(model, eom, options).find("M[1,1] = 81*m*L^2/400\n"), std::string::npos)
+      << format_equations(model, eom, options);
+  options.expand_derived_parameters = false;
   options.format = EquationFormat::markdown;
   EXPECT_NE(format_equations(model, eom, options).find("| `d` | `9*L/20` | 0.9 | m |\n"), std::string::npos);
   options.format = EquationFormat::latex;
   EXPECT_NE(format_equations(model, eom, options).find("\\item Derived parameters: $d = \\frac{9 L}{20} = 0.9$~m\n"),
             std::string::npos)
       << format_equations(model, eom, options).substr(0, 1500);
+}
+
+// The model of issue 28: each derived parameter uses the one before it twice, so written out it
+// is a tree of 2^N nodes. As symbols they are N short definitions: a thousand of them check,
+// derive and evaluate at once.
+std::string chained_parameters(int n) {
+  std::string text = "parameter L = 0.5 [m]\nparameter g = 9.81 [m/s^2]\nparameter m = 1 [kg]\nparameter a0 = L [m]\n";
+  for (int i = 1; i <= n; ++i)
+    text += "parameter a" + std::to_string(i) + " = a" + std::to_string(i - 1) + "*(1 + sin(a" + std::to_string(i - 1) +
+            "/L)) + L [m]\n";
+  return text + "coordinate q\nframe b = rotate(a, 3, q)\npoint p = w - a" + std::to_string(n) +
+         "*b.2\nparticle bob(mass = m, at = p)\ngravity = -g*a.2\n";
+}
+
+TEST(DerivedParameters, AChainOfAThousandEachUsingTheOneBeforeTwiceIsAThousandSymbols) {
+  const Model model = parse_model(chained_parameters(1000), "chain.eom");
+  ASSERT_EQ(model.system.variables().derived_parameters().size(), 1001u);
+  const ModelEquations eom = derive_equations(model);
+  for (const double L : {0.5, 0.25}) {
+    double a = L;
+    for (int i = 1; i <= 1000; ++i) a = a * (1 + std::sin(a / L)) + L;
+    const NumericEquations x = evaluate_equations(model, eom, {{"q", 0.3}, {"L", L}});
+    EXPECT_NEAR(x.mass_matrix(0, 0), a * a, 1e-9 * a * a) << L;
+    EXPECT_NEAR(x.forcing(0), -9.81 * a * std::sin(0.3), 1e-9 * a) << L;
+  }
+  const std::string header = emit_model(model, eom).header;
+  EXPECT_NE(header.find("      derived.a1000 = "), std::string::npos);
+}
+
+TEST(DerivedParameters, AMistakeInADefinitionIsReportedThereNamingTheParametersAsWritten) {
+  const std::string rod = "parameter lam_p = 2 [kg/m]\nparameter lp = 0.5 [m]\nparameter mp = lam_p*lp [kg]\n";
+  const std::string rest = "coordinate theta\nframe b = rotate(a, 3, theta)\npoint c = w + lp/2*b.1\n"
+                           "body rod(mass = mp, centre = c, frame = b, inertia = diag(Ip, Ip, Ip))\n";
+  // lp instead of lp^2: named as written, not as lam_p and lp
+  EXPECT_EQ(error_of(rod + "parameter Ip = mp*lp/12 [kg m^2]\n" + rest),
+            "h.eom:4:16: error: parameter 'Ip': the term '1/12*lp*mp' has dimension kg m, expected kg m^2 for its "
+            "unit [kg m^2]");
+  // without a unit: the definition's own disagreement, at the definition, not where it is used
+  EXPECT_EQ(error_of(rod + "parameter Ip = mp*lp^2/12 + lp\n" + rest),
+            "h.eom:4:16: error: parameter 'Ip': the terms '1/12*lp^2*mp' and 'lp' have different dimensions, kg m^2 "
+            "and m");
 }
 
 TEST(DerivedParameters, ACycleIsReportedWhereItCloses) {
@@ -136,7 +209,7 @@ TEST(DerivedParameters, InAModelWithUnitsTheirDefinitionHasTheirUnitOrGivesThemO
             "h.eom:1:15: error: parameter 'k': the term '9/20*L' has dimension m, expected kg for its unit [kg]");
   // without a unit, the definition's: a length, which is no mass
   EXPECT_EQ(error_of("parameter k = 0.45*L\n" + pendulum + "particle second(mass = k, at = p)\n"),
-            "h.eom:11:24: error: particle 'second': the term '9/20*L' has dimension m, expected kg for a mass");
+            "h.eom:11:24: error: particle 'second': the term 'k' has dimension m, expected kg for a mass");
   EXPECT_NO_THROW(parse_model("parameter k = 0.45*L\n" + pendulum + "point q = w + k*b.2\n"
                               "particle second(mass = m, at = q)\n", "h.eom"));
 }

@@ -50,6 +50,7 @@ std::set<std::string> generated_code_names() {
       "holonomic_rows", "independent_speeds", "output_names", "has_forward_dynamics", "prefers_forward_dynamics",
       "Vector", "Inputs", "MassMatrix", "ConstraintJacobian", "ConstraintVector", "HolonomicVector", "OutputVector",
       "InputMatrix", "StateMatrix", "StateInputMatrix", "Parameters", "fields", "Constants", "parameters",
+      "DerivedParameters", "derived_parameters",
       "mass_matrix", "forcing", "mass_matrix_and_forcing", "constraint_jacobian", "constraint_rate_term",
       "constraint_acceleration_term", "holonomic_residuals", "kinetic_energy", "potential_energy", "outputs",
       "forward_dynamics", "linearization_terms",
@@ -60,7 +61,7 @@ std::set<std::string> generated_code_names() {
   for (const ir::CallOp& call : ir::call_ops) names.insert(call.cpp_name);
   for (int kind = 0; kind <= static_cast<int>(ir::VariableKind::constant); ++kind)
     names.insert(cpp_argument_name(static_cast<ir::VariableKind>(kind)));
-  for (int array = 0; array <= static_cast<int>(ir::Array::pivots); ++array)
+  for (int array = 0; array <= static_cast<int>(ir::Array::derived_parameters); ++array)
     names.insert(cpp_array_name(static_cast<ir::Array>(array)));
   return names;
 }

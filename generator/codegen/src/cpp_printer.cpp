@@ -52,7 +52,7 @@ class Printer {
       body += fmt::format("{}const {} {} = {};\n", options_.indent, options_.scalar, names_[i], expression(i));
     }
     for (const ir::Assignment& out : program_.outputs)
-      body += fmt::format("{}{} = {};\n", options_.indent, cpp_target(out.target), operand(out.value, 0));
+      body += fmt::format("{}{} = {};\n", options_.indent, cpp_target(out.target, options_), operand(out.value, 0));
     return body;
   }
 
@@ -134,6 +134,7 @@ const char* cpp_argument_name(ir::VariableKind kind) {
     case ir::VariableKind::rate: return "qd";
     case ir::VariableKind::input: return "u";
     case ir::VariableKind::parameter: return "p";
+    case ir::VariableKind::derived_parameter: return "derived";
     case ir::VariableKind::acceleration: return "qdd";
     case ir::VariableKind::multiplier: return "lambda";
     case ir::VariableKind::constant: return "c";
@@ -160,6 +161,7 @@ const char* cpp_array_name(ir::Array array) {
     case ir::Array::constants: return "k";
     case ir::Array::accelerations: return "qdd";
     case ir::Array::pivots: return "pivot";
+    case ir::Array::derived_parameters: return "derived";
   }
   EOMGEN_UNREACHABLE("an ir::Array value that is not an enumerator");
 }
@@ -172,6 +174,10 @@ std::string cpp_variable(const ir::Variable& variable, const CppPrintOptions& op
     case ir::VariableKind::parameter:
       assert(variable.index < options.parameter_names.size());
       return fmt::format("{}.{}", options.parameters, cpp_identifier(options.parameter_names.at(variable.index)));
+    case ir::VariableKind::derived_parameter:
+      assert(variable.index < options.derived_parameter_names.size());
+      return fmt::format("{}.{}", options.derived_parameters,
+                         cpp_identifier(options.derived_parameter_names.at(variable.index)));
     case ir::VariableKind::constant:
       return fmt::format("{}.k{}", name, variable.index);
     case ir::VariableKind::coordinate:
@@ -184,7 +190,15 @@ std::string cpp_variable(const ir::Variable& variable, const CppPrintOptions& op
   EOMGEN_UNREACHABLE("an ir::VariableKind value that is not an enumerator");
 }
 
+std::string cpp_target(const ir::Target& target, const CppPrintOptions& options) {
+  if (target.array != ir::Array::derived_parameters) return cpp_target(target);
+  assert(target.row < options.derived_parameter_names.size());
+  return fmt::format("{}.{}", options.derived_parameters, cpp_identifier(options.derived_parameter_names.at(target.row)));
+}
+
 std::string cpp_target(const ir::Target& target) {
+  EOMGEN_DEMAND(target.array != ir::Array::derived_parameters,
+                "cpp_target: a derived parameter's target printed without the names of the derived parameters");
   const char* name = cpp_array_name(target.array);
   // a constant is a named member of the Constants, not an entry of an array
   if (target.array == ir::Array::constants) return fmt::format("{}{}", name, target.row);

@@ -86,6 +86,11 @@ EmittedModel emit(const Model& model, const ModelEquations& eom, const SymbolicL
   CppPrintOptions print;
   print.share_subexpressions = options.share_subexpressions;
   for (const Parameter& p : model.system.variables().parameters()) print.parameter_names.push_back(p.name);
+  std::vector<LoweringTarget> derived_parameters;
+  for (const DerivedParameter& d : model.system.variables().derived_parameters()) {
+    derived_parameters.push_back({{ir::Array::derived_parameters, print.derived_parameter_names.size(), 0}, d.definition});
+    print.derived_parameter_names.push_back(d.name);
+  }
   EmittedModel emitted;
   const std::variant<ForwardDynamics, std::string> derived = derive_forward_dynamics(model.system);
   const std::variant<CompositeBodyEquations, std::string> recursions = derive_composite_body_equations(model.system);
@@ -98,7 +103,7 @@ EmittedModel emit(const Model& model, const ModelEquations& eom, const SymbolicL
   if (forward) intermediates.push_back(&forward->subexpressions);
   if (parts.recursive_mass_matrix) intermediates.push_back(&parts.recursive_mass_matrix->subexpressions);
   EmittedFunctions functions =
-      emit_functions(table, intermediates, bind_variables(model, linearization, print), print);
+      emit_functions(table, derived_parameters, intermediates, bind_variables(model, linearization, print), print);
   if (linearization) functions.source += linearization_source(eom.constraint_count > 0);
   const std::uint64_t hash = model_fingerprint(model, table, functions.source);
   emitted.statistics = std::move(functions.statistics);

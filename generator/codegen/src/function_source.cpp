@@ -42,6 +42,7 @@ const char* array_type(Array array) {
     case Array::potential_energy:
       return "Scalar";
     case Array::constants:
+    case Array::derived_parameters:
       break;  // members of the Constants, never an argument
   }
   EOMGEN_UNREACHABLE("an ir::Array value that is not an enumerator");
@@ -55,6 +56,8 @@ std::string input_declaration(VariableKind kind) {
     case VariableKind::parameter: return fmt::format("const Parameters<Scalar>& {}", name);
     case VariableKind::input: return fmt::format("const Inputs<Scalar>& {}", name);
     case VariableKind::multiplier: return fmt::format("const ConstraintVector<Scalar>& {}", name);
+    case VariableKind::derived_parameter:
+      EOMGEN_UNREACHABLE("the derived parameters are read through the Constants, never an argument");
     case VariableKind::constant: return fmt::format("const Constants<Scalar>& {}", name);
     case VariableKind::coordinate:
     case VariableKind::rate:
@@ -134,23 +137,37 @@ std::string regularity_check(const FunctionSpec& f, std::size_t pivots, const st
 
 }  // namespace
 
-std::string constants_source(const ir::Program& constants, const CppPrintOptions& print) {
+std::string constants_source(const ir::Program& derived_parameters, const ir::Program& constants,
+                             const CppPrintOptions& print) {
+  const bool derived = !print.derived_parameter_names.empty();
   std::string s =
       "\n  /// The values of the functions below that depend on the parameters only, computed once per\n"
       "  /// parameter set. Immutable: for other parameters, build other Constants.\n"
       "  template <class Scalar>\n  class Constants {\n   public:\n"
       "    /// Computes every constant from a copy of the parameters.\n"
       "    explicit Constants(const Parameters<Scalar>& parameters) noexcept : p(parameters) {";
-  if (constants.outputs.empty()) {
+  if (constants.outputs.empty() && derived_parameters.outputs.empty()) {
     s += "}\n";
   } else {
     CppPrintOptions body = print;
     body.indent += "  ";
-    s += "\n" + math_using_declarations(body.indent) + print_cpp(constants, body) + "    }\n";
+    s += "\n" + math_using_declarations(body.indent);
+    if (!derived_parameters.outputs.empty()) {
+      // each as written: a tree reading the parameters and the derived parameters before it
+      CppPrintOptions written = body;
+      written.share_subexpressions = false;
+      s += body.indent + "// the derived parameters, each from the parameters and those before it\n" +
+           print_cpp(derived_parameters, written);
+    }
+    s += print_cpp(constants, body) + "    }\n";
   }
   s += "    /// The parameters these constants were computed from.\n"
-       "    const Parameters<Scalar>& parameters() const noexcept { return p; }\n\n"
-       "   private:\n    friend struct Model;\n    Parameters<Scalar> p;\n";
+       "    const Parameters<Scalar>& parameters() const noexcept { return p; }\n";
+  if (derived)
+    s += "    /// The derived parameters, computed from them.\n"
+         "    const DerivedParameters<Scalar>& derived_parameters() const noexcept { return derived; }\n";
+  s += "\n   private:\n    friend struct Model;\n    Parameters<Scalar> p;\n";
+  if (derived) s += "    DerivedParameters<Scalar> derived;\n";
   return s + constant_members(constants.outputs.size()) + "  };\n";
 }
 
@@ -180,20 +197,28 @@ std::string function_source(const FunctionSpec& f, const ir::Program& program, c
 }
 
 EmittedFunctions emit_functions(const std::vector<FunctionSpec>& table,
+                                const std::vector<LoweringTarget>& derived_parameters,
                                 const std::vector<const Subexpressions*>& intermediates,
                                 const VariableNames& variables, const CppPrintOptions& print) {
   std::vector<std::vector<LoweringTarget>> targets;
   for (const FunctionSpec& f : table) targets.push_back(f.targets);
   const std::vector<ir::Program> programs = lower_functions(targets, intermediates, variables);
+  const ir::Program derived = lower(derived_parameters, Subexpressions(), variables);
   // the baseline without sharing keeps every value where it is used
   const ConstantSplit split = print.share_subexpressions ? split_constants(programs) : ConstantSplit{{}, programs};
   EmittedFunctions emitted;
-  emitted.statistics.push_back({constants_statistics_name, ir::count_operations_without_sharing(split.constants),
-                                ir::count_operations(split.constants)});
-  emitted.source = constants_source(split.constants, print);
-  // inside the per-call functions the parameters are the copy held by the Constants
+  // the derived parameters are computed as written, each tree whole, however they are printed
+  emitted.statistics.push_back(
+      {constants_statistics_name,
+       ir::count_operations_without_sharing(split.constants) + ir::count_operations_without_sharing(derived),
+       ir::count_operations(split.constants) + ir::count_operations_without_sharing(derived)});
+  emitted.source = constants_source(derived, split.constants, print);
+  // inside the per-call functions the parameters are the copy held by the Constants, and so
+  // are the derived parameters
   CppPrintOptions per_call = print;
   per_call.parameters = std::string(cpp_argument_name(VariableKind::constant)) + ".p";
+  per_call.derived_parameters =
+      std::string(cpp_argument_name(VariableKind::constant)) + "." + cpp_argument_name(VariableKind::derived_parameter);
   for (std::size_t k = 0; k < table.size(); ++k) {
     emitted.statistics.push_back({table[k].name, ir::count_operations_without_sharing(programs[k]),
                                   ir::count_operations(split.per_call[k])});

@@ -71,6 +71,7 @@ std::size_t rank(Array array) {
     case Array::constants:
     case Array::accelerations:
     case Array::pivots:
+    case Array::derived_parameters:
       return 1;
     case Array::mass_matrix:
     case Array::constraint_jacobian:

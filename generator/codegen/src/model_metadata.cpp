@@ -113,14 +113,27 @@ std::string parameters_source(const Model& model) {
          "  /// field ends in '_' and its comment gives the parameter (eomgen's docs/model-language.md).\n";
   s += "  template <class Scalar>\n  struct Parameters {\n";
   s += fields;
-  if (!model.derived_parameters.empty())
-    s += "    // The model's derived parameters are no fields: each is computed from these where it is used.\n";
-  for (const DerivedParameter& d : model.derived_parameters) {
-    s += fmt::format("    //   {} = {}{}\n", cpp_comment_text(d.name), cpp_comment_text(ordered_text(d.definition)),
-                     d.unit.empty() ? "" : " [" + cpp_comment_text(d.unit) + "]");
-  }
+  if (!model.system.variables().derived_parameters().empty())
+    s += "    // The model's derived parameters are no fields: the Constants compute them (DerivedParameters).\n";
   s += "    /// The fields in the order of parameter_names, to set parameters by index or name.\n";
   s += fmt::format("    std::array<Scalar*, np> fields() noexcept {{ return {{{{{}}}}}; }}\n", pointers);
+  return s + "  };\n" + derived_parameters_source(model);
+}
+
+std::string derived_parameters_source(const Model& model) {
+  const std::vector<DerivedParameter>& derived = model.system.variables().derived_parameters();
+  if (derived.empty()) return "";
+  std::string s = "\n  /// The derived parameters, each defined from the parameters and those before it: computed by\n"
+                  "  /// the Constants (Constants::derived_parameters()) whenever the parameters are given.\n"
+                  "  template <class Scalar>\n  struct DerivedParameters {\n";
+  for (const DerivedParameter& d : derived) {
+    const std::string field = cpp_identifier(d.name);
+    // a renamed field says whose it is, as in the Parameters
+    s += fmt::format("    Scalar {} = Scalar(0);  // {}= {}{}\n", field,
+                     field == d.name ? "" : "'" + cpp_comment_text(d.name) + "' ",
+                     cpp_comment_text(ordered_text(d.definition)),
+                     d.unit.empty() ? "" : " [" + cpp_comment_text(d.unit) + "]");
+  }
   return s + "  };\n";
 }
 

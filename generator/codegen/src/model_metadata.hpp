@@ -14,8 +14,12 @@ namespace eomgen {
 std::string metadata_source(const Model& model, const ModelEquations& equations, std::uint64_t model_hash);
 
 /// The Parameters struct: one field per parameter, defaulted to its value, and fields() in the
-/// order of parameter_names.
+/// order of parameter_names; then, for a model with derived parameters, DerivedParameters.
 std::string parameters_source(const Model& model);
+
+/// The DerivedParameters struct: one field per derived parameter, with its definition in a
+/// comment ("" for a model without derived parameters).
+std::string derived_parameters_source(const Model& model);
 
 /// The coordinate indices of the declared independent speeds, "1, 3" ("" when none are).
 std::string independent_speed_list(const Model& model);

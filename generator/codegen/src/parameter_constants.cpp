@@ -43,8 +43,9 @@ std::vector<bool> classify(const ir::Program& program) {
                   "split_constants: a program already reads the constants");
     bool all = !in.args.empty();
     for (std::size_t a : in.args) all = all && constant[a];
-    constant[i] =
-        in.op == Op::number || (in.op == Op::variable && in.variable.kind == ir::VariableKind::parameter) || all;
+    const bool parameter = in.op == Op::variable && (in.variable.kind == ir::VariableKind::parameter ||
+                                                     in.variable.kind == ir::VariableKind::derived_parameter);
+    constant[i] = in.op == Op::number || parameter || all;
   }
   return constant;
 }

@@ -21,6 +21,8 @@ VariableNames bind_variables(const Model& model, const SymbolicLinearization* li
   for (std::size_t k = 0; k < vars.inputs().size(); ++k) bind(vars.inputs()[k].symbol, VariableKind::input, k);
   for (std::size_t k = 0; k < vars.parameters().size(); ++k)
     bind(vars.parameters()[k].symbol, VariableKind::parameter, k);
+  for (std::size_t k = 0; k < vars.derived_parameters().size(); ++k)
+    bind(vars.derived_parameters()[k].symbol, VariableKind::derived_parameter, k);
   // the linearization's derivatives are taken at given accelerations and multipliers
   if (linearization) {
     for (std::size_t k = 0; k < vars.coordinate_count(); ++k)

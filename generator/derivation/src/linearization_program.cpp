@@ -23,6 +23,9 @@ std::shared_ptr<const LinearizationProgram> compile_program(const Model& model, 
   for (const auto& l : lin.lambda) inputs.push_back(l);
   auto program = std::make_shared<LinearizationProgram>(std::move(inputs));
   ExpressionTape& tape = program->tape;
+  // the derived parameters first, each from the parameters and those before it
+  for (const DerivedParameter& d : vars.derived_parameters())
+    tape.define(d.symbol, d.definition, "derived parameter " + d.name);
   for (const auto& d : eom.subexpressions.definitions()) tape.define(d.symbol, d.value, "intermediate " + d.symbol.get_name());
   for (const auto& d : lin.derivatives.definitions()) tape.define(d.symbol, d.value, "derivative " + d.symbol.get_name());
   const auto matrix = [&](const GiNaC::matrix& m, const std::string& name) {

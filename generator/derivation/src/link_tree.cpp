@@ -77,7 +77,7 @@ class TreeBuilder {
     for (unsigned i = 0; i < m.rows(); ++i)
       for (unsigned j = 0; j < m.cols(); ++j)
         for (const ex& symbol : symbols_of(m(i, j)))
-          if (vars_.kind_of(symbol) != SymbolKind::parameter) return false;
+          if (const auto kind = vars_.kind_of(symbol); !kind || !is_parameter_kind(*kind)) return false;
     return true;
   }
 

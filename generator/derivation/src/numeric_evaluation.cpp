@@ -48,14 +48,24 @@ GiNaC::exmap numeric_substitution(const Model& model, const NamedValues& values)
   for (const auto& [name, value] : values) {
     const auto it = by_name.find(name);
     if (it == by_name.end()) {
-      // accelerations are what the equations are solved for, so they cannot be given
-      const bool acceleration = v.find(name).has_value();
+      // accelerations are what the equations are solved for, and derived parameters follow the
+      // parameters, so neither can be given
+      const std::optional<GiNaC::realsymbol> symbol = v.find(name);
+      const bool derived = symbol && v.kind_of(*symbol) == SymbolKind::derived_parameter;
       throw Error(fmt::format("evaluating at a state: {} '{}'; accepted names: {}",
-                              acceleration ? "accelerations are solved for, not given:" : "unknown name", name,
-                              join(accepted)));
+                              derived ? "derived parameters are computed from the parameters, not given:"
+                              : symbol ? "accelerations are solved for, not given:"
+                                       : "unknown name",
+                              name, join(accepted)));
     }
     out[it->second] = value;
   }
+  // the derived parameters from the parameters just given, in their order
+  DoubleEvaluator parameters;
+  for (const Parameter& p : v.parameters()) parameters.set(p.symbol, GiNaC::ex_to<GiNaC::numeric>(out.at(p.symbol)).to_double());
+  v.evaluate_derived_parameters(parameters);
+  for (const DerivedParameter& d : v.derived_parameters())
+    out[d.symbol] = parameters.value(d.symbol, "derived parameter '" + d.name + "'");
   return out;
 }
 

@@ -45,7 +45,7 @@ class Estimate {
         dependent = facts(**definition).dependent;
       } else {
         const auto kind = variables_.kind_of(e);
-        dependent = !kind || *kind != SymbolKind::parameter;
+        dependent = !kind || !is_parameter_kind(*kind);
       }
     } else {
       for (std::size_t i = 0; i < e.nops() && !dependent; ++i) dependent = facts(e.op(i)).dependent;

@@ -12,7 +12,7 @@ using GiNaC::ex;
 bool parameter_only(const ex& e, const Variables& variables) {
   if (GiNaC::is_a<GiNaC::symbol>(e)) {
     const auto kind = variables.kind_of(e);
-    return kind && *kind == SymbolKind::parameter;
+    return kind && is_parameter_kind(*kind);
   }
   for (std::size_t i = 0; i < e.nops(); ++i)
     if (!parameter_only(e.op(i), variables)) return false;

@@ -1,13 +1,12 @@
 // Declarations of a model file: parameters, coordinates and inputs. Parameters with a number for
-// a value become symbols of the system; those defined from other parameters (`parameter d1 =
-// 0.45*L1`) are derived, and their definition stands wherever they are named
-// (Model::derived_parameters says why).
+// a value become parameters of the system; those defined from other parameters (`parameter d1 =
+// 0.45*L1`) become its derived parameters: symbols of their own, which the equations name, and
+// whose definitions are computed once per parameter set (DerivedParameter says why).
 #include <fmt/format.h>
 
 #include <cmath>
 
 #include "eomgen/base/error.hpp"
-#include "eomgen/symbolic/double_evaluator.hpp"
 #include "definition_in_progress.hpp"
 #include "model_elaborator.hpp"
 
@@ -73,7 +72,6 @@ void Elaborator::declarations() {
       }
     }
   }
-  list_derived_parameters();
 }
 
 void Elaborator::reject_in_parameter(const std::string& kind, const std::string& name, const SourceLocation& at) const {
@@ -97,30 +95,17 @@ ex Elaborator::parameter_value(const std::string& name) {
     units_.parameter(p, s.unit, s.name.location);
     return parameter_values_[name] = p.symbol;
   }
-  // every name in it was a number, a const or a parameter (name_value refuses the others), so
-  // it is a function of the system's parameters: its value at their defaults is its default
-  // in doubles: GiNaC would throw from inside a substitution at a pole (L/z at z = 0) and leak
-  DoubleEvaluator at_defaults;
-  for (const Parameter& p : vars.parameters()) at_defaults.set(p.symbol, p.default_value);
-  const double number = at_defaults.value(value, what);
-  if (!std::isfinite(number))
-    throw SourceError(start_of(*s.value), fmt::format("{}: the value at the other parameters' default values is not a "
-                                                      "finite real number: expected a definition that has one",
-                                                      what));
-  // without a unit it has its definition's; with one, the definition must have that unit
-  if (s.unit)
-    units_.require(value, UnitChecks::expect(s.unit->dimension, start_of(*s.value), what, "its unit [" + s.unit->text + "]"));
-  derived_parameters_[name] = DerivedParameter{name, value, number, s.unit ? s.unit->text : "", s.name.location};
-  return parameter_values_[name] = value;
-}
-
-// Model::derived_parameters in the order of the file, whatever order they were built in.
-void Elaborator::list_derived_parameters() {
-  for (const Instance& in : instances_) {
-    if (in.statement->kind != Statement::Kind::parameter) continue;
-    auto it = derived_parameters_.find(resolve(in.statement->name, in.environment));
-    if (it != derived_parameters_.end()) model_.derived_parameters.push_back(it->second);
+  // every name in it was a number, a const or a parameter (name_value refuses the others), each
+  // built before this one: a function of the parameters declared so far
+  DerivedParameter d;
+  try {
+    d = vars.add_derived_parameter(name, value, s.unit ? s.unit->text : "");
+  } catch (const ModelError& e) {
+    throw SourceError(start_of(*s.value), e.what());
   }
+  model_.derived_parameter_locations.push_back(s.name.location);
+  units_.derived_parameter(d, s.unit, start_of(*s.value), what);
+  return parameter_values_[name] = d.symbol;
 }
 
 }  // namespace eomgen::syntax

@@ -99,7 +99,6 @@ class Elaborator {
   // parameters, derived ones built on demand (model_declarations.cpp)
   GiNaC::ex parameter_value(const std::string& name);
   [[noreturn]] void reject_in_parameter(const std::string& kind, const std::string& name, const SourceLocation& at) const;
-  void list_derived_parameters();
   void collect_frames_and_points();
   FrameId build_frame(const std::string& name);
   PointId build_point(const std::string& name);
@@ -161,8 +160,7 @@ class Elaborator {
   std::vector<std::string> in_progress_;  // frames and points being built, innermost last
   std::set<std::string> used_coordinates_;
   std::map<std::string, std::size_t> parameter_instances_;  // name -> index in instances_
-  std::map<std::string, GiNaC::ex> parameter_values_;  // the symbol, or a derived parameter's definition
-  std::map<std::string, DerivedParameter> derived_parameters_;
+  std::map<std::string, GiNaC::ex> parameter_values_;  // the symbol of each, derived or not
   std::vector<std::string> parameters_in_progress_;  // innermost last
   SourceLocation independent_location_;  // of the `independent` keyword, when there is one
   bool kinematics_ready_ = false;

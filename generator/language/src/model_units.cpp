@@ -48,6 +48,7 @@ void UnitChecks::parameter(const Parameter& p, const std::optional<Unit>& unit, 
   if (!active()) return;
   if (!unit) missing("parameter", p.name, at, "after its value");
   known_[p.symbol] = unit->dimension;
+  parameters_.define(p.symbol, unit->dimension);
 }
 
 void UnitChecks::coordinate(const Coordinate& c, const std::optional<Unit>& unit) {
@@ -65,6 +66,24 @@ void UnitChecks::input(const Input& u, const std::optional<Unit>& unit, const So
   if (!active()) return;
   if (!unit) missing("input", u.name, at, "after its name");
   known_[u.symbol] = unit->dimension;
+}
+
+void UnitChecks::derived_parameter(const DerivedParameter& d, const std::optional<Unit>& unit,
+                                   const SourceLocation& at, const std::string& what) {
+  if (!active()) return;
+  if (unit) {
+    known_[d.symbol] = unit->dimension;
+    parameters_.define(d.symbol, unit->dimension);
+    require(d.definition, expect(unit->dimension, at, what, "its unit [" + unit->text + "]"));
+    return;
+  }
+  // the symbols of the definition were declared before it, so their dimensions are known
+  try {
+    known_[d.symbol] = parameters_.of(d.definition).value_or(Dimension());
+    parameters_.define(d.symbol, known_[d.symbol]);
+  } catch (const DimensionError& e) {
+    throw SourceError(at, fmt::format("{}: {}", what, e.mismatch().describe()));
+  }
 }
 
 void UnitChecks::require(const ex& value, const Obligation& obligation) {

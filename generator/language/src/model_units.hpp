@@ -31,6 +31,12 @@ class UnitChecks {
   void parameter(const Parameter& p, const std::optional<Unit>& unit, const SourceLocation& at);
   void coordinate(const Coordinate& c, const std::optional<Unit>& unit);
   void input(const Input& u, const std::optional<Unit>& unit, const SourceLocation& at);
+  /// A derived parameter, declared after the parameters its definition names: with a unit its
+  /// definition must have that unit; without one it has its definition's. `at` is where the
+  /// definition starts, `what` names the parameter. \throws SourceError where the parts of a
+  /// definition without a unit disagree.
+  void derived_parameter(const DerivedParameter& d, const std::optional<Unit>& unit, const SourceLocation& at,
+                         const std::string& what);
 
   /// What an expression must measure: every term has dimension `expected` times
   /// dim(relative)^power. `what` names the statement ("moment 'drive'"), `role` the quantity
@@ -84,6 +90,7 @@ class UnitChecks {
 
   std::optional<SourceLocation> first_;  // the first unit of the file
   DimensionMap known_;
+  DimensionAnalysis parameters_{{}};  // the parameters declared so far, derived or not
   std::vector<Coordinate> unknown_;  // coordinates without a unit, not yet inferred
   std::vector<Obligation> obligations_;
 };

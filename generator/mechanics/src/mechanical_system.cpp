@@ -127,6 +127,7 @@ PointId MechanicalSystem::add_point(const std::string& name, PointId parent, con
 GiNaC::exmap MechanicalSystem::parameter_defaults() const {
   GiNaC::exmap m;
   for (const auto& p : variables_.parameters()) m[p.symbol] = p.default_value;
+  for (const auto& d : variables_.derived_parameters()) m[d.symbol] = d.default_value;
   return m;
 }
 

@@ -1,11 +1,13 @@
 #include "eomgen/mechanics/variables.hpp"
 
 #include "eomgen/symbolic/expression_map.hpp"
+#include "eomgen/symbolic/ordered_text.hpp"
 
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <optional>
 
 #include "eomgen/base/error.hpp"
@@ -120,6 +122,35 @@ Parameter Variables::add_parameter(const std::string& name, double default_value
   return parameters_.back();
 }
 
+DerivedParameter Variables::add_derived_parameter(const std::string& name, const GiNaC::ex& definition,
+                                                 const std::string& unit) {
+  check_name(name);
+  // numbers and the parameters declared so far only: then the definitions, in order, compute
+  // every derived parameter from values already known
+  std::optional<std::string> other;
+  for (const GiNaC::ex& s : symbols_of(definition)) {
+    const std::optional<SymbolKind> kind = kind_of(s);
+    const std::string symbol_name = GiNaC::ex_to<GiNaC::symbol>(s).get_name();
+    if ((!kind || !is_parameter_kind(*kind)) && (!other || symbol_name < *other)) other = symbol_name;
+  }
+  if (other)
+    throw ModelError(fmt::format("parameter '{}': its definition names '{}', which is no parameter declared before "
+                                 "it: expected numbers, parameters and derived parameters declared before it",
+                                 name, *other));
+  DoubleEvaluator at_defaults;
+  for (const Parameter& p : parameters_) at_defaults.set(p.symbol, p.default_value);
+  for (const DerivedParameter& d : derived_parameters_) at_defaults.set(d.symbol, d.default_value);
+  const double value = at_defaults.value(definition, fmt::format("parameter '{}'", name));
+  if (!std::isfinite(value))
+    throw ModelError(fmt::format("parameter '{}': the value at the other parameters' default values is not a finite "
+                                 "real number: expected a definition that has one", name));
+  claim_name(name);
+  DerivedParameter d{name, GiNaC::realsymbol(name, tex_name(name)), definition, value, unit};
+  kinds_[d.symbol] = code(SymbolKind::derived_parameter);
+  derived_parameters_.push_back(d);
+  return derived_parameters_.back();
+}
+
 Input Variables::add_input(const std::string& name, const std::string& unit) {
   claim_name(name);
   Input u{name, GiNaC::realsymbol(name, tex_name(name)), unit};
@@ -137,6 +168,8 @@ std::optional<GiNaC::realsymbol> Variables::find(const std::string& name) const 
   }
   for (const auto& p : parameters_)
     if (p.name == name) return p.symbol;
+  for (const auto& d : derived_parameters_)
+    if (d.name == name) return d.symbol;
   for (const auto& u : inputs_)
     if (u.name == name) return u.symbol;
   return std::nullopt;
@@ -201,10 +234,60 @@ GiNaC::ex Variables::time_derivative(const GiNaC::ex& e) const {
             "inputs may appear in loads but not in positions, rotations or constraints",
             GiNaC::ex_to<GiNaC::symbol>(s).get_name()));
       case SymbolKind::parameter:
+      case SymbolKind::derived_parameter:
         break;
     }
   }
   return result;
+}
+
+std::vector<std::size_t> Variables::parameters_in(const GiNaC::ex& e) const {
+  // the parameters of each derived parameter, in order: each from those before it
+  std::vector<std::vector<bool>> of_derived;
+  std::vector<bool> used(parameters_.size(), false);
+  const auto mark = [&](const GiNaC::ex& expression, std::vector<bool>& into) {
+    for (const GiNaC::ex& s : symbols_of(expression)) {
+      for (std::size_t k = 0; k < parameters_.size(); ++k)
+        if (s.is_equal(parameters_[k].symbol)) into[k] = true;
+      for (std::size_t k = 0; k < of_derived.size(); ++k)
+        if (s.is_equal(derived_parameters_[k].symbol))
+          for (std::size_t j = 0; j < into.size(); ++j) into[j] = into[j] || of_derived[k][j];
+    }
+  };
+  for (const DerivedParameter& d : derived_parameters_) {
+    of_derived.emplace_back(parameters_.size(), false);
+    mark(d.definition, of_derived.back());
+  }
+  mark(e, used);
+  std::vector<std::size_t> indices;
+  for (std::size_t k = 0; k < used.size(); ++k)
+    if (used[k]) indices.push_back(k);
+  return indices;
+}
+
+void Variables::evaluate_derived_parameters(DoubleEvaluator& values) const {
+  for (const DerivedParameter& d : derived_parameters_) {
+    const double value = values.value(d.definition, fmt::format("derived parameter '{}'", d.name));
+    if (!std::isfinite(value))
+      throw Error(fmt::format("derived parameter '{}' = {}: its value at these parameters is not a finite real number",
+                              d.name, ordered_text(d.definition)));
+    values.set(d.symbol, value);
+  }
+}
+
+bool is_parameter_kind(SymbolKind kind) {
+  switch (kind) {
+    case SymbolKind::parameter:
+    case SymbolKind::derived_parameter:
+      return true;
+    case SymbolKind::time:
+    case SymbolKind::coordinate:
+    case SymbolKind::rate:
+    case SymbolKind::acceleration:
+    case SymbolKind::input:
+      return false;
+  }
+  EOMGEN_UNREACHABLE("is_parameter_kind: a SymbolKind outside its enumerators");
 }
 
 GiNaC::exset symbols_of(const GiNaC::ex& e) {

@@ -285,6 +285,7 @@ ExpressionPrinter make_printer(const Model& model, const ModelEquations& eom) {
   const Variables& v = model.system.variables();
   std::vector<ex> order;
   for (const Parameter& p : v.parameters()) order.push_back(p.symbol);
+  for (const DerivedParameter& d : v.derived_parameters()) order.push_back(d.symbol);
   for (const Input& u : v.inputs()) order.push_back(u.symbol);
   order.push_back(v.time());
   for (const Coordinate& c : v.coordinates()) order.push_back(c.q);
@@ -331,8 +332,9 @@ void print_text(std::ostream& out, const Model& model, const ModelEquations& eom
   out << fmt::format("Coordinates (n = {}): {}\n", v.coordinate_count(), join(coordinate_names(v), ", "));
   out << "Parameters:" << (v.parameters().empty() ? " none" : "") << "\n";
   for (const Parameter& p : v.parameters()) out << "  " << parameter_text(p) << "\n";
-  if (!model.derived_parameters.empty()) out << "Derived parameters (their definitions stand where they are used):\n";
-  for (const DerivedParameter& d : model.derived_parameters)
+  if (!v.derived_parameters().empty())
+    out << "Derived parameters (each computed from the parameters and those before it):\n";
+  for (const DerivedParameter& d : v.derived_parameters())
     out << fmt::format("  {} = {} = {}{}\n", d.name, printer.text(d.definition), d.default_value,
                        d.unit.empty() ? "" : " [" + d.unit + "]");
   out << "Inputs: " << (v.inputs().empty() ? "none" : join(input_names(v), ", ")) << "\n";
@@ -363,9 +365,9 @@ void print_markdown(std::ostream& out, const Model& model, const ModelEquations&
     out << "\n| Parameter | Default | Unit |\n| --- | --- | --- |\n";
     for (const Parameter& p : v.parameters()) out << fmt::format("| `{}` | {} | {} |\n", p.name, p.default_value, p.unit);
   }
-  if (!model.derived_parameters.empty()) {
+  if (!v.derived_parameters().empty()) {
     out << "\n| Derived parameter | Definition | Default | Unit |\n| --- | --- | --- | --- |\n";
-    for (const DerivedParameter& d : model.derived_parameters)
+    for (const DerivedParameter& d : v.derived_parameters())
       out << fmt::format("| `{}` | `{}` | {} | {} |\n", d.name, printer.text(d.definition), d.default_value, d.unit);
   }
   out << "\n`" << equation_text << "`" << (eom.constraint_count ? ", `Xi qd + Xi_t = 0`" : "") << "\n";
@@ -399,8 +401,8 @@ void print_latex(std::ostream& out, const Model& model, const ModelEquations& eo
     parameters.push_back(fmt::format("${} = {}$", printer.latex(p.symbol), p.default_value) +
                          (p.unit.empty() ? "" : "~" + tex_escape(p.unit)));
   std::vector<std::string> derived;
-  for (const DerivedParameter& d : model.derived_parameters)
-    derived.push_back(fmt::format("${} = {} = {}$", tex_name(d.name), printer.latex(d.definition), d.default_value) +
+  for (const DerivedParameter& d : v.derived_parameters())
+    derived.push_back(fmt::format("${} = {} = {}$", printer.latex(d.symbol), printer.latex(d.definition), d.default_value) +
                       (d.unit.empty() ? "" : "~" + tex_escape(d.unit)));
   std::vector<std::string> inputs;
   for (const Input& u : v.inputs()) inputs.push_back("$" + printer.latex(u.symbol) + "$");
@@ -473,12 +475,20 @@ bool uses_shared_form(const Model& model, const ModelEquations& eom, const Print
 void print_equations(std::ostream& out, const Model& model, const ModelEquations& eom,
                      const PrintOptions& options) {
   std::vector<Section> sections = raw_sections(model, eom, options.parts);
+  // each derived parameter written out in the parameters, in order (when asked for)
+  GiNaC::exmap derived;
+  if (options.expand_derived_parameters)
+    for (const DerivedParameter& d : model.system.variables().derived_parameters())
+      derived[d.symbol] = d.definition.subs(derived, GiNaC::subs_options::no_pattern);
+  const auto written_out = [&](const ex& e) { return e.subs(derived, GiNaC::subs_options::no_pattern); };
   if (uses_shared_form(model, eom, options)) {
     Section where = where_section(sections, eom.subexpressions);
     if (!where.entries.empty()) sections.push_back(std::move(where));
+    for (Section& s : sections)
+      for (Entry& e : s.entries) e.value = written_out(e.value);
   } else {
     for (Section& s : sections)
-      for (Entry& e : s.entries) e.value = simplify_for_display(eom.subexpressions.expand(e.value));
+      for (Entry& e : s.entries) e.value = simplify_for_display(written_out(eom.subexpressions.expand(e.value)));
   }
   const ExpressionPrinter printer = make_printer(model, eom);
   switch (options.format) {

@@ -19,6 +19,11 @@ struct CppPrintOptions {
   std::vector<std::string> parameter_names;
   /// the object parameters are read from: the argument p, or the copy c.p inside a Constants
   std::string parameters = "p";
+  /// the model's derived parameter names, in order: derived parameter k is read (and, as the
+  /// target Array::derived_parameters k, written) as <derived_parameters>.<cpp_identifier(name k)>
+  std::vector<std::string> derived_parameter_names;
+  /// where the derived parameters are: the Constants' member, or c.derived inside a function
+  std::string derived_parameters = "derived";
 };
 
 /// Statements computing every output of the program: shared values become
@@ -39,6 +44,9 @@ const char* cpp_array_name(ir::Array array);
 /// \pre a parameter's index is below options.parameter_names.size()
 std::string cpp_variable(const ir::Variable& variable, const CppPrintOptions& options);
 /// The lvalue of a target: "M(0, 1)", "F(2)", "T", "k3" (a member of the Constants).
+/// \pre not a derived parameter, which needs the names of the options
 std::string cpp_target(const ir::Target& target);
+/// The same, and a derived parameter by its name: "derived.d1".
+std::string cpp_target(const ir::Target& target, const CppPrintOptions& options);
 
 }  // namespace eomgen

@@ -83,6 +83,7 @@ enum class VariableKind {
   rate,          // qd(index)
   input,         // u(index)
   parameter,     // the model's parameter number `index`
+  derived_parameter,  // the model's derived parameter number `index`, computed by the Constants
   acceleration,  // qdd(index), given to the linearization's terms
   multiplier,    // lambda(index), given to the linearization's terms
   constant,      // the per-parameter-set constant number `index` (parameter_constants.hpp)
@@ -118,6 +119,7 @@ enum class Array {
   constants,                      // the per-parameter-set constants, computed once by Constants
   accelerations,                  // qdd of the generated forward dynamics
   pivots,                         // the forward dynamics' pivots: a local array, checked, not returned
+  derived_parameters,             // the derived parameters, computed by the Constants from the parameters
 };
 
 /// 0 for a scalar, 1 for a vector, 2 for a matrix.
@@ -171,6 +173,10 @@ struct OperationCounts {
   std::uint64_t calls = 0;  // sqrt, sin, cos, pow, ...
   std::uint64_t total() const {
     return saturating_sum(saturating_sum(additions, multiplications), saturating_sum(divisions, calls));
+  }
+  friend OperationCounts operator+(const OperationCounts& a, const OperationCounts& b) {
+    return {saturating_sum(a.additions, b.additions), saturating_sum(a.multiplications, b.multiplications),
+            saturating_sum(a.divisions, b.divisions), saturating_sum(a.calls, b.calls)};
   }
 };
 

@@ -156,6 +156,9 @@ class MechanicalSystem {
     return variables_.add_parameter(name, value, unit).symbol;
   }
   GiNaC::ex add_input(const std::string& name) { return variables_.add_input(name).symbol; }
+  GiNaC::ex add_derived_parameter(const std::string& name, const GiNaC::ex& definition, const std::string& unit = "") {
+    return variables_.add_derived_parameter(name, definition, unit).symbol;
+  }
 
   FrameId inertial_frame() const { return FrameId{0}; }
   PointId origin() const { return PointId{0}; }
@@ -210,7 +213,7 @@ class MechanicalSystem {
   const std::vector<Load>& loads() const { return loads_; }
   const std::vector<Constraint>& constraints() const { return constraints_; }
 
-  /// Numeric substitution of every parameter by its default value.
+  /// Numeric substitution of every parameter, derived or not, by its default value.
   GiNaC::exmap parameter_defaults() const;
 
  private:

@@ -23,18 +23,6 @@ struct Output {
   SourceLocation location;
 };
 
-/// A parameter defined from others (`parameter d1 = 0.45*L1`). It is no symbol of the system:
-/// wherever the model uses it, its definition stands in its place, so the equations, `--set` of
-/// the parameters it is defined from, and the generated `Parameters` (which it is no field of)
-/// all follow a change of those.
-struct DerivedParameter {
-  std::string name;
-  GiNaC::ex definition;      // in the system's parameters (and numbers) only
-  double default_value = 0;  // at the parameters' defaults
-  std::string unit;          // as written in the model, or empty
-  SourceLocation location;
-};
-
 struct Model {
   std::string name;
   std::string description;
@@ -47,8 +35,8 @@ struct Model {
   /// order of the `independent` statement (nq - nc of them); empty when the model declares none
   /// and the runtime takes the null space of Xi from a QR decomposition instead.
   std::vector<std::size_t> independent_speeds;
-  /// In the order of the file.
-  std::vector<DerivedParameter> derived_parameters;
+  /// Where each derived parameter was declared (same order as system.variables().derived_parameters()).
+  std::vector<SourceLocation> derived_parameter_locations;
   /// The dimension of every symbol (time, coordinates, rates, accelerations, parameters, inputs)
   /// where the model gives units; empty where it gives none, and nothing is checked.
   DimensionMap dimensions;

@@ -54,6 +54,10 @@ struct PrintOptions {
   /// bicycle's kinetic energy, a few thousand nodes, multiplies out to 340 KB of text and took
   /// 5 s; the universal chain's, estimated at 3 million, prints in 0.3 s).
   double max_multiplied_out_size = 1e7;
+  /// The equations name each derived parameter; true writes them out in the parameters they are
+  /// defined from instead (a chain of derived parameters, each using the one before twice,
+  /// writes out exponentially large).
+  bool expand_derived_parameters = false;
 };
 
 /// Number of expression-tree nodes of the selected parts with every intermediate written out,
