@@ -66,7 +66,7 @@ TEST(DerivedParameters, TheEquationsNameThemAsTheModelDoes) {
   EXPECT_TRUE((eom.subexpressions.expand(eom.mass_matrix(0, 0)) - m * d * d).expand().is_zero())
       << eom.mass_matrix(0, 0);
   PrintOptions options;
-  options.parts = {"M"};
+  options.parts = parse_equation_parts("M");
   EXPECT_NE(format_equations(model, eom, options).find("M[1,1] = m*d^2"), std::string::npos)
       << format_equations(model, eom, options);
 }

@@ -1,10 +1,11 @@
 #include "eomgen/derivation/equations_of_motion.hpp"
+#include "eomgen/symbolic/graph_calculus.hpp"
 
 #include <limits>
 #include <vector>
 
 #include "eomgen/base/error.hpp"
-#include "eomgen/symbolic/tree_size.hpp"
+#include "eomgen/symbolic/expression_size.hpp"
 #include "operation_estimate.hpp"
 #include "parameter_coefficients.hpp"
 #include "relative_rotations.hpp"
@@ -18,6 +19,11 @@ using GiNaC::matrix;
 
 // constraint terms of more tree nodes than this, all together, are bound to intermediates
 constexpr double large_constraint_size = 5000;
+
+// The local resolution multiplies out each entry of M, F, T and V; an entry that would
+// multiply out to more nodes than this (before like terms combine) stops it. The shipped models'
+// largest is the bicycle's, about 31,000; a chain of 12 rods has 8,000.
+constexpr double largest_local_entry = 200000;
 
 matrix zero3() { return matrix(3, 1); }
 
@@ -86,12 +92,16 @@ class Derivation {
     return std::move(eom_);
   }
 
+  /// After run() in the local resolution: false if an entry was too large to multiply out, and
+  /// the equations are the local form's sums as they arose.
+  bool multiplied_out() const { return !too_large_; }
+
  private:
   ex rate_partial(const ex& e, std::size_t k) const {
-    return e.diff(GiNaC::ex_to<GiNaC::symbol>(ex(vars_.coordinates()[k].qd)));
+    return derivative(e, GiNaC::ex_to<GiNaC::symbol>(ex(vars_.coordinates()[k].qd)));
   }
   ex coordinate_partial(const ex& e, std::size_t k) const {
-    return e.diff(GiNaC::ex_to<GiNaC::symbol>(ex(vars_.coordinates()[k].q)));
+    return derivative(e, GiNaC::ex_to<GiNaC::symbol>(ex(vars_.coordinates()[k].q)));
   }
   // time derivative at qdd = 0 of a plain (model-symbol) expression
   ex rate_at_zero_acceleration(const ex& e) const {
@@ -344,11 +354,19 @@ class Derivation {
 
   // a sum of terms; in the local resolution multiplied out and grouped by the state-dependent
   // monomials, with one parameter-only coefficient each
-  ex total(const exvector& terms) const {
+  ex total(const exvector& terms) {
     const ex sum = GiNaC::add(terms);
     switch (resolution_) {
       case KinematicsResolution::inertial: return sum;
-      case KinematicsResolution::local: return collect_parameter_coefficients(sum.expand(), vars_);
+      case KinematicsResolution::local:
+        // multiplied out, a sum of products of sums can be exponentially larger than its
+        // graph (points defined from other points' positions inside functions): then the
+        // local form is not worth its cost, and not made
+        if (too_large_ || expanded_sizes_.expanded(sum).nodes > largest_local_entry) {
+          too_large_ = true;
+          return sum;
+        }
+        return collect_parameter_coefficients(sum.expand(), vars_);
     }
     EOMGEN_UNREACHABLE("Derivation::total: a KinematicsResolution outside its enumerators");
   }
@@ -386,7 +404,7 @@ class Derivation {
       if (c.kind == Constraint::Kind::holonomic) {
         // Xi = dphi/dq, Xi_t = dphi/dt
         for (std::size_t k = 0; k < n_; ++k) eom_.constraint_jacobian(i, k) = coordinate_partial(c.expression, k);
-        eom_.constraint_rate_term(i, 0) = c.expression.diff(vars_.time());
+        eom_.constraint_rate_term(i, 0) = derivative(c.expression, vars_.time());
         eom_.holonomic_residuals(h++, 0) = c.expression;
         rate_form = vars_.time_derivative(c.expression);
       } else {
@@ -433,25 +451,44 @@ class Derivation {
   std::vector<exvector> f_terms_;
   exvector t_terms_;
   exvector v_terms_;
+  ExpressionSizes expanded_sizes_;
+  bool too_large_ = false;  // an entry of the local form was too large to multiply out
 };
 
 }  // namespace
 
-EquationsOfMotion derive_equations(const MechanicalSystem& system, KinematicsResolution resolution) {
-  EquationsOfMotion eom = Derivation(system, resolution).run();
-  const double estimate = estimated_operations(eom.mass_matrix, eom.forcing, eom.subexpressions, system.variables());
+namespace {
+
+// the equations in one resolution with their estimate; `multiplied_out` false where the local
+// resolution found an entry too large to multiply out
+EquationsOfMotion derive(const MechanicalSystem& system, KinematicsResolution resolution, bool& multiplied_out) {
+  Derivation derivation(system, resolution);
+  EquationsOfMotion eom = derivation.run();
+  multiplied_out = derivation.multiplied_out();
   const double not_tried = std::numeric_limits<double>::quiet_NaN();
+  const double estimate = multiplied_out ? estimated_operations(eom.mass_matrix, eom.forcing, eom.subexpressions,
+                                                                system.variables())
+                                         : not_tried;
   eom.estimated_operations_inertial = resolution == KinematicsResolution::inertial ? estimate : not_tried;
   eom.estimated_operations_local = resolution == KinematicsResolution::local ? estimate : not_tried;
   return eom;
 }
 
+}  // namespace
+
+EquationsOfMotion derive_equations(const MechanicalSystem& system, KinematicsResolution resolution) {
+  bool multiplied_out = true;
+  return derive(system, resolution, multiplied_out);
+}
+
 EquationsOfMotion derive_equations(const MechanicalSystem& system) {
-  EquationsOfMotion inertial = derive_equations(system, KinematicsResolution::inertial);
+  bool multiplied_out = true;
+  EquationsOfMotion inertial = derive(system, KinematicsResolution::inertial, multiplied_out);
   // the local resolution grows like the fourth power of a chain's depth: tried on small models
   // only, and kept when its code is smaller
   if (system.variables().coordinate_count() > local_resolution_limit) return inertial;
-  EquationsOfMotion local = derive_equations(system, KinematicsResolution::local);
+  EquationsOfMotion local = derive(system, KinematicsResolution::local, multiplied_out);
+  if (!multiplied_out) return inertial;
   local.estimated_operations_inertial = inertial.estimated_operations_inertial;
   inertial.estimated_operations_local = local.estimated_operations_local;
   return local.estimated_operations_local < inertial.estimated_operations_inertial ? std::move(local)

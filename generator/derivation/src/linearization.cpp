@@ -1,4 +1,5 @@
 #include "eomgen/derivation/linearization.hpp"
+#include "eomgen/symbolic/graph_calculus.hpp"
 
 #include <fmt/format.h>
 
@@ -45,14 +46,14 @@ class ChainRule {
     std::vector<ex> d(variables_.size(), 0);
     for (const ex& s : symbols_of(e)) {
       if (const auto v = variable_index_.find(s); v != variable_index_.end()) {
-        d[v->second] += e.diff(ex_to<symbol>(s));
+        d[v->second] += eomgen::derivative(e, ex_to<symbol>(s));
         continue;
       }
       const auto it = index_.find(s);
       if (it == index_.end()) continue;
       const std::vector<ex>& dz = derivative(it->second);
       if (std::all_of(dz.begin(), dz.end(), [](const ex& x) { return x.is_zero(); })) continue;
-      const ex partial = e.diff(ex_to<symbol>(s));
+      const ex partial = eomgen::derivative(e, ex_to<symbol>(s));
       for (std::size_t k = 0; k < dz.size(); ++k)
         if (!dz[k].is_zero()) d[k] += partial * dz[k];
     }

@@ -1,6 +1,7 @@
 #include "load_forces.hpp"
 
 #include "eomgen/mechanics/kinematics.hpp"
+#include "eomgen/symbolic/graph_calculus.hpp"
 
 namespace eomgen {
 namespace {
@@ -30,7 +31,7 @@ class LoadForces {
     return GiNaC::ex_to<GiNaC::symbol>(ex(vars_.coordinates()[k].q));
   }
   Vector rate_partial(const Vector& v, std::size_t k) const {
-    return v.map_components([&](const ex& e) { return e.diff(rate(k)); });
+    return v.map_components([&](const ex& e) { return derivative(e, rate(k)); });
   }
 
   void point_force(const PointForce& f) {
@@ -58,7 +59,7 @@ class LoadForces {
   void damper(const CoordinateDamper& d) {
     const ex rate_of = vars_.time_derivative(d.coordinate_expression);
     for (std::size_t k = 0; k < Q_.size(); ++k)
-      Q_[k] += -d.damping * rate_of * d.coordinate_expression.diff(coordinate(k));
+      Q_[k] += -d.damping * rate_of * derivative(d.coordinate_expression, coordinate(k));
   }
 
   void spring(const LinearSpring& sp) {
@@ -70,11 +71,11 @@ class LoadForces {
 
   void spring(const TorsionalSpring& sp) {
     for (std::size_t k = 0; k < Q_.size(); ++k)
-      Q_[k] += -sp.stiffness * (sp.angle - sp.rest_angle) * sp.angle.diff(coordinate(k));
+      Q_[k] += -sp.stiffness * (sp.angle - sp.rest_angle) * derivative(sp.angle, coordinate(k));
   }
 
   void potential(const Potential& p) {
-    for (std::size_t k = 0; k < Q_.size(); ++k) Q_[k] += -p.value.diff(coordinate(k));
+    for (std::size_t k = 0; k < Q_.size(); ++k) Q_[k] += -derivative(p.value, coordinate(k));
   }
 
   const MechanicalSystem& s_;

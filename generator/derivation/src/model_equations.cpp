@@ -1,7 +1,7 @@
 #include "eomgen/derivation/model_equations.hpp"
 
 #include "eomgen/derivation/dimension_check.hpp"
-#include "eomgen/symbolic/tree_size.hpp"
+#include "eomgen/symbolic/expression_size.hpp"
 
 namespace eomgen {
 

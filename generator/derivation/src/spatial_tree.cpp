@@ -3,6 +3,7 @@
 #include <functional>
 
 #include "eomgen/mechanics/kinematics.hpp"
+#include "eomgen/symbolic/graph_calculus.hpp"
 #include "load_forces.hpp"
 
 namespace eomgen {
@@ -68,7 +69,7 @@ SpatialJoint SpatialTree::make_joint(std::size_t i) const {
                                    [&](const ex& e) { return vars_.without_accelerations(e); });
   const matrix w_rel = resolve(s_, angular_velocity(s_, link.frame, fp), link.frame);
   const auto rate_partial = [&](const ex& e, std::size_t k) {
-    return e.diff(GiNaC::ex_to<GiNaC::symbol>(ex(vars_.coordinates()[k].qd)));
+    return derivative(e, GiNaC::ex_to<GiNaC::symbol>(ex(vars_.coordinates()[k].qd)));
   };
   SpatialJoint j;
   j.E = z_.bind(dcm(s_, link.frame, fp));

@@ -3,7 +3,7 @@
 
 #include <fmt/format.h>
 
-#include "eomgen/symbolic/tree_size.hpp"
+#include "eomgen/symbolic/expression_size.hpp"
 
 namespace eomgen::syntax {
 

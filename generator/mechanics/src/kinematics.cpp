@@ -1,4 +1,5 @@
 #include "eomgen/mechanics/kinematics.hpp"
+#include "eomgen/symbolic/graph_calculus.hpp"
 
 #include <fmt/format.h>
 
@@ -156,12 +157,12 @@ Vector partial_derivative(const MechanicalSystem& s, const Vector& v, const GiNa
   if (!kind || (*kind != SymbolKind::coordinate && *kind != SymbolKind::rate))
     throw DerivationError(fmt::format("partial derivative of a vector: '{}' is not a coordinate "
                                       "or a rate of the model", x.get_name()));
-  Vector out = v.map_components([&](const ex& e) { return e.diff(x); });
+  Vector out = v.map_components([&](const ex& e) { return derivative(e, x); });
   if (*kind == SymbolKind::coordinate) {
     const GiNaC::symbol& rate = GiNaC::ex_to<GiNaC::symbol>(ex(vars.coordinates()[*vars.coordinate_index(x)].qd));
     for (const auto& [frame, c] : v.terms()) {
       const Vector partial_w =
-          angular_velocity(s, frame, a).map_components([&](const ex& e) { return e.diff(rate); });
+          angular_velocity(s, frame, a).map_components([&](const ex& e) { return derivative(e, rate); });
       out += cross(s, partial_w, Vector(frame, c));
     }
   }

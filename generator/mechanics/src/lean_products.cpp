@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "eomgen/mechanics/kinematics.hpp"
+#include "eomgen/symbolic/expression_size.hpp"
 #include "eomgen/symbolic/simplify.hpp"
 
 namespace eomgen {
@@ -16,6 +17,22 @@ std::vector<FrameId> frames_of(const Vector& u, const Vector& v) {
   for (const Vector* w : {&u, &v})
     for (const auto& [frame, c] : w->terms()) frames.push_back(frame);
   return frames;
+}
+
+// Simplifying multiplies out: an expression that would multiply out to more nodes than this
+// (a point defined from other points' positions inside functions, a graph of a few nodes per
+// point and an exponentially large tree) is kept as it is rather than simplified in any frame.
+// Every product of the shipped models multiplies out to a few hundred nodes.
+constexpr double largest_simplified = 20000;
+
+bool simplifiable(const ex& e) { return ExpressionSizes().expanded(e).nodes <= largest_simplified; }
+
+bool simplifiable(const matrix& m) {
+  ExpressionSizes sizes;
+  for (unsigned i = 0; i < m.rows(); ++i)
+    for (unsigned j = 0; j < m.cols(); ++j)
+      if (sizes.expanded(m(i, j)).nodes > largest_simplified) return false;
+  return true;
 }
 
 std::size_t vector_size(const Vector& v) {
@@ -32,7 +49,9 @@ Vector smallest_vector(const std::vector<FrameId>& candidates, Vector fallback, 
   Vector best = std::move(fallback);
   std::size_t best_size = vector_size(best);
   for (const FrameId f : candidates) {
-    const Vector here(f, simplify_for_display(column(f)));
+    const matrix components = column(f);
+    if (!simplifiable(components)) continue;
+    const Vector here(f, simplify_for_display(components));
     const std::size_t size = vector_size(here);
     if (size < best_size) {
       best = here;
@@ -44,9 +63,7 @@ Vector smallest_vector(const std::vector<FrameId>& candidates, Vector fallback, 
 
 }  // namespace
 
-std::size_t expression_size(const GiNaC::ex& e) {
-  return static_cast<std::size_t>(std::distance(e.preorder_begin(), e.preorder_end()));
-}
+std::size_t expression_size(const GiNaC::ex& e) { return static_cast<std::size_t>(tree_size(e)); }
 
 std::vector<FrameId> frames_between(const MechanicalSystem& s, const std::vector<FrameId>& frames) {
   if (frames.empty()) return {};
@@ -68,7 +85,9 @@ ex lean_dot(const MechanicalSystem& s, const Vector& u, const Vector& v) {
   std::size_t best_size = expression_size(best);
   for (const FrameId f : frames_between(s, frames_of(u, v))) {
     const matrix uf = resolve(s, u, f), vf = resolve(s, v, f);
-    const ex here = simplify_for_display(uf(0, 0) * vf(0, 0) + uf(1, 0) * vf(1, 0) + uf(2, 0) * vf(2, 0));
+    const ex product = uf(0, 0) * vf(0, 0) + uf(1, 0) * vf(1, 0) + uf(2, 0) * vf(2, 0);
+    if (!simplifiable(product)) continue;
+    const ex here = simplify_for_display(product);
     const std::size_t size = expression_size(here);
     if (size < best_size) {
       best = here;

@@ -1,6 +1,7 @@
 #include "eomgen/mechanics/variables.hpp"
 
 #include "eomgen/symbolic/expression_map.hpp"
+#include "eomgen/symbolic/graph_calculus.hpp"
 #include "eomgen/symbolic/ordered_text.hpp"
 
 #include <fmt/format.h>
@@ -208,7 +209,7 @@ void Variables::require_known_symbols(const GiNaC::ex& e, const std::string& wha
 GiNaC::ex Variables::time_derivative(const GiNaC::ex& e) const {
   GiNaC::exset symbols;
   collect_symbols(e, symbols);
-  GiNaC::ex result = 0;
+  GiNaC::exmap rates;  // each symbol's rate
   for (const auto& s : symbols) {
     auto kind = kind_of(s);
     if (!kind)
@@ -216,13 +217,13 @@ GiNaC::ex Variables::time_derivative(const GiNaC::ex& e) const {
                                         GiNaC::ex_to<GiNaC::symbol>(s).get_name()));
     switch (*kind) {
       case SymbolKind::time:
-        result += e.diff(GiNaC::ex_to<GiNaC::symbol>(s));
+        rates[s] = 1;
         break;
       case SymbolKind::coordinate:
-        result += e.diff(GiNaC::ex_to<GiNaC::symbol>(s)) * coordinates_[*coordinate_index(s)].qd;
+        rates[s] = coordinates_[*coordinate_index(s)].qd;
         break;
       case SymbolKind::rate:
-        result += e.diff(GiNaC::ex_to<GiNaC::symbol>(s)) * coordinates_[*coordinate_index(s)].qdd;
+        rates[s] = coordinates_[*coordinate_index(s)].qdd;
         break;
       case SymbolKind::acceleration:
         throw DerivationError(fmt::format(
@@ -238,7 +239,7 @@ GiNaC::ex Variables::time_derivative(const GiNaC::ex& e) const {
         break;
     }
   }
-  return result;
+  return directional_derivative(e, rates);
 }
 
 std::vector<std::size_t> Variables::parameters_in(const GiNaC::ex& e) const {
@@ -302,13 +303,9 @@ bool Variables::contains(const GiNaC::ex& e, SymbolKind kind) const {
   return false;
 }
 
-GiNaC::ex Variables::at_rest(const GiNaC::ex& e) const {
-  return e.subs(rate_to_zero_, GiNaC::subs_options::no_pattern);
-}
+GiNaC::ex Variables::at_rest(const GiNaC::ex& e) const { return substitute(e, rate_to_zero_); }
 
-GiNaC::ex Variables::without_accelerations(const GiNaC::ex& e) const {
-  return e.subs(acceleration_to_zero_, GiNaC::subs_options::no_pattern);
-}
+GiNaC::ex Variables::without_accelerations(const GiNaC::ex& e) const { return substitute(e, acceleration_to_zero_); }
 
 GiNaC::lst Variables::coordinate_list() const {
   GiNaC::lst l;

@@ -1,6 +1,8 @@
 #include "eomgen/report/equation_printer.hpp"
 
 #include "eomgen/symbolic/expression_map.hpp"
+#include "eomgen/symbolic/expression_size.hpp"
+#include "eomgen/symbolic/graph_calculus.hpp"
 
 #include <fmt/format.h>
 
@@ -177,83 +179,29 @@ class IntermediateIndex {
   std::map<ex, std::size_t, GiNaC::ex_is_less> index_;
 };
 
-// The size of an expression once written out and multiplied out, as simplify_for_display
-// would print it: its number of terms and of expression nodes, before like terms combine (so
-// an upper bound). The tree size alone misses how products of sums multiply out: the
-// bicycle's kinetic energy is a tree of a few thousand nodes and 340 KB once expanded.
-struct ExpandedSize {
-  double terms = 1;
-  double nodes = 1;
-};
-
-ExpandedSize product_size(const std::vector<ExpandedSize>& factors) {
-  // each term of the product takes one term of every factor
-  ExpandedSize out{1, 0};
-  double nodes_per_term = 1;
-  for (const ExpandedSize& f : factors) {
-    out.terms *= f.terms;
-    nodes_per_term += f.nodes / f.terms;
-  }
-  out.nodes = out.terms * nodes_per_term;
-  return out;
-}
-
-ExpandedSize expanded_size(const ex& e, const IntermediateIndex& index, const std::vector<ExpandedSize>& sizes) {
-  if (const auto i = index.find(e)) return sizes[*i];
-  if (e.nops() == 0) return {};
-  std::vector<ExpandedSize> operands;
-  for (std::size_t k = 0; k < e.nops(); ++k) operands.push_back(expanded_size(e.op(k), index, sizes));
-  if (GiNaC::is_a<GiNaC::add>(e)) {
-    ExpandedSize out{0, 1};
-    for (const ExpandedSize& o : operands) out.terms += o.terms, out.nodes += o.nodes;
-    return out;
-  }
-  if (GiNaC::is_a<GiNaC::mul>(e)) return product_size(operands);
-  if (GiNaC::is_a<GiNaC::power>(e) && GiNaC::is_a<GiNaC::numeric>(e.op(1))) {
-    const GiNaC::numeric& k = GiNaC::ex_to<GiNaC::numeric>(e.op(1));
-    if (k.is_pos_integer() && k <= 16) return product_size(std::vector<ExpandedSize>(k.to_int(), operands[0]));
-  }
-  // a function or another power stays one factor, with its arguments multiplied out inside
-  ExpandedSize out{1, 1};
-  for (const ExpandedSize& o : operands) out.nodes += o.nodes;
-  return out;
-}
-
-std::vector<ExpandedSize> expanded_sizes(const Subexpressions& z, const IntermediateIndex& index) {
-  std::vector<ExpandedSize> sizes;
-  for (const auto& d : z.definitions()) sizes.push_back(expanded_size(d.value, index, sizes));
-  return sizes;
-}
-
-// tree size of e with each intermediate counted at its written-out size
-double tree_size(const ex& e, const IntermediateIndex& index, const std::vector<double>& sizes) {
-  if (const auto i = index.find(e)) return sizes[*i];
-  double nodes = 1;
-  for (std::size_t k = 0; k < e.nops(); ++k) nodes += tree_size(e.op(k), index, sizes);
-  return nodes;
-}
-
-std::vector<double> written_out_sizes(const Subexpressions& z, const IntermediateIndex& index) {
-  std::vector<double> sizes;
-  for (const auto& d : z.definitions()) sizes.push_back(tree_size(d.value, index, sizes));
+// The sizes of the entries written out (each intermediate at its written-out size), and
+// multiplied out as simplify_for_display would print them (before like terms combine, so an
+// upper bound): the tree size alone misses how products of sums multiply out, and the bicycle's
+// kinetic energy is a tree of a few thousand nodes and 340 KB once expanded.
+ExpressionSizes written_out_sizes(const Subexpressions& z) {
+  ExpressionSizes sizes;
+  for (const auto& d : z.definitions()) sizes.define(d.symbol, d.value);
   return sizes;
 }
 
 double sections_size(const std::vector<Section>& sections, const EquationsOfMotion& eom) {
-  const IntermediateIndex index(eom.subexpressions);
-  const std::vector<double> sizes = written_out_sizes(eom.subexpressions, index);
+  ExpressionSizes sizes = written_out_sizes(eom.subexpressions);
   double total = 0;
   for (const Section& s : sections)
-    for (const Entry& e : s.entries) total += tree_size(e.value, index, sizes);
+    for (const Entry& e : s.entries) total += sizes.tree(e.value);
   return total;
 }
 
 double sections_expanded_size(const std::vector<Section>& sections, const EquationsOfMotion& eom) {
-  const IntermediateIndex index(eom.subexpressions);
-  const std::vector<ExpandedSize> sizes = expanded_sizes(eom.subexpressions, index);
+  ExpressionSizes sizes = written_out_sizes(eom.subexpressions);
   double total = 0;
   for (const Section& s : sections)
-    for (const Entry& e : s.entries) total += expanded_size(e.value, index, sizes).nodes;
+    for (const Entry& e : s.entries) total += sizes.expanded(e.value).nodes;
   return total;
 }
 
@@ -480,7 +428,7 @@ void print_equations(std::ostream& out, const Model& model, const ModelEquations
   if (options.expand_derived_parameters)
     for (const DerivedParameter& d : model.system.variables().derived_parameters())
       derived[d.symbol] = d.definition.subs(derived, GiNaC::subs_options::no_pattern);
-  const auto written_out = [&](const ex& e) { return e.subs(derived, GiNaC::subs_options::no_pattern); };
+  const auto written_out = [&](const ex& e) { return derived.empty() ? e : substitute(e, derived); };
   if (uses_shared_form(model, eom, options)) {
     Section where = where_section(sections, eom.subexpressions);
     if (!where.entries.empty()) sections.push_back(std::move(where));

@@ -8,11 +8,15 @@
 
 #include "eomgen/base/content_hash.hpp"
 #include "eomgen/symbolic/expression_map.hpp"
+#include "eomgen/symbolic/graph_calculus.hpp"
 
 namespace eomgen {
 namespace {
 
 using GiNaC::ex;
+
+// a definition of more nodes than this, written out, is shared before it is bound
+constexpr double large_tree = 5000;
 
 bool is_leaf(const ex& e) {
   return GiNaC::is_a<GiNaC::numeric>(e) || GiNaC::is_a<GiNaC::symbol>(e) || GiNaC::is_a<GiNaC::constant>(e);
@@ -33,6 +37,12 @@ bool is_atomic(const ex& e) {
 }  // namespace
 
 ex Subexpressions::bind(const ex& value) {
+  // a value that is a large tree (a small graph of nodes used more than once) is bound through
+  // its shared nodes, so that no definition is itself a large tree to print or differentiate
+  return bind_as_is(is_small_tree(value, large_tree) ? value : share(value));
+}
+
+ex Subexpressions::bind_as_is(const ex& value) {
   if (is_atomic(value)) return value;
   if (const ex* bound = by_value_.find(value)) return *bound;
   GiNaC::realsymbol z(prefix_ + std::to_string(definitions_.size() + 1));

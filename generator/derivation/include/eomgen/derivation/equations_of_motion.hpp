@@ -28,8 +28,9 @@ namespace eomgen {
 ///    about one axis as one angle), a body's own angle cancels as in a hand derivation, and
 ///    parameter-only products collect into coefficients computed once per parameter set. Its
 ///    size grows like the fourth power of a chain's depth: the form for small models.
-/// derive_equations tries both on models of at most local_resolution_limit coordinates and keeps
-/// the one whose M and F take fewer estimated operations.
+/// derive_equations tries both on models of at most local_resolution_limit coordinates, unless an
+/// entry of the local form would multiply out too large, and keeps the one whose M and F take
+/// fewer estimated operations.
 enum class KinematicsResolution { inertial, local };
 
 /// Models with more coordinates than this are derived in the inertial resolution only.
@@ -58,7 +59,10 @@ struct EquationsOfMotion {
 /// \throws DerivationError if an expression cannot be differentiated (e.g. an input in a rotation).
 EquationsOfMotion derive_equations(const MechanicalSystem& system);
 
-/// The equations in the given resolution only (for comparisons and benchmarks).
+/// The equations in the given resolution only (for comparisons and benchmarks). In the local
+/// resolution, where an entry would multiply out too large, the entries stay the sums they
+/// arose as (still the equations) and the local estimate is NaN; derive_equations(system) then
+/// keeps the inertial form.
 EquationsOfMotion derive_equations(const MechanicalSystem& system, KinematicsResolution resolution);
 
 }  // namespace eomgen

@@ -23,6 +23,7 @@ class Subexpressions {
 
   /// A symbol standing for `value`, or `value` itself when it is already atomic (a number,
   /// a symbol, a number times a symbol, a function of a symbol). Equal values share a symbol.
+  /// A value that is a large tree is shared first (share()), so no definition is one.
   GiNaC::ex bind(const GiNaC::ex& value);
   /// bind() applied to every entry.
   GiNaC::matrix bind(const GiNaC::matrix& value);
@@ -51,6 +52,8 @@ class Subexpressions {
   GiNaC::exmap evaluate_all(const GiNaC::exmap& values) const;
 
  private:
+  GiNaC::ex bind_as_is(const GiNaC::ex& value);
+
   std::string prefix_;
   std::vector<Definition> definitions_;
   ExpressionMap<GiNaC::ex> by_value_;  // looked up, never iterated
