@@ -160,9 +160,10 @@ std::string resolution_line(const eomgen::EquationsOfMotion& eom, const eomgen::
   const std::string kept = emitted.mass_matrix_from_recursions ? "composite body and Newton-Euler"
                            : local                             ? "local frames"
                                                                : "inertial";
-  return fmt::format("M and F: {} (estimated operations: local frames {}, inertial {:.0f}, composite body and "
+  return fmt::format("M and F: {} (estimated operations: local frames {}, inertial {}, composite body and "
                      "Newton-Euler {})\n",
-                     kept, estimate_or_not_tried(eom.estimated_operations_local), eom.estimated_operations_inertial,
+                     kept, estimate_or_not_tried(eom.estimated_operations_local),
+                     estimate_or_not_tried(eom.estimated_operations_inertial),
                      estimate_or_not_tried(emitted.estimated_operations_recursions));
 }
 

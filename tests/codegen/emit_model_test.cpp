@@ -269,17 +269,19 @@ TEST(EmitModel, ForwardDynamicsIsPreferredWhereItCostsLessThanMAndFWithTheCholes
 }
 
 // M and F come from the recursions exactly where those are estimated smaller than the closed
-// form kept by the derivation: not for a chain of 2, for one of 16; the emitted M + F then take
-// fewer operations than the closed form's would
+// form kept by the derivation: not for a chain of 2, for one of 8; the emitted M + F then take
+// fewer operations than the closed form's would. A chain of 16 is derived with the recursions
+// already (DynamicsForm), and emitted as derived.
 TEST(EmitModel, MassMatrixAndForcingComeFromTheRecursionsOnlyWhereTheyAreSmaller) {
   const auto operations = [](const EmittedModel& emitted) {
     for (const FunctionStatistics& s : emitted.statistics)
       if (s.function == "mass_matrix_and_forcing") return s.optimized.total();
     return std::uint64_t{0};
   };
-  for (double n : {2.0, 16.0}) {
+  for (double n : {2.0, 8.0}) {
     const Model model = load_model(testing::shipped_model_path("planar_chain"), {{"n", n}});
     const ModelEquations eom = derive_equations(model);
+    ASSERT_EQ(eom.dynamics, DynamicsForm::closed_form) << n;
     const EmittedModel emitted = emit_model(model, eom);
     const double closed = eom.resolution == KinematicsResolution::local ? eom.estimated_operations_local
                                                                        : eom.estimated_operations_inertial;
@@ -289,6 +291,16 @@ TEST(EmitModel, MassMatrixAndForcingComeFromTheRecursionsOnlyWhereTheyAreSmaller
     if (n > 2) {
       EXPECT_LT(operations(emitted), 0.6 * closed) << n;
     }
+  }
+  {
+    const Model model = load_model(testing::shipped_model_path("planar_chain"), {{"n", 16}});
+    const ModelEquations eom = derive_equations(model);
+    ASSERT_EQ(eom.dynamics, DynamicsForm::recursions);
+    const EmittedModel emitted = emit_model(model, eom);
+    EXPECT_TRUE(emitted.mass_matrix_from_recursions);
+    EXPECT_EQ(emitted.estimated_operations_recursions, eom.estimated_operations_recursions);
+    const double closed = derive_equations(model.system, KinematicsResolution::inertial).estimated_operations_inertial;
+    EXPECT_LT(operations(emitted), 0.6 * closed);
   }
   // no recursions without a tree: the estimate says so
   const Model coin = load_model(testing::shipped_model_path("rolling_coin"));

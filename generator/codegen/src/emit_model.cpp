@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <set>
 
 #include "eomgen/base/error.hpp"
@@ -93,9 +94,19 @@ EmittedModel emit(const Model& model, const ModelEquations& eom, const SymbolicL
   }
   EmittedModel emitted;
   const std::variant<ForwardDynamics, std::string> derived = derive_forward_dynamics(model.system);
-  const std::variant<CompositeBodyEquations, std::string> recursions = derive_composite_body_equations(model.system);
-  FunctionTableParts parts{linearization, std::get_if<ForwardDynamics>(&derived),
-                           recursions_if_smaller(recursions, eom, emitted)};
+  std::optional<std::variant<CompositeBodyEquations, std::string>> recursions;
+  const CompositeBodyEquations* recursive = nullptr;
+  switch (eom.dynamics) {
+    case DynamicsForm::recursions:  // M and F are the recursions' already
+      emitted.estimated_operations_recursions = eom.estimated_operations_recursions;
+      emitted.mass_matrix_from_recursions = true;
+      break;
+    case DynamicsForm::closed_form:
+      recursions = derive_composite_body_equations(model.system);
+      recursive = recursions_if_smaller(*recursions, eom, emitted);
+      break;
+  }
+  FunctionTableParts parts{linearization, std::get_if<ForwardDynamics>(&derived), recursive};
   const ForwardDynamics* forward = parts.forward_dynamics;
   const std::vector<FunctionSpec> table = function_table(eom, parts);
   std::vector<const Subexpressions*> intermediates{&eom.subexpressions};

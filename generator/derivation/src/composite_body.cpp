@@ -19,17 +19,16 @@ matrix column(const matrix& m, unsigned c) {
 
 class CompositeBody {
  public:
-  CompositeBody(const MechanicalSystem& s, LinkTree tree)
-      : vars_(s.variables()), tree_(s, std::move(tree), out_.subexpressions), z_(out_.subexpressions) {}
+  CompositeBody(const MechanicalSystem& s, LinkTree tree, Subexpressions& z)
+      : vars_(s.variables()), tree_(s, std::move(tree), z), z_(z) {}
 
-  CompositeBodyEquations run() {
+  RecursiveMassMatrixAndForcing run() {
     const auto n = static_cast<unsigned>(vars_.coordinate_count());
     out_.mass_matrix = matrix(n, n);
     out_.forcing = matrix(n, 1);
     tau_ = tree_.load_forces();
     composite_inertias();
     bias_forces();
-    out_.estimated_operations = estimated_operations(out_.mass_matrix, out_.forcing, out_.subexpressions, vars_);
     return std::move(out_);
   }
 
@@ -94,7 +93,7 @@ class CompositeBody {
   }
 
   const Variables& vars_;
-  CompositeBodyEquations out_;
+  RecursiveMassMatrixAndForcing out_;
   SpatialTree tree_;
   Subexpressions& z_;
   GiNaC::exvector tau_;
@@ -102,10 +101,21 @@ class CompositeBody {
 
 }  // namespace
 
-std::variant<CompositeBodyEquations, std::string> derive_composite_body_equations(const MechanicalSystem& system) {
+std::variant<RecursiveMassMatrixAndForcing, std::string> derive_composite_body_terms(const MechanicalSystem& system,
+                                                                                     Subexpressions& subexpressions) {
   std::variant<LinkTree, std::string> tree = link_tree(system);
   if (auto* reason = std::get_if<std::string>(&tree)) return *reason;
-  return CompositeBody(system, std::move(std::get<LinkTree>(tree))).run();
+  return CompositeBody(system, std::move(std::get<LinkTree>(tree)), subexpressions).run();
+}
+
+std::variant<CompositeBodyEquations, std::string> derive_composite_body_equations(const MechanicalSystem& system) {
+  CompositeBodyEquations out;
+  std::variant<RecursiveMassMatrixAndForcing, std::string> terms = derive_composite_body_terms(system, out.subexpressions);
+  if (auto* reason = std::get_if<std::string>(&terms)) return *reason;
+  out.mass_matrix = std::move(std::get<RecursiveMassMatrixAndForcing>(terms).mass_matrix);
+  out.forcing = std::move(std::get<RecursiveMassMatrixAndForcing>(terms).forcing);
+  out.estimated_operations = estimated_operations(out.mass_matrix, out.forcing, out.subexpressions, system.variables());
+  return out;
 }
 
 }  // namespace eomgen

@@ -1,11 +1,13 @@
 #include "eomgen/derivation/equations_of_motion.hpp"
-#include "eomgen/symbolic/graph_calculus.hpp"
 
 #include <limits>
 #include <vector>
 
 #include "eomgen/base/error.hpp"
+#include "eomgen/derivation/composite_body.hpp"
 #include "eomgen/symbolic/expression_size.hpp"
+#include "eomgen/symbolic/graph_calculus.hpp"
+#include "link_tree.hpp"
 #include "operation_estimate.hpp"
 #include "parameter_coefficients.hpp"
 #include "relative_rotations.hpp"
@@ -71,8 +73,10 @@ struct PointState {
 
 class Derivation {
  public:
-  Derivation(const MechanicalSystem& s, KinematicsResolution resolution)
-      : s_(s), vars_(s.variables()), n_(vars_.coordinate_count()), resolution_(resolution),
+  /// `kane`: M and F by Kane's equations; otherwise only the kinematics, T and V (M and F are
+  /// then left zero for the recursions to fill).
+  Derivation(const MechanicalSystem& s, KinematicsResolution resolution, bool kane = true)
+      : s_(s), vars_(s.variables()), n_(vars_.coordinate_count()), partials_(kane ? n_ : 0), resolution_(resolution),
         z_(eom_.subexpressions), rotations_(s, eom_.subexpressions) {}
 
   EquationsOfMotion run() {
@@ -123,12 +127,13 @@ class Derivation {
       const matrix& w_rel = frame.relative_angular_velocity;
       if (resolution_ == KinematicsResolution::inertial) st.C_0f = z_.bind(p.C_0f.mul(C_fp.transpose()));
       st.W.resize(n_);
-      for (std::size_t k = 0; k < n_; ++k)
+      for (std::size_t k = 0; k < partials_; ++k)
         st.W[k] = z_.bind(C_fp.mul(p.W[k]).add(map_entries(w_rel, [&](const ex& e) { return rate_partial(e, k); })));
       // omega^{f0} = omega^{p0} + omega^{fp}
       const matrix w_parent = z_.bind(C_fp.mul(p.omega));
       st.omega = z_.bind(w_parent.add(w_rel));
       // alpha^{f0} = C_fp alpha^{p0} + d(omega_rel)/dt + omega^{p0} x omega^{fp}
+      if (partials_ == 0) continue;  // accelerations serve Kane's F only
       const matrix w_rel_dot = map_entries(w_rel, [&](const ex& e) { return rate_at_zero_acceleration(e); });
       st.alpha0 = z_.bind(C_fp.mul(p.alpha0).add(w_rel_dot).add(cross3(w_parent, w_rel)));
     }
@@ -165,23 +170,23 @@ class Derivation {
       matrix r = inertial_components(parent.r), v = inertial_components(parent.v),
              a0 = inertial_components(parent.a0);
       std::vector<matrix> V(n_);
-      for (std::size_t k = 0; k < n_; ++k) V[k] = inertial_components(parent.V[k]);
+      for (std::size_t k = 0; k < partials_; ++k) V[k] = inertial_components(parent.V[k]);
       for (const auto& [frame_id, r_f] : point.offset.terms()) {
         const FrameState& f = frames_[frame_id.index];
         r = r.add(f.C_0f.mul(r_f));
-        for (std::size_t k = 0; k < n_; ++k) {
+        for (std::size_t k = 0; k < partials_; ++k) {
           const matrix local = offset_partial(f, r_f, k);
           if (!is_zero(local)) V[k] = V[k].add(f.C_0f.mul(local));
         }
         v = v.add(f.C_0f.mul(offset_velocity(f, r_f)));
-        a0 = a0.add(f.C_0f.mul(offset_acceleration(f, r_f, z_.bind(cross3(f.omega, r_f)))));
+        if (partials_ > 0) a0 = a0.add(f.C_0f.mul(offset_acceleration(f, r_f, z_.bind(cross3(f.omega, r_f)))));
       }
       PointState& st = points_[i];
       st.r = Vector(inertial, z_.bind(r));
       st.V.resize(n_);
-      for (std::size_t k = 0; k < n_; ++k) st.V[k] = Vector(inertial, z_.bind(V[k]));
+      for (std::size_t k = 0; k < partials_; ++k) st.V[k] = Vector(inertial, z_.bind(V[k]));
       st.v = Vector(inertial, z_.bind(v));
-      st.a0 = Vector(inertial, z_.bind(a0));
+      if (partials_ > 0) st.a0 = Vector(inertial, z_.bind(a0));
     }
   }
 
@@ -193,7 +198,7 @@ class Derivation {
       for (const auto& [frame_id, r_f] : point.offset.terms()) {
         const FrameState& f = frames_[frame_id.index];
         st.r += Vector(frame_id, r_f);
-        for (std::size_t k = 0; k < n_; ++k) st.V[k] += Vector(frame_id, offset_partial(f, r_f, k));
+        for (std::size_t k = 0; k < partials_; ++k) st.V[k] += Vector(frame_id, offset_partial(f, r_f, k));
         st.v += Vector(frame_id, offset_velocity(f, r_f));
         st.a0 += Vector(frame_id, offset_acceleration(f, r_f, cross3(f.omega, r_f)));
       }
@@ -235,9 +240,9 @@ class Derivation {
   }
 
   void translational_inertia(const ex& mass, const PointState& c) {
-    for (std::size_t j = 0; j < n_; ++j) {
+    for (std::size_t j = 0; j < partials_; ++j) {
       if (c.V[j].is_zero()) continue;
-      for (std::size_t k = j; k < n_; ++k) add_m(j, k, mass * dot(c.V[j], c.V[k]));
+      for (std::size_t k = j; k < partials_; ++k) add_m(j, k, mass * dot(c.V[j], c.V[k]));
       add_f(j, -mass * dot(c.V[j], c.a0));
     }
     t_terms_.push_back(mass * dot(c.v, c.v) / 2);
@@ -255,15 +260,16 @@ class Derivation {
       const matrix& J = b.inertia;
       // rotational part: W_j . J W_k, and the inertia torque J alpha0 + omega x J omega
       std::vector<matrix> JW(n_);
-      for (std::size_t k = 0; k < n_; ++k) JW[k] = shared(J.mul(f.W[k]));
+      for (std::size_t k = 0; k < partials_; ++k) JW[k] = shared(J.mul(f.W[k]));
       const matrix Jw = shared(J.mul(f.omega));
+      t_terms_.push_back(dot3(f.omega, Jw) / 2);
+      if (partials_ == 0) continue;
       const matrix torque = shared(J.mul(f.alpha0).add(cross3(f.omega, Jw)));
-      for (std::size_t j = 0; j < n_; ++j) {
+      for (std::size_t j = 0; j < partials_; ++j) {
         if (is_zero(f.W[j])) continue;
-        for (std::size_t k = j; k < n_; ++k) add_m(j, k, dot3(f.W[j], JW[k]));
+        for (std::size_t k = j; k < partials_; ++k) add_m(j, k, dot3(f.W[j], JW[k]));
         add_f(j, -dot3(f.W[j], torque));
       }
-      t_terms_.push_back(dot3(f.omega, Jw) / 2);
     }
   }
 
@@ -273,7 +279,7 @@ class Derivation {
     auto add_weight = [&](const ex& mass, const PointState& c) {
       // V = -m g . r, generalized force m g . V_k
       v_terms_.push_back(-mass * dot(g, c.r));
-      for (std::size_t k = 0; k < n_; ++k) add_f(k, mass * dot(g, c.V[k]));
+      for (std::size_t k = 0; k < partials_; ++k) add_f(k, mass * dot(g, c.V[k]));
     };
     for (const Particle& p : s_.particles()) add_weight(p.mass, points_[p.point.index]);
     for (const RigidBody& b : s_.rigid_bodies()) add_weight(b.mass, points_[b.mass_centre.index]);
@@ -291,17 +297,19 @@ class Derivation {
   }
 
   void force_terms(const PointForce& f) {
+    if (partials_ == 0) return;
     const Vector force = physical(f.force);
     const PointState& p = points_[f.point.index];
-    for (std::size_t k = 0; k < n_; ++k) add_f(k, dot(force, p.V[k]));
+    for (std::size_t k = 0; k < partials_; ++k) add_f(k, dot(force, p.V[k]));
   }
 
   void moment_terms(const BodyMoment& m) {
+    if (partials_ == 0) return;
     const FrameState& b = frames_[m.frame.index];
     const matrix moment = resolution_ == KinematicsResolution::inertial
                               ? z_.bind(b.C_0f.transpose().mul(in_inertial(m.moment)))
                               : rotations_.resolve(m.moment, m.frame);
-    for (std::size_t k = 0; k < n_; ++k) add_f(k, dot3(moment, b.W[k]));
+    for (std::size_t k = 0; k < partials_; ++k) add_f(k, dot3(moment, b.W[k]));
   }
 
   // r^{ab}, bound in the inertial resolution (a spring or damper uses it several times)
@@ -315,18 +323,19 @@ class Derivation {
   }
 
   void damper_terms(const LinearDamper& d) {
+    if (partials_ == 0) return;
     // f_a = -c ((v_a - v_b) . e) e along e = r^{ab} / |r^{ab}|
     const PointState& a = points_[d.a.index];
     const PointState& b = points_[d.b.index];
     const Vector r = separation(a, b);
     const ex length_sq = z_.bind(dot(r, r));
     const ex along = z_.bind(-d.damping * dot(r, a.v - b.v) / length_sq);
-    for (std::size_t k = 0; k < n_; ++k) add_f(k, along * dot(r, a.V[k] - b.V[k]));
+    for (std::size_t k = 0; k < partials_; ++k) add_f(k, along * dot(r, a.V[k] - b.V[k]));
   }
 
   void damper_terms(const CoordinateDamper& d) {
     const ex rate = vars_.time_derivative(d.coordinate_expression);
-    for (std::size_t k = 0; k < n_; ++k) add_f(k, -d.damping * rate * coordinate_partial(d.coordinate_expression, k));
+    for (std::size_t k = 0; k < partials_; ++k) add_f(k, -d.damping * rate * coordinate_partial(d.coordinate_expression, k));
   }
 
   void spring_terms(const LinearSpring& sp) {
@@ -337,19 +346,20 @@ class Derivation {
     const ex length = z_.bind(GiNaC::sqrt(dot(r, r)));
     const ex stretch = length - sp.rest_length;
     v_terms_.push_back(sp.stiffness * GiNaC::pow(stretch, 2) / 2);
+    if (partials_ == 0) return;
     const ex tension = z_.bind(-sp.stiffness * stretch / length);
-    for (std::size_t k = 0; k < n_; ++k) add_f(k, tension * dot(r, a.V[k] - b.V[k]));
+    for (std::size_t k = 0; k < partials_; ++k) add_f(k, tension * dot(r, a.V[k] - b.V[k]));
   }
 
   void spring_terms(const TorsionalSpring& sp) {
     const ex twist = sp.angle - sp.rest_angle;
     v_terms_.push_back(sp.stiffness * GiNaC::pow(twist, 2) / 2);
-    for (std::size_t k = 0; k < n_; ++k) add_f(k, -sp.stiffness * twist * coordinate_partial(sp.angle, k));
+    for (std::size_t k = 0; k < partials_; ++k) add_f(k, -sp.stiffness * twist * coordinate_partial(sp.angle, k));
   }
 
   void potential_terms(const Potential& p) {
     v_terms_.push_back(p.value);
-    for (std::size_t k = 0; k < n_; ++k) add_f(k, -coordinate_partial(p.value, k));
+    for (std::size_t k = 0; k < partials_; ++k) add_f(k, -coordinate_partial(p.value, k));
   }
 
   // a sum of terms; in the local resolution multiplied out and grouped by the state-dependent
@@ -441,6 +451,8 @@ class Derivation {
   const MechanicalSystem& s_;
   const Variables& vars_;
   const std::size_t n_;
+  // partial velocities computed: n_ for Kane's equations, none when the recursions give M and F
+  const std::size_t partials_;
   const KinematicsResolution resolution_;
   EquationsOfMotion eom_;
   Subexpressions& z_;
@@ -482,6 +494,23 @@ EquationsOfMotion derive_equations(const MechanicalSystem& system, KinematicsRes
 }
 
 EquationsOfMotion derive_equations(const MechanicalSystem& system) {
+  const std::size_t n = system.variables().coordinate_count();
+  if (n > local_resolution_limit && std::holds_alternative<LinkTree>(link_tree(system))) {
+    // a long tree: its kinematics, T and V here, M and F from the recursions
+    EquationsOfMotion eom = Derivation(system, KinematicsResolution::inertial, /*kane=*/false).run();
+    std::variant<RecursiveMassMatrixAndForcing, std::string> recursive =
+        derive_composite_body_terms(system, eom.subexpressions);
+    auto* terms = std::get_if<RecursiveMassMatrixAndForcing>(&recursive);
+    EOMGEN_DEMAND(terms != nullptr, "a link tree without recursive M and F");
+    eom.mass_matrix = std::move(terms->mass_matrix);
+    eom.forcing = std::move(terms->forcing);
+    eom.dynamics = DynamicsForm::recursions;
+    const double not_tried = std::numeric_limits<double>::quiet_NaN();
+    eom.estimated_operations_inertial = eom.estimated_operations_local = not_tried;
+    eom.estimated_operations_recursions =
+        estimated_operations(eom.mass_matrix, eom.forcing, eom.subexpressions, system.variables());
+    return eom;
+  }
   bool multiplied_out = true;
   EquationsOfMotion inertial = derive(system, KinematicsResolution::inertial, multiplied_out);
   // the local resolution grows like the fourth power of a chain's depth: tried on small models

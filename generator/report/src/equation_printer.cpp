@@ -162,9 +162,8 @@ class IntermediateIndex {
   // the position of e among the definitions, if e is an intermediate
   std::optional<std::size_t> find(const ex& e) const {
     if (!GiNaC::is_a<GiNaC::symbol>(e)) return std::nullopt;
-    const auto it = index_.find(e);
-    if (it == index_.end()) return std::nullopt;
-    return it->second;
+    if (const std::size_t* i = index_.find(e)) return *i;
+    return std::nullopt;
   }
   // calls f(i) for every intermediate i in e, at least once each, visiting each node of e not
   // in `visited` once
@@ -176,7 +175,7 @@ class IntermediateIndex {
   }
 
  private:
-  std::map<ex, std::size_t, GiNaC::ex_is_less> index_;
+  mutable ExpressionMap<std::size_t> index_;  // a map ordered by GiNaC compared symbols at every step
 };
 
 // The sizes of the entries written out (each intermediate at its written-out size), and

@@ -116,7 +116,7 @@ double ExpressionPrinter::latex_width(const std::string& tex) {
 }
 
 ExpressionPrinter::ExpressionPrinter(const std::vector<ex>& symbol_order) {
-  for (const ex& s : symbol_order) position_.emplace(s, position_.size());
+  for (const ex& s : symbol_order) position_.emplace(s, position_.size());  // the first place of a repeated one
 }
 
 std::string ExpressionPrinter::text(const ex& e) const { return print(e, Style::text, in_sum); }
@@ -315,10 +315,10 @@ std::string ExpressionPrinter::print_function(const ex& e, Style style) const {
 }
 
 int ExpressionPrinter::compare_symbols(const ex& a, const ex& b) const {
-  const auto pa = position_.find(a), pb = position_.find(b);
-  if (pa != position_.end() && pb != position_.end()) return three_way(pa->second, pb->second);
-  if (pa != position_.end()) return -1;
-  if (pb != position_.end()) return 1;
+  const std::size_t *pa = position_.find(a), *pb = position_.find(b);
+  if (pa && pb) return three_way(*pa, *pb);
+  if (pa) return -1;
+  if (pb) return 1;
   return natural_compare(GiNaC::ex_to<GiNaC::symbol>(a).get_name(), GiNaC::ex_to<GiNaC::symbol>(b).get_name());
 }
 

@@ -24,6 +24,18 @@ struct CompositeBodyEquations {
   double estimated_operations = 0;
 };
 
+/// M and F from the recursions, bound to intermediates of a caller's Subexpressions.
+struct RecursiveMassMatrixAndForcing {
+  GiNaC::matrix mass_matrix;  ///< n x n, symmetric
+  GiNaC::matrix forcing;      ///< n x 1
+};
+
+/// The recursive M and F of the system bound to `subexpressions` (derive_equations takes them for
+/// long chains, beside its kinematics), or why it has none (the reason of derive_forward_dynamics).
+/// \throws DerivationError if an expression cannot be differentiated (as derive_equations).
+std::variant<RecursiveMassMatrixAndForcing, std::string> derive_composite_body_terms(const MechanicalSystem& system,
+                                                                                     Subexpressions& subexpressions);
+
 /// The recursive M and F of the system, or why it has none (the reason of
 /// derive_forward_dynamics).
 /// \throws DerivationError if an expression cannot be differentiated (as derive_equations).

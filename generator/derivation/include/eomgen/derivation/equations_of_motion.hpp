@@ -14,6 +14,8 @@
 // constraint that transmits no force, as it should be).
 #include <ginac/ginac.h>
 
+#include <limits>
+
 #include "eomgen/mechanics/mechanical_system.hpp"
 #include "eomgen/symbolic/subexpressions.hpp"
 
@@ -36,6 +38,17 @@ enum class KinematicsResolution { inertial, local };
 /// Models with more coordinates than this are derived in the inertial resolution only.
 inline constexpr std::size_t local_resolution_limit = 12;
 
+/// How M and F were derived.
+///  - closed_form: Kane's equations above, each entry a sum over the bodies that move with both
+///    its coordinates (in the resolution kept). A chain's entries grow with its depth: n^3/6
+///    terms in all.
+///  - recursions: the composite-rigid-body algorithm for M and Newton-Euler at qdd = 0 for F
+///    (composite_body.hpp), each entry a few operations on shared intermediates: n^2/2 entries.
+/// derive_equations takes the recursions for a tree without constraints of more than
+/// local_resolution_limit coordinates, whose closed form would be the larger (generated code
+/// took the recursions there already; composite_body_test compares the two).
+enum class DynamicsForm { closed_form, recursions };
+
 /// The derived equations. Every matrix may refer to the intermediates of `subexpressions`.
 struct EquationsOfMotion {
   Subexpressions subexpressions;
@@ -50,9 +63,12 @@ struct EquationsOfMotion {
   std::size_t coordinate_count = 0;            ///< n
   std::size_t constraint_count = 0;            ///< m
   KinematicsResolution resolution = KinematicsResolution::inertial;  ///< the form kept
+  DynamicsForm dynamics = DynamicsForm::closed_form;                 ///< how M and F were derived
   /// Estimated operations of M and F in each form (NaN for a form not tried); see
   /// KinematicsResolution.
   double estimated_operations_inertial = 0, estimated_operations_local = 0;
+  /// Estimated operations of M and F from the recursions, when they are the form kept (else NaN).
+  double estimated_operations_recursions = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// Derives the equations of motion. Pure: the system is only read.

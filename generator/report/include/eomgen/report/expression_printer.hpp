@@ -72,7 +72,9 @@ class ExpressionPrinter {
   int compare_monomials(const Monomial& a, const Monomial& b) const;
   const std::vector<GiNaC::ex>& sorted_terms(const GiNaC::ex& sum) const;
 
-  std::map<GiNaC::ex, std::size_t, GiNaC::ex_is_less> position_;  // looked up, never iterated
+  // the symbols' places in symbol_order: a chain's equations have tens of thousands of
+  // intermediates, and sorting looks them up at every comparison of two symbols
+  mutable ExpressionMap<std::size_t> position_;
   // Sorting compares subexpressions by their sorted terms and factors, recursively: without
   // these memos every comparison re-sorts both sides down to the leaves, and printing a
   // constraint row of the bicycle took seconds. Not thread-safe, like the rest of a printer's
