@@ -71,13 +71,30 @@ struct PointState {
 
 
 
+// the rates of the coordinates, rates and time: d/dt of the model's kinematics
+GiNaC::exmap rates(const Variables& vars) {
+  GiNaC::exmap out{{vars.time(), 1}};
+  for (const Coordinate& c : vars.coordinates()) {
+    out[c.q] = c.qd;
+    out[c.qd] = c.qdd;
+  }
+  return out;
+}
+
+GiNaC::exmap accelerations_to_zero(const Variables& vars) {
+  GiNaC::exmap out;
+  for (const Coordinate& c : vars.coordinates()) out[c.qdd] = 0;
+  return out;
+}
+
 class Derivation {
  public:
   /// `kane`: M and F by Kane's equations; otherwise only the kinematics, T and V (M and F are
   /// then left zero for the recursions to fill).
   Derivation(const MechanicalSystem& s, KinematicsResolution resolution, bool kane = true)
       : s_(s), vars_(s.variables()), n_(vars_.coordinate_count()), partials_(kane ? n_ : 0), resolution_(resolution),
-        z_(eom_.subexpressions), rotations_(s, eom_.subexpressions) {}
+        z_(eom_.subexpressions), rotations_(s, eom_.subexpressions), time_derivative_(rates(vars_)),
+        without_accelerations_(accelerations_to_zero(vars_)) {}
 
   EquationsOfMotion run() {
     eom_.resolution = resolution_;
@@ -109,7 +126,13 @@ class Derivation {
   }
   // time derivative at qdd = 0 of a plain (model-symbol) expression
   ex rate_at_zero_acceleration(const ex& e) const {
-    return vars_.without_accelerations(vars_.time_derivative(e));
+    return without_accelerations_(time_derivative(e));
+  }
+  // d/dt of the kinematics: a small expression as Variables takes it (which names a symbol that
+  // has no rate), a large one through the derivation's memo (only the language makes those, and
+  // it has checked their symbols)
+  ex time_derivative(const ex& e) const {
+    return is_small_tree(e, small_tree_limit) ? vars_.time_derivative(e) : time_derivative_(e);
   }
 
   void frame_kinematics() {
@@ -152,13 +175,13 @@ class Derivation {
   // the acceleration at qdd = 0 of an offset r_f (in frame f): r'' + alpha0 x r + 2 omega x r' +
   // omega x (omega x r), with omega x r given (bound or not)
   matrix offset_acceleration(const FrameState& f, const matrix& r_f, const matrix& w_x_r) const {
-    const matrix rdot = map_entries(r_f, [&](const ex& e) { return vars_.time_derivative(e); });
+    const matrix rdot = map_entries(r_f, [&](const ex& e) { return time_derivative(e); });
     const matrix rddot0 = map_entries(rdot, [&](const ex& e) { return rate_at_zero_acceleration(e); });
     return rddot0.add(cross3(f.alpha0, r_f)).add(cross3(f.omega, rdot).mul_scalar(2)).add(cross3(f.omega, w_x_r));
   }
 
   matrix offset_velocity(const FrameState& f, const matrix& r_f) const {
-    return map_entries(r_f, [&](const ex& e) { return vars_.time_derivative(e); }).add(cross3(f.omega, r_f));
+    return map_entries(r_f, [&](const ex& e) { return time_derivative(e); }).add(cross3(f.omega, r_f));
   }
 
   void point_kinematics_inertial() {
@@ -457,6 +480,10 @@ class Derivation {
   EquationsOfMotion eom_;
   Subexpressions& z_;
   RelativeRotations rotations_;
+  // d/dt and qdd = 0 of the kinematics, each shared node of points defined from one another's
+  // positions taken once for the whole derivation (graph_calculus.hpp)
+  mutable DirectionalDerivative time_derivative_;
+  mutable Substitution without_accelerations_;
   std::vector<FrameState> frames_;
   std::vector<PointState> points_;
   std::vector<exvector> m_terms_;

@@ -119,6 +119,7 @@ Parameter Variables::add_parameter(const std::string& name, double default_value
   claim_name(name);
   Parameter p{name, GiNaC::realsymbol(name, tex_name(name)), default_value, unit};
   kinds_[p.symbol] = code(SymbolKind::parameter);
+  default_values_[p.symbol] = default_value;
   parameters_.push_back(p);
   return parameters_.back();
 }
@@ -129,7 +130,8 @@ DerivedParameter Variables::add_derived_parameter(const std::string& name, const
   // numbers and the parameters declared so far only: then the definitions, in order, compute
   // every derived parameter from values already known
   std::optional<std::string> other;
-  for (const GiNaC::ex& s : symbols_of(definition)) {
+  const GiNaC::exset symbols = symbols_of(definition);
+  for (const GiNaC::ex& s : symbols) {
     const std::optional<SymbolKind> kind = kind_of(s);
     const std::string symbol_name = GiNaC::ex_to<GiNaC::symbol>(s).get_name();
     if ((!kind || !is_parameter_kind(*kind)) && (!other || symbol_name < *other)) other = symbol_name;
@@ -139,8 +141,8 @@ DerivedParameter Variables::add_derived_parameter(const std::string& name, const
                                  "it: expected numbers, parameters and derived parameters declared before it",
                                  name, *other));
   DoubleEvaluator at_defaults;
-  for (const Parameter& p : parameters_) at_defaults.set(p.symbol, p.default_value);
-  for (const DerivedParameter& d : derived_parameters_) at_defaults.set(d.symbol, d.default_value);
+  for (const GiNaC::ex& s : symbols)
+    at_defaults.set(s, GiNaC::ex_to<GiNaC::numeric>(default_values_.at(s)).to_double());
   const double value = at_defaults.value(definition, fmt::format("parameter '{}'", name));
   if (!std::isfinite(value))
     throw ModelError(fmt::format("parameter '{}': the value at the other parameters' default values is not a finite "
@@ -148,6 +150,7 @@ DerivedParameter Variables::add_derived_parameter(const std::string& name, const
   claim_name(name);
   DerivedParameter d{name, GiNaC::realsymbol(name, tex_name(name)), definition, value, unit};
   kinds_[d.symbol] = code(SymbolKind::derived_parameter);
+  default_values_[d.symbol] = value;
   derived_parameters_.push_back(d);
   return derived_parameters_.back();
 }

@@ -9,14 +9,11 @@
 #include "eomgen/symbolic/expression_size.hpp"
 
 namespace eomgen {
-namespace {
+namespace detail {
 
 using GiNaC::ex;
 
-// Trees up to this size go to GiNaC: every shipped model's expressions are smaller (the
-// bicycle's largest that is differentiated or substituted into has about 9,400 nodes), and a
-// tree this size costs GiNaC a millisecond.
-constexpr double small_tree = 20000;
+constexpr double small_tree = small_tree_limit;
 
 bool fits(const ex& e, double& budget) {
   if (--budget < 0) return false;
@@ -45,12 +42,25 @@ class NodeBuilder {
   ex product(const GiNaC::exvector& factors) {
     if (evaluates(factors)) return GiNaC::mul(factors);
     GiNaC::exvector kept;
+    GiNaC::numeric coefficient = 1;
     for (const ex& factor : factors) {
       if (factor.is_zero()) return 0;
-      if (!factor.is_equal(1)) kept.push_back(factor);
+      if (GiNaC::is_a<GiNaC::numeric>(factor))
+        coefficient *= GiNaC::ex_to<GiNaC::numeric>(factor);
+      else
+        kept.push_back(factor);
     }
-    if (kept.empty()) return 1;
-    if (kept.size() == 1) return kept.front();
+    if (kept.empty()) return coefficient;
+    if (coefficient.is_equal(1) && kept.size() == 1) return kept.front();
+    if (kept.size() == 1 && GiNaC::is_a<GiNaC::add>(kept.front())) {
+      // a number times one sum, distributed as GiNaC's evaluation would: a sum holding it as a
+      // term keeps the pair (sum, number) and builds the distributed sum anew, new nodes and
+      // all, each time the term is read, so every walk over it would start afresh
+      GiNaC::exvector terms;
+      for (std::size_t i = 0; i < kept.front().nops(); ++i) terms.push_back(product({coefficient, kept.front().op(i)}));
+      return sum(terms);
+    }
+    if (!coefficient.is_equal(1)) kept.push_back(coefficient);
     return GiNaC::mul(kept).hold();
   }
   ex power(const ex& base, const ex& exponent) {
@@ -216,7 +226,12 @@ class Directional {
   FunctionPartials partials_;
 };
 
-}  // namespace
+}  // namespace detail
+
+using GiNaC::ex;
+using detail::fits;
+using detail::NodeBuilder;
+using detail::small_tree;
 
 bool is_small_tree(const ex& e, double limit) {
   double budget = limit;
@@ -227,7 +242,7 @@ ex derivative(const ex& e, const GiNaC::symbol& x) {
   if (is_small_tree(e, small_tree)) return e.diff(x);
   const GiNaC::exmap rates{{x, 1}};
   NodeBuilder build;
-  return Directional(rates, build).of(e);
+  return detail::Directional(rates, build).of(e);
 }
 
 ex directional_derivative(const ex& e, const GiNaC::exmap& rates) {
@@ -238,13 +253,43 @@ ex directional_derivative(const ex& e, const GiNaC::exmap& rates) {
     return result;
   }
   NodeBuilder build;
-  return Directional(rates, build).of(e);
+  return detail::Directional(rates, build).of(e);
 }
 
 ex substitute(const ex& e, const GiNaC::exmap& values) {
   if (is_small_tree(e, small_tree)) return e.subs(values, GiNaC::subs_options::no_pattern);
   NodeBuilder build;
-  return Substitution(values, build).of(e);
+  return detail::Substitution(values, build).of(e);
+}
+
+DirectionalDerivative::DirectionalDerivative(GiNaC::exmap rates)
+    : rates_(std::move(rates)), build_(std::make_unique<NodeBuilder>()),
+      large_(std::make_unique<detail::Directional>(rates_, *build_)) {}
+
+DirectionalDerivative::~DirectionalDerivative() = default;
+
+ex DirectionalDerivative::operator()(const ex& e) {
+  if (!is_small_tree(e, detail::small_tree)) return large_->of(e);
+  // GiNaC's own, symbol by symbol in the map's order, as directional_derivative (the symbols
+  // found in one walk: the map may hold every coordinate and rate of a long chain)
+  GiNaC::exset present;
+  for (auto it = e.preorder_begin(); it != e.preorder_end(); ++it)
+    if (GiNaC::is_a<GiNaC::symbol>(*it)) present.insert(*it);
+  ex result = 0;
+  for (const auto& [symbol, rate] : rates_)
+    if (present.count(symbol) != 0) result += e.diff(GiNaC::ex_to<GiNaC::symbol>(symbol)) * rate;
+  return result;
+}
+
+Substitution::Substitution(GiNaC::exmap values)
+    : values_(std::move(values)), build_(std::make_unique<NodeBuilder>()),
+      large_(std::make_unique<detail::Substitution>(values_, *build_)) {}
+
+Substitution::~Substitution() = default;
+
+ex Substitution::operator()(const ex& e) {
+  if (!is_small_tree(e, detail::small_tree)) return large_->of(e);
+  return e.subs(values_, GiNaC::subs_options::no_pattern);
 }
 
 }  // namespace eomgen

@@ -149,19 +149,45 @@ class Signatures {
 
 }  // namespace
 
+struct Subexpressions::ShareMemo {
+  Signatures signature;
+  // a node's value as +-1 times a canonical value: the one bound when the node is shared
+  struct Done {
+    ex canonical;
+    int sign;  // of the node whose signature has sign +1
+  };
+  std::unordered_map<std::uint64_t, Done> done;  // by the magnitude of the node's signature
+};
+
+Subexpressions::ShareMemoHandle::ShareMemoHandle() : memo(std::make_unique<ShareMemo>()) {}
+Subexpressions::ShareMemoHandle::~ShareMemoHandle() = default;
+Subexpressions::ShareMemoHandle::ShareMemoHandle(const ShareMemoHandle&) : ShareMemoHandle() {}
+Subexpressions::ShareMemoHandle& Subexpressions::ShareMemoHandle::operator=(const ShareMemoHandle&) {
+  memo = std::make_unique<ShareMemo>();
+  return *this;
+}
+Subexpressions::ShareMemoHandle::ShareMemoHandle(ShareMemoHandle&& other) noexcept : memo(std::move(other.memo)) {}
+Subexpressions::ShareMemoHandle& Subexpressions::ShareMemoHandle::operator=(ShareMemoHandle&& other) noexcept {
+  memo = std::move(other.memo);
+  return *this;
+}
+
 ex Subexpressions::share(const ex& value) {
   // Everything below goes by values up to sign, not by GiNaC's structure: the same value
   // written as x*(a - b) here and -x*(b - a) there is one node, bound once, with the sign of
   // a fixed choice, and nodes are visited in the order of their content. So the intermediates
   // and their numbers are the same in every run.
-  Signatures signature;
-  // count the parents of every node, visiting each node once
+  if (!share_memo_.memo) share_memo_.memo = std::make_unique<ShareMemo>();  // moved from
+  ShareMemo& memo = *share_memo_.memo;
+  Signatures& signature = memo.signature;
+  // count the parents of every node, visiting each node once and no node an earlier call rebuilt
   std::unordered_map<std::uint64_t, std::size_t> parents;
   std::vector<ex> stack{value};
   parents[signature(value).magnitude] = 1;
   while (!stack.empty()) {
     const ex e = stack.back();
     stack.pop_back();
+    if (memo.done.count(signature(e).magnitude) != 0) continue;
     for (std::size_t i = 0; i < e.nops(); ++i) {
       if (is_leaf(e.op(i))) continue;
       if (parents[signature(e.op(i)).magnitude]++ == 0) stack.push_back(e.op(i));
@@ -171,34 +197,33 @@ ex Subexpressions::share(const ex& value) {
   struct Rebuild : GiNaC::map_function {
     Subexpressions& z;
     const std::unordered_map<std::uint64_t, std::size_t>& parents;
-    Signatures& signature;
-    // a node's value as +-1 times a canonical value: the one bound when the node is shared
-    struct Done {
-      ex canonical;
-      int sign;  // of the node whose signature has sign +1
-    };
-    std::unordered_map<std::uint64_t, Done> done;
-    Rebuild(Subexpressions& s, const std::unordered_map<std::uint64_t, std::size_t>& p, Signatures& g)
-        : z(s), parents(p), signature(g) {}
+    ShareMemo& memo;
+    Rebuild(Subexpressions& s, const std::unordered_map<std::uint64_t, std::size_t>& p, ShareMemo& m)
+        : z(s), parents(p), memo(m) {}
     ex operator()(const ex& e) override {
       if (is_leaf(e)) return e;
-      const Signature s = signature(e);
-      if (const auto it = done.find(s.magnitude); it != done.end()) return s.sign * it->second.sign * it->second.canonical;
+      const Signature s = memo.signature(e);
+      if (const auto it = memo.done.find(s.magnitude); it != memo.done.end()) {
+        const ShareMemo::Done d = it->second;  // a copy: binding may add entries
+        // rebuilt by an earlier call: its intermediate if it has one
+        if (const ex* bound = z.by_value_.find(d.canonical)) return s.sign * d.sign * *bound;
+        return s.sign * d.sign * (parents.count(s.magnitude) != 0 && parents.at(s.magnitude) > 1 ? z.bind(d.canonical)
+                                                                                                 : d.canonical);
+      }
       std::vector<std::size_t> order(e.nops());
       std::iota(order.begin(), order.end(), std::size_t{0});
       std::vector<std::uint64_t> keys;
-      for (std::size_t i = 0; i < e.nops(); ++i) keys.push_back(signature(e.op(i)).magnitude);
+      for (std::size_t i = 0; i < e.nops(); ++i) keys.push_back(memo.signature(e.op(i)).magnitude);
       std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return keys[a] < keys[b]; });
       for (std::size_t i : order) (*this)(e.op(i));
       const ex r = e.map(*this);  // every operand is done: this only looks them up
       // r = e; its canonical value is r times its own sign (taken on its new content)
-      const int r_sign = signature(r).sign;
-      ex canonical = r_sign * r;
-      if (parents.at(s.magnitude) > 1) canonical = z.bind(canonical);
-      done.emplace(s.magnitude, Done{canonical, s.sign * r_sign});
-      return r_sign * canonical;
+      const int r_sign = memo.signature(r).sign;
+      const ex canonical = r_sign * r;
+      memo.done.emplace(s.magnitude, ShareMemo::Done{canonical, s.sign * r_sign});
+      return r_sign * (parents.at(s.magnitude) > 1 ? z.bind(canonical) : canonical);
     }
-  } rebuild(*this, parents, signature);
+  } rebuild(*this, parents, memo);
   return rebuild(value);
 }
 

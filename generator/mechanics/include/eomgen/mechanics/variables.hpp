@@ -135,6 +135,9 @@ class Variables {
   std::vector<DerivedParameter> derived_parameters_;
   std::set<std::string> names_;  // every declared name, for the duplicate check
   GiNaC::exmap kinds_;  // symbol -> numeric code of SymbolKind
+  // parameter and derived parameter symbol -> its default value, so that a derived parameter's
+  // default is computed from the symbols it names only (a chain of N definitions in O(N log N))
+  GiNaC::exmap default_values_;
   GiNaC::exmap rate_to_zero_;
   GiNaC::exmap acceleration_to_zero_;
 };

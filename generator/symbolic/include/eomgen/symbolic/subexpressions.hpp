@@ -6,9 +6,11 @@
 // definitions in order, like the temporaries of an optimizing compiler.
 #include <ginac/ginac.h>
 
-#include "eomgen/symbolic/expression_map.hpp"
+#include <memory>
 #include <string>
 #include <vector>
+
+#include "eomgen/symbolic/expression_map.hpp"
 
 namespace eomgen {
 
@@ -33,6 +35,9 @@ class Subexpressions {
   /// trees; after share() every consumer (printing, evaluation, emission) sees the graph.
   /// The new intermediates are numbered in an order that follows the content of `value`
   /// alone, not GiNaC's process-dependent order of operands, so printing is the same in every run.
+  /// What one call rebuilt is remembered for the next: a node met again (the positions of
+  /// points defined from one another's, each holding the ones before) is not entered again,
+  /// and is its intermediate where an earlier call or bind() made one.
   GiNaC::ex share(const GiNaC::ex& value);
 
   /// Definitions in creation order (each refers only to earlier ones).
@@ -54,11 +59,24 @@ class Subexpressions {
  private:
   GiNaC::ex bind_as_is(const GiNaC::ex& value);
 
+  struct ShareMemo;  // the nodes share() has rebuilt, by their content
+  // owns a ShareMemo; a copy starts empty (the memo is a cache of this object's own calls)
+  struct ShareMemoHandle {
+    ShareMemoHandle();
+    ~ShareMemoHandle();
+    ShareMemoHandle(const ShareMemoHandle&);
+    ShareMemoHandle& operator=(const ShareMemoHandle&);
+    ShareMemoHandle(ShareMemoHandle&&) noexcept;
+    ShareMemoHandle& operator=(ShareMemoHandle&&) noexcept;
+    std::unique_ptr<ShareMemo> memo;
+  };
+
   std::string prefix_;
   std::vector<Definition> definitions_;
   ExpressionMap<GiNaC::ex> by_value_;  // looked up, never iterated
   mutable GiNaC::exmap expanded_;  // symbol -> value written out, filled in order
   mutable std::size_t expanded_count_ = 0;
+  ShareMemoHandle share_memo_;
 };
 
 }  // namespace eomgen
