@@ -111,6 +111,19 @@ output h = 0.1*q
   EXPECT_TRUE(output(m, "h").components.at(0).is_equal(numeric(1, 10) * symbol_named(m.system, "q")));
 }
 
+// published robot descriptions write ".649262481663582": a number, exact, where a '.' and a
+// digit do not follow a name (there they pick a basis vector, "b.2")
+TEST(Parser, NumbersMayStartWithTheirDecimalPoint) {
+  const Model m = parse(R"(coordinate q
+frame b = rotate(a, 3, q)
+point p = w + .5*q*b.2 - (.25)*a.1
+particle bob(mass = .649262481663582, at = p)
+output o = -.125 + .5e1
+)");
+  EXPECT_TRUE(output(m, "o").components.at(0).is_equal(numeric(39, 8))) << output(m, "o").components.at(0);
+  EXPECT_TRUE(m.system.particles().at(0).mass.is_equal(numeric(649262481663582, 1000000000000000)));
+}
+
 TEST(Parser, FramesAndPointsMayBeUsedBeforeTheirDefinition) {
   const Model m = parse(R"(coordinate q1, q2
 point p2 = p1 + c.1      # c and p1 come below

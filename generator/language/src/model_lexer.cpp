@@ -14,6 +14,16 @@ bool is_ident_start(char c) { return std::isalpha(static_cast<unsigned char>(c))
 bool is_ident_char(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }
 bool is_digit(char c) { return std::isdigit(static_cast<unsigned char>(c)) != 0; }
 
+// ".649262481663582", as published robot descriptions write numbers: a '.' followed by a digit
+// that does not follow a name or a closing bracket (there it picks an axis, "b.2")
+bool starts_fraction(const std::string& text, std::size_t i) {
+  if (text[i] != '.' || i + 1 >= text.size() || !is_digit(text[i + 1])) return false;
+  if (i == 0) return true;
+  const char before = text[i - 1];
+  return !(std::isalnum(static_cast<unsigned char>(before)) || before == '_' || before == ')' || before == ']' ||
+           before == '}' || before == '.');
+}
+
 }  // namespace
 
 std::string describe(const Token& token) {
@@ -78,7 +88,7 @@ std::vector<Token> tokenize(const std::string& text, const std::string& file, in
         }
       }
       push(Token::Kind::identifier, text.substr(start, i - start), loc, start);
-    } else if (is_digit(c)) {
+    } else if (is_digit(c) || starts_fraction(text, i)) {
       while (i < text.size() && is_digit(text[i])) advance(1);
       // a '.' belongs to the number only when a digit follows ("1..n" is a range)
       if (i + 1 < text.size() && text[i] == '.' && is_digit(text[i + 1])) {
