@@ -5,6 +5,7 @@
 #include <numeric>
 #include <sstream>
 #include <unordered_map>
+#include <unordered_set>
 
 #include "eomgen/base/content_hash.hpp"
 #include "eomgen/symbolic/expression_map.hpp"
@@ -154,8 +155,17 @@ struct Subexpressions::ShareMemo {
   // a node's value as +-1 times a canonical value: the one bound when the node is shared
   struct Done {
     ex canonical;
-    int sign;  // of the node whose signature has sign +1
+    int sign;                // of the node whose signature has sign +1
+    ex intermediate;         // what bind() gave for canonical, when it was bound
+    bool is_bound = false;
   };
+  // the intermediate of the node with this signature, if it has one (a later bind() of an
+  // equal value counts too)
+  const ex* bound(std::uint64_t magnitude, Subexpressions& z) const {
+    const auto it = done.find(magnitude);
+    if (it == done.end()) return nullptr;
+    return it->second.is_bound ? &it->second.intermediate : z.by_value_.find(it->second.canonical);
+  }
   std::unordered_map<std::uint64_t, Done> done;  // by the magnitude of the node's signature
 };
 
@@ -180,14 +190,15 @@ ex Subexpressions::share(const ex& value) {
   if (!share_memo_.memo) share_memo_.memo = std::make_unique<ShareMemo>();  // moved from
   ShareMemo& memo = *share_memo_.memo;
   Signatures& signature = memo.signature;
-  // count the parents of every node, visiting each node once and no node an earlier call rebuilt
+  // count the parents of every node, visiting each node once and no node that is an intermediate
+  // already (one rebuilt but left inline is entered again: its inside may now be used twice)
   std::unordered_map<std::uint64_t, std::size_t> parents;
   std::vector<ex> stack{value};
   parents[signature(value).magnitude] = 1;
   while (!stack.empty()) {
     const ex e = stack.back();
     stack.pop_back();
-    if (memo.done.count(signature(e).magnitude) != 0) continue;
+    if (memo.bound(signature(e).magnitude, *this)) continue;
     for (std::size_t i = 0; i < e.nops(); ++i) {
       if (is_leaf(e.op(i))) continue;
       if (parents[signature(e.op(i)).magnitude]++ == 0) stack.push_back(e.op(i));
@@ -198,6 +209,7 @@ ex Subexpressions::share(const ex& value) {
     Subexpressions& z;
     const std::unordered_map<std::uint64_t, std::size_t>& parents;
     ShareMemo& memo;
+    std::unordered_set<std::uint64_t> visited;  // rebuilt by this call
     Rebuild(Subexpressions& s, const std::unordered_map<std::uint64_t, std::size_t>& p, ShareMemo& m)
         : z(s), parents(p), memo(m) {}
     ex operator()(const ex& e) override {
@@ -205,11 +217,13 @@ ex Subexpressions::share(const ex& value) {
       const Signature s = memo.signature(e);
       if (const auto it = memo.done.find(s.magnitude); it != memo.done.end()) {
         const ShareMemo::Done d = it->second;  // a copy: binding may add entries
-        // rebuilt by an earlier call: its intermediate if it has one
-        if (const ex* bound = z.by_value_.find(d.canonical)) return s.sign * d.sign * *bound;
-        return s.sign * d.sign * (parents.count(s.magnitude) != 0 && parents.at(s.magnitude) > 1 ? z.bind(d.canonical)
-                                                                                                 : d.canonical);
+        // an intermediate already (made by this call or an earlier one)
+        if (const ex* bound = memo.bound(s.magnitude, z)) return s.sign * d.sign * *bound;
+        // rebuilt by this call and used once, or by an earlier one and left inline: rebuilt
+        // again below, since this call may use its inside more than once
+        if (visited.count(s.magnitude) != 0) return s.sign * d.sign * d.canonical;
       }
+      visited.insert(s.magnitude);
       std::vector<std::size_t> order(e.nops());
       std::iota(order.begin(), order.end(), std::size_t{0});
       std::vector<std::uint64_t> keys;
@@ -220,8 +234,13 @@ ex Subexpressions::share(const ex& value) {
       // r = e; its canonical value is r times its own sign (taken on its new content)
       const int r_sign = memo.signature(r).sign;
       const ex canonical = r_sign * r;
-      memo.done.emplace(s.magnitude, ShareMemo::Done{canonical, s.sign * r_sign});
-      return r_sign * (parents.at(s.magnitude) > 1 ? z.bind(canonical) : canonical);
+      ShareMemo::Done d{canonical, s.sign * r_sign, canonical, false};
+      if (parents.at(s.magnitude) > 1) {
+        d.intermediate = z.bind(canonical);
+        d.is_bound = true;
+      }
+      memo.done.insert_or_assign(s.magnitude, d);
+      return r_sign * d.intermediate;
     }
   } rebuild(*this, parents, memo);
   return rebuild(value);
