@@ -2,7 +2,8 @@
 # Opens an animation page (docs/animation.md) in headless Chromium and checks it, failing with
 # the reason:
 #
-#   tests/browser/check_page.sh [--layers LIST] [--load-only] [--min-drawn N] PAGE.html T1 [T2 ...]
+#   tests/browser/check_page.sh [--layers LIST] [--follow CHOICE] [--check-view CHECKER] [--load-only]
+#                               [--min-drawn N] PAGE.html T1 [T2 ...]
 #
 # At each time T (the page's #t=T hook: paused at T s): the page says it is ready, with no
 # error (uncaught exceptions, rejections, console.error and console.warn, blocked requests),
@@ -10,23 +11,30 @@
 # N (--min-drawn, default 2000) pixels that are not background. Then, unless --load-only, a
 # 1280x800 screenshot at each time: each is a PNG of at least 10 KB and no two are the same.
 # Name resolution is disabled (--host-resolver-rules), so a page that asked the network would
-# fail. --layers LIST (trails,frames,forces) shows those layers, and only those.
+# fail. --layers LIST (trails,frames,forces) shows those layers, and only those. --follow CHOICE
+# makes the camera's choice (mechanism, body:NAME) as a user does. --check-view CHECKER then
+# runs CHECKER (check_view) on the page and the view it reported at every time: the camera
+# frames the run (or follows), the grid and the axes are drawn.
 # $KEEP_SCREENSHOTS=DIR keeps the screenshots there; $CHROMIUM names the browser.
 set -euo pipefail
 
 layers=""
+follow=""
+view_checker=""
 load_only=0
 min_drawn=2000
 while [ $# -gt 0 ]; do
   case "$1" in
     --layers) layers="$2"; shift 2 ;;
+    --follow) follow="$2"; shift 2 ;;
+    --check-view) view_checker="$2"; shift 2 ;;
     --load-only) load_only=1; shift ;;
     --min-drawn) min_drawn="$2"; shift 2 ;;
     *) break ;;
   esac
 done
 if [ $# -lt 2 ]; then
-  echo "usage: check_page.sh [--layers LIST] [--load-only] [--min-drawn N] PAGE.html T1 [T2 ...]" >&2
+  echo "usage: check_page.sh [--layers LIST] [--follow CHOICE] [--check-view CHECKER] [--load-only] [--min-drawn N] PAGE.html T1 [T2 ...]" >&2
   exit 2
 fi
 page="$(cd "$(dirname "$1")" && pwd)/$(basename "$1")"
@@ -53,6 +61,7 @@ fail() {
 url() {
   local hash="t=$1"
   if [ -n "$layers" ]; then hash="$hash&layers=$layers"; fi
+  if [ -n "$follow" ]; then hash="$hash&follow=$follow"; fi
   echo "file://$page#$hash"
 }
 
@@ -63,6 +72,7 @@ run() {
 }
 
 start=$(date +%s%N)
+statuses=()
 for t in "$@"; do
   run --dump-dom "$(url "$t")" > "$work/dom.html" || fail "$t" "chromium exited with $?: $(tail -5 "$work/log")"
   title=$(sed -n 's:.*<title>\(.*\)</title>.*:\1:p' "$work/dom.html" | head -1)
@@ -89,7 +99,15 @@ for t in "$@"; do
     fail "$t" "console messages: $(grep ':CONSOLE' "$work/log" | head -5)"
   fi
   echo "ok: t=$t: $title, $drawn pixels drawn"
+  printf '%s\n' "$status" > "$work/status-${#statuses[@]}.json"
+  statuses+=("$work/status-${#statuses[@]}.json")
 done
+
+if [ -n "$view_checker" ]; then
+  follow_option=()
+  if [ -n "$follow" ]; then follow_option=(--follow "$follow"); fi
+  "$view_checker" "${follow_option[@]+"${follow_option[@]}"}" "$page" "${statuses[@]}" || fail "$*" "the view is not as docs/animation.md says (above)"
+fi
 
 if [ "$load_only" -eq 0 ]; then
   shots=()

@@ -1,13 +1,14 @@
 // Writes animation pages of synthetic scenes for the browser test (check_page.sh), until
 // `eomgen simulate --animate` writes them from simulations:
 //
-//   write_test_page double_pendulum|single_sample|empty|hostile_names OUT.html
+//   write_test_page double_pendulum|pendulum_without_ground|travelling|single_sample|empty|hostile_names OUT.html
 //
 // double_pendulum: 10 s, 1,000 samples of a double pendulum's kinematics at prescribed angles
 // (theta1 = 0.9 cos(1.2 pi t), theta2 = 1.2 sin(1.8 pi t + 0.3)), with a shape of every kind,
 // two particles, a constraint force, a ground plane and the coordinates' and energies' series.
-// The others are the edge cases: one sample, nothing but times, and names that try to end the
-// page's script elements.
+// pendulum_without_ground: the same without the ground plane. travelling: 10 s of a cart with a
+// pendulum that travels 20 m, without gravity. The others are the edge cases: one sample,
+// nothing but times, and names that try to end the page's script elements.
 #include <fmt/format.h>
 
 #include <cmath>
@@ -71,7 +72,8 @@ Kinematics double_pendulum(int n, double t_end) {
   return k;
 }
 
-std::string double_pendulum_scene(int n, double t_end, const std::string& model, const std::string& description) {
+std::string double_pendulum_scene(int n, double t_end, const std::string& model, const std::string& description,
+                                  bool ground = true) {
   const Kinematics k = double_pendulum(n, t_end);
   std::vector<double> total(k.T.size());
   for (std::size_t i = 0; i < total.size(); ++i) total[i] = k.T[i] + k.V[i];
@@ -96,7 +98,7 @@ std::string double_pendulum_scene(int n, double t_end, const std::string& model,
   s += ", \"particles\": [{\"name\": \"bob1\", \"point\": 1, \"mass\": 1}, {\"name\": \"bob2\", \"point\": 2, \"mass\": 0.7}]";
   s += ", \"trails\": [2]";
   s += ", \"forces\": [{\"name\": \"pivot\", \"point\": 0, \"vectors\": " + numbers(k.force) + "}]";
-  s += ", \"ground\": {\"normal\": [0, 1, 0], \"point\": [0, -2, 0]}";
+  s += ground ? ", \"ground\": {\"normal\": [0, 1, 0], \"point\": [0, -2, 0]}" : ", \"ground\": null";
   s += ", \"series\": [{\"name\": \"theta1\", \"group\": \"coordinates\", \"values\": " + numbers(k.theta1) + "}";
   s += ", {\"name\": \"theta2\", \"group\": \"coordinates\", \"values\": " + numbers(k.theta2) + "}";
   s += ", {\"name\": \"T\", \"group\": \"energy\", \"values\": " + numbers(k.T) + "}";
@@ -105,11 +107,42 @@ std::string double_pendulum_scene(int n, double t_end, const std::string& model,
   return s + "}\n";
 }
 
+// a cart travelling 20 m along a.1 in 10 s, weaving along a.2, with a pendulum swinging about
+// a.2 below it, without gravity (up is a.3) and without a ground
+std::string travelling_scene(int n, double t_end) {
+  std::vector<double> t, swing, rotation, origin, cart, tip;
+  for (int i = 0; i < n; ++i) {
+    const double s = n > 1 ? t_end * i / (n - 1) : 0.0;
+    const double a = 0.8 * std::sin(3 * s), x = 2 * s, y = 0.3 * std::sin(s);
+    t.push_back(s);
+    swing.push_back(a);
+    // the pole's frame turns by a about a.2: its columns are its unit vectors
+    rotation.insert(rotation.end(), {std::cos(a), 0, std::sin(a), 0, 1, 0, -std::sin(a), 0, std::cos(a)});
+    origin.insert(origin.end(), {0, 0, 0});
+    cart.insert(cart.end(), {x, y, 0.2});
+    tip.insert(tip.end(), {x + 0.5 * std::sin(a), y, 0.2 - 0.5 * std::cos(a)});
+  }
+  std::string s = "{\"format\": 1, \"model\": \"travelling\", \"description\": \"A cart with a pendulum, travelling\"";
+  s += ", \"times\": " + numbers(t) + ", \"up\": [0, 0, 1]";
+  s += ", \"frames\": [{\"name\": \"p\", \"body\": \"pole\", \"rotations\": " + numbers(rotation) + "}]";
+  s += ", \"points\": [{\"name\": \"w\", \"positions\": " + numbers(origin) + "}";
+  s += ", {\"name\": \"c\", \"positions\": " + numbers(cart) + "}";
+  s += ", {\"name\": \"tip\", \"positions\": " + numbers(tip) + "}]";
+  s += ", \"links\": [[1, 2]]";
+  s += ", \"shapes\": ["
+       "{\"name\": \"body\", \"kind\": \"box\", \"body\": \"cart\", \"frame\": -1, \"at\": 1, \"size\": [0.4, 0.2, 0.1], \"inferred\": false}, "
+       "{\"name\": \"pole\", \"kind\": \"rod\", \"body\": \"pole\", \"frame\": 0, \"at\": 1, \"to\": 2, \"radius\": 0.02, \"inferred\": false}]";
+  s += ", \"particles\": [{\"name\": \"bob\", \"point\": 2, \"mass\": 1}]";
+  s += ", \"trails\": [2], \"forces\": [], \"ground\": null";
+  s += ", \"series\": [{\"name\": \"swing\", \"group\": \"coordinates\", \"values\": " + numbers(swing) + "}]";
+  return s + "}\n";
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   if (argc != 3) {
-    std::cerr << "usage: write_test_page double_pendulum|single_sample|empty|hostile_names OUT.html\n";
+    std::cerr << "usage: write_test_page double_pendulum|pendulum_without_ground|travelling|single_sample|empty|hostile_names OUT.html\n";
     return 2;
   }
   const std::string kind = argv[1];
@@ -117,6 +150,12 @@ int main(int argc, char** argv) {
   if (kind == "double_pendulum") {
     title = "double_pendulum";
     scene = double_pendulum_scene(1000, 10.0, "double_pendulum", "Planar double pendulum at prescribed angles");
+  } else if (kind == "pendulum_without_ground") {
+    title = "pendulum_without_ground";
+    scene = double_pendulum_scene(1000, 10.0, "pendulum_without_ground", "The double pendulum without a ground", false);
+  } else if (kind == "travelling") {
+    title = "travelling";
+    scene = travelling_scene(1000, 10.0);
   } else if (kind == "single_sample") {
     title = "one sample";
     scene = double_pendulum_scene(1, 0.0, "single_sample", "The double pendulum at one instant");

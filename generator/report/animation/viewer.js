@@ -88,7 +88,8 @@
     return out.copy(qa);
   }
 
-  // ---- the size of the scene: the box of every point over the run ----------------------------
+  // ---- the size of the scene: the box of every point over the run, which sizes what has no size
+  // of its own (particles, axes, arrows, shapes without dimensions) ----------------------------
 
   var box = new THREE.Box3();
   points.forEach(function (p) {
@@ -99,7 +100,8 @@
   var centre = box.getCenter(new THREE.Vector3());
   var size = Math.max(box.getSize(new THREE.Vector3()).length(), centre.length() * 0.5, 1e-3);
   // a body that does not travel (a free body turning about its centre) is as large as its shapes'
-  // largest diameter; scenery that belongs to no body (a rail, a wall) does not widen the view
+  // largest diameter; scenery that belongs to no body (a rail, a wall) does not count (the view
+  // frames it all the same, below)
   var shapeSize = 0;
   shapes.forEach(function (s) {
     if (!s.body) return;
@@ -110,31 +112,142 @@
   });
   size = Math.max(size, shapeSize);
 
-  // A mechanism that travels far beyond its own size (a bicycle riding 25 m) would be a speck in
-  // a view of its whole run: then the camera follows it, and things are sized by the mechanism
-  // (its largest extent at one instant) instead; "follow" can be switched off.
-  var wholeSize = size, wholeCentre = centre.clone();
-  // the points that move: the fixed ones (the origin, a pivot) stay behind and are not followed
-  var moving = [];
+  // A mechanism that travels far beyond its own size (a bicycle riding 25 m) would be drawn with
+  // shapes, particles and arrows the size of its whole run: then things are sized by the
+  // mechanism (its largest extent at one instant) instead. The mechanism is its moving points
+  // and the fixed points linked to them (a pendulum's pivot), not a fixed point that is only
+  // the origin of the coordinates.
+  var wholeSize = size;
+  function positionsOf(index) {
+    var x = points[index] ? list(points[index].positions) : [];
+    return x.length >= 3 * n ? x : [];
+  }
+  var moving = [], isMoving = points.map(function () { return false; });
   points.forEach(function (p, index) {
-    var x = list(p.positions);
-    for (var i = 3; x.length >= 3 * n && i < 3 * n; ++i) {
-      if (Math.abs(x[i] - x[i % 3]) > 1e-9 * wholeSize) { moving.push(index); return; }
+    var x = positionsOf(index);
+    for (var i = 3; i < x.length; ++i) {
+      if (Math.abs(x[i] - x[i % 3]) > 1e-9 * wholeSize) { moving.push(index); isMoving[index] = true; return; }
     }
   });
-  if (moving.length === 0) moving = points.map(function (p, index) { return index; });
+  var inMechanism = isMoving.slice();
+  function linked(i, j) {
+    if (isMoving[i] && typeof j === 'number' && j >= 0 && j < points.length) inMechanism[j] = true;
+    if (isMoving[j] && typeof i === 'number' && i >= 0 && i < points.length) inMechanism[i] = true;
+  }
+  links.forEach(function (l) { if (Array.isArray(l)) linked(l[0], l[1]); });
+  shapes.forEach(function (s) { if (s.kind === 'rod') linked(s.at, s.to); });
+  var mechanismPoints = [];
+  inMechanism.forEach(function (on, index) { if (on) mechanismPoints.push(index); });
+  if (moving.length === 0) {
+    moving = points.map(function (p, index) { return index; });
+    mechanismPoints = moving;
+  }
   var mechanism = shapeSize;
   for (var i = 0; i < n; i += Math.max(1, Math.floor(n / 200))) {
     var instant = new THREE.Box3();
-    moving.forEach(function (index) {
-      var x = list(points[index].positions);
-      if (x.length >= 3 * n) instant.expandByPoint(new THREE.Vector3(x[3 * i], x[3 * i + 1], x[3 * i + 2]));
+    mechanismPoints.forEach(function (index) {
+      var x = positionsOf(index);
+      if (x.length > 0) instant.expandByPoint(new THREE.Vector3(x[3 * i], x[3 * i + 1], x[3 * i + 2]));
     });
     if (!instant.isEmpty()) mechanism = Math.max(mechanism, instant.getSize(new THREE.Vector3()).length());
   }
   var travels = mechanism > 0 && wholeSize > 3 * mechanism;
   if (travels) size = mechanism;
-  var follow = travels;
+
+  // how far each point's drawing reaches beyond the point: the shapes centred there (their
+  // bounding spheres), the rods ending there, the particle drawn there
+  var masses = particles.map(function (p) { return p.mass > 0 ? p.mass : 0; });
+  var heaviest = Math.max.apply(null, masses.concat([0]));
+  function particleRadius(p) {
+    var relative = heaviest > 0 && p.mass > 0 ? Math.cbrt(p.mass / heaviest) : 1;
+    return 0.03 * size * Math.max(relative, 0.4);
+  }
+  function shapeRadius(s) {
+    return s.radius > 0 ? s.radius : (s.kind === 'rod' ? 0.004 : 0.02) * size;
+  }
+  // a frame's unit vectors at sample k in inertial components (the columns of its rotation), or
+  // the inertial frame's
+  function frameAxesAt(index, k) {
+    var r = typeof index === 'number' && index >= 0 && frames[index] ? list(frames[index].rotations) : [];
+    if (r.length < 9 * n || k >= n) return [new THREE.Vector3(1, 0, 0), new THREE.Vector3(0, 1, 0), new THREE.Vector3(0, 0, 1)];
+    var i = 9 * k;
+    return [new THREE.Vector3(r[i], r[i + 3], r[i + 6]), new THREE.Vector3(r[i + 1], r[i + 4], r[i + 7]),
+            new THREE.Vector3(r[i + 2], r[i + 5], r[i + 8])];
+  }
+  function shapeLength(s, r) { return s.length > 0 ? s.length : (s.kind === 'disk' ? 0.1 * r : 2 * r); }
+  function boxEdges(s, r) { var e = list(s.size); return e.length === 3 ? e : [r, r, r]; }
+  // how far a shape centred at its point reaches along the unit vector u at sample k (its
+  // support); a rod reaches its radius beyond its two points
+  function shapeSupport(s, k, u) {
+    var r = shapeRadius(s), axes, c;
+    switch (s.kind) {
+      case 'sphere': case 'rod': return r;
+      case 'box':
+        axes = frameAxesAt(s.frame, k);
+        var e = boxEdges(s, r);
+        return 0.5 * (Math.abs(u.dot(axes[0])) * e[0] + Math.abs(u.dot(axes[1])) * e[1] + Math.abs(u.dot(axes[2])) * e[2]);
+      case 'cylinder': case 'disk':
+        axes = frameAxesAt(s.frame, k);
+        var a = vector3(s.axis, new THREE.Vector3(0, 0, 1)).normalize();
+        c = u.dot(axes[0]) * a.x + u.dot(axes[1]) * a.y + u.dot(axes[2]) * a.z;  // u along the shape's axis
+        return 0.5 * shapeLength(s, r) * Math.abs(c) + r * Math.sqrt(Math.max(0, 1 - c * c));
+      default: return 0;
+    }
+  }
+  function isPoint(index) { return typeof index === 'number' && index >= 0 && index < points.length; }
+
+  // what is drawn about each point whatever the attitude: rods' ends, particles' spheres; a
+  // particle is drawn unless a shape (other than a rod) names it as its body
+  var shownAsBody = {};
+  shapes.forEach(function (s) { if (s.body && s.kind !== 'rod') shownAsBody[s.body] = true; });
+  var pointRadius = points.map(function () { return 0; });
+  function widens(index, r) { if (isPoint(index) && r > 0) pointRadius[index] = Math.max(pointRadius[index], r); }
+  shapes.forEach(function (s) { if (s.kind === 'rod') { widens(s.at, shapeRadius(s)); widens(s.to, shapeRadius(s)); } });
+  particles.forEach(function (p) { if (!shownAsBody[p.name]) widens(p.point, particleRadius(p)); });
+  // and the sphere about each point that holds everything drawn there in any attitude (for a
+  // following camera)
+  var reach = pointRadius.slice();
+  shapes.forEach(function (s) {
+    if (!isPoint(s.at) || s.kind === 'rod') return;
+    var r = shapeRadius(s), e = boxEdges(s, r);
+    var around = s.kind === 'box' ? 0.5 * Math.hypot(e[0], e[1], e[2]) :
+                 s.kind === 'sphere' ? r : Math.hypot(r, 0.5 * shapeLength(s, r));
+    reach[s.at] = Math.max(reach[s.at], around);
+  });
+
+  // how far the run as drawn reaches along the unit vector u: every point at every sample with
+  // what is drawn about it, every shape in its attitude at every sample, and the origin
+  function runExtent(u) {
+    var most = 0, p = new THREE.Vector3();
+    points.forEach(function (q, index) {
+      var x = positionsOf(index);
+      for (var i = 0; i + 2 < x.length; i += 3) most = Math.max(most, x[i] * u.x + x[i + 1] * u.y + x[i + 2] * u.z + pointRadius[index]);
+    });
+    shapes.forEach(function (s) {
+      var x = isPoint(s.at) && s.kind !== 'rod' ? positionsOf(s.at) : [];
+      for (var k = 0; 3 * k + 2 < x.length; ++k) {
+        most = Math.max(most, p.set(x[3 * k], x[3 * k + 1], x[3 * k + 2]).dot(u) + shapeSupport(s, k, u));
+      }
+    });
+    return most;
+  }
+  // the box of the run as drawn; the grid covers it, and the fixed camera frames it with the
+  // axes (viewBox)
+  var runBox = new THREE.Box3(), corner = new THREE.Vector3();
+  if (n > 0 && points.length > 0) {
+    var extents = [0, 1, 2].map(function (k) {
+      return [-runExtent(new THREE.Vector3().setComponent(k, -1)), runExtent(new THREE.Vector3().setComponent(k, 1))];
+    });
+    runBox.set(new THREE.Vector3(extents[0][0], extents[1][0], extents[2][0]),
+               new THREE.Vector3(extents[0][1], extents[1][1], extents[2][1]));
+  } else {
+    runBox.copy(box);
+  }
+  runBox.expandByPoint(new THREE.Vector3());
+  var viewBox = runBox.clone();
+  function boxCorner(b, k, out) {
+    return out.set(k & 1 ? b.max.x : b.min.x, k & 2 ? b.max.y : b.min.y, k & 4 ? b.max.z : b.min.z);
+  }
 
   // ---- renderer, camera, lights ---------------------------------------------------------------
 
@@ -150,27 +263,30 @@
   world.add(new THREE.HemisphereLight(0xffffff, 0x8a8f99, 0.75));
   var sun = new THREE.DirectionalLight(0xffffff, 0.6);
   world.add(sun);
-
-  // a view from the front, a little from the side and above: "front" is inertial z made
-  // perpendicular to up (or y when up is along z)
   var controls = new THREE.OrbitControls(camera, renderer.domElement);
-  function frameTheMotion(t) {
-    var c = follow ? centroidAt(locate(t), new THREE.Vector3()) : wholeCentre;
-    var extent = follow ? size : wholeSize;
-    var front = new THREE.Vector3(0, 0, 1);
-    if (Math.abs(front.dot(up)) > 0.9) front.set(0, -1, 0);
-    front.addScaledVector(up, -front.dot(up)).normalize();
-    var side = new THREE.Vector3().crossVectors(up, front);
-    var azimuth = 0.45, elevation = 0.3;
-    var direction = front.multiplyScalar(Math.cos(azimuth)).addScaledVector(side, Math.sin(azimuth))
-        .multiplyScalar(Math.cos(elevation)).addScaledVector(up, Math.sin(elevation));
-    var distance = 0.5 * extent / Math.sin(camera.fov / 2 * Math.PI / 180) * 1.05;
-    camera.position.copy(c).addScaledVector(direction, distance);
-    controls.target.copy(c);
-    controls.update();
-    sun.position.copy(camera.position).addScaledVector(up, extent);
+
+  // What the camera does: "" (the default) a fixed camera that frames the whole run,
+  // "mechanism" one that follows the mean of the moving points, "body:NAME" one that follows a
+  // body (where it is drawn: its shape's point, else its particle's). A following camera frames
+  // the sphere about what it follows that holds the whole mechanism at every sample.
+  var follow = '';
+  function bodyPoint(name) {
+    var at = -1;
+    shapes.forEach(function (s) { if (at < 0 && s.body === name && s.kind !== 'rod' && typeof s.at === 'number') at = s.at; });
+    shapes.forEach(function (s) { if (at < 0 && s.body === name && typeof s.at === 'number') at = s.at; });
+    particles.forEach(function (p) { if (at < 0 && p.name === name && typeof p.point === 'number') at = p.point; });
+    return at >= 0 && at < points.length ? at : -1;
   }
-  // the mean of the moving points at a located time: what a following camera looks at
+  var followedBodies = [];
+  shapes.map(function (s) { return s.body; }).concat(particles.map(function (p) { return p.name; }))
+      .concat(frames.map(function (f) { return f.body; })).forEach(function (name) {
+        if (typeof name === 'string' && name !== '' && followedBodies.indexOf(name) < 0 && bodyPoint(name) >= 0) followedBodies.push(name);
+      });
+  // the followed point at a located time
+  function followedAt(at, out) {
+    if (follow.indexOf('body:') === 0) return pointAt(bodyPoint(follow.slice(5)), at, out);
+    return centroidAt(at, out);
+  }
   function centroidAt(at, out) {
     out.set(0, 0, 0);
     if (moving.length === 0) return out;
@@ -178,43 +294,205 @@
     moving.forEach(function (index) { out.add(pointAt(index, at, p)); });
     return out.divideScalar(moving.length);
   }
-  // a following camera keeps its place relative to the mechanism: both move with the centroid
+  // the radius about the followed point that holds the mechanism (and what is drawn around its
+  // points) at every sample; between samples both move linearly, so the samples bound it
+  var followRadii = {};
+  function followRadius() {
+    if (follow in followRadii) return followRadii[follow];
+    var r = 0.5 * shapeSize, f = new THREE.Vector3(), p = new THREE.Vector3();
+    for (var k = 0; k < n; ++k) {
+      var at = { k: Math.min(k, Math.max(n - 2, 0)), f: n > 1 && k === n - 1 ? 1 : 0 };
+      followedAt(at, f);
+      mechanismPoints.forEach(function (index) {
+        if (positionsOf(index).length > 0) r = Math.max(r, pointAt(index, at, p).distanceTo(f) + reach[index]);
+      });
+    }
+    followRadii[follow] = r > 0 ? r : 0.5 * size;
+    return followRadii[follow];
+  }
+
+  // the view from the front, a little from the side and above: "front" is inertial z made
+  // perpendicular to up (or -y when up is along z); the unit vector from the target to the camera
+  function viewDirection() {
+    var front = new THREE.Vector3(0, 0, 1);
+    if (Math.abs(front.dot(up)) > 0.9) front.set(0, -1, 0);
+    front.addScaledVector(up, -front.dot(up)).normalize();
+    var side = new THREE.Vector3().crossVectors(up, front);
+    var azimuth = 0.45, elevation = 0.3;
+    return front.multiplyScalar(Math.cos(azimuth)).addScaledVector(side, Math.sin(azimuth))
+        .multiplyScalar(Math.cos(elevation)).addScaledVector(up, Math.sin(elevation)).normalize();
+  }
+  // the tangents of half the field of view, vertical and horizontal, with a margin of 6 %
+  function halfViews() {
+    var v = Math.tan(camera.fov / 2 * Math.PI / 180) / 1.06;
+    return { v: v, h: v * camera.aspect };
+  }
+  function placeCamera(target, direction, distance, extent) {
+    camera.position.copy(target).addScaledVector(direction, distance);
+    // near enough to zoom in on the smallest part, far enough to zoom out a long way
+    camera.near = 1e-3 * Math.max(distance, extent);
+    camera.far = 20 * (distance + extent);
+    controls.maxDistance = 10 * (distance + extent);
+    camera.updateProjectionMatrix();
+    controls.target.copy(target);
+    controls.update();
+    sun.position.copy(camera.position).addScaledVector(up, extent);
+  }
+  // The fixed camera: every corner of the box of the run and the axes inside the view. With the
+  // camera's axes x, y and z (z from the target to the camera), a corner at c from the target is
+  // inside at the distance d when |c.x| <= h (d - c.z) and |c.y| <= v (d - c.z); the box holds
+  // every point of the run, so they all are. The target is moved to centre the corners' image.
+  function frameTheRun() {
+    var z = viewDirection(), x = new THREE.Vector3().crossVectors(up, z).normalize(), y = new THREE.Vector3().crossVectors(z, x);
+    var target = viewBox.getCenter(new THREE.Vector3()), half = halfViews();
+    var extent = viewBox.getSize(new THREE.Vector3()).length(), c = new THREE.Vector3();
+    var corners = function () {
+      var out = [];
+      for (var k = 0; k < 8; ++k) {
+        boxCorner(viewBox, k, c).sub(target);
+        out.push([c.dot(x), c.dot(y), c.dot(z)]);
+      }
+      return out;
+    };
+    var distanceFor = function (cs) {
+      var d = 0.05 * extent;
+      cs.forEach(function (p) {
+        d = Math.max(d, p[2] + Math.abs(p[0]) / half.h, p[2] + Math.abs(p[1]) / half.v, p[2] + 0.05 * extent);
+      });
+      return d;
+    };
+    for (var pass = 0; pass < 3; ++pass) {
+      var cs = corners(), distance = distanceFor(cs), lo = [Infinity, Infinity], hi = [-Infinity, -Infinity];
+      cs.forEach(function (p) {
+        for (var j = 0; j < 2; ++j) {
+          var u = p[j] / (distance - p[2]);  // the tangent of the corner's angle from the view's centre
+          lo[j] = Math.min(lo[j], u); hi[j] = Math.max(hi[j], u);
+        }
+      });
+      target.addScaledVector(x, 0.5 * (lo[0] + hi[0]) * distance).addScaledVector(y, 0.5 * (lo[1] + hi[1]) * distance);
+    }
+    placeCamera(target, z, distanceFor(corners()), extent);
+  }
+  // a following camera: the sphere of the followed radius about the followed point in the view
+  function frameTheFollowed(t) {
+    var half = halfViews(), r = followRadius();
+    var distance = r / Math.sin(Math.atan(Math.min(half.v, half.h)));
+    placeCamera(followedAt(locate(t), new THREE.Vector3()), viewDirection(), distance, 2 * r);
+  }
+  function frameTheMotion(t) {
+    if (follow) frameTheFollowed(t); else frameTheRun();
+    userMoved = false;
+  }
+  // a following camera keeps its place relative to what it follows: both move with it
   function followTo(t) {
-    var shift = centroidAt(locate(t), new THREE.Vector3()).sub(controls.target);
+    var shift = followedAt(locate(t), new THREE.Vector3()).sub(controls.target);
     camera.position.add(shift);
     controls.target.add(shift);
     controls.update();
     sun.position.add(shift);
   }
-  frameTheMotion(t0);
+  // until the camera is moved by hand, a new size of the view frames again
+  var userMoved = false;
+  controls.addEventListener('start', function () { userMoved = true; });
 
-  // ---- what is always drawn: axes, ground, shapes, particles, links ---------------------------
+  // ---- what is always drawn: the ground grid, the inertial axes, shapes, particles, links -----
 
-  var axisLength = 0.25 * size;
-  world.add(new THREE.AxesHelper(axisLength));  // x red, y green, z blue
-  ['x', 'y', 'z'].forEach(function (name, i) {
-    var label = textSprite(name, ['#d62728', '#2ca02c', '#1f5fd6'][i], 0.05 * size);
-    label.position.setComponent(i, axisLength * 1.12);
+  // The grid lies in the scene's ground when it has one, else in the plane normal to up
+  // (against gravity; the a.1-a.2 plane without gravity) at the lowest height the run reaches,
+  // or the origin's when that is lower. Its lines run along u and v in the plane, at multiples
+  // of a round cell (1, 2 or 5 times a power of 10, a tenth to a 25th of the run) from the
+  // origin's foot, every fifth darker, and cover the run with a cell to spare.
+  var gridNormal, gridPoint;
+  if (scene.ground && typeof scene.ground === 'object') {
+    gridNormal = vector3(scene.ground.normal, up.clone()).normalize();
+    if (!(gridNormal.lengthSq() > 0.5)) gridNormal = up.clone();
+    gridPoint = vector3(scene.ground.point, new THREE.Vector3());
+  } else {
+    gridNormal = up.clone();
+    gridPoint = up.clone().multiplyScalar(n > 0 && points.length > 0 ? -runExtent(up.clone().negate()) : 0);
+  }
+  var gridU = new THREE.Vector3(1, 0, 0);
+  if (Math.abs(gridU.dot(gridNormal)) > 0.9) gridU.set(0, 1, 0);
+  gridU.addScaledVector(gridNormal, -gridU.dot(gridNormal)).normalize();
+  var gridV = new THREE.Vector3().crossVectors(gridNormal, gridU);
+  var grid = (function () {
+    var foot = new THREE.Vector3().sub(gridPoint);  // the origin from the grid's point
+    var o = [foot.dot(gridU), foot.dot(gridV)];
+    var lo = [o[0], o[1]], hi = [o[0], o[1]];
+    for (var k = 0; k < 8; ++k) {
+      boxCorner(runBox, k, corner).sub(gridPoint);
+      var u = corner.dot(gridU), v = corner.dot(gridV);
+      lo = [Math.min(lo[0], u), Math.min(lo[1], v)];
+      hi = [Math.max(hi[0], u), Math.max(hi[1], v)];
+    }
+    // a run in a vertical plane (a planar pendulum) would have a strip: at least half as wide as long
+    var span = Math.max(hi[0] - lo[0], hi[1] - lo[1], 1e-3);
+    for (var j = 0; j < 2; ++j) {
+      var pad = Math.max(0, 0.5 * span - (hi[j] - lo[j])) / 2;
+      lo[j] -= pad; hi[j] += pad;
+    }
+    var cell = Math.pow(10, Math.floor(Math.log10(span / 10)));
+    if (span / cell > 50) cell *= 5; else if (span / cell > 20) cell *= 2;
+    var first = [], last = [];
+    for (j = 0; j < 2; ++j) {
+      first.push(Math.floor((lo[j] - o[j]) / cell) - 1);
+      last.push(Math.ceil((hi[j] - o[j]) / cell) + 1);
+    }
+    var positions = [], colours = [], minor = new THREE.Color(0xd3d7de), major = new THREE.Color(0xa3aab6);
+    var a = new THREE.Vector3(), b = new THREE.Vector3();
+    var along = function (u, v, out) { return out.copy(gridPoint).addScaledVector(gridU, u).addScaledVector(gridV, v); };
+    // each line a segment per cell: a following camera stands on the grid, and a segment with
+    // an end behind the camera is not always drawn (SwiftShader drops it)
+    for (j = 0; j < 2; ++j) {
+      for (var m = first[j]; m <= last[j]; ++m) {
+        var s = o[j] + m * cell, colour = m % 5 === 0 ? major : minor;
+        for (var c = first[1 - j]; c < last[1 - j]; ++c) {
+          var from = o[1 - j] + c * cell, to = from + cell;
+          if (j === 0) { along(s, from, a); along(s, to, b); } else { along(from, s, a); along(to, s, b); }
+          positions.push(a.x, a.y, a.z, b.x, b.y, b.z);
+          colours.push(colour.r, colour.g, colour.b, colour.r, colour.g, colour.b);
+        }
+      }
+    }
+    var geometry = new THREE.BufferGeometry();
+    geometry.setAttribute('position', new THREE.Float32BufferAttribute(positions, 3));
+    geometry.setAttribute('color', new THREE.Float32BufferAttribute(colours, 3));
+    var lines = new THREE.LineSegments(geometry, new THREE.LineBasicMaterial({ vertexColors: THREE.VertexColors }));
+    lines.name = 'grid';
+    lines.userData.cell = cell;
+    world.add(lines);
+    return lines;
+  })();
+
+  // the inertial frame a: a.1 red, a.2 green, a.3 blue, at the origin, labelled; as long as a
+  // fifth of the mechanism, or a cell of the grid when that is longer (a run far beyond the
+  // mechanism's size); the fixed camera frames them too
+  var axisLength = Math.max(0.2 * size, grid.userData.cell), labelHeight = 0.3 * axisLength;
+  var axisColours = [0xd62728, 0x2ca02c, 0x1f5fd6];
+  [0, 1, 2].forEach(function (k) {
+    var direction = new THREE.Vector3().setComponent(k, 1);
+    var arrow = new THREE.ArrowHelper(direction, new THREE.Vector3(), axisLength, axisColours[k],
+                                      0.14 * axisLength, 0.07 * axisLength);
+    arrow.name = 'axis a.' + (k + 1);
+    world.add(arrow);
+    var label = textSprite('a.' + (k + 1), '#' + new THREE.Color(axisColours[k]).getHexString(), labelHeight);
+    label.name = 'label a.' + (k + 1);
+    label.position.copy(direction).multiplyScalar(axisLength + 0.7 * labelHeight);
     world.add(label);
+    viewBox.expandByPoint(corner.copy(label.position).addScalar(labelHeight));
+    viewBox.expandByPoint(corner.copy(label.position).addScalar(-labelHeight));
   });
   function textSprite(text, colour, height) {
     var canvas = document.createElement('canvas');
-    canvas.width = 64; canvas.height = 64;
+    canvas.width = 128; canvas.height = 64;
     var c = canvas.getContext('2d');
-    c.font = 'bold 48px sans-serif'; c.textAlign = 'center'; c.textBaseline = 'middle';
-    c.fillStyle = colour; c.fillText(text, 32, 34);
+    c.font = 'bold 44px sans-serif'; c.textAlign = 'center'; c.textBaseline = 'middle';
+    c.fillStyle = colour; c.fillText(text, 64, 34);
     var sprite = new THREE.Sprite(new THREE.SpriteMaterial({ map: new THREE.CanvasTexture(canvas), depthTest: false }));
-    sprite.scale.set(height, height, 1);
+    sprite.scale.set(2 * height, height, 1);
+    sprite.renderOrder = 2;
+    sprite.userData.text = text;
     return sprite;
-  }
-
-  if (scene.ground && typeof scene.ground === 'object') {
-    var normal = vector3(scene.ground.normal, up.clone()).normalize();
-    var divisions = 20, extent = Math.pow(10, Math.ceil(Math.log10(2 * wholeSize)));
-    var grid = new THREE.GridHelper(extent, divisions, 0x8d94a0, 0xc3c8d0);
-    grid.quaternion.setFromUnitVectors(new THREE.Vector3(0, 1, 0), normal);  // the grid lies in its x-z plane
-    grid.position.copy(vector3(scene.ground.point, new THREE.Vector3()));
-    world.add(grid);
   }
 
   // one colour per body, in the order bodies first appear: a fixed palette, so the same scene
@@ -232,7 +510,7 @@
     var material = new THREE.MeshStandardMaterial({ color: colourOf(s.body), roughness: 0.6, metalness: 0.1,
                                                     transparent: !!s.inferred, opacity: s.inferred ? 0.55 : 1 });
     // a rod without a radius is a line, drawn thin; other kinds always have one
-    var r = s.radius > 0 ? s.radius : (s.kind === 'rod' ? 0.004 : 0.02) * size, geometry = null, turn = null;
+    var r = shapeRadius(s), geometry = null, turn = null;
     var axis = vector3(s.axis, new THREE.Vector3(0, 0, 1)).normalize();
     switch (s.kind) {
       case 'sphere': geometry = new THREE.SphereBufferGeometry(r, 32, 16); break;
@@ -256,15 +534,9 @@
     return { shape: s, group: group, mesh: mesh };
   });
 
-  var shownAsBody = {};
-  // a rod only takes its body's colour: the body is still drawn (docs/model-language.md)
-  shapes.forEach(function (s) { if (s.body && s.kind !== 'rod') shownAsBody[s.body] = true; });
-  var masses = particles.map(function (p) { return p.mass > 0 ? p.mass : 0; });
-  var heaviest = Math.max.apply(null, masses.concat([0]));
+  // (a rod only takes its body's colour: the body is still drawn, docs/model-language.md)
   var drawnParticles = particles.filter(function (p) { return !shownAsBody[p.name]; }).map(function (p) {
-    var relative = heaviest > 0 && p.mass > 0 ? Math.cbrt(p.mass / heaviest) : 1;
-    var r = 0.03 * size * Math.max(relative, 0.4);
-    var mesh = new THREE.Mesh(new THREE.SphereBufferGeometry(r, 32, 16),
+    var mesh = new THREE.Mesh(new THREE.SphereBufferGeometry(particleRadius(p), 32, 16),
                               new THREE.MeshStandardMaterial({ color: colourOf(p.name), roughness: 0.5 }));
     world.add(mesh);
     return { point: p.point, mesh: mesh };
@@ -481,9 +753,16 @@
   });
   slider.addEventListener('input', function () { setPlaying(false); seek(times[Number(slider.value)] || t0); });
   document.getElementById('reset-view').addEventListener('click', function () { frameTheMotion(current); dirty = true; });
-  var followBox = document.getElementById('layer-follow');
-  followBox.checked = follow;
-  followBox.addEventListener('change', function () { follow = followBox.checked; frameTheMotion(current); dirty = true; });
+  // the camera's choices: the whole run, the mechanism, each body that is drawn at a point
+  var followSelect = document.getElementById('follow');
+  followedBodies.forEach(function (name) {
+    var option = document.createElement('option');
+    option.value = 'body:' + name;
+    option.textContent = 'follow ' + name;
+    followSelect.appendChild(option);
+  });
+  followSelect.value = follow;
+  followSelect.addEventListener('change', function () { follow = followSelect.value; frameTheMotion(current); dirty = true; });
   document.addEventListener('keydown', function (e) {
     if (e.code === 'Space' && e.target.tagName !== 'INPUT' && e.target.tagName !== 'SELECT') {
       e.preventDefault(); playButton.click();
@@ -516,6 +795,7 @@
     renderer.setSize(w, h, false);
     camera.aspect = w / h;
     camera.updateProjectionMatrix();
+    if (!userMoved) frameTheMotion(current);
     plots.forEach(drawPlot);
     dirty = true;
   }
@@ -547,6 +827,35 @@
     return count;
   }
 
+  // what the browser test checks of the view (with the hook only): the camera as drawn (its
+  // matrices, column-major as three.js holds them), the camera's choice, and the grid's and the
+  // axes' geometry in inertial components, read back from the drawn objects
+  function describeView() {
+    var array = function (v) { return v.toArray(); };
+    var drawnGrid = world.getObjectByName('grid');
+    var axes = [1, 2, 3].map(function (k) {
+      var arrow = world.getObjectByName('axis a.' + k), label = world.getObjectByName('label a.' + k);
+      if (!arrow) return null;
+      arrow.updateMatrixWorld(true);
+      return { name: 'a.' + k, visible: arrow.visible, start: array(arrow.localToWorld(new THREE.Vector3())),
+               tip: array(arrow.localToWorld(new THREE.Vector3(0, arrow.cone.position.y, 0))),
+               colour: arrow.line.material.color.getHexString(),
+               label: label ? { text: label.userData.text, visible: label.visible, position: array(label.position) } : null };
+    });
+    return {
+      follow: follow, choice: followSelect.value,
+      choices: Array.prototype.map.call(followSelect.options, function (o) { return o.value; }),
+      canvas: [renderer.domElement.width, renderer.domElement.height],
+      camera: { position: array(camera.position), target: array(controls.target), up: array(camera.up), fov: camera.fov,
+                aspect: camera.aspect, near: camera.near, far: camera.far,
+                projection: camera.projectionMatrix.elements.slice(), view: camera.matrixWorldInverse.elements.slice() },
+      moving: moving.slice(),
+      grid: drawnGrid ? { visible: drawnGrid.visible, cell: drawnGrid.userData.cell,
+                          vertices: Array.prototype.slice.call(drawnGrid.geometry.attributes.position.array) } : null,
+      axes: axes
+    };
+  }
+
   var last = null;
   function frame(now) {
     if (playing && last !== null) {
@@ -570,6 +879,12 @@
       var asked = hash.get('layers').split(',');
       Object.keys(layers).forEach(function (name) { layers[name] = asked.indexOf(name) >= 0; });
     }
+    // the camera's choice, made as a user makes it: the select's value and its change event
+    if (hash.has('follow')) {
+      followSelect.value = hash.get('follow');
+      if (followSelect.value !== hash.get('follow')) window.eomgenErrors.push('no camera choice "' + hash.get('follow') + '"');
+      followSelect.dispatchEvent(new Event('change'));
+    }
   } else {
     setPlaying(playing);
   }
@@ -578,6 +893,7 @@
   draw();
   status.drawn = drawnPixels();
   status.t = current;
+  if (testHook !== null) status.view = describeView();
   status.ready = true;
   report();
   requestAnimationFrame(frame);
