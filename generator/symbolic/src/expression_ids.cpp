@@ -1,5 +1,6 @@
 // Numbers for the values of expressions (expression_ids.hpp): hash-consing of GiNaC's nodes.
 #include "eomgen/symbolic/expression_ids.hpp"
+#include "eomgen/symbolic/operand.hpp"
 
 #include <algorithm>
 #include <limits>
@@ -116,7 +117,7 @@ Id ExpressionIds::operator()(const ex& root) {
       top.expanded = true;
       top.first = operands_.size();
       const std::size_t count = top.node.nops();
-      for (std::size_t i = 0; i < count; ++i) operands_.push_back(top.node.op(i));
+      for (std::size_t i = 0; i < count; ++i) operands_.push_back(operand(top.node, i));
       operand_ids_.resize(top.first + 1 + count);
       const std::uint32_t parent_kind = top.kind;
       const std::size_t first = top.first;  // push_back below may move `top`

@@ -1,4 +1,5 @@
 #include "eomgen/symbolic/expression_size.hpp"
+#include "eomgen/symbolic/operand.hpp"
 
 #include <vector>
 
@@ -32,7 +33,7 @@ double ExpressionSizes::tree(const GiNaC::ex& e) {
   if (const double* known = tree_.find(e)) return *known;
   if (e.nops() == 0) return 1;
   double size = 1;
-  for (std::size_t i = 0; i < e.nops(); ++i) size += tree(e.op(i));
+  for (std::size_t i = 0; i < e.nops(); ++i) size += tree(operand(e, i));
   tree_.emplace(e, size);
   return size;
 }
@@ -41,7 +42,7 @@ ExpressionSizes::Expanded ExpressionSizes::expanded(const GiNaC::ex& e) {
   if (const Expanded* known = expanded_.find(e)) return *known;
   if (e.nops() == 0) return {};
   std::vector<Expanded> operands;
-  for (std::size_t k = 0; k < e.nops(); ++k) operands.push_back(expanded(e.op(k)));
+  for (std::size_t k = 0; k < e.nops(); ++k) operands.push_back(expanded(operand(e, k)));
   Expanded out{1, 1};
   if (GiNaC::is_a<GiNaC::add>(e)) {
     out = Expanded{0, 1};

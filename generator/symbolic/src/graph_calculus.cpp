@@ -1,5 +1,6 @@
 // Differentiation and substitution over the graph of shared nodes (graph_calculus.hpp).
 #include "eomgen/symbolic/graph_calculus.hpp"
+#include "eomgen/symbolic/operand.hpp"
 
 #include <map>
 #include <utility>
@@ -17,6 +18,15 @@ constexpr double small_tree = small_tree_limit;
 
 bool fits(const ex& e, double& budget) {
   if (--budget < 0) return false;
+  if (e.nops() == 0) return true;
+  if (const GiNaC::epvector* pairs = sum_pairs(e)) {
+    // a term c*x counts as the product of x and c
+    for (const GiNaC::expair& pair : *pairs) {
+      if (!pair.coeff.is_equal(1)) budget -= 2;
+      if (!fits(pair.rest, budget)) return false;
+    }
+    return pairs->size() == e.nops() || --budget >= 0;  // the sum's number
+  }
   for (std::size_t i = 0; i < e.nops(); ++i)
     if (!fits(e.op(i), budget)) return false;
   return true;
@@ -115,8 +125,9 @@ class Substitution {
     GiNaC::exvector operands;
     bool changed = false;
     for (std::size_t i = 0; i < e.nops(); ++i) {
-      operands.push_back(of(e.op(i)));
-      changed = changed || !operands.back().is_equal(e.op(i));
+      const ex o = operand(e, i);
+      operands.push_back(of(o));
+      changed = changed || !operands.back().is_equal(o);
     }
     const ex result = !changed        ? e
                       : is_node(e) ? build_.like(e, operands)
@@ -180,7 +191,7 @@ class Directional {
     GiNaC::exvector terms;
     if (GiNaC::is_a<GiNaC::add>(e)) {
       for (std::size_t i = 0; i < e.nops(); ++i)
-        if (const ex d = of(e.op(i)); !d.is_zero()) terms.push_back(d);
+        if (const ex d = of(operand(e, i)); !d.is_zero()) terms.push_back(d);
       return build_.sum(terms);
     }
     if (GiNaC::is_a<GiNaC::mul>(e)) {

@@ -1,4 +1,5 @@
 #include "eomgen/symbolic/subexpressions.hpp"
+#include "eomgen/symbolic/operand.hpp"
 
 #include <algorithm>
 #include <cstdint>
@@ -116,7 +117,7 @@ class Signatures {
     }
     if (is_a<GiNaC::add>(e)) {
       std::vector<Signature> terms;
-      for (std::size_t i = 0; i < e.nops(); ++i) terms.push_back((*this)(e.op(i)));
+      for (std::size_t i = 0; i < e.nops(); ++i) terms.push_back((*this)(operand(e, i)));
       std::sort(terms.begin(), terms.end(), [](const Signature& a, const Signature& b) {
         return a.magnitude != b.magnitude ? a.magnitude < b.magnitude : a.sign < b.sign;
       });
@@ -200,8 +201,9 @@ ex Subexpressions::share(const ex& value) {
     stack.pop_back();
     if (memo.bound(signature(e).magnitude, *this)) continue;
     for (std::size_t i = 0; i < e.nops(); ++i) {
-      if (is_leaf(e.op(i))) continue;
-      if (parents[signature(e.op(i)).magnitude]++ == 0) stack.push_back(e.op(i));
+      const ex o = operand(e, i);
+      if (is_leaf(o)) continue;
+      if (parents[signature(o).magnitude]++ == 0) stack.push_back(o);
     }
   }
   // rebuild bottom-up, binding the nodes used more than once
@@ -227,10 +229,23 @@ ex Subexpressions::share(const ex& value) {
       std::vector<std::size_t> order(e.nops());
       std::iota(order.begin(), order.end(), std::size_t{0});
       std::vector<std::uint64_t> keys;
-      for (std::size_t i = 0; i < e.nops(); ++i) keys.push_back(memo.signature(e.op(i)).magnitude);
+      std::vector<ex> operands;
+      for (std::size_t i = 0; i < e.nops(); ++i) {
+        operands.push_back(operand(e, i));
+        keys.push_back(memo.signature(operands.back()).magnitude);
+      }
       std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return keys[a] < keys[b]; });
-      for (std::size_t i : order) (*this)(e.op(i));
-      const ex r = e.map(*this);  // every operand is done: this only looks them up
+      for (std::size_t i : order) (*this)(operands[i]);
+      // every operand is done: this only looks them up (a sum's from the operands read above,
+      // which its map() would build again, evaluated, as other nodes)
+      ex r;
+      if (sum_pairs(e) != nullptr) {
+        GiNaC::exvector terms;
+        for (const ex& o : operands) terms.push_back((*this)(o));
+        r = GiNaC::add(terms);
+      } else {
+        r = e.map(*this);
+      }
       // r = e; its canonical value is r times its own sign (taken on its new content)
       const int r_sign = memo.signature(r).sign;
       const ex canonical = r_sign * r;
