@@ -13,6 +13,8 @@ packages=(
   libginac-dev libcln-dev ginac-tools
   libeigen3-dev libfmt-dev libgtest-dev libgmock-dev
   libcli11-dev nlohmann-json3-dev
+  libtinyxml2-dev  # the XML parser of `eomgen import` (URDF)
+  libmujoco-dev    # MuJoCo, the oracle of the robots' dynamics in the tests (tests/robots/)
   texlive-latex-base
   gnuplot-nox
   libjs-three   # three.js (r111), embedded into eomgen for `simulate --animate` pages

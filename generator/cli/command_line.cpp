@@ -33,7 +33,9 @@ const CLI::Validator cpp_namespace(
 
 // the options every subcommand has: the model file and --define
 void add_model_options(CLI::App* sub, Options& o) {
-  sub->add_option("MODEL", o.model_path, "Model file (.eom)")->required()->check(CLI::ExistingFile);
+  sub->add_option("MODEL", o.model_path, "Model file (.eom), or a robot's URDF file (.urdf)")
+      ->required()
+      ->check(CLI::ExistingFile);
   sub->add_option("-D,--define", o.defines, "Override a 'const' of the model: NAME=VALUE (repeatable)")
       ->delimiter(',')
       ->type_name("NAME=VALUE");
@@ -57,6 +59,17 @@ void add_integrator_options(CLI::App* simulate, SimulateRequest& r) {
 }
 
 }  // namespace
+
+CLI::App* add_import_command(CLI::App& app, Options& o) {
+  CLI::App* import = app.add_subcommand("import", "Write a robot's URDF file as a model (.eom) to read and edit");
+  import->add_option("ROBOT", o.model_path, "URDF file")->required()->check(CLI::ExistingFile);
+  import->add_option("-o,--output", o.output_path, "Write to FILE instead of standard output (atomically)")
+      ->type_name("FILE");
+  import->add_flag("--repair-inertia", o.repair_inertia,
+                   "Replace an inertia no body has by the nearest one that is (listed on standard error) instead of "
+                   "refusing it");
+  return import;
+}
 
 CLI::App* add_check_command(CLI::App& app, Options& o) {
   CLI::App* check = app.add_subcommand("check", "Check a model and summarize it");

@@ -32,6 +32,8 @@ struct Options {
   bool find_equilibrium = false;
   std::string sweep;       // NAME=FROM:TO:STEP
   std::string sweep_plot;  // --plot of linearize
+  // import
+  bool repair_inertia = false;
   // simulate
   SimulateRequest simulate;
   std::vector<std::string> init, inputs;
@@ -40,6 +42,7 @@ struct Options {
 
 /// Each adds its subcommand to \p app, with options that write into \p o; \return the
 /// subcommand, whose parsed() says whether it was chosen.
+CLI::App* add_import_command(CLI::App& app, Options& o);
 CLI::App* add_check_command(CLI::App& app, Options& o);
 CLI::App* add_derive_command(CLI::App& app, Options& o);
 CLI::App* add_eval_command(CLI::App& app, Options& o);

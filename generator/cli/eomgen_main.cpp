@@ -38,6 +38,7 @@
 #include "eomgen/derivation/numeric_evaluation.hpp"
 #include "eomgen/base/version.hpp"
 #include "eomgen/symbolic/double_evaluator.hpp"
+#include "eomgen/urdf/urdf_import.hpp"
 #include "eomgen/symbolic/ordered_text.hpp"
 #include "command_line.hpp"
 #include "command_values.hpp"
@@ -59,6 +60,22 @@ using eomgen::tools::state_and_parameters;
 using eomgen::tools::UsageError;
 
 eomgen::Model load(const Options& o) { return eomgen::load_model(o.model_path, parse_assignments(o.defines, "--define")); }
+
+// ---- import ----
+
+void run_import(const Options& o) {
+  eomgen::tools::check_output_files({{"-o", o.output_path}}, o.model_path);
+  eomgen::urdf::ImportOptions options;
+  options.repair_inertia = o.repair_inertia;
+  const eomgen::urdf::ImportResult imported = eomgen::urdf::import_urdf(o.model_path, options);
+  // the text must read as the model it stands for before it is written anywhere
+  eomgen::parse_model(imported.text, o.model_path + " (as imported)");
+  for (const std::string& repair : imported.repairs) std::cerr << "eomgen: --repair-inertia: " << repair << "\n";
+  if (o.output_path.empty())
+    std::cout << imported.text << std::flush;
+  else
+    eomgen::tools::write_atomically(o.output_path, imported.text);
+}
 
 void run_check(const Options& o) {
   const eomgen::Model model = load(o);
@@ -368,6 +385,7 @@ int main(int argc, char** argv) {
   Options o;
   namespace tools = eomgen::tools;
   const std::vector<std::pair<CLI::App*, int (*)(Options&)>> commands = {
+      {tools::add_import_command(app, o), succeeds<run_import>},
       {tools::add_check_command(app, o), succeeds<run_check>},
       {tools::add_derive_command(app, o), succeeds<run_derive>},
       {tools::add_eval_command(app, o), succeeds<run_eval>},

@@ -8,6 +8,7 @@
 
 #include "eomgen/base/error.hpp"
 #include "eomgen/language/model_file.hpp"
+#include "eomgen/urdf/urdf_import.hpp"
 #include "model_elaborator.hpp"
 
 namespace eomgen {
@@ -176,6 +177,11 @@ Model parse_model(const std::string& text, const std::string& file_name,
 }
 
 Model load_model(const std::string& path, const std::map<std::string, double>& overrides) {
+  // a robot's description: the model `eomgen import` writes from it, read as that text. The
+  // import checks what the text could get wrong at its place in the URDF; a later error (an
+  // override of a name the text lacks, say) names a place in the text `eomgen import` shows.
+  if (urdf::is_urdf_path(path))
+    return parse_model(urdf::import_urdf(path).text, path + " (as imported)", overrides);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(fmt::format("{}: error: cannot read the model file", path));
   // read no further than one byte past the limit: the file may be endless (/dev/zero, a pipe)

@@ -12,7 +12,8 @@ namespace eomgen {
 Model parse_model(const std::string& text, const std::string& file_name,
                   const std::map<std::string, double>& overrides = {});
 
-/// Reads and parses a model file. \throws SourceError, or Error if the file cannot be read.
+/// Reads and parses a model file; a URDF file (.urdf) is read as the model `eomgen import` writes
+/// from it (urdf/urdf_import.hpp). \throws SourceError, or Error if the file cannot be read.
 Model load_model(const std::string& path, const std::map<std::string, double>& overrides = {});
 
 }  // namespace eomgen
