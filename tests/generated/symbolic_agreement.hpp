@@ -39,10 +39,12 @@ void expect_matches(const Matrix& generated, const GiNaC::matrix& symbolic, cons
 }
 
 /// Every function of a generated model against the symbolic equations of the shipped model it
-/// was generated from (with the same `defines`), at random parameters and states.
+/// was generated from (with the same `defines`; models/<name>.eom unless `path` names another
+/// file, a robot's URDF say), at random parameters and states.
 template <class Model>
-void check_against_symbolic(const std::map<std::string, double>& defines = {}) {
-  const eomgen::Model model = eomgen::load_model(eomgen::testing::shipped_model_path(Model::name), defines);
+void check_against_symbolic(const std::map<std::string, double>& defines = {}, std::string path = {}) {
+  if (path.empty()) path = eomgen::testing::shipped_model_path(Model::name);
+  const eomgen::Model model = eomgen::load_model(path, defines);
   const eomgen::EquationsOfMotion eom = eomgen::derive_equations(model.system);
   const eomgen::Variables& vars = model.system.variables();
   ASSERT_EQ(static_cast<std::size_t>(Model::nq), vars.coordinate_count());
