@@ -9,6 +9,7 @@
 
 #include "eomgen/derivation/equations_of_motion.hpp"
 #include "eomgen/language/model_file.hpp"
+#include "eomgen/urdf/urdf_import.hpp"
 #include "support/numeric_checks.hpp"
 #include "support/source_dir.hpp"
 #include "support/test_models.hpp"
@@ -108,6 +109,17 @@ TEST(ArticulatedBody, PotentialAndCoordinateDamperMatchKane) {
 }
 
 TEST(ArticulatedBody, ForcesMomentsSpringsAndDampersMatchKane) { expect_kane_accelerations(testing::loaded_double_rod().system); }
+
+// A force and a moment on the last link of a seven-joint arm: its velocity is large enough that
+// its partial derivatives take the graph path of graph_calculus.hpp, which once read the rate
+// symbol through a reference to a freed copy (eomgen generate crashed on such a model)
+TEST(ArticulatedBody, LoadsOnADeepLinkMatchKane) {
+  const std::string arm = (testing::source_dir() / "models" / "robots" / "iiwa14.urdf").string();
+  const std::string text = urdf::import_urdf(arm).text +
+                           "force push(at = iiwa_link_7_com, force = 30*a.3 - 20*iiwa_link_7.1)\n"
+                           "moment twist(on = iiwa_link_7, moment = 2*iiwa_link_7.3 + a.1)\n";
+  expect_kane_accelerations(parse_model(text, "iiwa14_loaded.eom").system, 1);
+}
 
 TEST(ArticulatedBody, BranchedTreeMatchesKane) { expect_kane_accelerations(testing::branched_tree().system); }
 

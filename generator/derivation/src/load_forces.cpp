@@ -24,12 +24,10 @@ class LoadForces {
   }
 
  private:
-  const GiNaC::symbol& rate(std::size_t k) const {
-    return GiNaC::ex_to<GiNaC::symbol>(ex(vars_.coordinates()[k].qd));
-  }
-  const GiNaC::symbol& coordinate(std::size_t k) const {
-    return GiNaC::ex_to<GiNaC::symbol>(ex(vars_.coordinates()[k].q));
-  }
+  // the model's own symbols: ex_to of a temporary ex(symbol) would name the heap copy that the
+  // temporary owns, freed at the end of the return statement
+  const GiNaC::symbol& rate(std::size_t k) const { return vars_.coordinates()[k].qd; }
+  const GiNaC::symbol& coordinate(std::size_t k) const { return vars_.coordinates()[k].q; }
   Vector rate_partial(const Vector& v, std::size_t k) const {
     return v.map_components([&](const ex& e) { return derivative(e, rate(k)); });
   }

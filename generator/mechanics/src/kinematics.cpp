@@ -159,7 +159,8 @@ Vector partial_derivative(const MechanicalSystem& s, const Vector& v, const GiNa
                                       "or a rate of the model", x.get_name()));
   Vector out = v.map_components([&](const ex& e) { return derivative(e, x); });
   if (*kind == SymbolKind::coordinate) {
-    const GiNaC::symbol& rate = GiNaC::ex_to<GiNaC::symbol>(ex(vars.coordinates()[*vars.coordinate_index(x)].qd));
+    // the model's own symbol, not the heap copy a temporary ex(qd) would own and free
+    const GiNaC::symbol& rate = vars.coordinates()[*vars.coordinate_index(x)].qd;
     for (const auto& [frame, c] : v.terms()) {
       const Vector partial_w =
           angular_velocity(s, frame, a).map_components([&](const ex& e) { return derivative(e, rate); });
