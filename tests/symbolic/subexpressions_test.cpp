@@ -66,5 +66,22 @@ TEST(Subexpressions, ShareTakesAValueAndItsNegationAsOneNode) {
   }
 }
 
+// A negation -X (a product of -1 and one factor) has the magnitude of X: share() must still
+// count what X is made of, which it reaches through it (it once took X for the negation's
+// second parent and left X's inside uncounted: "unordered_map::at" from eomgen generate)
+TEST(Subexpressions, ShareCountsTheInsideOfANegatedNode) {
+  const GiNaC::realsymbol a("a"), b("b"), x("x");
+  const ex inside = GiNaC::sin(a) + GiNaC::cos(b) * x;
+  const ex value = GiNaC::lst{-GiNaC::pow(inside, 2), GiNaC::exp(-GiNaC::pow(inside, 3)) * x};
+  Subexpressions z;
+  const ex shared = z.share(value);
+  const GiNaC::exmap at{{a, 0.3}, {b, 1.1}, {x, 0.7}};
+  for (std::size_t i = 0; i < value.nops(); ++i) {
+    const double want = GiNaC::ex_to<GiNaC::numeric>(value.op(i).subs(at).evalf()).to_double();
+    const double got = GiNaC::ex_to<GiNaC::numeric>(z.evaluate(shared.op(i), at).evalf()).to_double();
+    EXPECT_NEAR(got, want, 1e-14) << i;
+  }
+}
+
 }  // namespace
 }  // namespace eomgen

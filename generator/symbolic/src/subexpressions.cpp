@@ -199,11 +199,15 @@ ex Subexpressions::share(const ex& value) {
   while (!stack.empty()) {
     const ex e = stack.back();
     stack.pop_back();
-    if (memo.bound(signature(e).magnitude, *this)) continue;
+    const std::uint64_t magnitude = signature(e).magnitude;
+    if (memo.bound(magnitude, *this)) continue;
     for (std::size_t i = 0; i < e.nops(); ++i) {
       const ex o = operand(e, i);
       if (is_leaf(o)) continue;
-      if (parents[signature(o).magnitude]++ == 0) stack.push_back(o);
+      // the X of a negation -X has the negation's magnitude, so its count is already under
+      // way; the rebuild below still enters it from here, so its inside is counted from here
+      const std::uint64_t m = signature(o).magnitude;
+      if (parents[m]++ == 0 || m == magnitude) stack.push_back(o);
     }
   }
   // rebuild bottom-up, binding the nodes used more than once
