@@ -1,16 +1,20 @@
 #!/usr/bin/env bash
 # The peer comparison of issue 7 in one command: eomgen against SymPy's physics.mechanics
 # (derivation time, operation counts and evaluation time of M and F, forward dynamics) and
-# against MuJoCo (M and bias forces, forward dynamics, 10 s of RK4), measured in one run on
-# this machine, printed as markdown tables with ratios. Not a test; it takes 20-30 minutes.
+# against MuJoCo (M and bias forces, forward dynamics, 10 s of RK4), then the shipped robots
+# (models/robots/*.urdf) against MuJoCo reading the same URDF (issue 29: M and bias forces,
+# forward dynamics, generation time), measured in one run on this machine, printed as markdown
+# tables with ratios. Not a test; it takes 20-30 minutes.
 #
 #   bench/compare_peers.sh [EOMGEN]      EOMGEN defaults to build/generator/eomgen
 #
 # Environment (optional):
-#   PEERS_QUICK=1        small chains only (planar 1 2, universal 1), a smoke run of the scripts
+#   PEERS_QUICK=1        small chains only (planar 1 2, universal 1) and two robots (ur5, panda),
+#                        a smoke run of the scripts
 #   PEERS_CAP=120        seconds allowed to each SymPy derivation ("> cap" when hit)
 #   PEERS_WORK=DIR       keep every generated header, program and raw result in DIR
-# Installs libmujoco-dev with apt-get when it is missing (Debian 12: MuJoCo 2.2.2). SymPy is
+# Installs libmujoco-dev and libtinyxml2-dev (which prepares the robots' URDF text for MuJoCo)
+# with apt-get when they are missing (Debian 12: MuJoCo 2.2.2). SymPy is
 # the one of the machine's python3 (Debian: python3-sympy, installed when missing too).
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
@@ -21,6 +25,7 @@ eomgen="$(cd "$(dirname "$eomgen")" && pwd)/$(basename "$eomgen")"
 
 missing=()
 [ -f /usr/include/mujoco/mujoco.h ] || missing+=(libmujoco-dev)
+[ -f /usr/include/tinyxml2.h ] || missing+=(libtinyxml2-dev)
 python3 -c "import sympy" 2> /dev/null || missing+=(python3-sympy)
 if [ ${#missing[@]} -gt 0 ]; then
   echo "installing: ${missing[*]}"
@@ -35,10 +40,10 @@ if [ -z "$work" ]; then
   work="$(mktemp -d "${TMPDIR:-/tmp}/compare_peers.XXXXXX")"
   trap 'rm -rf "$work"' EXIT
 fi
-mkdir -p "$work/sympy" "$work/mujoco"
+mkdir -p "$work/sympy" "$work/mujoco" "$work/robots"
 
-planar="1,2,4,8,16,32,64" universal="1,2,4,8"
-if [ "${PEERS_QUICK:-0}" = 1 ]; then planar="1,2" universal="1"; fi
+planar="1,2,4,8,16,32,64" universal="1,2,4,8" robots="ur5 iiwa14 two_arm_torso panda"
+if [ "${PEERS_QUICK:-0}" = 1 ]; then planar="1,2" universal="1" robots="ur5 panda"; fi
 
 echo "# eomgen against its peers"
 echo
@@ -58,5 +63,9 @@ echo "## MuJoCo"
 echo
 WORK="$work/mujoco" PLANAR_NS="${planar//,/ }" UNIVERSAL_NS="${universal//,/ }" \
   "$here/peers/mujoco_bench.sh" "$eomgen"
+echo
+echo "## MuJoCo: the shipped robots"
+echo
+WORK="$work/robots" ROBOTS="$robots" "$here/peers/mujoco_robots.sh" "$eomgen"
 echo
 echo "finished $(date -u '+%Y-%m-%d %H:%M UTC')"

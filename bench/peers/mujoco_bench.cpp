@@ -27,32 +27,18 @@
 #include <cstdlib>
 #include <eomrt/dynamics_unconstrained.hpp>
 #include <eomrt/simulate.hpp>
-#include <functional>
 #include <limits>
 #include <random>
 #include <string>
 #include <vector>
+
+#include "interleaved_timing.hpp"
 
 using Model = eomgen_models::EOM_NS::Model;
 constexpr int nq = Model::nq;
 using Vec = Model::Vector<double>;
 using Mat = Model::MassMatrix<double>;
 using Clock = std::chrono::steady_clock;
-
-static double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const size_t k = v.size() / 2;
-  return v.size() % 2 ? v[k] : 0.5 * (v[k - 1] + v[k]);
-}
-
-static double rel_err(const double* a, const double* b, int n) {
-  double num = 0, den = 0;
-  for (int i = 0; i < n; ++i) {
-    num = std::max(num, std::abs(a[i] - b[i]));
-    den = std::max(den, std::abs(b[i]));
-  }
-  return den > 0 ? num / den : num;
-}
 
 static volatile double g_sink = 0;
 
@@ -110,12 +96,12 @@ int main(int argc, char** argv) {
       Mat Mt = ws.M.transpose();  // row-major view of ours, to compare with full[]
       std::vector<double> negbias(nq);
       for (int i = 0; i < nq; ++i) negbias[i] = -d->qfrc_bias[i];
-      eM = std::max(eM, rel_err(Mt.data(), full.data(), nq * nq));
-      eF = std::max(eF, rel_err(ws.F.data(), negbias.data(), nq));
+      eM = std::max(eM, peers::relative_error(Mt.data(), full.data(), nq * nq));
+      eF = std::max(eF, peers::relative_error(ws.F.data(), negbias.data(), nq));
 #else
       eM = eF = std::numeric_limits<double>::quiet_NaN();
 #endif
-      eA = std::max(eA, rel_err(ws.qdd.data(), d->qacc, nq));
+      eA = std::max(eA, peers::relative_error(ws.qdd.data(), d->qacc, nq));
       for (int i = 0; i < nq; ++i) maxpassive = std::max(maxpassive, std::abs(d->qfrc_passive[i]));
     }
     std::printf("cross-check (8 random states, q in [-1,1], qd in [-2,2]; max-abs error / max-abs value):\n");
@@ -181,10 +167,7 @@ int main(int argc, char** argv) {
     mju_copy(d->qpos, Q[k].data(), nq);
     mju_copy(d->qvel, QD[k].data(), nq);
   };
-  struct Op {
-    std::string key, label;
-    std::function<void(int)> f;
-  };
+  using Op = peers::TimedOp;
   std::vector<Op> ops = {
 #ifndef EOM_WITHOUT_MASS_MATRIX
       {"ours_MF", "ours: mass_matrix_and_forcing (M, F)",
@@ -262,42 +245,14 @@ int main(int argc, char** argv) {
     op("mj_fd").f(3);
     std::vector<double> a(d->qacc, d->qacc + nq);
     op("mj_forward").f(3);
-    std::printf("  mj_fd pipeline vs mj_forward qacc: %.3g\n", rel_err(a.data(), d->qacc, nq));
+    std::printf("  mj_fd pipeline vs mj_forward qacc: %.3g\n", peers::relative_error(a.data(), d->qacc, nq));
   }
-  // calibrate: iterations per batch so that a batch takes about 2 ms
-  std::vector<long> iters(ops.size());
-  for (size_t o = 0; o < ops.size(); ++o) {
-    long n = 16;
-    for (;;) {
-      const auto t0 = Clock::now();
-      for (long i = 0; i < n; ++i) ops[o].f(int(i & (pool - 1)));
-      const double s = std::chrono::duration<double>(Clock::now() - t0).count();
-      if (s > 2e-3 || n > (1L << 28)) {
-        iters[o] = std::max<long>(16, long(n * 2e-3 / s));
-        break;
-      }
-      n *= 2;
-    }
-  }
-  std::vector<std::vector<double>> ns(ops.size());
-  for (int r = 0; r < rounds; ++r)
-    for (size_t o = 0; o < ops.size(); ++o) {
-      const auto t0 = Clock::now();
-      for (long i = 0; i < iters[o]; ++i) ops[o].f(int(i & (pool - 1)));
-      ns[o].push_back(std::chrono::duration<double, std::nano>(Clock::now() - t0).count() /
-                      double(iters[o]));
-    }
+  const std::vector<peers::Timing> timings = peers::time_interleaved(ops, rounds, pool);
 #ifdef EOM_WITHOUT_MASS_MATRIX
   // a chain this long has M and F too large for the compiler: their rows are not measured
   for (const char* key : {"ours_MF", "ours_fd_raw"}) std::printf("RESULT ns_%s nan\nRESULT nsmin_%s nan\n", key, key);
 #endif
-  std::printf("ns per call (median and min of %d interleaved rounds):\n", rounds);
-  for (size_t o = 0; o < ops.size(); ++o) {
-    const double med = median(ns[o]), mn = *std::min_element(ns[o].begin(), ns[o].end());
-    std::printf("  %-12s %10.1f %10.1f   %s\n", ops[o].key.c_str(), med, mn, ops[o].label.c_str());
-    std::printf("RESULT ns_%s %.1f\nRESULT nsmin_%s %.1f\n", ops[o].key.c_str(), med,
-                ops[o].key.c_str(), mn);
-  }
+  peers::print_timings(ops, timings, rounds);
 
   // ---- 3. simulation -----------------------------------------------------------------------
   using State = eomrt::ModelTypes<Model, double>::State;
@@ -392,13 +347,13 @@ int main(int argc, char** argv) {
   const double d1v = (ours_1s.tail<nq>() - mj_1s.tail<nq>()).cwiseAbs().maxCoeff();
   const double d10q = (ours_10s.head<nq>() - mj_10s.head<nq>()).cwiseAbs().maxCoeff();
   const double d10v = (ours_10s.tail<nq>() - mj_10s.tail<nq>()).cwiseAbs().maxCoeff();
-  const double wo = median(wall_ours), wm = median(wall_mj);
+  const double wo = peers::median(wall_ours), wm = peers::median(wall_mj);
   std::printf("simulation 10 s, RK4, dt 1 ms (median of %d): ours %.4f s, MuJoCo %.4f s\n",
               sim_reps, wo, wm);
   std::printf("  max|dq|, max|dqd| at 1 s: %.3g, %.3g   at 10 s: %.3g, %.3g\n", d1q, d1v, d10q,
               d10v);
   std::printf("  final q1 ours %.15g MuJoCo %.15g\n", ours_10s(0), mj_10s(0));
-  const double wlf = median(wall_loop_fd), wlr = median(wall_loop_raw);
+  const double wlf = peers::median(wall_loop_fd), wlr = peers::median(wall_loop_raw);
   std::printf("  plain rk_step loops: with forward_dynamics_unconstrained %.4f s, with bare LLT %.4f s"
               " (max|dx| at 10 s vs simulate(): %.3g, %.3g)\n",
               wlf, wlr, (loop_fd_10s - ours_10s).cwiseAbs().maxCoeff(),
