@@ -16,7 +16,7 @@
 #   GENERATE_RUNS=5                runs of eomgen generate per robot
 #   JOBS=2                         parallel compilations (runs are always sequential)
 #   CXX=g++ CXXFLAGS="-O2"
-# Each program takes about 10 s to compile.
+# Each program takes about 20 s to compile at -O2 (two at a time, on the 2-core machine of docs/performance.md).
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 repo="$(cd "$here/../.." && pwd)"
