@@ -167,7 +167,8 @@ std::string statistics_table(const std::vector<eomgen::FunctionStatistics>& stat
 }
 
 std::string estimate_or_not_tried(double estimate) {
-  return std::isnan(estimate) ? std::string("not tried") : fmt::format("{:.0f}", estimate);
+  // NaN: not derived, or given up once larger than another form could be
+  return std::isnan(estimate) ? std::string("not derived") : fmt::format("{:.0f}", estimate);
 }
 
 // which of the derivations of M and F was emitted, and the estimates of all three

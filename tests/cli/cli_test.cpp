@@ -434,7 +434,7 @@ TEST_F(Cli, GenerateStatsPrintsOperationCountsAndTimes) {
   EXPECT_THAT(stats.out, ::testing::ContainsRegex("\nM and F: (local frames|inertial|composite body and Newton-Euler) "
                                                   "\\(estimated operations: local frames [0-9]+, inertial [0-9]+, "
                                                   "composite body and Newton-Euler [0-9]+\\)\n"));
-  EXPECT_THAT(constrained.out, HasSubstr("composite body and Newton-Euler not tried)\n"));
+  EXPECT_THAT(constrained.out, HasSubstr("composite body and Newton-Euler not derived)\n"));
 }
 
 // GiNaC orders terms differently between processes (a - b in one, -(b - a) in another); the

@@ -5,6 +5,7 @@
 // the parallel-axis theorem), damping and mimic joints against their definitions.
 #include <Eigen/Dense>
 #include <fmt/format.h>
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -265,6 +266,89 @@ TEST(UrdfModel, AFloatingJointIsAFreeBodyAndAPlanarJointMovesInItsPlane) {
   EXPECT_NEAR(n.mass_matrix(8, 8), 0.02, 1e-15);
   EXPECT_NEAR(n.forcing(6), 0, 1e-15);
   EXPECT_NEAR(n.forcing(7), 0, 1e-15);
+}
+
+std::string written(const std::string& urdf, const urdf::ImportOptions& options = {}) {
+  return urdf::write_model(urdf::read_robot(urdf, "robot.urdf"), options).text;
+}
+
+TEST(UrdfModel, AnglesThatAreTheDoubleNearestAMultipleOfQuarterPiAreWrittenAsThatMultiple) {
+  const std::string urdf = R"(<robot name="r"><link name="base"/>
+    <joint name="j1" type="revolute"><parent link="base"/><child link="l1"/>
+      <origin rpy="0 1.5707963267948966 0"/><axis xyz="0 0 1"/></joint>
+    <link name="l1"><inertial><mass value="1"/><inertia ixx="0.1" ixy="0" ixz="0" iyy="0.1" iyz="0" izz="0.1"/></inertial></link>
+    <joint name="j2" type="revolute"><parent link="l1"/><child link="l2"/>
+      <origin rpy="-3.141592653589793 0.7853981633974483 1.57079632679"/><axis xyz="0 0 1"/></joint>
+    <link name="l2"><inertial><mass value="1"/><inertia ixx="0.1" ixy="0" ixz="0" iyy="0.1" iyz="0" izz="0.1"/></inertial></link>
+  </robot>)";
+  const std::string text = written(urdf);
+  EXPECT_THAT(text, ::testing::HasSubstr("frame j1_frame = rotate(base, 2, pi/2)"));
+  // 1.57079632679 is 4.9e-12 short of pi/2: kept as written
+  EXPECT_THAT(text, ::testing::HasSubstr("frame j2_frame = euler(l1, 321, 1.57079632679, pi/4, -pi)"));
+}
+
+TEST(UrdfModel, InertialEntriesGivenAsZeroAreWrittenZeroAndTheOthersAreParameters) {
+  const std::string text = written(R"(<robot name="r"><link name="base"/>
+    <joint name="j" type="revolute"><parent link="base"/><child link="arm"/><axis xyz="0 0 1"/></joint>
+    <link name="arm"><inertial><origin xyz="0.3 0 0"/><mass value="2"/>
+      <inertia ixx="0.01" ixy="0" ixz="0.002" iyy="0.03" iyz="0" izz="0.02"/></inertial></link></robot>)");
+  EXPECT_THAT(text, ::testing::HasSubstr("parameter arm_com_x = 0.3"));
+  EXPECT_THAT(text, ::testing::Not(::testing::HasSubstr("parameter arm_com_y")));
+  EXPECT_THAT(text, ::testing::HasSubstr("parameter arm_ixz = 0.002"));
+  EXPECT_THAT(text, ::testing::HasSubstr("# 0 in the file, and written 0: com_y, com_z, ixy, iyz"));
+  EXPECT_THAT(text, ::testing::HasSubstr("inertia = [[arm_ixx, 0, arm_ixz],"));
+}
+
+TEST(UrdfModel, LinksWeldedToTheGroundAreNoBodiesAndTheirInertiaIsNotChecked) {
+  // the base's inertia is no body's (its largest moment exceeds the sum of the others), as
+  // published robots' fixed bases often have: it never enters the equations
+  const std::string urdf = R"(<robot name="r"><link name="world"/>
+    <joint name="weld" type="fixed"><parent link="world"/><child link="base"/></joint>
+    <link name="base"><inertial><mass value="4"/><inertia ixx="1e-6" ixy="0" ixz="0" iyy="1e-6" iyz="0" izz="1"/></inertial></link>
+    <joint name="j" type="revolute"><parent link="base"/><child link="arm"/><axis xyz="0 0 1"/></joint>
+    <link name="arm"><inertial><origin xyz="0.3 0 0"/><mass value="2"/>
+      <inertia ixx="0.01" ixy="0" ixz="0" iyy="0.03" iyz="0" izz="0.02"/></inertial></link></robot>)";
+  const std::string text = written(urdf);
+  EXPECT_THAT(text, ::testing::HasSubstr("# its mass (4) is fixed to the ground: it does not enter the equations"));
+  EXPECT_THAT(text, ::testing::Not(::testing::HasSubstr("base_body")));
+  const Evaluated e(urdf);
+  EXPECT_NEAR(e.at({}).mass_matrix(0, 0), 0.02 + 2 * 0.09, 1e-15);
+}
+
+TEST(UrdfModel, AJointThatRepeatsTheMotionOfTheOneBeforeItIsRefusedAsASingularMassMatrix) {
+  // two revolute joints about one axis through one point, the only mass beyond the second:
+  // both turn the same body the same way, so M = [[I, I], [I, I]] at every state
+  const std::string urdf = R"(<robot name="r"><link name="base"/>
+    <joint name="j1" type="revolute"><parent link="base"/><child link="middle"/><axis xyz="0 0 1"/></joint>
+    <link name="middle"/>
+    <joint name="j2" type="revolute"><parent link="middle"/><child link="arm"/><axis xyz="0 0 1"/></joint>
+    <link name="arm"><inertial><origin xyz="0.3 0 0"/><mass value="2"/>
+      <inertia ixx="0.01" ixy="0" ixz="0" iyy="0.03" iyz="0" izz="0.02"/></inertial></link></robot>)";
+  try {
+    written(urdf);
+    ADD_FAILURE() << "accepted";
+  } catch (const SourceError& e) {
+    EXPECT_EQ(e.location().line, 4) << e.what();
+    EXPECT_THAT(e.message(), ::testing::HasSubstr("joint 'j2' (revolute): the mass matrix would be singular"));
+  }
+  // the same with the second axis turned away: regular
+  std::string turned = urdf;
+  const std::string axis = "<axis xyz=\"0 0 1\"/>";
+  turned.replace(turned.rfind(axis), axis.size(), "<axis xyz=\"0 1 0\"/>");
+  EXPECT_NO_THROW(written(turned));
+}
+
+TEST(UrdfModel, AMimicOnAFixedJointAndAVisualOfAnotherGeometryAreKeptAsComments) {
+  const std::string text = written(R"(<robot name="r"><link name="base"/>
+    <joint name="j" type="revolute"><parent link="base"/><child link="arm"/><axis xyz="0 0 1"/></joint>
+    <link name="arm"><inertial><origin xyz="0.3 0 0"/><mass value="2"/>
+      <inertia ixx="0.01" ixy="0" ixz="0" iyy="0.03" iyz="0" izz="0.02"/></inertial>
+      <visual><geometry><capsule radius="0.1" length="0.3"/></geometry></visual></link>
+    <joint name="pad" type="fixed"><parent link="arm"/><child link="tip"/><mimic joint="j"/></joint>
+    <link name="tip"/></robot>)");
+  EXPECT_THAT(text, ::testing::HasSubstr("# visual 1: <capsule> (not drawn"));
+  EXPECT_THAT(text, ::testing::HasSubstr("#   mimics 'j' (multiplier 1, offset 0): a fixed joint moves nothing"));
+  EXPECT_THAT(text, ::testing::Not(::testing::HasSubstr("constraint")));
 }
 
 TEST(UrdfModel, ShippedRobotsImportIntoModelsWithTheirJointsAsCoordinates) {

@@ -9,7 +9,6 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -111,9 +110,6 @@ std::string revolute(const std::string& name, const std::string& parent, const s
 
 // ---- the XML itself
 
-// BUG (urdf_reader.cpp, Reader::run): the line is tinyxml2's, right, but the column is always 1,
-// not that of the tag, and the message is tinyxml2's ErrorStr ("Error=XML_ERROR_MISMATCHED_ELEMENT
-// ErrorID=14 (0xe) Line number=2: XMLElement name=link"), which says nothing of what was expected.
 TEST(UrdfReader, MalformedXmlIsRefusedAtTheUnclosedTagSayingWhatWasExpected) {
   const std::string unclosed =
       "<robot name=\"r\">\n"
@@ -124,8 +120,6 @@ TEST(UrdfReader, MalformedXmlIsRefusedAtTheUnclosedTagSayingWhatWasExpected) {
   expect_urdf_error(cut, {3, 3}, {"malformed XML", "expected"});
 }
 
-// BUG (urdf_reader.cpp, Reader::run): XML has one document element; tinyxml2 reads on past it and
-// the reader takes the first, so whatever follows </robot> is dropped without a word.
 TEST(UrdfReader, ASecondDocumentElementIsRefusedAtIt) {
   const std::string urdf = "<robot name=\"r\">\n  <link name=\"base\"/>\n" + massive_link("arm") +
                            revolute("j", "base", "arm") + "</robot>\n<robot name=\"other\"/>\n";
@@ -151,9 +145,8 @@ TEST(UrdfReader, BillionLaughsIsRefusedAtItsDoctypeWithoutExpandingIt) {
     urdf += "\">\n";
   }
   urdf += "]>\n<robot name=\"&lol9;\"><link name=\"&lol9;\"/></robot>\n";
-  const auto start = std::chrono::steady_clock::now();
+  // were the entities expanded, the name alone would take 3 GB: the test's time limit stops that
   expect_urdf_error(urdf, place_of(urdf, "<!DOCTYPE"), {"'DOCTYPE'", "not read", "expected a URDF without them"});
-  EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(5));
 }
 
 TEST(UrdfReader, AnExternalEntityIsRefusedAndNeverFetched) {
@@ -255,18 +248,15 @@ TEST(UrdfReader, JointsThatMakeACycleAreRefused) {
   // every link has a parent: no root at all
   const std::string ring = "<robot name=\"r\">\n" + massive_link("a") + massive_link("b") + revolute("ab", "a", "b") +
                            revolute("ba", "b", "a") + "</robot>\n";
-  expect_urdf_error(ring, place_of(ring, "<joint name=\"ab\""), {"cycle", "'ab'", "expected one root link"});
+  expect_urdf_error(ring, place_of(ring, "<joint name=\"ab\""), {"the joints 'ab' -> 'ba' -> 'ab' make a cycle", "expected a tree"});
   // a root, and a cycle beside it that the root does not reach
   const std::string beside = "<robot name=\"r\">\n  <link name=\"base\"/>\n" + massive_link("a") + massive_link("b") +
                              massive_link("c") + revolute("j", "base", "c") + revolute("ab", "a", "b") +
                              revolute("ba", "b", "a") + "</robot>\n";
   expect_urdf_error(beside, place_of(beside, "<joint name=\"ab\""),
-                    {"joint 'ab' is on a cycle", "root 'base' does not reach"});
+                    {"the joints 'ab' -> 'ba' -> 'ab' make a cycle", "expected a tree"});
 }
 
-// BUG (generator/urdf/src/urdf_reader.cpp, check_tree): the joint a cycle error names is the
-// first joint in the file whose child hangs below the cycle, which need not lie on it: here
-// 'tail' hangs from 'a', and the cycle is a -> b -> a.
 TEST(UrdfReader, ACycleErrorNamesAJointOnTheCycle) {
   const std::string ring = "<robot name=\"r\">\n" + massive_link("a") + massive_link("b") + massive_link("c") +
                            revolute("tail", "a", "c") + revolute("ab", "a", "b") + revolute("ba", "b", "a") +
@@ -276,7 +266,7 @@ TEST(UrdfReader, ACycleErrorNamesAJointOnTheCycle) {
                              massive_link("c") + massive_link("d") + revolute("j", "base", "d") +
                              revolute("tail", "a", "c") + revolute("ab", "a", "b") + revolute("ba", "b", "a") +
                              "</robot>\n";
-  expect_urdf_error(beside, place_of(beside, "<joint name=\"ab\""), {"joint 'ab' is on a cycle"});
+  expect_urdf_error(beside, place_of(beside, "<joint name=\"ab\""), {"the joints 'ab' -> 'ba' -> 'ab' make a cycle"});
 }
 
 TEST(UrdfReader, AJointThatJoinsALinkToItselfIsRefusedAtItsChild) {
@@ -341,9 +331,6 @@ TEST(UrdfReader, WindowsLineEndingsPlaceErrorsOnTheSameLinesAndColumns) {
   expect_urdf_error(urdf, {5, 13}, {"the mass -2 is negative"});
 }
 
-// BUG (urdf_reader.cpp, Places::of): the attribute is looked for up to the first '>' after the
-// tag, and a '>' inside an earlier attribute's value (legal XML) ends the search there; the
-// error falls back to the column of the element (<joint, 4:3 here).
 TEST(UrdfReader, AnAttributeAfterAValueHoldingAGreaterThanSignIsPlacedAtItself) {
   const std::string urdf = "<robot name=\"r\">\n  <link name=\"base\"/>\n" + massive_link("arm") +
                            "  <joint name=\"a>b\" type=\"hinge\"><parent link=\"base\"/><child link=\"arm\"/></joint>\n"
@@ -351,10 +338,6 @@ TEST(UrdfReader, AnAttributeAfterAValueHoldingAGreaterThanSignIsPlacedAtItself) 
   expect_urdf_error(urdf, place_of(urdf, "type=\"hinge\""), {"joint 'a>b': unknown type 'hinge'"});
 }
 
-// BUG (urdf_reader.cpp, Places::element_offset): an element is looked for as the first tag of its
-// name on its line, skipping only its earlier siblings of that name; on a line that holds two
-// <origin> of different parents (a file written on one line, as generators and minifiers write
-// them) the visual's origin is placed at the inertial's: 1:71, the valid xyz="0 0 0".
 TEST(UrdfReader, ElementsOfOneNameOnOneLineArePlacedEachAtItsOwnTag) {
   const std::string urdf =
       "<robot name=\"r\"><link name=\"base\"/><link name=\"arm\"><inertial><origin xyz=\"0 0 0\"/><mass value=\"1\"/>"
@@ -408,9 +391,6 @@ TEST(UrdfReader, NumbersAsPublishedURDFsWriteThemImportAndParse) {
   }
 }
 
-// BUG (urdf_reader.cpp, number): a subnormal number is finite and positive, so 1e-320 kg makes a
-// body, but the model language reads the written 1e-320 as 0 and refuses the body ("rigid body
-// 'arm_body': the mass must be positive, got 0" at robot.urdf (as imported):36:6).
 TEST(UrdfReader, ASubnormalMassIsRefusedAtItsValueOrImportsIntoAModelThatParses) {
   const std::string urdf = arm_with_mass("1e-320");
   try {
@@ -526,7 +506,7 @@ TEST(UrdfReader, AMimicOfAnUnknownJointOfItselfOrOfAFixedJointIsRefusedAtTheMimi
   expect_urdf_error(mimic_robot("leed", "prismatic"), {7, 5}, {"joint 'follow' mimics 'leed', which is no joint"});
   expect_urdf_error(mimic_robot("follow", "prismatic"), {7, 5}, {"joint 'follow' mimics itself"});
   expect_urdf_error(mimic_robot("lead", "fixed"), {7, 5},
-                    {"joint 'follow' mimics 'lead'", "expected both revolute, continuous or prismatic"});
+                    {"joint 'follow' (prismatic) mimics 'lead' (fixed)", "expected both revolute, continuous or prismatic"});
 }
 
 TEST(UrdfReader, AMimicOfAMovingJointImportsAsAConstraint) {
@@ -536,9 +516,6 @@ TEST(UrdfReader, AMimicOfAMovingJointImportsAsAConstraint) {
   EXPECT_EQ(model.system.constraints()[0].name, "follow_mimic");
 }
 
-// BUG (urdf_reader.cpp, check_tree): two joints that mimic each other are accepted and written as
-// the constraint lead = follow twice; the model's parser then refuses the second as linearly
-// dependent at "robot.urdf (as imported):44:12", a place in a text `eomgen import` never writes.
 TEST(UrdfReader, JointsThatMimicEachOtherAreRefusedAtTheFirstMimic) {
   const std::string urdf = "<robot name=\"r\">\n  <link name=\"base\"/>\n" + massive_link("left") +
                            massive_link("right") +
@@ -571,9 +548,6 @@ TEST(UrdfReader, AMovingJointThatMovesOnlyMasslessLinksIsRefusedAtTheJoint) {
                     {"joint 'wrist' (revolute) moves only links without mass ('tool'", "expected a mass beyond"});
 }
 
-// BUG (model_writer.cpp): a robot with no joint that moves (a single link, or fixed joints only)
-// is written as a model without coordinates, which the model's parser refuses at "robot.urdf (as
-// imported):1:1: the model declares no coordinates", a place in a text `eomgen import` never writes.
 TEST(UrdfReader, ARobotWithNoMovingJointIsRefusedAtTheRobot) {
   const std::string single = "<robot name=\"r\">\n  <link name=\"base\"/>\n</robot>\n";
   expect_urdf_error(single, {1, 1}, {"joint", "expected"});
@@ -583,10 +557,6 @@ TEST(UrdfReader, ARobotWithNoMovingJointIsRefusedAtTheRobot) {
   expect_urdf_error(welded, {2, 1}, {"joint", "expected"});
 }
 
-// GAP (model_writer.cpp, check_masses): the check of a joint that "moves no mass (a zero row of
-// the mass matrix)" counts a point mass on the joint's own axis as mass moved, but turning it
-// about the axis takes no effort: the row is zero, `eomgen check` passes, and `eomgen simulate`
-// stops at t = 0 with "the mass matrix is not positive definite".
 TEST(UrdfReader, ARevoluteJointThatTurnsOnlyAPointMassOnItsAxisIsRefusedAtTheJoint) {
   const std::string urdf = "<robot name=\"r\">\n  <link name=\"base\"/>\n"
                            "  <link name=\"arm\"><inertial><mass value=\"1\"/>"
@@ -676,78 +646,22 @@ std::string chain(int n, bool child_first, bool massive = false) {
   return urdf + "</robot>\n";
 }
 
-// the shorter of two runs of `work`, in seconds: a pause of a loaded machine in one run is not
-// taken for the cost of the work
-template <class Work>
-double seconds(Work work) {
-  double fastest = INFINITY;
-  for (int run = 0; run < 2; ++run) {
-    const auto start = std::chrono::steady_clock::now();
-    work();
-    fastest = std::min(fastest, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-  }
-  return fastest;
+// A file within the size limit is read and written in time linear in its size: the worst
+// shapes for a reader that walks lines, siblings or the tree anew (one line, joints child first,
+// a chain of massless links but the last, as deep as the limit allows) in one file, which runs
+// past the test's time limit if any of them costs the square of the size.
+TEST(UrdfReader, TheWorstShapedFileWithinTheSizeLimitIsReadAndWrittenInOnePass) {
+  std::string urdf = chain(28000, /*child_first=*/true);
+  const std::string last = "  <link name=\"l28000\"/>\n";
+  urdf.replace(urdf.find(last), last.size(), massive_link("l28000"));
+  urdf.erase(std::remove(urdf.begin(), urdf.end(), '\n'), urdf.end());
+  ASSERT_LT(urdf.size(), urdf::max_urdf_bytes);
+  const urdf::Robot robot = urdf::read_robot(urdf, "robot.urdf");
+  EXPECT_EQ(robot.joints.size(), 28000u);
+  const ImportResult result = urdf::write_model(robot);
+  EXPECT_THAT(result.text, HasSubstr("coordinate j28000"));
 }
 
-double seconds_to_read(const std::string& urdf) {
-  return seconds([&] { EXPECT_FALSE(urdf::read_robot(urdf, "robot.urdf").joints.empty()); });
-}
-
-double seconds_to_write(const urdf::Robot& robot) {
-  return seconds([&] { EXPECT_FALSE(urdf::write_model(robot).text.empty()); });
-}
-
-// The costs below compare two files of one robot, so they hold on any machine and build (and
-// leave half a second to a loaded one): a file within the size limit is read in time linear in
-// its size, or a hostile one hangs every command given it.
-// BUG (urdf_reader.cpp, check_tree): the links the root reaches grow by sweeps over every joint,
-// one generation per sweep when the joints are written child first: quadratic (6000 joints:
-// 3.3 s against 0.12 s; minutes for a chain near the size limit).
-TEST(UrdfReader, ReadingJointsWrittenChildFirstCostsNoMoreThanParentFirst) {
-  const double parent_first = seconds_to_read(chain(6000, false));
-  const double child_first = seconds_to_read(chain(6000, true));
-  EXPECT_LT(child_first, 4 * parent_first + 0.5) << "parent first " << parent_first << " s";
-}
-
-// BUG (urdf_reader.cpp, Places::element_offset): every element on a line walks its earlier
-// siblings and searches the line anew: quadratic in a file written on one line (6000 joints:
-// 3.1 s against 0.12 s).
-TEST(UrdfReader, ReadingAFileWrittenOnOneLineCostsNoMoreThanOneElementPerLine) {
-  const std::string lines = chain(6000, false);
-  std::string one_line = lines;
-  one_line.erase(std::remove(one_line.begin(), one_line.end(), '\n'), one_line.end());
-  const double many = seconds_to_read(lines);
-  const double one = seconds_to_read(one_line);
-  EXPECT_LT(one, 4 * many + 0.5) << "one element per line " << many << " s";
-}
-
-// BUG (urdf_reader.cpp, Places::at_offset): a place's line is found by walking every line from the
-// first, so reading is quadratic in the number of lines (12x the lines: about 60x the time; a
-// chain of 30,000 links, 7.3 MB: 4 s; 8 MiB of 370,000 one-line links: 25 s before `eomgen check`
-// says there are two roots).
-TEST(UrdfReader, ReadingCostGrowsLinearlyWithTheNumberOfLines) {
-  const double small = seconds_to_read(chain(2500, false, true));
-  const double large = seconds_to_read(chain(30000, false, true));
-  EXPECT_LT(large, 18 * small + 0.5) << "a twelfth of the lines: " << small << " s";
-}
-
-// BUG (model_writer.cpp, Writer::moves_mass): whether a joint moves mass is searched anew below
-// every joint, quadratic in a chain of massless links (6000: 3 s against 0.13 s).
-TEST(UrdfReader, WritingAChainOfMasslessLinksCostsNoMoreThanOneOfMassiveLinks) {
-  const urdf::Robot massive = urdf::read_robot(chain(6000, false, true), "robot.urdf");
-  // massless but for the last link
-  std::string text = chain(6000, false);
-  const std::string last = "  <link name=\"l6000\"/>\n";
-  text.replace(text.find(last), last.size(), massive_link("l6000"));
-  const urdf::Robot massless = urdf::read_robot(text, "robot.urdf");
-  const double with_mass = seconds_to_write(massive);
-  const double without = seconds_to_write(massless);
-  EXPECT_LT(without, 4 * with_mass + 0.5) << "massive links " << with_mass << " s";
-}
-
-// BUG (model_writer.cpp, Writer::visit): the tree is written by recursion, one call per link of
-// a chain, and a chain of some 25,000 links (6 MB, within the size limit) exhausts an 8 MiB stack:
-// this test, and `eomgen import`, die of SIGSEGV.
 TEST(UrdfReader, AChainJustWithinTheSizeLimitImportsWithoutExhaustingTheStack) {
   const std::string urdf = chain(30000, false, true);
   ASSERT_LT(urdf.size(), urdf::max_urdf_bytes);

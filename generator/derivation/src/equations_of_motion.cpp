@@ -26,6 +26,9 @@ constexpr double large_constraint_size = 5000;
 // multiply out to more nodes than this (before like terms combine) stops it. The shipped models'
 // largest is the bicycle's, about 31,000; a chain of 12 rods has 8,000.
 constexpr double largest_local_entry = 200000;
+// the local form is derived until its entries multiplied out pass this many times the inertial
+// form's estimated operations
+constexpr double local_form_budget = 8;
 
 matrix zero3() { return matrix(3, 1); }
 
@@ -91,10 +94,13 @@ class Derivation {
  public:
   /// `kane`: M and F by Kane's equations; otherwise only the kinematics, T and V (M and F are
   /// then left zero for the recursions to fill).
-  Derivation(const MechanicalSystem& s, KinematicsResolution resolution, bool kane = true)
+  /// `local_budget`: in the local resolution, the most nodes all entries may have multiplied out
+  /// before grouping; beyond it the local form is given up (multiplied_out() false).
+  Derivation(const MechanicalSystem& s, KinematicsResolution resolution, bool kane = true,
+             double local_budget = std::numeric_limits<double>::infinity())
       : s_(s), vars_(s.variables()), n_(vars_.coordinate_count()), partials_(kane ? n_ : 0), resolution_(resolution),
         z_(eom_.subexpressions), rotations_(s, eom_.subexpressions), time_derivative_(rates(vars_)),
-        without_accelerations_(accelerations_to_zero(vars_)) {}
+        without_accelerations_(accelerations_to_zero(vars_)), local_budget_(local_budget) {}
 
   EquationsOfMotion run() {
     eom_.resolution = resolution_;
@@ -395,7 +401,10 @@ class Derivation {
         // multiplied out, a sum of products of sums can be exponentially larger than its
         // graph (points defined from other points' positions inside functions): then the
         // local form is not worth its cost, and not made
-        if (too_large_ || expanded_sizes_.expanded(sum).nodes > largest_local_entry) {
+        if (too_large_) return sum;
+        const double nodes = expanded_sizes_.expanded(sum).nodes;
+        multiplied_out_nodes_ += nodes;
+        if (nodes > largest_local_entry || multiplied_out_nodes_ > local_budget_) {
           too_large_ = true;
           return sum;
         }
@@ -492,6 +501,8 @@ class Derivation {
   exvector v_terms_;
   ExpressionSizes expanded_sizes_;
   bool too_large_ = false;  // an entry of the local form was too large to multiply out
+  const double local_budget_;
+  double multiplied_out_nodes_ = 0;  // by the local form so far
 };
 
 }  // namespace
@@ -500,8 +511,9 @@ namespace {
 
 // the equations in one resolution with their estimate; `multiplied_out` false where the local
 // resolution found an entry too large to multiply out
-EquationsOfMotion derive(const MechanicalSystem& system, KinematicsResolution resolution, bool& multiplied_out) {
-  Derivation derivation(system, resolution);
+EquationsOfMotion derive(const MechanicalSystem& system, KinematicsResolution resolution, bool& multiplied_out,
+                         double local_budget = std::numeric_limits<double>::infinity()) {
+  Derivation derivation(system, resolution, /*kane=*/true, local_budget);
   EquationsOfMotion eom = derivation.run();
   multiplied_out = derivation.multiplied_out();
   const double not_tried = std::numeric_limits<double>::quiet_NaN();
@@ -543,7 +555,11 @@ EquationsOfMotion derive_equations(const MechanicalSystem& system) {
   // the local resolution grows like the fourth power of a chain's depth: tried on small models
   // only, and kept when its code is smaller
   if (system.variables().coordinate_count() > local_resolution_limit) return inertial;
-  EquationsOfMotion local = derive(system, KinematicsResolution::local, multiplied_out);
+  // and given up once its entries, multiplied out, pass a multiple of the inertial form's
+  // estimate: grouping shrinks them, but not by that much (a robot arm's 3D offsets multiply
+  // out to eight times the inertial form's operations, and deriving them took most of the time)
+  EquationsOfMotion local = derive(system, KinematicsResolution::local, multiplied_out,
+                                   local_form_budget * inertial.estimated_operations_inertial);
   if (!multiplied_out) return inertial;
   local.estimated_operations_inertial = inertial.estimated_operations_inertial;
   inertial.estimated_operations_local = local.estimated_operations_local;

@@ -14,6 +14,9 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
+#include <limits>
+#include <numeric>
 #include <cctype>
 #include <cmath>
 #include <filesystem>
@@ -23,6 +26,7 @@
 
 #include "eomgen/base/error.hpp"
 #include "eomgen/urdf/urdf_import.hpp"
+#include "joint_space_inertia.hpp"
 
 namespace eomgen::urdf {
 namespace {
@@ -100,15 +104,31 @@ Triple unit_axis(const Triple& axis) {
   return out;
 }
 
+// An angle as the model writes it: the double nearest to a multiple of pi/4 (what a program
+// prints for pi/2) as that multiple of `pi`, so that its sine and cosine are exact (a 0 stays
+// 0 in the equations, instead of 6e-17 that costs operations in every call); any other number
+// as written (1.57079632679, 4.9e-12 short of pi/2, stays itself).
+std::string angle(const Number& a) {
+  const double quarters = std::round(a.value / (M_PI / 4));
+  if (quarters == 0 || std::abs(quarters) > 64) return a.text;
+  const double exact = quarters * (M_PI / 4);
+  if (std::abs(a.value - exact) > 4 * std::numeric_limits<double>::epsilon() * std::abs(exact)) return a.text;
+  const long q = std::lround(quarters);
+  const long g = std::gcd(std::labs(q), 4L);
+  const long numerator = q / g, denominator = 4 / g;
+  const std::string times = numerator == 1 ? "" : numerator == -1 ? "-" : fmt::format("{}*", numerator);
+  return denominator == 1 ? times + "pi" : fmt::format("{}pi/{}", times, denominator);
+}
+
 // DCM of a frame turned by `rpy` relative to `parent`: the parent itself, one principal
 // rotation, or the 3-2-1 sequence
 std::string turned(const std::string& parent, const Triple& rpy) {
   const bool r = !rpy[0].is_zero(), p = !rpy[1].is_zero(), y = !rpy[2].is_zero();
   if (!r && !p && !y) return parent;
-  if (r && !p && !y) return fmt::format("rotate({}, 1, {})", parent, rpy[0].text);
-  if (!r && p && !y) return fmt::format("rotate({}, 2, {})", parent, rpy[1].text);
-  if (!r && !p && y) return fmt::format("rotate({}, 3, {})", parent, rpy[2].text);
-  return fmt::format("euler({}, 321, {}, {}, {})", parent, rpy[2].text, rpy[1].text, rpy[0].text);
+  if (r && !p && !y) return fmt::format("rotate({}, 1, {})", parent, angle(rpy[0]));
+  if (!r && p && !y) return fmt::format("rotate({}, 2, {})", parent, angle(rpy[1]));
+  if (!r && !p && y) return fmt::format("rotate({}, 3, {})", parent, angle(rpy[2]));
+  return fmt::format("euler({}, 321, {}, {}, {})", parent, angle(rpy[2]), angle(rpy[1]), angle(rpy[0]));
 }
 
 class Writer {
@@ -121,15 +141,36 @@ class Writer {
     }
     for (const Link& l : robot.links)
       if (parent_joint_.count(l.name) == 0) root_ = &l;
+    // the joints depth first, each before the joints below it, children in file order
+    std::vector<const Joint*> stack;
+    const auto push_children = [&](const std::string& link) {
+      const auto c = children_.find(link);
+      if (c != children_.end()) stack.insert(stack.end(), c->second.rbegin(), c->second.rend());
+    };
+    push_children(root_->name);
+    while (!stack.empty()) {
+      const Joint* j = stack.back();
+      stack.pop_back();
+      order_.push_back(j);
+      push_children(j->child);
+    }
+    // links welded to the root do not move: their masses do not enter the equations
+    grounded_.insert(root_->name);
+    for (const Joint* j : order_)
+      if (j->type == Joint::Type::fixed && grounded_.count(j->parent) != 0) grounded_.insert(j->child);
   }
 
   ImportResult run() {
-    name_everything();
     check_masses();
+    name_everything();
     header();
     line("parameter g = 9.81  # gravitational acceleration [m/s^2], along -z of the root link");
     line("gravity = -g*a.3");
-    visit(*root_);
+    root();
+    for (const Joint* j : order_) {
+      joint(*j);
+      child_link(*links_.at(j->child));
+    }
     outputs();
     return {out_, repairs_};
   }
@@ -192,7 +233,7 @@ class Writer {
         claim(id + "_damping", what, j.location);
         claim(id + "_damper", what, j.location);
       }
-      if (j.mimic) claim(id + "_mimic", what, j.location);
+      if (follows(j)) claim(id + "_mimic", what, j.location);
     }
     for (const Link& l : robot_.links)
       if (children_.count(l.name) == 0)
@@ -214,44 +255,70 @@ class Writer {
   static bool one_coordinate(const Joint& j) {
     return j.type == Joint::Type::revolute || j.type == Joint::Type::continuous || j.type == Joint::Type::prismatic;
   }
-  static bool actuated(const Joint& j) { return one_coordinate(j) && !j.mimic; }
+  static bool actuated(const Joint& j) { return one_coordinate(j) && !follows(j); }
   static bool damped(const Joint& j) { return one_coordinate(j) && j.damping && !j.damping->is_zero(); }
   static std::string input_name(const Joint& j, const std::string& id) {
     return id + (j.type == Joint::Type::prismatic ? "_force" : "_torque");
   }
-  static bool has_body(const Link& l) { return l.inertial && l.inertial->mass.value > 0; }
+  // a body of the model: a link with mass that moves
+  bool has_body(const Link& l) const {
+    return l.inertial && l.inertial->mass.value > 0 && grounded_.count(l.name) == 0;
+  }
+  static bool follows(const Joint& j) { return j.mimic.has_value() && j.type != Joint::Type::fixed; }
 
   // ---- checks the language would make too late (in the written text) or not at all
 
   void check_masses() {
+    if (std::none_of(robot_.joints.begin(), robot_.joints.end(), [](const Joint& j) { return j.type != Joint::Type::fixed; }))
+      throw SourceError(robot_.location,
+                        fmt::format("robot '{}' has no joint that moves: its root link is fixed to the ground, and "
+                                    "with it every link: expected a joint that is not fixed (a free-flying robot "
+                                    "needs a floating joint from a world link to its base)", printable(robot_.name)));
     for (const Link& l : robot_.links) {
-      if (!l.inertial) continue;
+      if (!l.inertial || grounded_.count(l.name) != 0) continue;  // a grounded link's inertia is never used
       const Inertial& in = *l.inertial;
       const Eigen::Matrix3d J = inertia(in);
       if (in.mass.value == 0) {
-        if (J.cwiseAbs().maxCoeff() != 0)
+        if (J.cwiseAbs().maxCoeff() == 0) continue;
+        if (!options_.repair_inertia)
           throw SourceError(in.mass_location,
                             fmt::format("link '{}': the mass is 0 but the inertia is not: expected a positive mass, or "
-                                        "both zero for a link that only carries a frame", printable(l.name)));
+                                        "both zero for a link that only carries a frame; --repair-inertia sets the "
+                                        "inertia to zero", printable(l.name)));
+        repairs_.push_back(fmt::format("link '{}': mass 0 with an inertia: the inertia is set to zero (the link only "
+                                       "carries a frame)", printable(l.name)));
         continue;
       }
       check_inertia(l, J);
     }
-    // a moving joint must move some mass, or its row of the mass matrix is zero
-    for (const Joint& j : robot_.joints) {
-      if (j.type == Joint::Type::fixed || moves_mass(j.child)) continue;
-      throw SourceError(j.location, fmt::format("joint '{}' ({}) moves only links without mass ('{}' and what hangs from "
-                                                "it), so its row of the mass matrix is zero: expected a mass beyond "
-                                                "the joint, or a fixed joint",
-                                                printable(j.name), joint_type_name(j.type), printable(j.child)));
+    // a joint that moves no mass has a zero row of the mass matrix (a follower of a mimic is
+    // moved by its constraint instead)
+    std::set<std::string> moves_mass;  // links with mass at or below them, among the moving ones
+    for (auto it = order_.rbegin(); it != order_.rend(); ++it) {
+      const Link& child = *links_.at((*it)->child);
+      if (has_body(child) || moves_mass.count(child.name) != 0) moves_mass.insert((*it)->parent);
+      if (has_body(child)) moves_mass.insert(child.name);
     }
-  }
-
-  bool moves_mass(const std::string& link) const {
-    if (has_body(*links_.at(link))) return true;
-    const auto c = children_.find(link);
-    if (c == children_.end()) return false;
-    return std::any_of(c->second.begin(), c->second.end(), [&](const Joint* j) { return moves_mass(j->child); });
+    for (const Joint* j : order_) {
+      if (j->type == Joint::Type::fixed || follows(*j) || moves_mass.count(j->child) != 0) continue;
+      throw SourceError(j->location, fmt::format("joint '{}' ({}) moves only links without mass ('{}' and what hangs "
+                                                 "from it), so its row of the mass matrix is zero: expected a mass "
+                                                 "beyond the joint, or a fixed joint",
+                                                 printable(j->name), joint_type_name(j->type), printable(j->child)));
+    }
+    // and what moves must resist: a point mass on a joint's own axis, or a motion the joints
+    // before it already make, leaves the mass matrix singular at every state
+    const auto body = [&](const Link& l) -> std::optional<BodyData> {
+      if (!has_body(l)) return std::nullopt;
+      const auto repaired = repaired_.find(l.name);
+      return BodyData{l.inertial->mass.value, repaired != repaired_.end() ? repaired->second : inertia(*l.inertial)};
+    };
+    if (const Joint* j = first_singular_joint(robot_, order_, body))
+      throw SourceError(j->location,
+                        fmt::format("joint '{}' ({}): the mass matrix would be singular at every state: the motion of "
+                                    "this joint meets no inertia that the joints before it do not already move (a "
+                                    "point mass on its own axis, say): expected an inertia about the joint beyond it, "
+                                    "or a fixed joint", printable(j->name), joint_type_name(j->type)));
   }
 
   static Eigen::Matrix3d inertia(const Inertial& in) {
@@ -315,24 +382,19 @@ class Writer {
     line("");
   }
 
-  void visit(const Link& l) {
-    if (&l == root_) {
-      line(fmt::format("# link '{}' (the root: fixed to the inertial frame a)", printable(l.name)));
-      line(fmt::format("frame {} = a", link_id_[l.name]));
-      line(fmt::format("point {}_origin = w", link_id_[l.name]));
-      if (has_body(l))
-        line(fmt::format("# its mass ({}) and inertia are fixed to the ground: they do not enter the equations",
-                         l.inertial->mass.text));
-      shapes(l);
-      line("");
-    }
-    const auto c = children_.find(l.name);
-    if (c == children_.end()) return;
-    for (const Joint* j : c->second) {
-      joint(*j);
-      child_link(*links_.at(j->child));
-      visit(*links_.at(j->child));
-    }
+  void root() {
+    const Link& l = *root_;
+    line(fmt::format("# link '{}' (the root: fixed to the inertial frame a)", printable(l.name)));
+    line(fmt::format("frame {} = a", link_id_[l.name]));
+    line(fmt::format("point {}_origin = w", link_id_[l.name]));
+    grounded_mass(l);
+    shapes(l);
+    line("");
+  }
+
+  void grounded_mass(const Link& l) {
+    if (l.inertial && l.inertial->mass.value > 0)
+      line(fmt::format("# its mass ({}) is fixed to the ground: it does not enter the equations", l.inertial->mass.text));
   }
 
   void joint(const Joint& j) {
@@ -417,7 +479,10 @@ class Writer {
       line(fmt::format("parameter {}_damping = {}", id, j.damping->text));
       line(fmt::format("damper {}_damper(on = {}, damping = {}_damping)", id, id, id));
     }
-    if (j.mimic) {
+    if (j.mimic && !follows(j))
+      line(fmt::format("#   mimics '{}' (multiplier {}, offset {}): a fixed joint moves nothing, so the mimic is not "
+                       "modelled", printable(j.mimic->joint), j.mimic->multiplier.text, j.mimic->offset.text));
+    if (follows(j)) {
       const std::string& leader = joint_id_.at(j.mimic->joint);
       std::string right = j.mimic->multiplier.value == 1 ? leader : factor(j.mimic->multiplier) + "*" + leader;
       if (!j.mimic->offset.is_zero())
@@ -432,28 +497,49 @@ class Writer {
     if (has_body(l)) {
       const Inertial& in = *l.inertial;
       line(fmt::format("parameter {}_mass = {}", id, in.mass.text));
-      const char* axes[] = {"x", "y", "z"};
-      for (std::size_t i = 0; i < 3; ++i) line(fmt::format("parameter {}_com_{} = {}", id, axes[i], in.origin.xyz[i].text));
-      const auto repaired = repaired_.find(l.name);
-      const auto entry = [&](const Number& n, int r, int c) {
-        return repaired == repaired_.end() ? n.text : fmt::format("{:.17g}", repaired->second(r, c));
+      // the mass centre and the inertia as parameters, but for the entries the file gives as 0:
+      // those stay 0 in the equations, where a parameter would cost operations in every call
+      std::vector<std::string> zeros;
+      const auto value = [&](const std::string& name, const std::string& text, double v) {
+        if (v == 0) {
+          zeros.push_back(name);
+          return std::string("0");
+        }
+        line(fmt::format("parameter {}_{} = {}", id, name, text));
+        return fmt::format("{}_{}", id, name);
       };
-      line(fmt::format("parameter {}_ixx = {}", id, entry(in.ixx, 0, 0)));
-      line(fmt::format("parameter {}_ixy = {}", id, entry(in.ixy, 0, 1)));
-      line(fmt::format("parameter {}_ixz = {}", id, entry(in.ixz, 0, 2)));
-      line(fmt::format("parameter {}_iyy = {}", id, entry(in.iyy, 1, 1)));
-      line(fmt::format("parameter {}_iyz = {}", id, entry(in.iyz, 1, 2)));
-      line(fmt::format("parameter {}_izz = {}", id, entry(in.izz, 2, 2)));
+      const char* axes[] = {"x", "y", "z"};
+      std::array<std::string, 3> com;
+      for (std::size_t i = 0; i < 3; ++i)
+        com[i] = value(std::string("com_") + axes[i], in.origin.xyz[i].text, in.origin.xyz[i].value);
+      const auto repaired = repaired_.find(l.name);
+      const auto entry = [&](const char* name, const Number& n, int r, int c) {
+        if (repaired == repaired_.end()) return value(name, n.text, n.value);
+        const double v = repaired->second(r, c);
+        return value(name, fmt::format("{:.17g}", v), v);
+      };
+      const std::string ixx = entry("ixx", in.ixx, 0, 0), ixy = entry("ixy", in.ixy, 0, 1),
+                        ixz = entry("ixz", in.ixz, 0, 2), iyy = entry("iyy", in.iyy, 1, 1),
+                        iyz = entry("iyz", in.iyz, 1, 2), izz = entry("izz", in.izz, 2, 2);
+      if (!zeros.empty()) {
+        std::string list;
+        for (const std::string& z : zeros) list += (list.empty() ? "" : ", ") + z;
+        line(fmt::format("# 0 in the file, and written 0: {} (make one a parameter to vary it)", list));
+      }
       std::string body_frame = id;
       if (in.origin.turns()) {
         body_frame = id + "_inertia";
         line(fmt::format("frame {} = {}  # the axes of the inertia", body_frame, turned(id, in.origin.rpy)));
       }
-      line(fmt::format("point {0}_com = {0}_origin + [{0}_com_x, {0}_com_y, {0}_com_z] in {0}", id));
+      const bool centred = com[0] == "0" && com[1] == "0" && com[2] == "0";
+      line(centred ? fmt::format("point {0}_com = {0}_origin", id)
+                   : fmt::format("point {0}_com = {0}_origin + [{1}, {2}, {3}] in {0}", id, com[0], com[1], com[2]));
       line(fmt::format("body {0}_body(mass = {0}_mass, centre = {0}_com, frame = {1},", id, body_frame));
-      line(fmt::format("  inertia = [[{0}_ixx, {0}_ixy, {0}_ixz],", id));
-      line(fmt::format("             [{0}_ixy, {0}_iyy, {0}_iyz],", id));
-      line(fmt::format("             [{0}_ixz, {0}_iyz, {0}_izz]])", id));
+      line(fmt::format("  inertia = [[{}, {}, {}],", ixx, ixy, ixz));
+      line(fmt::format("             [{}, {}, {}],", ixy, iyy, iyz));
+      line(fmt::format("             [{}, {}, {}]])", ixz, iyz, izz));
+    } else if (grounded_.count(l.name) != 0) {
+      grounded_mass(l);
     } else {
       line("# no mass: it only carries a frame");
     }
@@ -468,6 +554,10 @@ class Writer {
       const std::string name = fmt::format("{}_visual{}", id, k + 1);
       if (v.kind == Visual::Kind::mesh) {
         line(fmt::format("# visual {}: mesh '{}' (not drawn; the body is drawn as its default)", k + 1, printable(v.mesh)));
+        continue;
+      }
+      if (v.kind == Visual::Kind::unsupported) {
+        line(fmt::format("# visual {}: <{}> (not drawn: expected box, cylinder, sphere or mesh)", k + 1, printable(v.mesh)));
         continue;
       }
       std::string frame = id;
@@ -494,6 +584,7 @@ class Writer {
           line(fmt::format("shape {} = sphere({}radius = {}, {})", name, body, v.radius.text, place));
           break;
         case Visual::Kind::mesh:
+        case Visual::Kind::unsupported:
           break;
       }
     }
@@ -519,6 +610,8 @@ class Writer {
   std::map<std::string, std::pair<std::string, SourceLocation>> claimed_;
   std::map<std::string, Eigen::Matrix3d> repaired_;
   std::vector<std::string> repairs_;
+  std::vector<const Joint*> order_;  // depth first
+  std::set<std::string> grounded_;   // links welded to the root
   std::string out_;
 };
 

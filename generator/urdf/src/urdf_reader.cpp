@@ -3,10 +3,15 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdlib>
+#include <limits>
 #include <map>
 #include <set>
+#include <unordered_map>
+#include <vector>
 
 #include "eomgen/base/error.hpp"
 #include "eomgen/urdf/urdf_robot.hpp"
@@ -16,8 +21,10 @@ namespace {
 
 using tinyxml2::XMLElement;
 
-// Places in the text. tinyxml2 gives an element's line; the column is that of its `<name` on
-// the line, and an attribute's that of its name inside the element's start tag.
+// Places in the text. tinyxml2 gives an element's line only; the offset of every element's
+// start tag is found in one pass over the text, which holds the start tags in the order of the
+// elements (comments, CDATA sections and processing instructions are skipped; markup cannot
+// stand in attribute values or text), and an attribute's place by reading its start tag.
 class Places {
  public:
   Places(const std::string& text, std::string file) : text_(text), file_(std::move(file)) {
@@ -26,45 +33,122 @@ class Places {
       if (text[i] == '\n') line_starts_.push_back(i + 1);
   }
 
+  /// Finds every element's start tag; after a successful parse of the same text.
+  void index(const tinyxml2::XMLDocument& document) {
+    std::size_t cursor = 0;
+    std::vector<const XMLElement*> stack;
+    for (const XMLElement* e = document.FirstChildElement(); e != nullptr; e = e->NextSiblingElement())
+      stack.push_back(e);
+    std::reverse(stack.begin(), stack.end());
+    while (!stack.empty()) {  // pre-order, without recursion
+      const XMLElement* e = stack.back();
+      stack.pop_back();
+      const std::size_t at = next_start_tag(cursor);
+      if (at == std::string::npos) break;
+      offsets_[e] = at;
+      cursor = at + 1;
+      std::vector<const XMLElement*> children;
+      for (const XMLElement* c = e->FirstChildElement(); c != nullptr; c = c->NextSiblingElement()) children.push_back(c);
+      stack.insert(stack.end(), children.rbegin(), children.rend());
+    }
+  }
+
   SourceLocation at_offset(std::size_t offset) const {
-    std::size_t line = 0;
-    while (line + 1 < line_starts_.size() && line_starts_[line + 1] <= offset) ++line;
+    const auto after = std::upper_bound(line_starts_.begin(), line_starts_.end(), offset);
+    const std::size_t line = static_cast<std::size_t>(after - line_starts_.begin()) - 1;
     return {file_, static_cast<int>(line + 1), static_cast<int>(offset - line_starts_[line] + 1)};
   }
-  SourceLocation at_line(int line) const { return {file_, line, 1}; }
+  /// The first character of a line that is not blank.
+  SourceLocation at_line(int line) const {
+    if (line < 1 || static_cast<std::size_t>(line) > line_starts_.size()) return {file_, std::max(line, 1), 1};
+    std::size_t i = line_starts_[static_cast<std::size_t>(line) - 1];
+    while (i < text_.size() && (text_[i] == ' ' || text_[i] == '\t')) ++i;
+    return at_offset(i);
+  }
 
   SourceLocation of(const XMLElement& e, const char* attribute = nullptr) const {
-    const std::size_t start = element_offset(e);
-    if (attribute == nullptr || start == std::string::npos) return start == std::string::npos ? at_line(e.GetLineNum()) : at_offset(start);
-    const std::size_t end = text_.find('>', start);
-    const std::string name = attribute;
-    for (std::size_t i = text_.find(name, start); i != std::string::npos && i < end; i = text_.find(name, i + 1)) {
-      const bool starts = std::isspace(static_cast<unsigned char>(text_[i - 1])) != 0;
-      std::size_t j = i + name.size();
-      while (j < text_.size() && std::isspace(static_cast<unsigned char>(text_[j])) != 0) ++j;
-      if (starts && j < text_.size() && text_[j] == '=') return at_offset(i);
-    }
+    const auto found = offsets_.find(&e);
+    if (found == offsets_.end()) return at_line(e.GetLineNum());
+    const std::size_t start = found->second;
+    if (attribute != nullptr)
+      if (const std::size_t at = attribute_offset(start, attribute); at != std::string::npos) return at_offset(at);
     return at_offset(start);
   }
 
  private:
-  std::size_t element_offset(const XMLElement& e) const {
-    const int line = e.GetLineNum();
-    if (line < 1 || static_cast<std::size_t>(line) > line_starts_.size()) return std::string::npos;
-    const std::string open = std::string("<") + e.Name();
-    // the element starts on its line; several elements of one name may share it
-    const std::size_t from = line_starts_[static_cast<std::size_t>(line) - 1];
-    std::size_t at = text_.find(open, from);
-    for (const XMLElement* s = e.PreviousSiblingElement(e.Name()); s != nullptr && s->GetLineNum() == line;
-         s = s->PreviousSiblingElement(e.Name()))
-      at = text_.find(open, at + 1);
-    return at;
+  // the next start tag from `from`: a '<' that opens no comment, CDATA section, processing
+  // instruction, declaration or end tag
+  std::size_t next_start_tag(std::size_t from) const {
+    for (std::size_t i = text_.find('<', from); i != std::string::npos; i = text_.find('<', i + 1)) {
+      const auto skip_to = [&](const char* end) {
+        const std::size_t e = text_.find(end, i);
+        return e == std::string::npos ? text_.size() : e;
+      };
+      if (text_.compare(i, 4, "<!--") == 0) {
+        i = skip_to("-->");
+      } else if (text_.compare(i, 9, "<![CDATA[") == 0) {
+        i = skip_to("]]>");
+      } else if (text_.compare(i, 2, "<?") == 0) {
+        i = skip_to("?>");
+      } else if (text_.compare(i, 2, "<!") == 0 || text_.compare(i, 2, "</") == 0) {
+        i = skip_to(">");
+      } else {
+        return i;
+      }
+      if (i >= text_.size()) break;
+    }
+    return std::string::npos;
+  }
+
+  // the offset of `name` among the attributes of the start tag at `start`, read as XML writes
+  // them (name = "value" or 'value', a '>' inside a value ends nothing), or npos
+  std::size_t attribute_offset(std::size_t start, const std::string& name) const {
+    std::size_t i = start + 1;
+    const auto blank = [&](std::size_t k) { return k < text_.size() && std::isspace(static_cast<unsigned char>(text_[k])) != 0; };
+    while (i < text_.size() && !blank(i) && text_[i] != '>' && text_[i] != '/') ++i;  // the element's name
+    while (i < text_.size()) {
+      while (blank(i)) ++i;
+      if (i >= text_.size() || text_[i] == '>' || text_[i] == '/') return std::string::npos;
+      const std::size_t name_at = i;
+      while (i < text_.size() && !blank(i) && text_[i] != '=' && text_[i] != '>') ++i;
+      const bool match = text_.compare(name_at, i - name_at, name) == 0 && i - name_at == name.size();
+      while (blank(i)) ++i;
+      if (i >= text_.size() || text_[i] != '=') return std::string::npos;
+      ++i;
+      while (blank(i)) ++i;
+      if (i >= text_.size() || (text_[i] != '"' && text_[i] != '\'')) return std::string::npos;
+      const std::size_t close = text_.find(text_[i], i + 1);
+      if (match) return name_at;
+      if (close == std::string::npos) return std::string::npos;
+      i = close + 1;
+    }
+    return std::string::npos;
   }
 
   const std::string& text_;
   std::string file_;
   std::vector<std::size_t> line_starts_;
+  std::unordered_map<const XMLElement*, std::size_t> offsets_;
 };
+
+// What a tinyxml2 error means, for a reader who wrote the file by hand.
+std::string xml_error(tinyxml2::XMLError error) {
+  switch (error) {
+    case tinyxml2::XML_ERROR_MISMATCHED_ELEMENT:
+      return "an end tag does not match the element it closes: expected every <element> closed by its own "
+             "</element> or written <element .../>";
+    case tinyxml2::XML_ERROR_PARSING_ELEMENT:
+      return "an element is not closed or its tag is malformed: expected <name attribute=\"value\" ...> closed "
+             "by </name>, or <name .../>";
+    case tinyxml2::XML_ERROR_PARSING_ATTRIBUTE:
+      return "an attribute is malformed: expected name=\"value\"";
+    case tinyxml2::XML_ERROR_EMPTY_DOCUMENT: return "the file holds no XML element: expected a <robot> element";
+    case tinyxml2::XML_ERROR_PARSING_COMMENT: return "a comment is not closed: expected <!-- ... -->";
+    case tinyxml2::XML_ERROR_PARSING_CDATA: return "a CDATA section is not closed: expected <![CDATA[ ... ]]>";
+    case tinyxml2::XML_ELEMENT_DEPTH_EXCEEDED: return "elements are nested too deep for a robot description";
+    default: return fmt::format("expected well-formed XML ({})", tinyxml2::XMLDocument::ErrorIDToName(error));
+  }
+}
 
 class Reader {
  public:
@@ -75,13 +159,22 @@ class Reader {
   Robot run() {
     refuse_declarations();
     tinyxml2::XMLDocument document(true, tinyxml2::COLLAPSE_WHITESPACE);
-    if (document.Parse(text_.data(), text_.size()) != tinyxml2::XML_SUCCESS)
-      throw SourceError(places_.at_line(document.ErrorLineNum()),
-                        fmt::format("malformed XML: {}", document.ErrorStr()));
+    if (const tinyxml2::XMLError error = document.Parse(text_.data(), text_.size()); error != tinyxml2::XML_SUCCESS)
+    {
+      // tinyxml2 names the element it was reading at the end of its message: "... name=link"
+      const std::string detail = document.ErrorStr() == nullptr ? "" : document.ErrorStr();
+      const std::size_t name = detail.rfind("name=");
+      const std::string at = name == std::string::npos ? "" : " in <" + detail.substr(name + 5) + ">";
+      throw SourceError(places_.at_line(document.ErrorLineNum()), "malformed XML" + at + ": " + xml_error(error));
+    }
+    places_.index(document);
     const XMLElement* root = document.RootElement();
     if (root == nullptr) throw SourceError(places_.at_line(1), "no XML element: expected a <robot> element");
     if (std::string(root->Name()) != "robot")
       throw SourceError(places_.of(*root), fmt::format("the document's element is <{}>: expected <robot>", root->Name()));
+    if (const XMLElement* second = root->NextSiblingElement())
+      throw SourceError(places_.of(*second), fmt::format("<{}> after the end of <robot>: expected one <robot> element, "
+                                                         "the whole file", second->Name()));
     robot_.location = places_.of(*root);
     robot_.name = required(*root, "name");
     for (const XMLElement* e = root->FirstChildElement(); e != nullptr; e = e->NextSiblingElement()) {
@@ -119,12 +212,17 @@ class Reader {
 
   Number number(const std::string& word, const SourceLocation& where, const std::string& what) const {
     std::string text = word;
+    const std::size_t first = text.find_first_not_of(" \t\r\n"), last = text.find_last_not_of(" \t\r\n");
+    text = first == std::string::npos ? std::string() : text.substr(first, last - first + 1);
     if (!text.empty() && text[0] == '+') text.erase(0, 1);
     char* end = nullptr;
     const double value = std::strtod(text.c_str(), &end);
     const bool plain = !text.empty() && end == text.c_str() + text.size() && text.find_first_of("xXnNiI") == std::string::npos;
     if (!plain) throw SourceError(where, fmt::format("{}: '{}' is not a number", what, word));
     if (!std::isfinite(value)) throw SourceError(where, fmt::format("{}: '{}' is not finite", what, word));
+    if (value != 0 && std::abs(value) < std::numeric_limits<double>::min())
+      throw SourceError(where, fmt::format("{}: '{}' is too small to compute with (below {:g}): expected 0 or a "
+                                           "number of normal size", what, word, std::numeric_limits<double>::min()));
     // the model language writes the number as given; a form it reads otherwise gets a canonical text
     const bool language_reads_it =
         text.find_first_not_of("0123456789.eE-") == std::string::npos && text.back() != '.' && text.back() != 'e' &&
@@ -237,8 +335,9 @@ class Reader {
       v.kind = Visual::Kind::mesh;
       v.mesh = required(*shape, "filename");
     } else {
-      throw SourceError(places_.of(*shape), fmt::format("{}: unknown geometry <{}>: expected box, cylinder, sphere "
-                                                        "or mesh", what, kind));
+      // a visual draws, it weighs nothing: one eomgen cannot draw is kept as a comment
+      v.kind = Visual::Kind::unsupported;
+      v.mesh = kind;
     }
     return v;
   }
@@ -334,26 +433,27 @@ class Reader {
     std::vector<const Link*> roots;
     for (const Link& l : robot_.links)
       if (parent_joint.count(l.name) == 0) roots.push_back(&l);
-    if (roots.empty()) {
-      const Joint& j = robot_.joints.front();
-      throw SourceError(j.location, fmt::format("every link is the child of a joint, so the joints make a cycle "
-                                                "(through joint '{}'): expected one root link", j.name));
-    }
+    if (roots.empty()) refuse_cycle(robot_.links.front().name, parent_joint);
     if (roots.size() > 1)
       throw SourceError(roots[1]->location,
                         fmt::format("links '{}' and '{}' are both roots (the child of no joint): expected one tree, "
                                     "joined to '{}' by a joint", roots[0]->name, roots[1]->name, roots[0]->name));
-    // every link reached from the root: the rest hang in a cycle
+    // every link reached from the root, breadth first: the rest hang from a cycle
+    std::map<std::string, std::vector<const Joint*>> children;
+    for (const Joint& j : robot_.joints) children[j.parent].push_back(&j);
     std::set<std::string> reached{roots[0]->name};
-    for (bool grew = true; grew;) {
-      grew = false;
-      for (const Joint& j : robot_.joints)
-        if (reached.count(j.parent) != 0 && reached.insert(j.child).second) grew = true;
+    for (std::vector<std::string> next{roots[0]->name}; !next.empty();) {
+      std::vector<std::string> after;
+      for (const std::string& link : next)
+        for (const Joint* j : children[link])
+          if (reached.insert(j->child).second) after.push_back(j->child);
+      next.swap(after);
     }
     for (const Joint& j : robot_.joints)
-      if (reached.count(j.child) == 0)
-        throw SourceError(j.location, fmt::format("joint '{}' is on a cycle of joints that the root '{}' does not "
-                                                  "reach: expected a tree", j.name, roots[0]->name));
+      if (reached.count(j.child) == 0) refuse_cycle(j.child, parent_joint);
+    const auto one_coordinate = [](Joint::Type t) {
+      return t == Joint::Type::revolute || t == Joint::Type::continuous || t == Joint::Type::prismatic;
+    };
     for (const Joint& j : robot_.joints) {
       if (!j.mimic) continue;
       const auto m = joints.find(j.mimic->joint);
@@ -361,14 +461,59 @@ class Reader {
         throw SourceError(j.mimic->location, fmt::format("joint '{}' mimics '{}', which is no joint of the robot",
                                                          j.name, j.mimic->joint));
       if (m->second == &j) throw SourceError(j.mimic->location, fmt::format("joint '{}' mimics itself", j.name));
-      const auto one_coordinate = [](Joint::Type t) {
-        return t == Joint::Type::revolute || t == Joint::Type::continuous || t == Joint::Type::prismatic;
-      };
+      // a fixed joint that mimics moves nothing: its <mimic> is kept as a comment (write_model)
+      if (j.type == Joint::Type::fixed) continue;
       if (!one_coordinate(j.type) || !one_coordinate(m->second->type))
         throw SourceError(j.mimic->location,
-                          fmt::format("joint '{}' mimics '{}': expected both revolute, continuous or prismatic (one "
-                                      "coordinate each)", j.name, j.mimic->joint));
+                          fmt::format("joint '{}' ({}) mimics '{}' ({}): expected both revolute, continuous or "
+                                      "prismatic (one coordinate each)", j.name, type_name(j.type), j.mimic->joint,
+                                      type_name(m->second->type)));
+      if (m->second->mimic && m->second->type != Joint::Type::fixed)
+        throw SourceError(j.mimic->location,
+                          fmt::format("joint '{}' mimics '{}', which mimics '{}' in turn: expected a joint that moves "
+                                      "on its own (mimic '{}' directly, with the multipliers and offsets composed)",
+                                      j.name, j.mimic->joint, m->second->mimic->joint, m->second->mimic->joint));
     }
+  }
+
+  static std::string type_name(Joint::Type t) {
+    switch (t) {
+      case Joint::Type::revolute: return "revolute";
+      case Joint::Type::continuous: return "continuous";
+      case Joint::Type::prismatic: return "prismatic";
+      case Joint::Type::fixed: return "fixed";
+      case Joint::Type::floating: return "floating";
+      case Joint::Type::planar: return "planar";
+    }
+    return "?";
+  }
+
+  // Refuses the cycle that the parents of `link` lead into: walking up from it, the first link
+  // met twice closes the cycle; the joints around it are named, and the error stands at the one
+  // written first.
+  [[noreturn]] void refuse_cycle(const std::string& link, const std::map<std::string, const Joint*>& parent_joint) const {
+    std::map<std::string, std::size_t> seen;  // link -> its place on the walk
+    std::vector<const Joint*> walk;
+    std::string at = link;
+    while (seen.emplace(at, walk.size()).second) {
+      const Joint* j = parent_joint.at(at);
+      walk.push_back(j);
+      at = j->parent;
+    }
+    const std::vector<const Joint*> cycle(walk.begin() + static_cast<long>(seen.at(at)), walk.end());
+    const Joint* first = *std::min_element(cycle.begin(), cycle.end(), [](const Joint* a, const Joint* b) {
+      return a->location.line != b->location.line ? a->location.line < b->location.line
+                                                  : a->location.column < b->location.column;
+    });
+    // parent to child, from the one written first round to it again
+    std::vector<const Joint*> loop(cycle.rbegin(), cycle.rend());
+    std::rotate(loop.begin(), std::find(loop.begin(), loop.end(), first), loop.end());
+    std::string names;
+    for (const Joint* j : loop) names += fmt::format("'{}' -> ", j->name);
+    names += fmt::format("'{}'", first->name);
+    throw SourceError(first->location, fmt::format("the joints {} make a cycle (each the parent of the next's "
+                                                   "parent link): expected a tree, every link but one the child of "
+                                                   "one joint", names));
   }
 
   const std::string& text_;

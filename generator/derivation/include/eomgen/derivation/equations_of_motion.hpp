@@ -64,7 +64,7 @@ struct EquationsOfMotion {
   std::size_t constraint_count = 0;            ///< m
   KinematicsResolution resolution = KinematicsResolution::inertial;  ///< the form kept
   DynamicsForm dynamics = DynamicsForm::closed_form;                 ///< how M and F were derived
-  /// Estimated operations of M and F in each form (NaN for a form not tried); see
+  /// Estimated operations of M and F in each form (NaN for a form not derived, or given up); see
   /// KinematicsResolution.
   double estimated_operations_inertial = 0, estimated_operations_local = 0;
   /// Estimated operations of M and F from the recursions, when they are the form kept (else NaN).

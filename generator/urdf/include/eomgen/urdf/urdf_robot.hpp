@@ -40,12 +40,13 @@ struct Inertial {
 };
 
 struct Visual {
-  enum class Kind { box, cylinder, sphere, mesh };
+  /// `unsupported`: a geometry URDF readers differ on (a capsule, say), drawn as its body's default
+  enum class Kind { box, cylinder, sphere, mesh, unsupported };
   Kind kind = Kind::box;
   Origin origin;
   Triple size;          ///< box
   Number radius, length;  ///< cylinder (along z of its origin), sphere
-  std::string mesh;     ///< mesh file name as written
+  std::string mesh;     ///< mesh file name as written; the element's name for `unsupported`
   SourceLocation location;
 };
 
