@@ -32,10 +32,19 @@ const CLI::Validator cpp_namespace(
     "IDENTIFIER");
 
 // the options every subcommand has: the model file and --define
+// how a URDF file becomes a model (urdf_import.hpp)
+void add_import_flags(CLI::App* sub, Options& o) {
+  sub->add_flag("--repair-inertia", o.repair_inertia,
+                "URDF: replace an inertia no body has by one that is (each listed) instead of refusing it");
+  sub->add_flag("--floating-base", o.floating_base,
+                "URDF: the root link flies free (x, y, z and 3-2-1 Euler angles) instead of being fixed to the ground");
+}
+
 void add_model_options(CLI::App* sub, Options& o) {
   sub->add_option("MODEL", o.model_path, "Model file (.eom), or a robot's URDF file (.urdf)")
       ->required()
       ->check(CLI::ExistingFile);
+  add_import_flags(sub, o);
   sub->add_option("-D,--define", o.defines, "Override a 'const' of the model: NAME=VALUE (repeatable)")
       ->delimiter(',')
       ->type_name("NAME=VALUE");
@@ -60,14 +69,22 @@ void add_integrator_options(CLI::App* simulate, SimulateRequest& r) {
 
 }  // namespace
 
+urdf::ImportOptions import_options(const Options& o) {
+  if ((o.repair_inertia || o.floating_base) && !urdf::is_urdf_path(o.model_path))
+    throw UsageError(fmt::format("{}: applies to a robot's URDF file (.urdf), and '{}' is a model file",
+                                 o.repair_inertia ? "--repair-inertia" : "--floating-base", o.model_path));
+  urdf::ImportOptions options;
+  options.repair_inertia = o.repair_inertia;
+  options.floating_base = o.floating_base;
+  return options;
+}
+
 CLI::App* add_import_command(CLI::App& app, Options& o) {
   CLI::App* import = app.add_subcommand("import", "Write a robot's URDF file as a model (.eom) to read and edit");
   import->add_option("ROBOT", o.model_path, "URDF file")->required()->check(CLI::ExistingFile);
   import->add_option("-o,--output", o.output_path, "Write to FILE instead of standard output (atomically)")
       ->type_name("FILE");
-  import->add_flag("--repair-inertia", o.repair_inertia,
-                   "Replace an inertia no body has by the nearest one that is (listed on standard error) instead of "
-                   "refusing it");
+  add_import_flags(import, o);
   return import;
 }
 

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "eomgen/urdf/urdf_import.hpp"
 #include "simulate_command.hpp"
 
 namespace eomgen::tools {
@@ -32,13 +33,17 @@ struct Options {
   bool find_equilibrium = false;
   std::string sweep;       // NAME=FROM:TO:STEP
   std::string sweep_plot;  // --plot of linearize
-  // import
+  // import, and every command given a URDF file
   bool repair_inertia = false;
+  bool floating_base = false;
   // simulate
   SimulateRequest simulate;
   std::vector<std::string> init, inputs;
   bool no_plot = false;
 };
+
+/// How a URDF file given to a command becomes its model.
+urdf::ImportOptions import_options(const Options& o);
 
 /// Each adds its subcommand to \p app, with options that write into \p o; \return the
 /// subcommand, whose parsed() says whether it was chosen.

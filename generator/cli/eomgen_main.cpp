@@ -21,6 +21,7 @@
 #include <chrono>
 #include <filesystem>
 #include <iostream>
+#include <limits>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
@@ -59,15 +60,15 @@ using eomgen::tools::parse_assignments;
 using eomgen::tools::state_and_parameters;
 using eomgen::tools::UsageError;
 
-eomgen::Model load(const Options& o) { return eomgen::load_model(o.model_path, parse_assignments(o.defines, "--define")); }
+eomgen::Model load(const Options& o) {
+  return eomgen::load_model(o.model_path, parse_assignments(o.defines, "--define"), eomgen::tools::import_options(o));
+}
 
 // ---- import ----
 
 void run_import(const Options& o) {
   eomgen::tools::check_output_files({{"-o", o.output_path}}, o.model_path);
-  eomgen::urdf::ImportOptions options;
-  options.repair_inertia = o.repair_inertia;
-  const eomgen::urdf::ImportResult imported = eomgen::urdf::import_urdf(o.model_path, options);
+  const eomgen::urdf::ImportResult imported = eomgen::urdf::import_urdf(o.model_path, eomgen::tools::import_options(o));
   // the text must read as the model it stands for before it is written anywhere
   eomgen::parse_model(imported.text, o.model_path + " (as imported)");
   for (const std::string& repair : imported.repairs) std::cerr << "eomgen: --repair-inertia: " << repair << "\n";
@@ -159,8 +160,12 @@ void run_derive(const Options& o) {
 std::string statistics_table(const std::vector<eomgen::FunctionStatistics>& statistics) {
   std::string out = fmt::format("{:<30} {:>12} {:>12} {:>8} {:>8} {:>8} {:>8}\n", "function", "unoptimized",
                                 "optimized", "adds", "muls", "divs", "calls");
+  // the unoptimized count of a deep tree passes 2^64 and stays at the largest count (ir.cpp)
+  const auto count = [](std::uint64_t n) {
+    return n == std::numeric_limits<std::uint64_t>::max() ? std::string(">1.8e19") : std::to_string(n);
+  };
   for (const auto& s : statistics)
-    out += fmt::format("{:<30} {:>12} {:>12} {:>8} {:>8} {:>8} {:>8}\n", s.function, s.unoptimized.total(),
+    out += fmt::format("{:<30} {:>12} {:>12} {:>8} {:>8} {:>8} {:>8}\n", s.function, count(s.unoptimized.total()),
                        s.optimized.total(), s.optimized.additions, s.optimized.multiplications,
                        s.optimized.divisions, s.optimized.calls);
   return out;

@@ -176,6 +176,14 @@ TEST_F(ImportCommand, RepairInertiaListsEveryRepairedLinkOnStandardError) {
   const Outcome check = eomgen("check " + quote(out.string()));
   EXPECT_EQ(check.status, 0) << check.err;
   EXPECT_THAT(check.out, HasSubstr("Bodies (2): arm_body, hand_body\n"));
+  // every command takes the repair too (the model it reads is the repaired one; the repairs are
+  // in the text's comments), and only for a URDF
+  const Outcome checked = eomgen("check " + quote(urdf) + " --repair-inertia");
+  EXPECT_EQ(checked.status, 0) << checked.err;
+  EXPECT_THAT(checked.out, HasSubstr("Bodies (2): arm_body, hand_body\n"));
+  const Outcome not_urdf = eomgen("check " + quote(out.string()) + " --repair-inertia");
+  EXPECT_EQ(not_urdf.status, 2);
+  EXPECT_THAT(not_urdf.err, HasSubstr("--repair-inertia: applies to a robot's URDF file (.urdf)"));
   // a robot with nothing to repair: nothing said
   const Outcome sound = eomgen("import " + quote(model("sound.urdf", pendulum())) + " --repair-inertia");
   EXPECT_EQ(sound.status, 0) << sound.err;

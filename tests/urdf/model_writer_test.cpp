@@ -351,6 +351,25 @@ TEST(UrdfModel, AMimicOnAFixedJointAndAVisualOfAnotherGeometryAreKeptAsComments)
   EXPECT_THAT(text, ::testing::Not(::testing::HasSubstr("constraint")));
 }
 
+TEST(UrdfModel, AFloatingBaseMakesTheRootAFreeBodyCarryingTheRest) {
+  const std::string urdf = R"(<robot name="quad">
+    <link name="base"><inertial><mass value="1.5"/><inertia ixx="0.02" ixy="0" ixz="0" iyy="0.02" iyz="0" izz="0.04"/></inertial></link>
+    <joint name="gimbal" type="revolute"><parent link="base"/><child link="camera"/><origin xyz="0 0 -0.05"/><axis xyz="0 1 0"/></joint>
+    <link name="camera"><inertial><origin xyz="0.02 0 0"/><mass value="0.1"/><inertia ixx="1e-4" ixy="0" ixz="0" iyy="1e-4" iyz="0" izz="1e-4"/></inertial></link>
+  </robot>)";
+  urdf::ImportOptions floating;
+  floating.floating_base = true;
+  const Model model = parse_model(written(urdf, floating), "robot.urdf (as imported)");
+  const ModelEquations eom = derive_equations(model);
+  ASSERT_EQ(model.system.variables().coordinate_count(), 7u);
+  const NumericEquations n = evaluate_equations(model, eom, {{"gimbal", 0.4}, {"base_yaw", 0.3}});
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR(n.mass_matrix(i, i), 1.6, 1e-15);  // both bodies translate with the base
+  EXPECT_NEAR(n.forcing(2), -1.6 * 9.81, 1e-13);                             // and both fall
+  // fixed to the ground instead, the base's mass enters nothing
+  const Evaluated fixed(urdf);
+  EXPECT_EQ(fixed.model.system.variables().coordinate_count(), 1u);
+}
+
 TEST(UrdfModel, ShippedRobotsImportIntoModelsWithTheirJointsAsCoordinates) {
   struct Expected {
     const char* file;

@@ -176,12 +176,15 @@ Model parse_model(const std::string& text, const std::string& file_name,
   return model;
 }
 
-Model load_model(const std::string& path, const std::map<std::string, double>& overrides) {
+Model load_model(const std::string& path, const std::map<std::string, double>& overrides,
+                 const urdf::ImportOptions& import_options) {
   // a robot's description: the model `eomgen import` writes from it, read as that text. The
   // import checks what the text could get wrong at its place in the URDF; a later error (an
   // override of a name the text lacks, say) names a place in the text `eomgen import` shows.
   if (urdf::is_urdf_path(path))
-    return parse_model(urdf::import_urdf(path).text, path + " (as imported)", overrides);
+    return parse_model(urdf::import_urdf(path, import_options).text, path + " (as imported)", overrides);
+  if (import_options.repair_inertia || import_options.floating_base)
+    throw Error(fmt::format("{}: a model file takes no URDF import options (repair_inertia, floating_base)", path));
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(fmt::format("{}: error: cannot read the model file", path));
   // read no further than one byte past the limit: the file may be endless (/dev/zero, a pipe)

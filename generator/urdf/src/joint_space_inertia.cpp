@@ -65,12 +65,14 @@ const Joint* first_singular_joint(const Robot& robot, const std::vector<const Jo
   if (count > largest_checked) return nullptr;
   std::set<std::string> children;
   for (const Joint* j : order) children.insert(j->child);
-  const Link* root = nullptr;
+  // a joint whose parent is "" joins its child to the world (a floating base)
+  pose_of[""] = Eigen::Isometry3d::Identity();
+  moved_by[""] = {};
   for (const Link& l : robot.links)
-    if (children.count(l.name) == 0) root = &l;
-  if (root == nullptr) return nullptr;
-  pose_of[root->name] = Eigen::Isometry3d::Identity();
-  moved_by[root->name] = {};
+    if (children.count(l.name) == 0) {
+      pose_of[l.name] = Eigen::Isometry3d::Identity();
+      moved_by[l.name] = {};
+    }
   for (const Joint* j : order) {
     const Eigen::Isometry3d J = pose_of.at(j->parent) * pose(j->origin);
     const Eigen::Matrix3d& R = J.linear();
@@ -137,6 +139,7 @@ const Joint* first_singular_joint(const Robot& robot, const std::vector<const Jo
   const auto n = static_cast<Eigen::Index>(twists.size());
   Eigen::MatrixXd M = Eigen::MatrixXd::Zero(n, n);
   for (const auto& [name, T] : pose_of) {
+    if (links.count(name) == 0) continue;  // the world
     const std::optional<BodyData> b = body(*links.at(name));
     if (!b) continue;
     const Link& l = *links.at(name);

@@ -28,7 +28,8 @@ inline constexpr std::size_t largest_checked = 400;
 /// matrix singular at a generic configuration (null for robots of more than largest_checked), given the joints before it: a joint that moves
 /// no inertia, or only as joints before it already do. The coordinates of a joint that mimics
 /// another count as the other's (multiplier times its column). Null if M is regular there.
-/// `body` gives the mass and inertia a link has in the model (none: no body).
+/// `body` gives the mass and inertia a link has in the model (none: no body). A joint of `order`
+/// whose parent is "" joins its child to the world (the floating base of a robot).
 const Joint* first_singular_joint(const Robot& robot, const std::vector<const Joint*>& order,
                                   const std::function<std::optional<BodyData>(const Link&)>& body);
 

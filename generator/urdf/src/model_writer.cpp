@@ -154,7 +154,13 @@ class Writer {
       order_.push_back(j);
       push_children(j->child);
     }
-    // links welded to the root do not move: their masses do not enter the equations
+    // links welded to the root do not move: their masses do not enter the equations (none, where
+    // the root flies free)
+    base_.name = root_->name;
+    base_.type = Joint::Type::floating;
+    base_.child = root_->name;
+    base_.location = base_.axis_location = root_->location;
+    if (options_.floating_base) return;
     grounded_.insert(root_->name);
     for (const Joint* j : order_)
       if (j->type == Joint::Type::fixed && grounded_.count(j->parent) != 0) grounded_.insert(j->child);
@@ -210,6 +216,11 @@ class Writer {
         claim(v + "_at", what, l.visuals[k].location);
         if (l.visuals[k].origin.turns()) claim(v + "_frame", what, l.visuals[k].location);
       }
+    }
+    if (options_.floating_base) {
+      const std::string what = fmt::format("the floating base of link '{}'", printable(root_->name));
+      for (const char* c : {"_x", "_y", "_z", "_yaw", "_pitch", "_roll"})
+        for (const char* d : {"", "_dot", "_ddot"}) claim(link_id_[root_->name] + c + d, what, root_->location);
     }
     std::set<std::string> link_names;
     for (const Link& l : robot_.links) link_names.insert(l.name);
@@ -269,11 +280,12 @@ class Writer {
   // ---- checks the language would make too late (in the written text) or not at all
 
   void check_masses() {
-    if (std::none_of(robot_.joints.begin(), robot_.joints.end(), [](const Joint& j) { return j.type != Joint::Type::fixed; }))
+    if (!options_.floating_base &&
+        std::none_of(robot_.joints.begin(), robot_.joints.end(), [](const Joint& j) { return j.type != Joint::Type::fixed; }))
       throw SourceError(robot_.location,
                         fmt::format("robot '{}' has no joint that moves: its root link is fixed to the ground, and "
                                     "with it every link: expected a joint that is not fixed (a free-flying robot "
-                                    "needs a floating joint from a world link to its base)", printable(robot_.name)));
+                                    "needs --floating-base, or a floating joint from a world link to its base)", printable(robot_.name)));
     for (const Link& l : robot_.links) {
       if (!l.inertial || grounded_.count(l.name) != 0) continue;  // a grounded link's inertia is never used
       const Inertial& in = *l.inertial;
@@ -313,7 +325,9 @@ class Writer {
       const auto repaired = repaired_.find(l.name);
       return BodyData{l.inertial->mass.value, repaired != repaired_.end() ? repaired->second : inertia(*l.inertial)};
     };
-    if (const Joint* j = first_singular_joint(robot_, order_, body))
+    std::vector<const Joint*> joints = order_;
+    if (options_.floating_base) joints.insert(joints.begin(), &base_);
+    if (const Joint* j = first_singular_joint(robot_, joints, body))
       throw SourceError(j->location,
                         fmt::format("joint '{}' ({}): the mass matrix would be singular at every state: the motion of "
                                     "this joint meets no inertia that the joints before it do not already move (a "
@@ -384,6 +398,17 @@ class Writer {
 
   void root() {
     const Link& l = *root_;
+    if (options_.floating_base) {
+      const std::string& id = link_id_[l.name];
+      line(fmt::format("# link '{}' (the root, flying free: --floating-base): moved by x, y, z along a's axes and "
+                       "turned by the", printable(l.name)));
+      line("# 3-2-1 (yaw, pitch, roll) Euler angles, singular at pitch = +-pi/2 (docs/robots.md)");
+      line(fmt::format("coordinate {0}_x, {0}_y, {0}_z, {0}_yaw, {0}_pitch, {0}_roll", id));
+      line(fmt::format("frame {0} = euler(a, 321, {0}_yaw, {0}_pitch, {0}_roll)", id));
+      line(fmt::format("point {0}_origin = w + {0}_x*a.1 + {0}_y*a.2 + {0}_z*a.3", id));
+      child_link(l, /*heading=*/false);
+      return;
+    }
     line(fmt::format("# link '{}' (the root: fixed to the inertial frame a)", printable(l.name)));
     line(fmt::format("frame {} = a", link_id_[l.name]));
     line(fmt::format("point {}_origin = w", link_id_[l.name]));
@@ -491,9 +516,9 @@ class Writer {
     }
   }
 
-  void child_link(const Link& l) {
+  void child_link(const Link& l, bool heading = true) {
     const std::string& id = link_id_[l.name];
-    line(fmt::format("# link '{}'", printable(l.name)));
+    if (heading) line(fmt::format("# link '{}'", printable(l.name)));
     if (has_body(l)) {
       const Inertial& in = *l.inertial;
       line(fmt::format("parameter {}_mass = {}", id, in.mass.text));
@@ -570,7 +595,7 @@ class Writer {
         at = name + "_at";
         line(fmt::format("point {} = {}_origin + {} in {}", at, id, column(v.origin.xyz), id));
       }
-      const std::string body = has_body(l) && &l != root_ ? fmt::format("body = {}_body, ", id) : "";
+      const std::string body = has_body(l) ? fmt::format("body = {}_body, ", id) : "";
       const std::string place = fmt::format("at = {}, frame = {}", at, frame);
       switch (v.kind) {
         case Visual::Kind::box:
@@ -611,6 +636,7 @@ class Writer {
   std::map<std::string, Eigen::Matrix3d> repaired_;
   std::vector<std::string> repairs_;
   std::vector<const Joint*> order_;  // depth first
+  Joint base_;                       // the root's floating joint (floating_base), parent ""
   std::set<std::string> grounded_;   // links welded to the root
   std::string out_;
 };

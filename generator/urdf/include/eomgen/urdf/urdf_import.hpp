@@ -20,6 +20,9 @@ struct ImportOptions {
   /// Replace inertias no mass distribution has (a principal moment below zero or above the sum
   /// of the other two) by the nearest one on the rule of `repair_inertia`, instead of refusing.
   bool repair_inertia = false;
+  /// The root link flies free: a floating joint from the inertial frame to it (translations
+  /// along a's axes, then 3-2-1 Euler angles), instead of the root fixed to the ground.
+  bool floating_base = false;
 };
 
 struct ImportResult {
