@@ -138,7 +138,13 @@ INSTANTIATE_TEST_SUITE_P(ShippedModels, BothResolutions,
 TEST(ResolutionChoice, KeepsTheFormWithFewerEstimatedOperations) {
   for (double n : {1.0, 2.0, 4.0, 8.0}) {
     const EquationsOfMotion eom = derive_equations(chain("planar_chain", n).system);
-    ASSERT_FALSE(std::isnan(eom.estimated_operations_local)) << n;
+    if (std::isnan(eom.estimated_operations_local)) {
+      // given up once its entries multiplied out passed 8 times the inertial form's operations
+      // (planar 8: it would have taken 2511 against 1546)
+      EXPECT_GE(n, 8.0);
+      EXPECT_EQ(eom.resolution, KinematicsResolution::inertial) << n;
+      continue;
+    }
     const bool local_smaller = eom.estimated_operations_local < eom.estimated_operations_inertial;
     EXPECT_EQ(eom.resolution, local_smaller ? KinematicsResolution::local : KinematicsResolution::inertial) << n;
   }

@@ -64,18 +64,6 @@ std::string printable(const std::string& s) {
   return out;
 }
 
-std::string joint_type_name(Joint::Type t) {
-  switch (t) {
-    case Joint::Type::revolute: return "revolute";
-    case Joint::Type::continuous: return "continuous";
-    case Joint::Type::prismatic: return "prismatic";
-    case Joint::Type::fixed: return "fixed";
-    case Joint::Type::floating: return "floating";
-    case Joint::Type::planar: return "planar";
-  }
-  return "?";
-}
-
 // a number as a factor or a list entry: a negative one in parentheses where it follows an operator
 std::string factor(const Number& n) { return n.value < 0 ? "(" + n.text + ")" : n.text; }
 
@@ -316,7 +304,7 @@ class Writer {
       throw SourceError(j->location, fmt::format("joint '{}' ({}) moves only links without mass ('{}' and what hangs "
                                                  "from it), so its row of the mass matrix is zero: expected a mass "
                                                  "beyond the joint, or a fixed joint",
-                                                 printable(j->name), joint_type_name(j->type), printable(j->child)));
+                                                 printable(j->name), type_name(j->type), printable(j->child)));
     }
     // and what moves must resist: a point mass on a joint's own axis, or a motion the joints
     // before it already make, leaves the mass matrix singular at every state
@@ -332,7 +320,7 @@ class Writer {
                         fmt::format("joint '{}' ({}): the mass matrix would be singular at every state: the motion of "
                                     "this joint meets no inertia that the joints before it do not already move (a "
                                     "point mass on its own axis, say): expected an inertia about the joint beyond it, "
-                                    "or a fixed joint", printable(j->name), joint_type_name(j->type)));
+                                    "or a fixed joint", printable(j->name), type_name(j->type)));
   }
 
   static Eigen::Matrix3d inertia(const Inertial& in) {
@@ -426,7 +414,7 @@ class Writer {
     const std::string& id = joint_id_[j.name];
     const std::string& parent = link_id_[j.parent];
     const std::string& child = link_id_[j.child];
-    line(fmt::format("# joint '{}' ({}): {} -> {}", printable(j.name), joint_type_name(j.type), parent, child));
+    line(fmt::format("# joint '{}' ({}): {} -> {}", printable(j.name), type_name(j.type), parent, child));
     std::string limits;
     if (j.lower) limits += " lower " + j.lower->text;
     if (j.upper) limits += " upper " + j.upper->text;

@@ -476,18 +476,6 @@ class Reader {
     }
   }
 
-  static std::string type_name(Joint::Type t) {
-    switch (t) {
-      case Joint::Type::revolute: return "revolute";
-      case Joint::Type::continuous: return "continuous";
-      case Joint::Type::prismatic: return "prismatic";
-      case Joint::Type::fixed: return "fixed";
-      case Joint::Type::floating: return "floating";
-      case Joint::Type::planar: return "planar";
-    }
-    return "?";
-  }
-
   // Refuses the cycle that the parents of `link` lead into: walking up from it, the first link
   // met twice closes the cycle; the joints around it are named, and the error stands at the one
   // written first.
@@ -522,6 +510,18 @@ class Reader {
 };
 
 }  // namespace
+
+std::string type_name(Joint::Type t) {
+  switch (t) {
+    case Joint::Type::revolute: return "revolute";
+    case Joint::Type::continuous: return "continuous";
+    case Joint::Type::prismatic: return "prismatic";
+    case Joint::Type::fixed: return "fixed";
+    case Joint::Type::floating: return "floating";
+    case Joint::Type::planar: return "planar";
+  }
+  EOMGEN_UNREACHABLE("type_name: a Joint::Type outside its enumerators");
+}
 
 Robot read_robot(const std::string& text, const std::string& file) {
   if (text.size() > max_urdf_bytes)

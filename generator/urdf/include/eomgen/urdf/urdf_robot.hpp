@@ -77,6 +77,9 @@ struct Joint {
   SourceLocation location, parent_location, child_location;
 };
 
+/// The type as URDF writes it ("revolute", ...).
+std::string type_name(Joint::Type t);
+
 struct Robot {
   std::string name;
   std::string file;          ///< as given to the reader
