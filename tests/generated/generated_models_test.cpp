@@ -30,6 +30,7 @@
 #include "spherical_pendulum.hpp"
 #include "spring_mass_damper.hpp"
 #include "universal_chain.hpp"
+#include "whipple_bicycle.hpp"
 #include "support/numeric_checks.hpp"
 #include "symbolic_agreement.hpp"
 
@@ -178,5 +179,6 @@ GENERATED_MODEL_TEST(spring_mass_damper)
 GENERATED_MODEL_TEST(spacecraft_panel)
 GENERATED_MODEL_TEST(planar_chain)
 GENERATED_MODEL_TEST(universal_chain)
+GENERATED_MODEL_TEST(whipple_bicycle)
 
 }  // namespace

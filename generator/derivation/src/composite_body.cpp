@@ -103,7 +103,7 @@ class CompositeBody {
 
 std::variant<RecursiveMassMatrixAndForcing, std::string> derive_composite_body_terms(const MechanicalSystem& system,
                                                                                      Subexpressions& subexpressions) {
-  std::variant<LinkTree, std::string> tree = link_tree(system);
+  std::variant<LinkTree, std::string> tree = link_tree_of_bodies(system);
   if (auto* reason = std::get_if<std::string>(&tree)) return *reason;
   return CompositeBody(system, std::move(std::get<LinkTree>(tree)), subexpressions).run();
 }

@@ -205,4 +205,8 @@ std::variant<LinkTree, std::string> link_tree(const MechanicalSystem& system) {
   return TreeBuilder(system).build();
 }
 
+std::variant<LinkTree, std::string> link_tree_of_bodies(const MechanicalSystem& system) {
+  return TreeBuilder(system).build();
+}
+
 }  // namespace eomgen

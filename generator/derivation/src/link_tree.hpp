@@ -41,4 +41,9 @@ struct LinkTree {
 /// the link i relative to its parent through the coordinates J(i) only.
 std::variant<LinkTree, std::string> link_tree(const MechanicalSystem& system);
 
+/// The tree of the system's bodies whatever its constraints: what M and F, which constraints do
+/// not change (they enter as Xi^T lambda), are computed on. A model with constraints has no
+/// recursive forward dynamics, which link_tree() refuses it for.
+std::variant<LinkTree, std::string> link_tree_of_bodies(const MechanicalSystem& system);
+
 }  // namespace eomgen
