@@ -38,6 +38,8 @@ void add_import_flags(CLI::App* sub, Options& o) {
                 "URDF: replace an inertia no body has by one that is (each listed) instead of refusing it");
   sub->add_flag("--floating-base", o.floating_base,
                 "URDF: the root link flies free (x, y, z and 3-2-1 Euler angles) instead of being fixed to the ground");
+  sub->add_flag("--fix-massless-joints", o.fix_massless_joints,
+                "URDF: make fixed the moving joints that move only links without mass, instead of refusing them");
 }
 
 void add_model_options(CLI::App* sub, Options& o) {
@@ -70,12 +72,16 @@ void add_integrator_options(CLI::App* simulate, SimulateRequest& r) {
 }  // namespace
 
 urdf::ImportOptions import_options(const Options& o) {
-  if ((o.repair_inertia || o.floating_base) && !urdf::is_urdf_path(o.model_path))
+  if ((o.repair_inertia || o.floating_base || o.fix_massless_joints) && !urdf::is_urdf_path(o.model_path))
     throw UsageError(fmt::format("{}: applies to a robot's URDF file (.urdf), and '{}' is a model file",
-                                 o.repair_inertia ? "--repair-inertia" : "--floating-base", o.model_path));
+                                 o.repair_inertia  ? "--repair-inertia"
+                                 : o.floating_base ? "--floating-base"
+                                                   : "--fix-massless-joints",
+                                 o.model_path));
   urdf::ImportOptions options;
   options.repair_inertia = o.repair_inertia;
   options.floating_base = o.floating_base;
+  options.fix_massless_joints = o.fix_massless_joints;
   return options;
 }
 

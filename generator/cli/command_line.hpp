@@ -36,6 +36,7 @@ struct Options {
   // import, and every command given a URDF file
   bool repair_inertia = false;
   bool floating_base = false;
+  bool fix_massless_joints = false;
   // simulate
   SimulateRequest simulate;
   std::vector<std::string> init, inputs;

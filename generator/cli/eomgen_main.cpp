@@ -72,6 +72,7 @@ void run_import(const Options& o) {
   // the text must read as the model it stands for before it is written anywhere
   eomgen::parse_model(imported.text, o.model_path + " (as imported)");
   for (const std::string& repair : imported.repairs) std::cerr << "eomgen: --repair-inertia: " << repair << "\n";
+  for (const std::string& lock : imported.locked) std::cerr << "eomgen: --fix-massless-joints: " << lock << "\n";
   if (o.output_path.empty())
     std::cout << imported.text << std::flush;
   else

@@ -370,6 +370,29 @@ TEST(UrdfModel, AFloatingBaseMakesTheRootAFreeBodyCarryingTheRest) {
   EXPECT_EQ(fixed.model.system.variables().coordinate_count(), 1u);
 }
 
+TEST(UrdfModel, FixMasslessJointsMakesFixedTheJointsThatMoveNoMassAndSaysWhich) {
+  // a gripper published without the fingers' inertia: refused, or the fingers welded
+  const std::string urdf = R"(<robot name="g"><link name="base"/>
+    <joint name="wrist" type="revolute"><parent link="base"/><child link="hand"/><axis xyz="0 0 1"/></joint>
+    <link name="hand"><inertial><origin xyz="0.05 0 0"/><mass value="0.5"/>
+      <inertia ixx="1e-3" ixy="0" ixz="0" iyy="1e-3" iyz="0" izz="1e-3"/></inertial></link>
+    <joint name="finger" type="prismatic"><parent link="hand"/><child link="pad"/><axis xyz="0 1 0"/></joint>
+    <link name="pad"/>
+    <joint name="finger_tip" type="revolute"><parent link="pad"/><child link="tip"/><axis xyz="1 0 0"/></joint>
+    <link name="tip"/></robot>)";
+  EXPECT_THROW(written(urdf), SourceError);
+  urdf::ImportOptions fix;
+  fix.fix_massless_joints = true;
+  const urdf::ImportResult result = urdf::write_model(urdf::read_robot(urdf, "robot.urdf"), fix);
+  ASSERT_EQ(result.locked.size(), 2u);
+  EXPECT_THAT(result.locked[0], ::testing::HasSubstr("joint 'finger' (prismatic) moves only links without mass"));
+  EXPECT_THAT(result.locked[1], ::testing::HasSubstr("joint 'finger_tip' (revolute)"));
+  const Model model = parse_model(result.text, "robot.urdf (as imported)");
+  ASSERT_EQ(model.system.variables().coordinate_count(), 1u);
+  const ModelEquations eom = derive_equations(model);
+  EXPECT_NEAR(evaluate_equations(model, eom, {}).mass_matrix(0, 0), 1e-3 + 0.5 * 0.0025, 1e-15);
+}
+
 TEST(UrdfModel, ShippedRobotsImportIntoModelsWithTheirJointsAsCoordinates) {
   struct Expected {
     const char* file;

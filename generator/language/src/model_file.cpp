@@ -183,8 +183,8 @@ Model load_model(const std::string& path, const std::map<std::string, double>& o
   // override of a name the text lacks, say) names a place in the text `eomgen import` shows.
   if (urdf::is_urdf_path(path))
     return parse_model(urdf::import_urdf(path, import_options).text, path + " (as imported)", overrides);
-  if (import_options.repair_inertia || import_options.floating_base)
-    throw Error(fmt::format("{}: a model file takes no URDF import options (repair_inertia, floating_base)", path));
+  if (import_options.repair_inertia || import_options.floating_base || import_options.fix_massless_joints)
+    throw Error(fmt::format("{}: a model file takes no URDF import options (repair_inertia, floating_base, fix_massless_joints)", path));
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(fmt::format("{}: error: cannot read the model file", path));
   // read no further than one byte past the limit: the file may be endless (/dev/zero, a pipe)

@@ -166,7 +166,7 @@ class Writer {
       child_link(*links_.at(j->child));
     }
     outputs();
-    return {out_, repairs_};
+    return {out_, repairs_, {}};
   }
 
  private:
@@ -303,7 +303,8 @@ class Writer {
       if (j->type == Joint::Type::fixed || follows(*j) || moves_mass.count(j->child) != 0) continue;
       throw SourceError(j->location, fmt::format("joint '{}' ({}) moves only links without mass ('{}' and what hangs "
                                                  "from it), so its row of the mass matrix is zero: expected a mass "
-                                                 "beyond the joint, or a fixed joint",
+                                                 "beyond the joint, or a fixed joint (--fix-massless-joints makes "
+                                                 "such joints fixed)",
                                                  printable(j->name), type_name(j->type), printable(j->child)));
     }
     // and what moves must resist: a point mass on a joint's own axis, or a motion the joints
@@ -415,6 +416,7 @@ class Writer {
     const std::string& parent = link_id_[j.parent];
     const std::string& child = link_id_[j.child];
     line(fmt::format("# joint '{}' ({}): {} -> {}", printable(j.name), type_name(j.type), parent, child));
+    if (j.locked) line("#   moves only links without mass: made fixed at its zero position (--fix-massless-joints)");
     std::string limits;
     if (j.lower) limits += " lower " + j.lower->text;
     if (j.upper) limits += " upper " + j.upper->text;
@@ -631,7 +633,62 @@ class Writer {
 
 }  // namespace
 
-ImportResult write_model(const Robot& robot, const ImportOptions& options) { return Writer(robot, options).run(); }
+// The robot with the moving joints that move no mass made fixed, each said in `notes`.
+Robot with_massless_joints_locked(Robot robot, std::vector<std::string>& notes) {
+  std::map<std::string, std::vector<Joint*>> children;
+  for (Joint& j : robot.joints) children[j.parent].push_back(&j);
+  std::map<std::string, bool> massive;  // a link with mass at or below it
+  for (const Link& l : robot.links) massive[l.name] = l.inertial && l.inertial->mass.value > 0;
+  // below before above: repeat until nothing changes (a chain is settled in one sweep per
+  // level at worst; the tree is small enough for that, and read_robot refused cycles)
+  std::vector<const Joint*> postorder;
+  {
+    std::set<std::string> children_of_joints;
+    for (const Joint& j : robot.joints) children_of_joints.insert(j.child);
+    std::vector<std::pair<std::string, bool>> stack;
+    for (const Link& l : robot.links)
+      if (children_of_joints.count(l.name) == 0) stack.emplace_back(l.name, false);
+    std::map<std::string, const Joint*> parent_joint;
+    for (const Joint& j : robot.joints) parent_joint[j.child] = &j;
+    while (!stack.empty()) {
+      auto [link, expanded] = stack.back();
+      stack.pop_back();
+      if (expanded) {
+        const auto p = parent_joint.find(link);
+        if (p != parent_joint.end()) postorder.push_back(p->second);
+        continue;
+      }
+      stack.emplace_back(link, true);
+      for (const Joint* j : children[link]) stack.emplace_back(j->child, false);
+    }
+  }
+  for (const Joint* j : postorder)
+    if (massive[j->child]) massive[j->parent] = true;
+  std::set<std::string> locked;
+  for (Joint& j : robot.joints) {
+    if (j.type == Joint::Type::fixed || massive[j.child]) continue;
+    notes.push_back(fmt::format("joint '{}' ({}) moves only links without mass: made fixed at its zero position",
+                                printable(j.name), type_name(j.type)));
+    j.type = Joint::Type::fixed;
+    j.locked = true;
+    locked.insert(j.name);
+  }
+  for (const Joint& j : robot.joints)
+    if (j.mimic && j.type != Joint::Type::fixed && locked.count(j.mimic->joint) != 0)
+      throw SourceError(j.mimic->location, fmt::format("joint '{}' mimics '{}', which moves no mass and is made fixed: "
+                                                       "expected the joint it follows to move a mass, or no mimic",
+                                                       printable(j.name), printable(j.mimic->joint)));
+  return robot;
+}
+
+ImportResult write_model(const Robot& robot, const ImportOptions& options) {
+  if (!options.fix_massless_joints) return Writer(robot, options).run();
+  std::vector<std::string> notes;
+  const Robot locked = with_massless_joints_locked(robot, notes);
+  ImportResult result = Writer(locked, options).run();
+  result.locked = std::move(notes);
+  return result;
+}
 
 bool is_urdf_path(const std::string& path) {
   std::string extension = std::filesystem::path(path).extension().string();

@@ -23,11 +23,15 @@ struct ImportOptions {
   /// The root link flies free: a floating joint from the inertial frame to it (translations
   /// along a's axes, then 3-2-1 Euler angles), instead of the root fixed to the ground.
   bool floating_base = false;
+  /// Make fixed, at their zero position, the moving joints that move only links without mass
+  /// (a gripper's fingers published without inertia), instead of refusing them.
+  bool fix_massless_joints = false;
 };
 
 struct ImportResult {
   std::string text;                  ///< the model, in the model language
   std::vector<std::string> repairs;  ///< one line per inertia replaced (repair_inertia)
+  std::vector<std::string> locked;   ///< one line per joint made fixed (fix_massless_joints)
 };
 
 /// The model text of a robot read by read_robot().

@@ -75,6 +75,7 @@ struct Joint {
   SourceLocation damping_location;
   std::optional<Mimic> mimic;
   SourceLocation location, parent_location, child_location;
+  bool locked = false;  ///< a moving joint made fixed (ImportOptions::fix_massless_joints)
 };
 
 /// The type as URDF writes it ("revolute", ...).
