@@ -17,6 +17,7 @@ packages=(
   libmujoco-dev    # MuJoCo, the oracle of the robots' dynamics in the tests (tests/robots/)
   texlive-latex-base
   gnuplot-nox
+  python3       # writes the models of the scaling benchmark (bench/scaling.sh), which the docs test runs
   libjs-three   # three.js (r111), embedded into eomgen for `simulate --animate` pages
   chromium      # the browser test of those pages (tests/browser/, headless)
 )

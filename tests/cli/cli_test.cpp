@@ -434,7 +434,8 @@ TEST_F(Cli, GenerateStatsPrintsOperationCountsAndTimes) {
   EXPECT_THAT(stats.out, ::testing::ContainsRegex("\nM and F: (local frames|inertial|composite body and Newton-Euler) "
                                                   "\\(estimated operations: local frames [0-9]+, inertial [0-9]+, "
                                                   "composite body and Newton-Euler [0-9]+\\)\n"));
-  EXPECT_THAT(constrained.out, HasSubstr("composite body and Newton-Euler not derived)\n"));
+  // a tree with constraints has the recursions' estimate too (its M and F are the tree's)
+  EXPECT_THAT(constrained.out, ::testing::ContainsRegex("composite body and Newton-Euler [0-9]+\\)\n"));
 }
 
 // GiNaC orders terms differently between processes (a - b in one, -(b - a) in another); the

@@ -302,9 +302,22 @@ TEST(EmitModel, MassMatrixAndForcingComeFromTheRecursionsOnlyWhereTheyAreSmaller
     const double closed = derive_equations(model.system, KinematicsResolution::inertial).estimated_operations_inertial;
     EXPECT_LT(operations(emitted), 0.6 * closed);
   }
-  // no recursions without a tree: the estimate says so
+  // a tree with constraints has them (M and F are the tree's), kept only where smaller: the
+  // rolling coin's closed form is
   const Model coin = load_model(testing::shipped_model_path("rolling_coin"));
-  const EmittedModel emitted = emit_model(coin, derive_equations(coin));
+  const EmittedModel rolling = emit_model(coin, derive_equations(coin));
+  EXPECT_FALSE(rolling.mass_matrix_from_recursions);
+  EXPECT_GT(rolling.estimated_operations_recursions, 0.0);
+  // no recursions without a tree (the second rod turns by an absolute angle): the estimate says so
+  const Model absolute = parse_model("coordinate q1, q2\n"
+                                     "frame b = rotate(a, 3, q1)\n"
+                                     "frame c = rotate(a, 3, q2)\n"
+                                     "point p1 = w + b.1\n"
+                                     "point p2 = p1 + c.1\n"
+                                     "particle bob1(mass = 1, at = p1)\n"
+                                     "particle bob2(mass = 1, at = p2)\n",
+                                     "absolute.eom");
+  const EmittedModel emitted = emit_model(absolute, derive_equations(absolute));
   EXPECT_FALSE(emitted.mass_matrix_from_recursions);
   EXPECT_TRUE(std::isnan(emitted.estimated_operations_recursions));
 }

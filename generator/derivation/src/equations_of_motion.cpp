@@ -27,7 +27,7 @@ constexpr double large_constraint_size = 5000;
 // largest is the bicycle's, about 31,000; a chain of 12 rods has 8,000.
 constexpr double largest_local_entry = 200000;
 // the local form is derived until its entries multiplied out pass this many times the inertial
-// form's estimated operations
+// form's estimated operations (or 1,000, for a model whose inertial form costs next to nothing)
 constexpr double local_form_budget = 8;
 
 matrix zero3() { return matrix(3, 1); }
@@ -559,7 +559,7 @@ EquationsOfMotion derive_equations(const MechanicalSystem& system) {
   // estimate: grouping shrinks them, but not by that much (a robot arm's 3D offsets multiply
   // out to eight times the inertial form's operations, and deriving them took most of the time)
   EquationsOfMotion local = derive(system, KinematicsResolution::local, multiplied_out,
-                                   local_form_budget * inertial.estimated_operations_inertial);
+                                   local_form_budget * std::max(inertial.estimated_operations_inertial, 1000.0));
   if (!multiplied_out) return inertial;
   local.estimated_operations_inertial = inertial.estimated_operations_inertial;
   inertial.estimated_operations_local = local.estimated_operations_local;
