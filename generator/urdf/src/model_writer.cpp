@@ -639,8 +639,8 @@ Robot with_massless_joints_locked(Robot robot, std::vector<std::string>& notes) 
   for (Joint& j : robot.joints) children[j.parent].push_back(&j);
   std::map<std::string, bool> massive;  // a link with mass at or below it
   for (const Link& l : robot.links) massive[l.name] = l.inertial && l.inertial->mass.value > 0;
-  // below before above: repeat until nothing changes (a chain is settled in one sweep per
-  // level at worst; the tree is small enough for that, and read_robot refused cycles)
+  // the joints below a link before the link's own (read_robot refused cycles), so one sweep
+  // carries every mass up to the root
   std::vector<const Joint*> postorder;
   {
     std::set<std::string> children_of_joints;
