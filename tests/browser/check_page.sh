@@ -3,7 +3,7 @@
 # the reason:
 #
 #   tests/browser/check_page.sh [--layers LIST] [--follow CHOICE] [--check-view CHECKER] [--load-only]
-#                               [--min-drawn N] PAGE.html T1 [T2 ...]
+#                               [--min-drawn N] [--expect-error TEXT]... PAGE.html T1 [T2 ...]
 #
 # At each time T (the page's #t=T hook: paused at T s): the page says it is ready, with no
 # error (uncaught exceptions, rejections, console.error and console.warn, blocked requests),
@@ -14,7 +14,9 @@
 # fail. --layers LIST (trails,frames,forces) shows those layers, and only those. --follow CHOICE
 # makes the camera's choice (mechanism, body:NAME) as a user does. --check-view CHECKER then
 # runs CHECKER (check_view) on the page and the view it reported at every time: the camera
-# frames the run (or follows), the grid and the axes are drawn.
+# frames the run (or follows), the grid and the axes are drawn. --expect-error TEXT (repeated:
+# in order) expects the page to record exactly those errors, and no other (a damaged scene the
+# page must survive): its title is then "error: " and the first; the other checks are the same.
 # $KEEP_SCREENSHOTS=DIR keeps the screenshots there; $CHROMIUM names the browser.
 set -euo pipefail
 
@@ -23,6 +25,7 @@ follow=""
 view_checker=""
 load_only=0
 min_drawn=2000
+expected_errors=()
 while [ $# -gt 0 ]; do
   case "$1" in
     --layers) layers="$2"; shift 2 ;;
@@ -30,11 +33,16 @@ while [ $# -gt 0 ]; do
     --check-view) view_checker="$2"; shift 2 ;;
     --load-only) load_only=1; shift ;;
     --min-drawn) min_drawn="$2"; shift 2 ;;
+    --expect-error)
+      # (as JSON and HTML write it unchanged: no quote, backslash, &, < or >)
+      case "$2" in *['"\\&<>']*) echo "check_page.sh: --expect-error cannot hold \", \\, &, < or >: $2" >&2; exit 2 ;; esac
+      expected_errors+=("$2"); shift 2 ;;
     *) break ;;
   esac
 done
 if [ $# -lt 2 ]; then
-  echo "usage: check_page.sh [--layers LIST] [--follow CHOICE] [--check-view CHECKER] [--load-only] [--min-drawn N] PAGE.html T1 [T2 ...]" >&2
+  echo "usage: check_page.sh [--layers LIST] [--follow CHOICE] [--check-view CHECKER] [--load-only] [--min-drawn N]" \
+       "[--expect-error TEXT]... PAGE.html T1 [T2 ...]" >&2
   exit 2
 fi
 page="$(cd "$(dirname "$1")" && pwd)/$(basename "$1")"
@@ -71,23 +79,36 @@ run() {
   "$chromium" "${flags[@]}" --user-data-dir="$work/profile" "$@" 2> "$work/log"
 }
 
+# the title and the status's errors the page must show: none, or exactly the expected ones
+expected_title="ready "
+expected_list="[]"
+if [ ${#expected_errors[@]} -gt 0 ]; then
+  expected_title="error: ${expected_errors[0]}"
+  expected_list=$(printf '"%s",' "${expected_errors[@]}")
+  expected_list="[${expected_list%,}]"
+fi
+
 start=$(date +%s%N)
 statuses=()
 for t in "$@"; do
   run --dump-dom "$(url "$t")" > "$work/dom.html" || fail "$t" "chromium exited with $?: $(tail -5 "$work/log")"
   title=$(sed -n 's:.*<title>\(.*\)</title>.*:\1:p' "$work/dom.html" | head -1)
   status=$(sed -n 's:.*<pre id="status"[^>]*>\(.*\)</pre>.*:\1:p' "$work/dom.html" | head -1)
-  case "$title" in
-    "ready "*) ;;
-    *) fail "$t" "the page is not ready: title \"$title\", status $status" ;;
-  esac
+  if [ ${#expected_errors[@]} -eq 0 ]; then
+    case "$title" in
+      "ready "*) ;;
+      *) fail "$t" "the page is not ready: title \"$title\", status $status" ;;
+    esac
+  else
+    [ "$title" = "$expected_title" ] || fail "$t" "the title is \"$title\", not \"$expected_title\": status $status"
+  fi
   case "$status" in
     *'"ready":true'*) ;;
     *) fail "$t" "status says not ready: $status" ;;
   esac
   case "$status" in
-    *'"errors":[]'*) ;;
-    *) fail "$t" "errors: $status" ;;
+    *"\"errors\":$expected_list"*) ;;
+    *) fail "$t" "errors (expected $expected_list): $status" ;;
   esac
   case "$status" in
     *'"requests":0'*) ;;

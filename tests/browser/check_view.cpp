@@ -1,11 +1,13 @@
 // Checks what an animation page's view shows (docs/animation.md), from the scene in the page and
 // the view the page reported in #status at one or more times (the test hook's `view`: the
-// camera's matrices as drawn, the camera's choice, the grid's and the axes' geometry):
+// camera's matrices as drawn, the camera's choice, the grid's and the axes' geometry, the drawn
+// shapes):
 //
 //   check_view [--follow CHOICE] PAGE.html STATUS.json...
 //
 // Without --follow (the default view): the camera is fixed (the same at every time) and every
-// point of the scene at every sample projects inside the view, as do the axes' tips; the run
+// point of the scene at every sample projects inside the view, as do the axes' tips and every
+// corner of every box and of every mesh's bounds, turned by its frame, at every sample; the run
 // reaches at least 0.35 of the way from the view's centre to its edge (when the points make its
 // size, not the shapes about them). With --follow CHOICE ("mechanism" or
 // "body:NAME"), the choice is made, the camera looks at the followed point at the time (the mean
@@ -15,13 +17,18 @@
 // lies in the scene's ground, else in the plane normal to up below every point (at the origin's
 // height or lower), its lines parallel, a round cell apart and through the origin's foot,
 // covering every point; the axes a.1, a.2, a.3 start at the origin along the inertial unit
-// vectors, one length, red, green and blue, labelled beyond their tips. Prints what it checked;
-// fails with the reason.
+// vectors, one length, red, green and blue, labelled beyond their tips; every shape the page can
+// draw (a known kind; a mesh whose base64 decodes to its triangles) is drawn and no other, each
+// but a rod at its point and turned with its frame, a mesh with three vertices per triangle; a
+// mesh's bounds are its vertices' box; the page counts the scene's missing meshes. Prints what it
+// checked; fails with the reason.
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -96,6 +103,12 @@ Vec cross(const Vec& a, const Vec& b) {
 }
 Vec unit(const Vec& a) { return (1.0 / norm(a)) * a; }
 std::string str(const Vec& a) { return fmt::format("({:.6g}, {:.6g}, {:.6g})", a[0], a[1], a[2]); }
+void expect_near(double a, double b, double tolerance, const std::string& what) {
+  demand(std::abs(a - b) <= tolerance, fmt::format("{}: {:.9g} where {:.9g} was expected", what, a, b));
+}
+void expect_near(const Vec& a, const Vec& b, double tolerance, const std::string& what) {
+  demand(norm(a - b) <= tolerance, fmt::format("{}: {} where {} was expected", what, str(a), str(b)));
+}
 
 // a 4x4 matrix, column-major as three.js holds it
 using Mat = std::array<double, 16>;
@@ -106,17 +119,70 @@ Mat mat(const json& j, const std::string& what) {
   return m;
 }
 
+// a 3x3 matrix, row-major as the scene holds rotations (its columns a frame's unit vectors)
+using Mat3 = std::array<double, 9>;
+constexpr Mat3 identity3 = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+Vec apply(const Mat3& m, const Vec& v) {
+  return {m[0] * v[0] + m[1] * v[1] + m[2] * v[2], m[3] * v[0] + m[4] * v[1] + m[5] * v[2], m[6] * v[0] + m[7] * v[1] + m[8] * v[2]};
+}
+
+// A mesh of the scene's `meshes` as the page decodes it: `vertices` is base64 (atob's forgiving
+// decoding: ASCII whitespace dropped, one or two '=' at the end of a length that is a multiple
+// of four) of 9 little-endian float32 per triangle; the page draws it only when that decodes to
+// exactly `triangles` triangles of finite numbers
+struct Mesh {
+  bool drawable = false;
+  std::string why;              // when not drawable
+  std::size_t triangles = 0;
+  std::vector<float> vertices;  // 9 per triangle
+};
+Mesh decode_mesh(const json& m) {
+  Mesh out;
+  if (!m.is_object()) return out.why = "it is not an object", out;
+  if (!m.contains("triangles") || !m["triangles"].is_number_unsigned()) return out.why = "no number of triangles", out;
+  out.triangles = m["triangles"].get<std::size_t>();
+  if (!m.contains("vertices") || !m["vertices"].is_string()) return out.why = "no base64 vertices", out;
+  std::string text;
+  for (const char c : m["vertices"].get<std::string>())
+    if (c != ' ' && c != '\t' && c != '\n' && c != '\f' && c != '\r') text += c;
+  if (text.size() % 4 == 0 && !text.empty() && text.back() == '=') text.pop_back();
+  if (text.size() % 4 == 0 && !text.empty() && text.back() == '=') text.pop_back();
+  if (text.size() % 4 == 1) return out.why = "its vertices are not base64", out;
+  static const std::string alphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::vector<unsigned char> bytes;
+  unsigned bits = 0, count = 0;
+  for (const char c : text) {
+    const std::size_t value = alphabet.find(c);
+    if (value == std::string::npos) return out.why = "its vertices are not base64", out;
+    bits = (bits << 6) | static_cast<unsigned>(value), count += 6;
+    if (count >= 8) count -= 8, bytes.push_back(static_cast<unsigned char>((bits >> count) & 0xff));
+  }
+  if (bytes.size() != 36 * out.triangles)
+    return out.why = fmt::format("{} bytes where {} triangles need {}", bytes.size(), out.triangles, 36 * out.triangles), out;
+  for (std::size_t i = 0; i < bytes.size(); i += 4) {
+    const std::uint32_t word = static_cast<std::uint32_t>(bytes[i]) | static_cast<std::uint32_t>(bytes[i + 1]) << 8 |
+                               static_cast<std::uint32_t>(bytes[i + 2]) << 16 | static_cast<std::uint32_t>(bytes[i + 3]) << 24;
+    float v = 0;
+    std::memcpy(&v, &word, sizeof v);
+    if (!std::isfinite(v)) return out.why = "a vertex is not finite", out;
+    out.vertices.push_back(v);
+  }
+  out.drawable = true;
+  return out;
+}
+
 struct Scene {
   json data;
   std::vector<double> times;
   std::vector<std::vector<double>> positions;  // per point, 3 n numbers (empty when short)
+  std::vector<std::vector<double>> rotations;  // per frame, 9 n numbers (empty when short)
+  std::vector<Mesh> meshes;
   double scale = 1;                            // the diagonal of the box of every point and the origin
   double largest_shape = 0;                    // the largest dimension of a shape: a diameter, a length, a box's diagonal
 
   std::size_t samples() const { return times.size(); }
-  // a point at time t, interpolated linearly between samples as the page does
-  Vec at(std::size_t point, double t) const {
-    const std::vector<double>& x = positions.at(point);
+  // the sample interval holding t and the fraction of the way through it, as the page finds them
+  std::pair<std::size_t, double> locate(double t) const {
     const std::size_t n = samples();
     std::size_t k = 0;
     double f = 0;
@@ -129,9 +195,69 @@ struct Scene {
         f = span > 0 ? (t - times[k]) / span : 0;
       }
     }
+    return {k, f};
+  }
+  // a point at time t, interpolated linearly between samples as the page does
+  Vec at(std::size_t point, double t) const {
+    const std::vector<double>& x = positions.at(point);
+    const std::size_t n = samples();
+    const auto [k, f] = locate(t);
     const std::size_t b = n > 1 ? k + 1 : k;
     return {x[3 * k] + f * (x[3 * b] - x[3 * k]), x[3 * k + 1] + f * (x[3 * b + 1] - x[3 * k + 1]),
             x[3 * k + 2] + f * (x[3 * b + 2] - x[3 * k + 2])};
+  }
+  // where a shape's point is at time t: the origin when it names no point with positions
+  Vec shape_point(const json& shape, double t) const {
+    const json& at = shape.contains("at") ? shape["at"] : json();
+    if (!at.is_number_integer() || at.get<long>() < 0 || at.get<std::size_t>() >= positions.size() ||
+        positions[at.get<std::size_t>()].empty())
+      return {0, 0, 0};
+    return this->at(at.get<std::size_t>(), t);
+  }
+  // a frame's rotation at sample k (the inertial frame's, the identity, for -1 or a frame without rotations)
+  Mat3 rotation(const json& frame, std::size_t k) const {
+    if (!frame.is_number_integer() || frame.get<long>() < 0 || frame.get<std::size_t>() >= rotations.size()) return identity3;
+    const std::vector<double>& r = rotations[frame.get<std::size_t>()];
+    if (r.empty()) return identity3;
+    Mat3 m{};
+    for (std::size_t i = 0; i < 9; ++i) m[i] = r[9 * k + i];
+    return m;
+  }
+  // the rotation at time t, the samples' matrices interpolated linearly (the page slerps: they
+  // differ by the square of the angle between samples)
+  Mat3 rotation_at(const json& frame, double t) const {
+    if (samples() == 0) return identity3;
+    const auto [k, f] = locate(t);
+    const Mat3 a = rotation(frame, k), b = rotation(frame, samples() > 1 ? k + 1 : k);
+    Mat3 m{};
+    for (std::size_t i = 0; i < 9; ++i) m[i] = a[i] + f * (b[i] - a[i]);
+    return m;
+  }
+  // the mesh a shape draws, or none when it is no mesh shape or its mesh cannot be drawn
+  const Mesh* mesh_of(const json& shape) const {
+    if (shape.value("kind", "") != "mesh" || !shape.contains("mesh") || !shape["mesh"].is_number_unsigned()) return nullptr;
+    const std::size_t k = shape["mesh"].get<std::size_t>();
+    return k < meshes.size() && meshes[k].drawable ? &meshes[k] : nullptr;
+  }
+  // whether the page draws a shape: a known kind, and a mesh it can decode
+  bool drawn(const json& shape) const {
+    static const std::set<std::string> kinds = {"sphere", "box", "cylinder", "disk", "rod"};
+    return shape.is_object() && (kinds.count(shape.value("kind", "")) != 0 || mesh_of(shape) != nullptr);
+  }
+  // the corners of a box or mesh shape's box in its frame's components from its point
+  std::vector<Vec> corners(const json& shape) const {
+    Vec lo, hi;
+    if (shape.value("kind", "") == "box" && shape.contains("size") && shape["size"].is_array() && shape["size"].size() == 3) {
+      hi = 0.5 * vec(shape["size"], "a box's size"), lo = -1.0 * hi;
+    } else if (const Mesh* m = mesh_of(shape); m != nullptr && !m->vertices.empty()) {
+      const json& b = shape.at("bounds");
+      lo = {b[0].get<double>(), b[1].get<double>(), b[2].get<double>()}, hi = {b[3].get<double>(), b[4].get<double>(), b[5].get<double>()};
+    } else {
+      return {};
+    }
+    std::vector<Vec> out;
+    for (int k = 0; k < 8; ++k) out.push_back({k & 1 ? hi[0] : lo[0], k & 2 ? hi[1] : lo[1], k & 4 ? hi[2] : lo[2]});
+    return out;
   }
   Vec sample(std::size_t point, std::size_t k) const {
     const std::vector<double>& x = positions.at(point);
@@ -165,10 +291,35 @@ Scene load_scene(const std::string& page_path) {
   bool any = false;
   for (const std::vector<double>& x : s.positions) any = any || !x.empty();
   s.scale = any ? std::max(norm(hi - lo), 1e-3) : 1.0;
+  if (s.data.contains("frames") && s.data["frames"].is_array()) {
+    for (const json& f : s.data["frames"]) {
+      std::vector<double> r;
+      if (f.contains("rotations") && f["rotations"].is_array())
+        for (const json& v : f["rotations"]) r.push_back(v.get<double>());
+      if (r.size() < 9 * s.samples() || s.samples() == 0) r.clear();
+      s.rotations.push_back(std::move(r));
+    }
+  }
+  if (s.data.contains("meshes") && s.data["meshes"].is_array())
+    for (const json& m : s.data["meshes"]) s.meshes.push_back(decode_mesh(m));
   for (const json& shape : s.data.value("shapes", json::array())) {
     s.largest_shape = std::max({s.largest_shape, 2 * shape.value("radius", 0.0), shape.value("length", 0.0)});
     const json size = shape.value("size", json::array());
     if (size.size() == 3) s.largest_shape = std::max(s.largest_shape, norm(vec(size, "a box's size")));
+    // a mesh shape: its bounds are its vertices' box (the float32 numbers, as written with six
+    // significant digits)
+    const Mesh* mesh = s.mesh_of(shape);
+    if (mesh == nullptr || mesh->vertices.empty()) continue;
+    const json& b = shape.contains("bounds") ? shape["bounds"] : json();
+    demand(b.is_array() && b.size() == 6, fmt::format("mesh shape {} has no bounds of 6 numbers: {}", shape.value("name", "?"), b.dump()));
+    std::array<double, 6> box{INFINITY, INFINITY, INFINITY, -INFINITY, -INFINITY, -INFINITY};
+    for (std::size_t i = 0; i < mesh->vertices.size(); ++i)
+      box[i % 3] = std::min(box[i % 3], static_cast<double>(mesh->vertices[i])), box[3 + i % 3] = std::max(box[3 + i % 3], static_cast<double>(mesh->vertices[i]));
+    const double diagonal = std::hypot(box[3] - box[0], box[4] - box[1], box[5] - box[2]);
+    for (std::size_t i = 0; i < 6; ++i)
+      expect_near(b[i].get<double>(), box[i], 1e-5 * std::max(diagonal, std::abs(box[i])) + 1e-12,
+                  fmt::format("mesh shape {}'s bounds[{}] against its vertices' box", shape.value("name", "?"), i));
+    s.largest_shape = std::max(s.largest_shape, diagonal);
   }
   return s;
 }
@@ -187,12 +338,6 @@ bool inside(const Projected& q) {
   return q.in_front && std::abs(q.x) <= 1 && std::abs(q.y) <= 1 && q.z >= -1 && q.z <= 1;
 }
 
-void expect_near(double a, double b, double tolerance, const std::string& what) {
-  demand(std::abs(a - b) <= tolerance, fmt::format("{}: {:.9g} where {:.9g} was expected", what, a, b));
-}
-void expect_near(const Vec& a, const Vec& b, double tolerance, const std::string& what) {
-  demand(norm(a - b) <= tolerance, fmt::format("{}: {} where {} was expected", what, str(a), str(b)));
-}
 
 // The reported matrices are the camera's: three.js's perspective of fov, aspect, near, far, and
 // the inverse of the camera's pose looking from position at target with up
@@ -341,13 +486,55 @@ Vec followed(const Scene& scene, const std::string& choice, const json& moving, 
   long point = -1;
   const json& shapes = scene.data.at("shapes");
   for (const json& s : shapes)
-    if (point < 0 && s.at("body") == body && s.at("kind") != "rod") point = s.at("at").get<long>();
+    if (point < 0 && scene.drawn(s) && s.at("body") == body && s.at("kind") != "rod") point = s.at("at").get<long>();
   for (const json& s : shapes)
-    if (point < 0 && s.at("body") == body) point = s.at("at").get<long>();
+    if (point < 0 && scene.drawn(s) && s.at("body") == body) point = s.at("at").get<long>();
   for (const json& p : scene.data.at("particles"))
     if (point < 0 && p.at("name") == body) point = p.at("point").get<long>();
   demand(point >= 0, "body " + body + " is drawn at no point");
   return scene.at(static_cast<std::size_t>(point), t);
+}
+
+// The shapes as drawn at time t: each shape the page can draw (a known kind; a mesh it can
+// decode), none other; each but a rod at its point, turned with its frame; a mesh with three
+// vertices per triangle
+void check_shapes(const Scene& scene, const json& drawn, double t) {
+  demand(drawn.is_array(), "the view names no drawn shapes");
+  const json shapes = scene.data.value("shapes", json::array());
+  std::set<std::size_t> expected, seen;
+  for (std::size_t i = 0; i < shapes.size(); ++i)
+    if (scene.drawn(shapes[i])) expected.insert(i);
+  std::size_t meshes = 0;
+  for (const json& d : drawn) {
+    const long index = d.at("index").get<long>();
+    demand(index >= 0 && static_cast<std::size_t>(index) < shapes.size(), "a drawn shape is none of the scene's: " + d.dump());
+    const json& s = shapes[static_cast<std::size_t>(index)];
+    const std::string name = s.value("name", "?");
+    demand(expected.count(static_cast<std::size_t>(index)) != 0, "shape " + name + " is drawn, but the page cannot draw it");
+    demand(seen.insert(static_cast<std::size_t>(index)).second, "shape " + name + " is drawn twice");
+    demand(d.at("name") == s.at("name") && d.at("kind") == s.at("kind"), "shape " + name + " is drawn as " + d.dump());
+    demand(d.at("visible").get<bool>(), "shape " + name + " is hidden");
+    if (s.at("kind") == "rod") continue;
+    expect_near(vec(d.at("position"), "a shape's position"), scene.shape_point(s, t), 1e-6 * scene.scale,
+                fmt::format("shape {}'s place at t = {}", name, t));
+    const json& q = d.at("quaternion");
+    demand(q.is_array() && q.size() == 4, "shape " + name + "'s attitude is no quaternion: " + q.dump());
+    const double x = q[0].get<double>(), y = q[1].get<double>(), z = q[2].get<double>(), w = q[3].get<double>();
+    const Mat3 turned = {1 - 2 * (y * y + z * z), 2 * (x * y - z * w),     2 * (x * z + y * w),
+                         2 * (x * y + z * w),     1 - 2 * (x * x + z * z), 2 * (y * z - x * w),
+                         2 * (x * z - y * w),     2 * (y * z + x * w),     1 - 2 * (x * x + y * y)};
+    const Mat3 expected_turn = scene.rotation_at(s.contains("frame") ? s["frame"] : json(-1), t);
+    for (std::size_t i = 0; i < 9; ++i)
+      expect_near(turned[i], expected_turn[i], 0.02, fmt::format("shape {}'s attitude at t = {}, entry {} of its rotation", name, t, i));
+    if (const Mesh* m = scene.mesh_of(s); m != nullptr) {
+      demand(d.at("vertices").get<std::size_t>() == 3 * m->triangles,
+             fmt::format("mesh shape {} is drawn with {} vertices, not 3 x {} triangles", name, d.at("vertices").dump(), m->triangles));
+      ++meshes;
+    }
+  }
+  demand(seen == expected, fmt::format("the page draws {} of the scene's {} drawable shapes", seen.size(), expected.size()));
+  std::cout << fmt::format("ok: at t = {} the {} shapes ({} meshes) are drawn at their points, turned with their frames\n", t,
+                           seen.size(), meshes);
 }
 
 int run(int argc, char** argv) {
@@ -361,17 +548,23 @@ int run(int argc, char** argv) {
   const Scene scene = load_scene(argv[first]);
   std::vector<json> views;
   std::vector<double> times;
+  const std::size_t missing = scene.data.value("missing_meshes", json::array()).size();
   for (int i = first + 1; i < argc; ++i) {
     const json status = status_of(read_file(argv[i]));
     demand(status.contains("view") && status["view"].is_object(), std::string("no view in the status ") + argv[i]);
     views.push_back(status["view"]);
     times.push_back(status.at("t").get<double>());
+    // the page says how many meshes it could not draw
+    demand(status.value("missingMeshes", -1) == static_cast<long>(missing),
+           fmt::format("the page says {} meshes are not drawn, the scene {}", status.value("missingMeshes", -1), missing));
   }
+  for (std::size_t i = 0; i < views.size(); ++i) check_shapes(scene, views[i].at("shapes"), times[i]);
+  if (missing > 0) std::cout << fmt::format("ok: the page says the scene's {} meshes are not drawn\n", missing);
 
   // the camera's choices: the whole run first (the default), the mechanism, and every body drawn at a point
   std::vector<std::string> bodies;
   for (const json& s : scene.data.value("shapes", json::array()))
-    if (s.contains("body") && s["body"].is_string()) bodies.push_back(s["body"].get<std::string>());
+    if (scene.drawn(s) && s.contains("body") && s["body"].is_string()) bodies.push_back(s["body"].get<std::string>());
   for (const json& p : scene.data.value("particles", json::array())) bodies.push_back(p.at("name").get<std::string>());
   for (std::size_t i = 0; i < views.size(); ++i) {
     const json& view = views[i];
@@ -415,11 +608,27 @@ int run(int argc, char** argv) {
       }
     }
     for (const Vec& tip : tips) demand(inside(project(projection, view, tip)), "an axis's tip " + str(tip) + " is outside the view");
+    // and every corner of every box and of every mesh's box, at every sample
+    std::size_t corners = 0;
+    for (const json& s : scene.data.value("shapes", json::array())) {
+      const std::vector<Vec> local = scene.corners(s);
+      for (std::size_t k = 0; k < scene.samples() && !local.empty(); ++k) {
+        const Mat3 r = scene.rotation(s.contains("frame") ? s["frame"] : json(-1), k);
+        for (const Vec& c : local) {
+          const Vec p = scene.shape_point(s, scene.times[k]) + apply(r, c);
+          const Projected q = project(projection, view, p);
+          demand(inside(q), fmt::format("a corner of shape {} ({}) at t = {} is outside the initial view: ndc ({:.4f}, {:.4f}, {:.4f})",
+                                        s.value("name", "?"), str(p), scene.times[k], q.x, q.y, q.z));
+          ++corners;
+        }
+      }
+    }
     // when the points, not the shapes about them, make the run's size, they fill the view
     if (count > 0 && scene.scale >= 2 * scene.largest_shape)
       demand(reach >= 0.35, fmt::format("the run fills only {:.3f} of the view's half-width or half-height", reach));
-    std::cout << fmt::format("ok: a fixed camera; all {} positions ({} points x {} samples) and the axes' tips inside the view, "
-                             "reaching {:.3f} of it from its centre\n", count, scene.positions.size(), scene.samples(), reach);
+    std::cout << fmt::format("ok: a fixed camera; all {} positions ({} points x {} samples), {} corners of boxes and meshes' boxes "
+                             "and the axes' tips inside the view, reaching {:.3f} of it from its centre\n",
+                             count, scene.positions.size(), scene.samples(), corners, reach);
     return 0;
   }
 

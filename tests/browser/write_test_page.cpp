@@ -1,18 +1,26 @@
 // Writes animation pages of synthetic scenes for the browser test (check_page.sh), until
 // `eomgen simulate --animate` writes them from simulations:
 //
-//   write_test_page double_pendulum|pendulum_without_ground|travelling|single_sample|empty|hostile_names OUT.html
+//   write_test_page double_pendulum|pendulum_without_ground|travelling|mesh|broken_meshes|single_sample|empty|hostile_names OUT.html
 //
 // double_pendulum: 10 s, 1,000 samples of a double pendulum's kinematics at prescribed angles
-// (theta1 = 0.9 cos(1.2 pi t), theta2 = 1.2 sin(1.8 pi t + 0.3)), with a shape of every kind,
+// (theta1 = 0.9 cos(1.2 pi t), theta2 = 1.2 sin(1.8 pi t + 0.3)), with a shape of every kind but a mesh,
 // two particles, a constraint force, a ground plane and the coordinates' and energies' series.
 // pendulum_without_ground: the same without the ground plane. travelling: 10 s of a cart with a
-// pendulum that travels 20 m, without gravity. The others are the edge cases: one sample,
-// nothing but times, and names that try to end the page's script elements.
+// pendulum that travels 20 m, without gravity. mesh: 10 s of an arm and a forearm swinging in
+// three dimensions, drawn with STL-like meshes (a bar of 12 triangles both draw, reaching beyond
+// their points, and a tetrahedron), with a mesh not drawn. broken_meshes: meshes the page cannot
+// draw (not base64, too short, not finite, no such mesh) beside one it can, and hostile names in
+// the meshes not drawn. The others are the edge cases: one sample, nothing but times, and names
+// that try to end the page's script elements.
 #include <fmt/format.h>
 
+#include <array>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <cstring>
+#include <limits>
 #include <fstream>
 #include <functional>
 #include <iostream>
@@ -107,6 +115,162 @@ std::string double_pendulum_scene(int n, double t_end, const std::string& model,
   return s + "}\n";
 }
 
+// ---- meshes as the scene carries them: 9 little-endian float32 per triangle, in base64 ---------
+
+std::string base64(const std::vector<unsigned char>& bytes) {
+  static const char* alphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  for (std::size_t i = 0; i < bytes.size(); i += 3) {
+    const std::size_t left = bytes.size() - i;
+    const unsigned word = static_cast<unsigned>(bytes[i]) << 16 | (left > 1 ? static_cast<unsigned>(bytes[i + 1]) << 8 : 0u) |
+                          (left > 2 ? static_cast<unsigned>(bytes[i + 2]) : 0u);
+    out += alphabet[(word >> 18) & 63];
+    out += alphabet[(word >> 12) & 63];
+    out += left > 1 ? alphabet[(word >> 6) & 63] : '=';
+    out += left > 2 ? alphabet[word & 63] : '=';
+  }
+  return out;
+}
+
+// the floats' bytes, least significant first whatever this machine's order
+std::string little_endian_base64(const std::vector<float>& values) {
+  std::vector<unsigned char> bytes;
+  for (const float v : values) {
+    std::uint32_t word = 0;
+    std::memcpy(&word, &v, sizeof word);
+    for (int b = 0; b < 4; ++b) bytes.push_back(static_cast<unsigned char>((word >> (8 * b)) & 0xff));
+  }
+  return base64(bytes);
+}
+
+struct TestMesh {
+  std::vector<float> vertices;  // 9 per triangle
+  std::string entry(const std::string& file) const {
+    return fmt::format("{{\"file\": \"{}\", \"triangles\": {}, \"vertices\": \"{}\"}}", file, vertices.size() / 9,
+                       little_endian_base64(vertices));
+  }
+  // the vertices' box, [xmin, ymin, zmin, xmax, ymax, zmax]
+  std::string bounds() const {
+    std::vector<double> box{INFINITY, INFINITY, INFINITY, -INFINITY, -INFINITY, -INFINITY};
+    for (std::size_t i = 0; i < vertices.size(); ++i)
+      box[i % 3] = std::min(box[i % 3], static_cast<double>(vertices[i])), box[3 + i % 3] = std::max(box[3 + i % 3], static_cast<double>(vertices[i]));
+    return numbers(box);
+  }
+};
+
+// a box from lo to hi in 12 triangles, wound outwards
+TestMesh box_mesh(const std::array<float, 3>& lo, const std::array<float, 3>& hi) {
+  TestMesh m;
+  const auto corner = [&](int k) { return std::array<float, 3>{k & 1 ? hi[0] : lo[0], k & 2 ? hi[1] : lo[1], k & 4 ? hi[2] : lo[2]}; };
+  // each face's corners in order about its outward normal
+  const int faces[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+  for (const auto& f : faces) {
+    for (const int k : {f[0], f[1], f[2], f[0], f[2], f[3]}) {
+      const std::array<float, 3> c = corner(k);
+      m.vertices.insert(m.vertices.end(), c.begin(), c.end());
+    }
+  }
+  return m;
+}
+
+// a tetrahedron with one corner at o and edges e along the axes, its triangles wound either way
+// (as STL files often are)
+TestMesh tetrahedron(const std::array<float, 3>& o, float e) {
+  const std::array<float, 3> a = o, b = {o[0] + e, o[1], o[2]}, c = {o[0], o[1] + e, o[2]}, d = {o[0], o[1], o[2] + e};
+  TestMesh m;
+  for (const auto& v : {a, c, b, a, b, d, a, d, c, c, b, d}) m.vertices.insert(m.vertices.end(), v.begin(), v.end());
+  return m;
+}
+
+// An arm yawing about a.3 (angle a) from a fixed pivot, a forearm pitching about the arm's
+// second axis (angle b) from the elbow; each drawn with the same bar, which reaches 0.8 m behind
+// its point; a tetrahedron hanging 0.6 m below the forearm's tip, another at the pivot
+// (scenery): the meshes, not the points, reach lowest and furthest back. The hand's mesh is not
+// drawn (not STL), its body the box of its mass and inertia instead
+std::string mesh_scene(int n, double t_end) {
+  const double l1 = 1.0, l2 = 1.0;
+  std::vector<double> t, yaw, pitch, rot_a, rot_b, pivot, elbow, tip;
+  for (int i = 0; i < n; ++i) {
+    const double s = n > 1 ? t_end * i / (n - 1) : 0.0;
+    const double a = 0.8 * std::sin(1.3 * s), b = 0.9 * std::sin(2.1 * s + 0.4);
+    const double ca = std::cos(a), sa = std::sin(a), cb = std::cos(b), sb = std::sin(b);
+    t.push_back(s);
+    yaw.push_back(a);
+    pitch.push_back(b);
+    rot_a.insert(rot_a.end(), {ca, -sa, 0, sa, ca, 0, 0, 0, 1});
+    rot_b.insert(rot_b.end(), {ca * cb, -sa, ca * sb, sa * cb, ca, sa * sb, -sb, 0, cb});
+    pivot.insert(pivot.end(), {0, 0, 0});
+    elbow.insert(elbow.end(), {l1 * ca, l1 * sa, 0});
+    tip.insert(tip.end(), {l1 * ca + l2 * ca * cb, l1 * sa + l2 * sa * cb, -l2 * sb});
+  }
+  const TestMesh bar = box_mesh({-0.8f, -0.06f, -0.06f}, {1.0f, 0.06f, 0.06f});
+  const TestMesh claw = tetrahedron({0.0f, -0.15f, -0.6f}, 0.6f);
+  std::string s = "{\"format\": 1, \"model\": \"mesh_arm\", \"description\": \"An arm and a forearm drawn with meshes\"";
+  s += ", \"source\": \"mesh_arm.eom\", \"times\": " + numbers(t) + ", \"up\": [0, 0, 1]";
+  s += ", \"frames\": [{\"name\": \"A\", \"body\": \"arm\", \"rotations\": " + numbers(rot_a) + "}";
+  s += ", {\"name\": \"B\", \"body\": \"forearm\", \"rotations\": " + numbers(rot_b) + "}]";
+  s += ", \"points\": [{\"name\": \"O\", \"positions\": " + numbers(pivot) + "}";
+  s += ", {\"name\": \"elbow\", \"positions\": " + numbers(elbow) + "}";
+  s += ", {\"name\": \"tip\", \"positions\": " + numbers(tip) + "}]";
+  s += ", \"links\": [[0, 1], [1, 2]]";
+  s += ", \"shapes\": [";
+  s += "{\"name\": \"arm\", \"kind\": \"mesh\", \"body\": \"arm\", \"frame\": 0, \"at\": 0, \"mesh\": 0, \"bounds\": " + bar.bounds() +
+       ", \"inferred\": false}, ";
+  s += "{\"name\": \"forearm\", \"kind\": \"mesh\", \"body\": \"forearm\", \"frame\": 1, \"at\": 1, \"mesh\": 0, \"bounds\": " +
+       bar.bounds() + ", \"inferred\": false}, ";
+  s += "{\"name\": \"claw\", \"kind\": \"mesh\", \"body\": \"forearm\", \"frame\": 1, \"at\": 2, \"mesh\": 1, \"bounds\": " +
+       claw.bounds() + ", \"inferred\": false}, ";
+  s += "{\"name\": \"base\", \"kind\": \"mesh\", \"body\": null, \"frame\": -1, \"at\": 0, \"mesh\": 1, \"bounds\": " +
+       claw.bounds() + ", \"inferred\": false}, ";
+  s += "{\"name\": \"hand\", \"kind\": \"box\", \"body\": \"hand\", \"frame\": 1, \"at\": 2, \"size\": [0.12, 0.1, 0.08], \"inferred\": true}]";
+  s += ", \"meshes\": [" + bar.entry("meshes/bar.stl") + ", " + claw.entry("package://arm/meshes/claw.stl") + "]";
+  s += ", \"missing_meshes\": [{\"shape\": \"hand\", \"file\": \"meshes/hand.dae\", \"reason\": \"not STL (a COLLADA file)\"}]";
+  s += ", \"particles\": [], \"trails\": [2], \"forces\": [], \"ground\": null";
+  s += ", \"series\": [{\"name\": \"a\", \"group\": \"coordinates\", \"values\": " + numbers(yaw) + "}";
+  s += ", {\"name\": \"b\", \"group\": \"coordinates\", \"values\": " + numbers(pitch) + "}]";
+  return s + "}\n";
+}
+
+// Meshes the page cannot draw, each an error it records (the shape drawn nowhere), beside one it
+// draws: vertices that are not base64, fewer bytes than the triangles need, a coordinate that is
+// not a number, a mesh that does not exist, a broken mesh shared by a second shape. The meshes
+// not drawn have names that would run a script or load an image if they were read as HTML.
+std::string broken_meshes_scene(int n, double t_end) {
+  std::vector<double> t, origin, cart;
+  for (int i = 0; i < n; ++i) {
+    const double s = n > 1 ? t_end * i / (n - 1) : 0.0;
+    t.push_back(s);
+    origin.insert(origin.end(), {0, 0, 0});
+    cart.insert(cart.end(), {std::sin(3 * s), 0.5 * s, 0.1});
+  }
+  const TestMesh good = box_mesh({-0.2f, -0.1f, -0.05f}, {0.2f, 0.1f, 0.05f});
+  TestMesh one = tetrahedron({0, 0, 0}, 0.1f), not_finite = one;
+  one.vertices.resize(9);
+  not_finite.vertices.resize(9);
+  not_finite.vertices[4] = std::numeric_limits<float>::quiet_NaN();
+  const auto shape = [](const std::string& name, const std::string& body, int mesh) {
+    return fmt::format("{{\"name\": \"{}\", \"kind\": \"mesh\", \"body\": {}, \"frame\": -1, \"at\": 1, \"mesh\": {}, "
+                       "\"bounds\": [-0.1, -0.1, -0.1, 0.1, 0.1, 0.1], \"inferred\": false}}", name, body, mesh);
+  };
+  std::string s = "{\"format\": 1, \"model\": \"broken_meshes\", \"description\": \"Meshes the page cannot draw\"";
+  s += ", \"times\": " + numbers(t) + ", \"up\": [0, 0, 1], \"frames\": []";
+  s += ", \"points\": [{\"name\": \"O\", \"positions\": " + numbers(origin) + "}";
+  s += ", {\"name\": \"c\", \"positions\": " + numbers(cart) + "}]";
+  s += ", \"links\": [[0, 1]]";
+  s += ", \"shapes\": [{\"name\": \"good\", \"kind\": \"mesh\", \"body\": \"cart\", \"frame\": -1, \"at\": 1, \"mesh\": 0, "
+       "\"bounds\": " + good.bounds() + ", \"inferred\": false}, ";
+  s += shape("bad64", "\"wreck\"", 1) + ", " + shape("short", "\"cart\"", 2) + ", " + shape("nan", "null", 3) + ", " +
+       shape("nowhere", "\"cart\"", 9) + ", " + shape("shared_bad", "\"wreck\"", 1) + "]";
+  s += ", \"meshes\": [" + good.entry("good.stl") + ", {\"file\": \"bad64.stl\", \"triangles\": 1, \"vertices\": \"@@not base64@@\"}";
+  s += ", {\"file\": \"short.stl\", \"triangles\": 2, \"vertices\": \"" + little_endian_base64(one.vertices) + "\"}";
+  s += ", " + not_finite.entry("nan.stl") + "]";
+  s += ", \"missing_meshes\": [{\"shape\": \"</script><img src=x onerror=\\\"document.title='injected'\\\">\", "
+       "\"file\": \"<img src=y>.stl\", \"reason\": \"not found (searched: <b>here</b>, & there)\"}, null, "
+       "{\"shape\": 7, \"file\": [\"x\"]}]";
+  s += ", \"particles\": [], \"trails\": [], \"forces\": [], \"ground\": null, \"series\": []";
+  return s + "}\n";
+}
+
 // a cart travelling 20 m along a.1 in 10 s, weaving along a.2, with a pendulum swinging about
 // a.2 below it, without gravity (up is a.3) and without a ground
 std::string travelling_scene(int n, double t_end) {
@@ -142,7 +306,8 @@ std::string travelling_scene(int n, double t_end) {
 
 int main(int argc, char** argv) {
   if (argc != 3) {
-    std::cerr << "usage: write_test_page double_pendulum|pendulum_without_ground|travelling|single_sample|empty|hostile_names OUT.html\n";
+    std::cerr << "usage: write_test_page double_pendulum|pendulum_without_ground|travelling|mesh|broken_meshes|single_sample|empty|"
+                 "hostile_names OUT.html\n";
     return 2;
   }
   const std::string kind = argv[1];
@@ -156,6 +321,12 @@ int main(int argc, char** argv) {
   } else if (kind == "travelling") {
     title = "travelling";
     scene = travelling_scene(1000, 10.0);
+  } else if (kind == "mesh") {
+    title = "mesh";
+    scene = mesh_scene(1000, 10.0);
+  } else if (kind == "broken_meshes") {
+    title = "broken meshes";
+    scene = broken_meshes_scene(50, 1.0);
   } else if (kind == "single_sample") {
     title = "one sample";
     scene = double_pendulum_scene(1, 0.0, "single_sample", "The double pendulum at one instant");

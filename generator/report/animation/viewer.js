@@ -5,7 +5,7 @@
   'use strict';
 
   var statusElement = document.getElementById('status');
-  var status = { ready: false, errors: window.eomgenErrors, drawn: 0, t: null, requests: 0 };
+  var status = { ready: false, errors: window.eomgenErrors, drawn: 0, t: null, requests: 0, missingMeshes: 0 };
   var testHook = null;  // what the URL's #t=...&layers=... asked for (the browser test's hook)
 
   // #status always holds the state; the title says "ready" or "error: ..." only for the test hook
@@ -43,12 +43,115 @@
   var points = list(scene.points), frames = list(scene.frames), shapes = list(scene.shapes);
   var particles = list(scene.particles), links = list(scene.links), forces = list(scene.forces);
   var series = list(scene.series), trailDefaults = list(scene.trails);
+  var meshes = list(scene.meshes), missingMeshes = list(scene.missing_meshes);
   var up = vector3(scene.up, new THREE.Vector3(0, 0, 1)).normalize();
 
   document.getElementById('model-name').textContent = scene.model || '';
   document.getElementById('model-description').textContent =
       (scene.description || '') + (scene.source ? ' (' + scene.source + ')' : '');
   if (n === 0 && document.getElementById('message').hidden) showMessage('The scene has no samples.');
+
+  // ---- meshes: the triangles of STL files, 9 little-endian float32 per triangle in base64 -----
+
+  // a mesh decoded once, however many shapes draw it: { positions, box } (box: the vertices'
+  // [xmin, ymin, zmin, xmax, ymax, zmax], null without triangles) or { error }
+  var littleEndianHost = new Uint8Array(new Uint16Array([1]).buffer)[0] === 1;
+  var decodedMeshes = {};
+  function decodeMesh(k) {
+    if (typeof k !== 'number' || !(k >= 0 && k < meshes.length) || Math.floor(k) !== k) {
+      return { error: 'no mesh ' + JSON.stringify(k) + ' (the scene has ' + meshes.length + ')' };
+    }
+    if (!(k in decodedMeshes)) {
+      try {
+        decodedMeshes[k] = meshVertices(meshes[k]);
+      } catch (e) {
+        decodedMeshes[k] = { error: 'mesh ' + k + ': ' + e.message };
+      }
+    }
+    return decodedMeshes[k];
+  }
+  function meshVertices(m) {
+    if (!m || typeof m !== 'object') throw new Error('it is not an object');
+    var triangles = m.triangles;
+    if (typeof triangles !== 'number' || !(triangles >= 0) || Math.floor(triangles) !== triangles) {
+      throw new Error('its number of triangles is ' + JSON.stringify(triangles));
+    }
+    if (typeof m.vertices !== 'string') throw new Error('its vertices are not a base64 string');
+    var text;
+    try {
+      text = atob(m.vertices);
+    } catch (e) {
+      throw new Error('its vertices are not base64');
+    }
+    if (text.length !== 36 * triangles) {
+      throw new Error(text.length + ' bytes of vertices where ' + triangles + ' triangles need ' + 36 * triangles);
+    }
+    var bytes = new Uint8Array(text.length);
+    for (var i = 0; i < text.length; ++i) bytes[i] = text.charCodeAt(i);
+    var x;
+    if (littleEndianHost) {
+      x = new Float32Array(bytes.buffer);
+    } else {
+      var data = new DataView(bytes.buffer);
+      x = new Float32Array(9 * triangles);
+      for (i = 0; i < x.length; ++i) x[i] = data.getFloat32(4 * i, true);
+    }
+    var box = x.length > 0 ? [Infinity, Infinity, Infinity, -Infinity, -Infinity, -Infinity] : null;
+    for (i = 0; i < x.length; ++i) {
+      if (!isFinite(x[i])) throw new Error('coordinate ' + i + ' of its vertices is not a finite number');
+      var j = i % 3;
+      if (x[i] < box[j]) box[j] = x[i];
+      if (x[i] > box[3 + j]) box[3 + j] = x[i];
+    }
+    return { positions: x, box: box };
+  }
+  // A mesh shape whose mesh cannot be drawn is an error, and is left out (drawn nowhere, sizing
+  // nothing). The box of a mesh shape, in its frame's components from its point: its `bounds`
+  // and its vertices' box together (the two are the same unless the scene is damaged)
+  var shapeBounds = new Map(), sceneShapes = shapes;
+  shapes = shapes.filter(function (s) {
+    if (!s || s.kind !== 'mesh') return true;
+    var d = decodeMesh(s.mesh);
+    if (d.error) {
+      window.eomgenErrors.push('shape ' + s.name + ': ' + d.error);
+      return false;
+    }
+    var b = list(s.bounds), box = d.box ? d.box.slice() : null;
+    var valid = b.length === 6 && b.every(function (v, i) { return typeof v === 'number' && isFinite(v) && (i >= 3 || v <= b[i + 3]); });
+    if (valid && box) {
+      for (var j = 0; j < 3; ++j) { box[j] = Math.min(box[j], b[j]); box[3 + j] = Math.max(box[3 + j], b[3 + j]); }
+    }
+    shapeBounds.set(s, box);
+    return true;
+  });
+  function meshBox(s) { return shapeBounds.get(s) || null; }
+
+  // The meshes the scene could not draw (not found, not STL, too large for the page), said
+  // quietly above the view: a line with all of them, and the list in full when opened
+  (function () {
+    var notice = document.getElementById('missing-meshes');
+    if (missingMeshes.length === 0 || !notice) return;
+    var entries = missingMeshes.map(function (m) {
+      var field = function (name) {
+        var v = m && typeof m === 'object' ? m[name] : undefined;
+        return v === undefined || v === null ? '?' : String(v);
+      };
+      return { shape: field('shape'), file: field('file'), reason: field('reason') };
+    });
+    var line = entries.length + (entries.length === 1 ? ' mesh' : ' meshes') + ' not drawn: ' +
+               entries.map(function (e) { return e.file + ': ' + e.reason; }).join('; ');
+    var summary = document.getElementById('missing-meshes-summary');
+    summary.textContent = line;
+    summary.title = line;
+    var items = document.getElementById('missing-meshes-list');
+    entries.forEach(function (e) {
+      var item = document.createElement('li');
+      item.textContent = 'shape ' + e.shape + ', ' + e.file + ': ' + e.reason;
+      items.appendChild(item);
+    });
+    notice.hidden = false;
+    status.missingMeshes = items.children.length;
+  })();
 
   // the sample interval holding t and the fraction of the way through it
   function locate(t) {
@@ -109,6 +212,8 @@
     if (s.length > 0) shapeSize = Math.max(shapeSize, s.length);
     var e = list(s.size);
     if (e.length === 3) shapeSize = Math.max(shapeSize, Math.hypot(e[0], e[1], e[2]));
+    var b = s.kind === 'mesh' ? meshBox(s) : null;
+    if (b) shapeSize = Math.max(shapeSize, Math.hypot(b[3] - b[0], b[4] - b[1], b[5] - b[2]));
   });
   size = Math.max(size, shapeSize);
 
@@ -177,7 +282,8 @@
   function shapeLength(s, r) { return s.length > 0 ? s.length : (s.kind === 'disk' ? 0.1 * r : 2 * r); }
   function boxEdges(s, r) { var e = list(s.size); return e.length === 3 ? e : [r, r, r]; }
   // how far a shape centred at its point reaches along the unit vector u at sample k (its
-  // support); a rod reaches its radius beyond its two points
+  // support); a rod reaches its radius beyond its two points, a mesh its box's farthest corner
+  // (its box is about its point, not centred there: the support can be negative)
   function shapeSupport(s, k, u) {
     var r = shapeRadius(s), axes, c;
     switch (s.kind) {
@@ -191,6 +297,16 @@
         var a = vector3(s.axis, new THREE.Vector3(0, 0, 1)).normalize();
         c = u.dot(axes[0]) * a.x + u.dot(axes[1]) * a.y + u.dot(axes[2]) * a.z;  // u along the shape's axis
         return 0.5 * shapeLength(s, r) * Math.abs(c) + r * Math.sqrt(Math.max(0, 1 - c * c));
+      case 'mesh':
+        var b = meshBox(s);
+        if (!b) return 0;
+        axes = frameAxesAt(s.frame, k);
+        var most = 0;
+        for (var j = 0; j < 3; ++j) {
+          var w = u.dot(axes[j]);  // u's component along the frame's axis j
+          most += Math.max(w * b[j], w * b[3 + j]);
+        }
+        return most;
       default: return 0;
     }
   }
@@ -209,9 +325,11 @@
   var reach = pointRadius.slice();
   shapes.forEach(function (s) {
     if (!isPoint(s.at) || s.kind === 'rod') return;
-    var r = shapeRadius(s), e = boxEdges(s, r);
+    var r = shapeRadius(s), e = boxEdges(s, r), b = meshBox(s);
     var around = s.kind === 'box' ? 0.5 * Math.hypot(e[0], e[1], e[2]) :
-                 s.kind === 'sphere' ? r : Math.hypot(r, 0.5 * shapeLength(s, r));
+                 s.kind === 'sphere' ? r :
+                 s.kind === 'mesh' ? (b ? Math.hypot(Math.max(-b[0], b[3]), Math.max(-b[1], b[4]), Math.max(-b[2], b[5])) : 0) :
+                 Math.hypot(r, 0.5 * shapeLength(s, r));
     reach[s.at] = Math.max(reach[s.at], around);
   });
 
@@ -506,9 +624,22 @@
   }
 
   var unitY = new THREE.Vector3(0, 1, 0);
+  // one geometry per mesh, however many shapes draw it; its normals per triangle
+  var meshGeometries = {};
+  function meshGeometry(k) {
+    if (!(k in meshGeometries)) {
+      var geometry = new THREE.BufferGeometry();
+      geometry.setAttribute('position', new THREE.BufferAttribute(decodeMesh(k).positions, 3));
+      geometry.computeVertexNormals();
+      meshGeometries[k] = geometry;
+    }
+    return meshGeometries[k];
+  }
   var drawnShapes = shapes.map(function (s) {
+    // (a mesh is seen from both sides: STL files often wind their triangles either way)
     var material = new THREE.MeshStandardMaterial({ color: colourOf(s.body), roughness: 0.6, metalness: 0.1,
-                                                    transparent: !!s.inferred, opacity: s.inferred ? 0.55 : 1 });
+                                                    transparent: !!s.inferred, opacity: s.inferred ? 0.55 : 1,
+                                                    side: s.kind === 'mesh' ? THREE.DoubleSide : THREE.FrontSide });
     // a rod without a radius is a line, drawn thin; other kinds always have one
     var r = shapeRadius(s), geometry = null, turn = null;
     var axis = vector3(s.axis, new THREE.Vector3(0, 0, 1)).normalize();
@@ -524,6 +655,7 @@
         turn = new THREE.Quaternion().setFromUnitVectors(unitY, axis);  // three's cylinder is along y
         break;
       case 'rod': geometry = new THREE.CylinderBufferGeometry(r, r, 1, 16); break;  // scaled to the points' distance
+      case 'mesh': geometry = meshGeometry(s.mesh); break;  // in the frame's components from the point, as placed
       default: window.eomgenErrors.push('shape ' + s.name + ': unknown kind ' + s.kind); return null;
     }
     var mesh = new THREE.Mesh(geometry, material);
@@ -828,8 +960,9 @@
   }
 
   // what the browser test checks of the view (with the hook only): the camera as drawn (its
-  // matrices, column-major as three.js holds them), the camera's choice, and the grid's and the
-  // axes' geometry in inertial components, read back from the drawn objects
+  // matrices, column-major as three.js holds them), the camera's choice, the grid's and the
+  // axes' geometry in inertial components, and each drawn shape's place, attitude and number of
+  // vertices (its index in the scene's shapes), read back from the drawn objects
   function describeView() {
     var array = function (v) { return v.toArray(); };
     var drawnGrid = world.getObjectByName('grid');
@@ -852,7 +985,12 @@
       moving: moving.slice(),
       grid: drawnGrid ? { visible: drawnGrid.visible, cell: drawnGrid.userData.cell,
                           vertices: Array.prototype.slice.call(drawnGrid.geometry.attributes.position.array) } : null,
-      axes: axes
+      axes: axes,
+      shapes: drawnShapes.filter(Boolean).map(function (d) {
+        return { index: sceneShapes.indexOf(d.shape), name: d.shape.name, kind: d.shape.kind, visible: d.mesh.visible,
+                 position: array(d.group.position), quaternion: d.group.quaternion.toArray(),
+                 vertices: d.mesh.geometry.attributes.position.count };
+      })
     };
   }
 
