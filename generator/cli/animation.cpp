@@ -8,12 +8,16 @@
 #include <cstdlib>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <set>
+#include <variant>
 #include <sstream>
 #include <vector>
 
 #include "eomgen/base/error.hpp"
 #include "eomgen/mechanics/kinematics.hpp"
+#include "eomgen/report/stl_mesh.hpp"
 #include "eomgen/symbolic/double_evaluator.hpp"
+#include "mesh_files.hpp"
 
 namespace eomgen::tools {
 
@@ -166,6 +170,22 @@ std::vector<double> shape_dimensions(const DoubleEvaluator& values, const Visual
     case VisualShape::Kind::disk:
       return {dimension(values, shape.radius, shape, "radius"), dimension(values, shape.length, shape, "thickness")};
     case VisualShape::Kind::rod: return {dimension(values, shape.radius, shape, "radius", true)};
+    case VisualShape::Kind::mesh: {
+      std::vector<double> scale;
+      for (std::size_t k = 0; k < 3; ++k) {
+        double v = std::nan("");
+        try {
+          v = values.value(shape.scale[k], "its scale");
+        } catch (const Error&) {
+        }
+        if (!std::isfinite(v) || v == 0)
+          throw SourceError(shape.location, fmt::format("shape '{}': factor {} of its scale is {} at the parameters of "
+                                                        "this run: expected a finite number that is not zero; check "
+                                                        "the --set values", shape.name, k + 1, v));
+        scale.push_back(v);
+      }
+      return scale;
+    }
   }
   EOMGEN_UNREACHABLE("a VisualShape::Kind without dimensions");
 }
@@ -177,6 +197,7 @@ const char* kind_name(VisualShape::Kind kind) {
     case VisualShape::Kind::cylinder: return "cylinder";
     case VisualShape::Kind::disk: return "disk";
     case VisualShape::Kind::rod: return "rod";
+    case VisualShape::Kind::mesh: return "mesh";
   }
   EOMGEN_UNREACHABLE("a VisualShape::Kind without a name");
 }
@@ -204,8 +225,9 @@ namespace {
 class SceneWriter {
  public:
   SceneWriter(const Model& model, const SceneRecording& recording, const std::map<std::string, double>& parameters,
-              const std::string& samples)
-      : model_(model),
+              const std::string& samples, const MeshPlaces& places)
+      : places_(places),
+        model_(model),
         system_(model.system),
         recording_(recording),
         values_(parameter_values(model, parameters)),
@@ -229,6 +251,7 @@ class SceneWriter {
       json_.raw(fmt::format("{}[{},{}]", k ? "," : "", recording_.links[k].first, recording_.links[k].second));
     json_.raw("]");
     json_.raw(",\n\"shapes\":[").raw(shapes).raw("]");
+    meshes();
     particles();
     json_.raw(",\n\"trails\":[");
     for (std::size_t k = 0; k < recording_.trails.size(); ++k) json_.raw(fmt::format("{}{}", k ? "," : "", recording_.trails[k]));
@@ -239,6 +262,8 @@ class SceneWriter {
     json_.raw("}\n");
     return json_.text();
   }
+
+  const std::vector<MissingMesh>& missing_meshes() const { return missing_; }
 
  private:
   std::size_t recording_offset() const { return 3 + nq_ + nc_; }
@@ -304,7 +329,7 @@ class SceneWriter {
     EOMGEN_UNREACHABLE("a shape's frame is not recorded (scene_recording records every shape's frame)");
   }
 
-  std::string shapes_text(std::vector<PrincipalFrame>& principal) const {
+  std::string shapes_text(std::vector<PrincipalFrame>& principal) {
     JsonText s;
     bool first = true;
     const auto begin = [&](const std::string& name, const char* kind, const std::string& body) {
@@ -316,7 +341,14 @@ class SceneWriter {
       else
         s.string(body);
     };
+    std::set<std::string> drawn_bodies;  // bodies with a shape drawn (other than a rod)
     for (const VisualShape& shape : model_.shapes) {
+      std::optional<std::size_t> mesh;
+      if (shape.kind == VisualShape::Kind::mesh) {
+        mesh = mesh_of(shape);
+        if (!mesh) continue;  // in missing_: its body is drawn as if it had no shape
+      }
+      if (shape.kind != VisualShape::Kind::rod && !shape.body.empty()) drawn_bodies.insert(shape.body);
       begin(shape.name, kind_name(shape.kind), shape.body);
       s.raw(fmt::format(",\"frame\":{},\"at\":{}", frame_index(shape.frame), shape.at.index));
       const std::vector<double> d = shape_dimensions(values_, shape);
@@ -333,16 +365,17 @@ class SceneWriter {
         case VisualShape::Kind::rod:
           s.raw(fmt::format(",\"to\":{},\"radius\":", shape.to.index)).number(d[0]);
           break;
+        case VisualShape::Kind::mesh:
+          s.raw(fmt::format(",\"mesh\":{},\"bounds\":", *mesh)).numbers(meshes_[*mesh].bounds);
+          break;
       }
       s.raw(",\"inferred\":false}");
     }
     const double fallback = 0.03 * scene_size();
     for (const RigidBody& body : system_.rigid_bodies()) {
-      // a rod only takes its body's colour (docs/model-language.md): the body keeps its box
-      const bool shaped = std::any_of(model_.shapes.begin(), model_.shapes.end(), [&](const VisualShape& shape) {
-        return shape.body == body.name && shape.kind != VisualShape::Kind::rod;
-      });
-      if (shaped) continue;
+      // a rod only takes its body's colour (docs/model-language.md): the body keeps its box, as
+      // it does when its mesh cannot be drawn (the stand-in)
+      if (drawn_bodies.count(body.name) != 0) continue;
       // the box of the body's mass and inertia: x^2 = 6 (trace J - 2 J_x) / m for its edges
       const std::string what = fmt::format("the inertia of body '{}'", body.name);
       Eigen::Matrix3d j;
@@ -374,6 +407,70 @@ class SceneWriter {
           .raw(",\"inferred\":true}");
     }
     return s.text() + (first ? "" : "\n");
+  }
+
+  /// The index in meshes_ of \p shape's triangles at this run's scale, read on first use; none
+  /// (and an entry in missing_) when its file is not found, not STL, cannot be read, or would
+  /// take the page over max_animation_triangles.
+  std::optional<std::size_t> mesh_of(const VisualShape& shape) {
+    const MeshFileLookup found = find_mesh_file(shape.file, places_.model_directory, places_.ros_package_path);
+    if (!found.path) {
+      missing_.push_back({shape.name, shape.file, found.reason});
+      return std::nullopt;
+    }
+    const std::vector<double> scale = shape_dimensions(values_, shape);
+    const std::string file = found.path->string();
+    for (std::size_t k = 0; k < meshes_.size(); ++k)
+      if (meshes_[k].path == file && meshes_[k].scale == scale) return k;
+    auto read = read_.find(file);
+    if (read == read_.end()) {
+      std::variant<TriangleMesh, std::string> result;
+      try {
+        result = read_stl(file, max_animation_triangles, max_mesh_file_bytes);
+      } catch (const MeshError& e) {
+        result = std::string(e.what());
+      }
+      read = read_.emplace(file, std::move(result)).first;
+    }
+    if (const std::string* why = std::get_if<std::string>(&read->second)) {
+      missing_.push_back({shape.name, shape.file, fmt::format("{} cannot be drawn: {}", file, *why)});
+      return std::nullopt;
+    }
+    const TriangleMesh& triangles = std::get<TriangleMesh>(read->second);
+    if (triangles_ + triangles.triangles() > max_animation_triangles) {
+      missing_.push_back({shape.name, shape.file,
+                          fmt::format("{} has {} triangles, which would take the page over its {} (make the mesh "
+                                      "coarser)", file, triangles.triangles(), max_animation_triangles)});
+      return std::nullopt;
+    }
+    triangles_ += triangles.triangles();
+    PageMesh m{file, scale, shape.file, {}, triangles.triangles(), {}};
+    m.vertices.reserve(triangles.vertices.size());
+    std::array<float, 6> box{INFINITY, INFINITY, INFINITY, -INFINITY, -INFINITY, -INFINITY};
+    for (std::size_t i = 0; i < triangles.vertices.size(); ++i) {
+      const float v = static_cast<float>(scale[i % 3] * static_cast<double>(triangles.vertices[i]));
+      m.vertices.push_back(v);
+      box[i % 3] = std::min(box[i % 3], v), box[3 + i % 3] = std::max(box[3 + i % 3], v);
+    }
+    m.bounds.assign(box.begin(), box.end());
+    meshes_.push_back(std::move(m));
+    return meshes_.size() - 1;
+  }
+
+  void meshes() {
+    json_.raw(",\n\"meshes\":[");
+    for (std::size_t k = 0; k < meshes_.size(); ++k) {
+      json_.raw(k ? ",\n" : "\n").raw("{\"file\":").string(meshes_[k].written);
+      json_.raw(fmt::format(",\"triangles\":{},\"vertices\":\"", meshes_[k].triangles));
+      json_.raw(little_endian_base64(meshes_[k].vertices)).raw("\"}");
+    }
+    json_.raw("]");
+    json_.raw(",\n\"missing_meshes\":[");
+    for (std::size_t k = 0; k < missing_.size(); ++k) {
+      json_.raw(k ? ",\n" : "\n").raw("{\"shape\":").string(missing_[k].shape);
+      json_.raw(",\"file\":").string(missing_[k].file).raw(",\"reason\":").string(missing_[k].reason).raw("}");
+    }
+    json_.raw("]");
   }
 
   void frames(const std::vector<PrincipalFrame>& principal) {
@@ -483,6 +580,21 @@ class SceneWriter {
     json_.numbers(total).raw("}]");
   }
 
+  /// A mesh as the page holds it: its triangles scaled, in float (what the page draws).
+  struct PageMesh {
+    std::string path;            // the file read
+    std::vector<double> scale;   // at this run's parameters
+    std::string written;         // the file as the model writes it
+    std::vector<float> vertices;
+    std::size_t triangles;
+    std::vector<double> bounds;  // min x, y, z, then max x, y, z
+  };
+
+  const MeshPlaces& places_;
+  std::map<std::string, std::variant<TriangleMesh, std::string>> read_;  // by path: the triangles, or why not
+  std::vector<PageMesh> meshes_;
+  std::vector<MissingMesh> missing_;
+  std::size_t triangles_ = 0;  // in meshes_
   const Model& model_;
   const MechanicalSystem& system_;
   const SceneRecording& recording_;
@@ -503,10 +615,14 @@ void check_animation_parameters(const Model& model, const std::map<std::string, 
   }
 }
 
-std::string animation_scene_json(const Model& model, const SceneRecording& recording,
-                                 const std::map<std::string, double>& parameters, const std::string& samples,
-                                 const std::string& source_name) {
-  return SceneWriter(model, recording, parameters, samples).write(source_name);
+AnimationScene animation_scene(const Model& model, const SceneRecording& recording,
+                               const std::map<std::string, double>& parameters, const std::string& samples,
+                               const std::string& source_name, const MeshPlaces& places) {
+  SceneWriter writer(model, recording, parameters, samples, places);
+  AnimationScene scene;
+  scene.json = writer.write(source_name);
+  scene.missing_meshes = writer.missing_meshes();
+  return scene;
 }
 
 }  // namespace eomgen::tools

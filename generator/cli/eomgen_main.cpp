@@ -68,7 +68,12 @@ eomgen::Model load(const Options& o) {
 
 void run_import(const Options& o) {
   eomgen::tools::check_output_files({{"-o", o.output_path}}, o.model_path);
-  const eomgen::urdf::ImportResult imported = eomgen::urdf::import_urdf(o.model_path, eomgen::tools::import_options(o));
+  eomgen::urdf::ImportOptions options = eomgen::tools::import_options(o);
+  // mesh files named relative to the URDF are named relative to the written model (standard
+  // output: the current directory, where `> robot.eom` puts it)
+  options.model_directory = o.output_path.empty() ? std::string(".")
+                                                  : std::filesystem::absolute(o.output_path).parent_path().string();
+  const eomgen::urdf::ImportResult imported = eomgen::urdf::import_urdf(o.model_path, options);
   // the text must read as the model it stands for before it is written anywhere
   eomgen::parse_model(imported.text, o.model_path + " (as imported)");
   for (const std::string& repair : imported.repairs) std::cerr << "eomgen: --repair-inertia: " << repair << "\n";

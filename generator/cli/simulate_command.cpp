@@ -397,9 +397,16 @@ int run_simulate(const Model& model, const SimulateRequest& r) {
     throw Error(fmt::format("the simulation program of {} ended with status {}", model.name, status));
   if (animate) {
     // the page before the CSV is committed: a run whose page cannot be made leaves neither
-    const std::string json =
-        animation_scene_json(model, recording, r.parameters, samples->path(), emit.source_name);
-    write_atomically(r.animation_path, animation_page(fmt::format("{}: {}", model.name, model.description), json));
+    const char* ros_package_path = std::getenv("ROS_PACKAGE_PATH");
+    const MeshPlaces places{fs::absolute(fs::path(r.model_path)).parent_path(),
+                            ros_package_path ? ros_package_path : ""};
+    const AnimationScene scene =
+        animation_scene(model, recording, r.parameters, samples->path(), emit.source_name, places);
+    for (const MissingMesh& m : scene.missing_meshes)
+      std::cerr << fmt::format("warning: shape '{}': mesh \"{}\" not drawn (a stand-in is): {}\n", m.shape, m.file,
+                               m.reason);
+    write_atomically(r.animation_path,
+                     animation_page(fmt::format("{}: {}", model.name, model.description), scene.json));
   }
   csv.commit();
   std::cout << fmt::format("CSV:  {}\n", csv_path) << std::flush;

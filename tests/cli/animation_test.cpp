@@ -7,6 +7,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -197,6 +200,136 @@ void expect_consistent_scene(const json& scene) {
   for (const json& l : scene["links"]) EXPECT_LT(l[1].get<std::size_t>(), points);
   for (const json& t : scene["trails"]) EXPECT_LT(t.get<std::size_t>(), points);
   for (const json& f : scene["forces"]) EXPECT_EQ(f["vectors"].size(), 3 * n) << f["name"];
+}
+
+// --- meshes -----------------------------------------------------------------------------
+
+// a binary STL of the triangles (9 floats each), written as the format has it: an 80-byte
+// header, the count, and per triangle a normal, three vertices and two attribute bytes
+void write_binary_stl(const fs::path& path, const std::vector<float>& vertices) {
+  fs::create_directories(path.parent_path());
+  std::ofstream out(path, std::ios::binary);
+  const std::string header = "solid but binary";  // as some exporters begin their binary files
+  out << header << std::string(80 - header.size(), ' ');
+  const auto u32 = [&](std::uint32_t v) {
+    for (int k = 0; k < 4; ++k) out.put(static_cast<char>((v >> (8 * k)) & 0xff));
+  };
+  const auto f32 = [&](float f) {
+    std::uint32_t bits = 0;
+    std::memcpy(&bits, &f, 4);
+    u32(bits);
+  };
+  u32(static_cast<std::uint32_t>(vertices.size() / 9));
+  for (std::size_t t = 0; t < vertices.size() / 9; ++t) {
+    for (int k = 0; k < 3; ++k) f32(0);
+    for (int k = 0; k < 9; ++k) f32(vertices[9 * t + static_cast<std::size_t>(k)]);
+    out.put(0), out.put(0);
+  }
+}
+
+// the floats of the page's little-endian base64
+std::vector<float> decoded(const std::string& text) {
+  const std::string alphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::vector<unsigned char> bytes;
+  std::uint32_t buffer = 0;
+  int bits = 0;
+  for (const char c : text) {
+    if (c == '=') break;
+    buffer = (buffer << 6) | static_cast<std::uint32_t>(alphabet.find(c));
+    bits += 6;
+    if (bits >= 8) bytes.push_back(static_cast<unsigned char>((buffer >> (bits - 8)) & 0xff)), bits -= 8;
+  }
+  std::vector<float> out;
+  for (std::size_t i = 0; i + 3 < bytes.size(); i += 4) {
+    const std::uint32_t v = bytes[i] | bytes[i + 1] << 8 | bytes[i + 2] << 16 | static_cast<std::uint32_t>(bytes[i + 3]) << 24;
+    float f;
+    std::memcpy(&f, &v, 4);
+    out.push_back(f);
+  }
+  return out;
+}
+
+// a tetrahedron's four faces
+const std::vector<float> tetrahedron{0, 0, 0, 1, 0, 0, 0, 1, 0,  0, 0, 0, 0, 0, 1, 1, 0, 0,
+                                     0, 0, 0, 0, 1, 0, 0, 0, 1,  1, 0, 0, 0, 0, 1, 0, 1, 0};
+
+// two links, each drawn by meshes: found beside the model, in a package above it, in one of
+// $ROS_PACKAGE_PATH; one not STL, one not found, one broken
+const std::string meshed_links = R"(coordinate q1, q2
+parameter l = 1
+parameter k = 0.5
+frame b = rotate(a, 3, q1)
+frame c = rotate(b, 3, q2)
+point p1 = w + l*b.1
+point m1 = w + l/2*b.1
+point m2 = p1 + l/2*c.1
+body link1(mass = 1, centre = m1, frame = b, inertia = diag(0.01, 0.1, 0.1))
+body link2(mass = 1, centre = m2, frame = c, inertia = diag(0.01, 0.1, 0.1))
+gravity = -9.81*a.2
+shape hull = mesh(body = link1, file = "meshes/tet.stl", scale = [k, -1, 2], at = w, frame = b)
+shape twin = mesh(body = link1, file = "package://arm_pkg/meshes/tet.stl", scale = [k, -1, 2], at = p1)
+shape again = mesh(body = link1, file = "meshes/tet.stl", scale = [k, -1, 2], at = m1)
+shape other = mesh(body = link1, file = "package://other_pkg/tet.STL", at = m1)
+shape cover = mesh(body = link2, file = "meshes/cover.dae", at = p1, frame = c)
+shape gone = mesh(body = link2, file = "meshes/gone.stl", at = p1, frame = c)
+shape broken = mesh(body = link2, file = "package://arm_pkg/meshes/broken.stl", at = p1, frame = c)
+)";
+
+TEST_F(Animate, MeshesAreDrawnFromTheirSTLFilesAndTheOthersAreNamedWithStandIns) {
+  const fs::path package = dir_ / "work" / "ws" / "arm_pkg";
+  write_binary_stl(package / "robot" / "meshes" / "tet.stl", tetrahedron);
+  write_binary_stl(package / "meshes" / "tet.stl", tetrahedron);
+  write_binary_stl(dir_ / "work" / "elsewhere" / "other_pkg" / "tet.STL", tetrahedron);
+  std::ofstream(package / "meshes" / "broken.stl", std::ios::binary) << std::string(90, 'x');
+  std::ofstream(package / "robot" / "meshes" / "cover.dae") << "<COLLADA/>";
+  std::ofstream(package / "robot" / "model.eom") << meshed_links;
+  ::setenv("ROS_PACKAGE_PATH", (dir_ / "work" / "nowhere").string().append(":").append((dir_ / "work" / "elsewhere").string()).c_str(), 1);
+  const Outcome r = simulate(quote((package / "robot" / "model.eom").string()) + " --t-end 0.5 --no-plot -o " +
+                             quote(work("run.csv")) + " --animate " + quote(work("run.html")));
+  ::unsetenv("ROS_PACKAGE_PATH");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("warning: shape 'cover': mesh \"meshes/cover.dae\" not drawn (a stand-in is): not STL (a "
+                               ".dae file; only STL files are drawn)"));
+  EXPECT_THAT(r.err, HasSubstr("warning: shape 'gone': mesh \"meshes/gone.stl\" not drawn (a stand-in is): not found "
+                               "(searched " + (package / "robot" / "meshes" / "gone.stl").string() + ")"));
+  EXPECT_THAT(r.err, HasSubstr("warning: shape 'broken': mesh \"package://arm_pkg/meshes/broken.stl\" not drawn (a "
+                               "stand-in is): " + (package / "meshes" / "broken.stl").string() + " cannot be drawn: "));
+
+  const json scene = scene_of(slurp(work("run.html")));
+  ASSERT_TRUE(scene.is_object());
+  // again shares hull's triangles (one file, one scale); twin's are the same numbers from another
+  // file; other's are unscaled
+  ASSERT_EQ(scene["meshes"].size(), 3u);
+  EXPECT_EQ(named(scene["shapes"], "again")["mesh"], named(scene["shapes"], "hull")["mesh"]);
+  const json& hull = named(scene["shapes"], "hull");
+  const json& twin = named(scene["shapes"], "twin");
+  const json& other = named(scene["shapes"], "other");
+  EXPECT_EQ(hull["kind"], "mesh");
+  EXPECT_EQ(hull["body"], "link1");
+  EXPECT_NE(hull["mesh"], twin["mesh"]) << "two files, even of the same content, are two meshes";
+  const json& hull_mesh = scene["meshes"][hull["mesh"].get<std::size_t>()];
+  EXPECT_EQ(hull_mesh["file"], "meshes/tet.stl");
+  EXPECT_EQ(hull_mesh["triangles"], 4);
+  const std::vector<float> v = decoded(hull_mesh["vertices"].get<std::string>());
+  ASSERT_EQ(v.size(), tetrahedron.size());
+  const float scale[3] = {0.5f, -1.0f, 2.0f};
+  for (std::size_t i = 0; i < v.size(); ++i) EXPECT_EQ(v[i], scale[i % 3] * tetrahedron[i]) << i;
+  EXPECT_EQ(hull["bounds"], json::parse("[0,-1,0,0.5,0,2]"));
+  const json& other_mesh = scene["meshes"][other["mesh"].get<std::size_t>()];
+  EXPECT_EQ(other_mesh["file"], "package://other_pkg/tet.STL");
+  EXPECT_EQ(decoded(other_mesh["vertices"].get<std::string>()), tetrahedron);
+  EXPECT_EQ(other["bounds"], json::parse("[0,0,0,1,1,1]"));
+
+  // the three left out are listed; link2 has no mesh drawn, so its stand-in is its inertia's box
+  ASSERT_EQ(scene["missing_meshes"].size(), 3u);
+  EXPECT_EQ(scene["missing_meshes"][0]["shape"], "cover");
+  EXPECT_EQ(scene["missing_meshes"][1]["file"], "meshes/gone.stl");
+  EXPECT_THAT(scene["missing_meshes"][2]["reason"].get<std::string>(), HasSubstr("cannot be drawn"));
+  for (const char* missing : {"cover", "gone", "broken"})
+    for (const json& shape : scene["shapes"]) EXPECT_NE(shape["name"], missing);
+  const json& stand_in = named(scene["shapes"], "link2");
+  EXPECT_EQ(stand_in["inferred"], true);
+  for (const json& shape : scene["shapes"]) EXPECT_NE(shape["name"], "link1") << "link1 is drawn by its meshes";
 }
 
 TEST_F(Animate, EveryShippedModelAnimates) {

@@ -150,7 +150,7 @@ TEST(ShapeStatement, ErrorsSayWhatWasExpected) {
   auto expect = [](const std::string& shape, int column, const std::string& message) {
     expect_model_error(arm + shape + "\n", 12, column, message);
   };
-  expect("shape s = cone(body = link, radius = d)", 11, "shape 's': unknown kind of shape 'cone': expected sphere, box, cylinder, disk or rod");
+  expect("shape s = cone(body = link, radius = d)", 11, "shape 's': unknown kind of shape 'cone': expected sphere, box, cylinder, disk, rod or mesh");
   expect("shape s = sphere(body = lnk, radius = d)", 25, "unknown body or particle 'lnk'");
   expect("shape s = sphere(body = tip, radius = d)", 25,
          "shape 's' (sphere): 'tip' is a point, not a body or a particle: expected the name of a 'body' or 'particle'");
@@ -176,6 +176,57 @@ TEST(ShapeStatement, ErrorsSayWhatWasExpected) {
   expect("shape for = sphere(body = link, radius = d)", 7, "keyword");
   expect("shape s = sphere(body = link, radius = m/4)", 40,
          "shape 's' (sphere): the term '1/4*m' has dimension kg, expected m for 'radius' (a length)");
+}
+
+TEST(ShapeStatement, MeshKeepsItsFileAsWrittenAndItsScaleAlongTheFramesAxes) {
+  const Model model = with_shapes(
+      "shape hull = mesh(body = link, file = \"package://arm/meshes/Link 1.STL\", scale = [0.001, -0.001, d/l/100], at = tip, frame = c)\n"
+      "shape plain = mesh(body = link, file = \"../meshes/link.stl\")\n"
+      "shape even = mesh(at = slab, file = \"/abs/base.stl\", scale = 2*d/l)\n");
+  ASSERT_EQ(model.shapes.size(), 3u);
+  const VisualShape& hull = model.shapes[0];
+  EXPECT_EQ(hull.kind, ShapeKind::mesh);
+  EXPECT_EQ(hull.file, "package://arm/meshes/Link 1.STL");
+  EXPECT_EQ(point_name(model, hull.at), "tip");
+  ASSERT_TRUE(hull.frame);
+  EXPECT_EQ(frame_name(model, *hull.frame), "c");
+  EXPECT_DOUBLE_EQ(number(hull.scale[0], model), 0.001);
+  EXPECT_DOUBLE_EQ(number(hull.scale[1], model), -0.001);  // a negative factor mirrors
+  EXPECT_DOUBLE_EQ(number(hull.scale[2], model), 0.001);
+  // the defaults: the body's centre and frame, unscaled
+  const VisualShape& plain = model.shapes[1];
+  EXPECT_EQ(plain.file, "../meshes/link.stl");
+  EXPECT_EQ(point_name(model, plain.at), "mid");
+  EXPECT_EQ(frame_name(model, *plain.frame), "b");
+  for (const GiNaC::ex& f : plain.scale) EXPECT_DOUBLE_EQ(number(f, model), 1.0);
+  // one factor for the three axes; no body: the inertial frame
+  const VisualShape& even = model.shapes[2];
+  EXPECT_TRUE(even.body.empty());
+  EXPECT_EQ(frame_name(model, *even.frame), "a");
+  for (const GiNaC::ex& f : even.scale) EXPECT_DOUBLE_EQ(number(f, model), 0.2);
+}
+
+TEST(ShapeStatement, MeshErrorsSayWhatWasExpected) {
+  auto expect = [](const std::string& shape, int column, const std::string& message) {
+    expect_model_error(arm + shape + "\n", 12, column, message);
+  };
+  expect("shape s = mesh(body = link)", 1, "shape 's' (mesh): missing argument 'file' (the mesh's STL file, a string");
+  expect("shape s = mesh(body = link, file = link)", 36, "shape 's' (mesh): 'file' must be a string in double quotes");
+  expect("shape s = mesh(body = link, file = \"\")", 36, "shape 's' (mesh): 'file' is empty");
+  expect("shape s = mesh(body = link, file = \"a.stl\", scale = 0)", 53,
+         "shape 's' (mesh): 'scale' must be a constant that is not zero (numbers, consts and parameters, not zero at "
+         "the parameters' default values), got 0");
+  expect("shape s = mesh(body = link, file = \"a.stl\", scale = [1, q, 1])", 57,
+         "shape 's' (mesh): factor 2 of 'scale' must be a constant that is not zero");
+  expect("shape s = mesh(body = link, file = \"a.stl\", scale = [1, 1])", 53, "'scale' must be one factor or [X, Y, Z]");
+  expect("shape s = mesh(body = link, file = \"a.stl\", scale = d)", 53,
+         "the term 'd' has dimension m, expected dimensionless for 'scale' (a pure number)");
+  expect("shape s = mesh(body = link, file = \"a.stl\", radius = d)", 45, "unknown argument 'radius'; expected body, file, scale, at, frame");
+  // a string is a file name and nothing else
+  expect("shape s = sphere(body = link, radius = \"d\")", 40,
+         "expected an expression, got the string \"d\" (only a mesh's 'file' is a string)");
+  expect("shape s = mesh(body = \"link\", file = \"a.stl\")", 23, "shape 's' (mesh): argument 'body' must name a body or a particle");
+  expect("shape s = mesh(body = link, file = \"a.stl\" + 1)", 44, "or ')' after an argument");
 }
 
 TEST(ShapeStatement, DimensionsAreLengthsInAModelWithUnits) {

@@ -351,6 +351,54 @@ TEST(UrdfModel, AMimicOnAFixedJointAndAVisualOfAnotherGeometryAreKeptAsComments)
   EXPECT_THAT(text, ::testing::Not(::testing::HasSubstr("constraint")));
 }
 
+// a two-link arm whose links are drawn by meshes: a package:// name, a relative one with a
+// scale (a mirror), one a model file cannot quote, one flattened by a zero scale
+const std::string meshed_arm = R"(<robot name="r"><link name="base"/>
+    <joint name="j" type="revolute"><parent link="base"/><child link="arm"/><axis xyz="0 0 1"/></joint>
+    <link name="arm"><inertial><origin xyz="0.3 0 0"/><mass value="2"/>
+      <inertia ixx="0.01" ixy="0" ixz="0" iyy="0.03" iyz="0" izz="0.02"/></inertial>
+      <visual><geometry><mesh filename="package://arm_description/meshes/arm.stl"/></geometry></visual>
+      <visual><origin xyz="0.1 0 0" rpy="0 0 1.5707963267948966"/>
+        <geometry><mesh filename="meshes/cover.STL" scale="0.001 -0.001 0.001"/></geometry></visual>
+      <visual><geometry><mesh filename="say&quot;hi.stl"/></geometry></visual>
+      <visual><geometry><mesh filename="flat.stl" scale="1 0 1"/></geometry></visual></link></robot>)";
+
+TEST(UrdfModel, MeshVisualsBecomeMeshShapesPlacedByTheirOrigins) {
+  const Model model = imported(meshed_arm);
+  ASSERT_EQ(model.shapes.size(), 2u);
+  const VisualShape& first = model.shapes[0];
+  EXPECT_EQ(first.kind, VisualShape::Kind::mesh);
+  EXPECT_EQ(first.name, "arm_visual1");
+  EXPECT_EQ(first.body, "arm_body");
+  EXPECT_EQ(first.file, "package://arm_description/meshes/arm.stl");
+  EXPECT_EQ(model.system.frame(*first.frame).name, "arm");
+  const VisualShape& cover = model.shapes[1];
+  EXPECT_EQ(cover.file, "meshes/cover.STL");  // as written: the model is read where the URDF is
+  EXPECT_EQ(model.system.point(cover.at).name, "arm_visual2_at");
+  EXPECT_EQ(model.system.frame(*cover.frame).name, "arm_visual2_frame");
+  const double scale[3] = {0.001, -0.001, 0.001};
+  for (std::size_t k = 0; k < 3; ++k)
+    EXPECT_DOUBLE_EQ(GiNaC::ex_to<GiNaC::numeric>(cover.scale[k].evalf()).to_double(), scale[k]);
+  const std::string text = written(meshed_arm);
+  EXPECT_THAT(text, ::testing::HasSubstr("shape arm_visual1 = mesh(body = arm_body, file = "
+                                         "\"package://arm_description/meshes/arm.stl\", at = arm_origin, frame = arm)"));
+  EXPECT_THAT(text, ::testing::HasSubstr("shape arm_visual2 = mesh(body = arm_body, file = \"meshes/cover.STL\", "
+                                         "scale = [0.001, -0.001, 0.001], at = arm_visual2_at, frame = arm_visual2_frame)"));
+  EXPECT_THAT(text, ::testing::HasSubstr("# visual 3: mesh 'say?hi.stl' (not drawn: its name has a quote"));
+  EXPECT_THAT(text, ::testing::HasSubstr("# visual 4: mesh 'flat.stl' (not drawn: a scale of 0 flattens it)"));
+}
+
+TEST(UrdfModel, AMeshNamedRelativeToTheURDFIsNamedRelativeToWhereTheModelIsWritten) {
+  urdf::ImportOptions options;
+  options.model_directory = "/robots/out/models";
+  const urdf::ImportResult result = urdf::write_model(urdf::read_robot(meshed_arm, "/robots/arm/urdf/arm.urdf"), options);
+  EXPECT_THAT(result.text, ::testing::HasSubstr("file = \"../../arm/urdf/meshes/cover.STL\""));
+  EXPECT_THAT(result.text, ::testing::HasSubstr("file = \"package://arm_description/meshes/arm.stl\""));
+  options.model_directory = "/robots/arm/urdf";
+  EXPECT_THAT(urdf::write_model(urdf::read_robot(meshed_arm, "/robots/arm/urdf/arm.urdf"), options).text,
+              ::testing::HasSubstr("file = \"meshes/cover.STL\""));
+}
+
 TEST(UrdfModel, AFloatingBaseMakesTheRootAFreeBodyCarryingTheRest) {
   const std::string urdf = R"(<robot name="quad">
     <link name="base"><inertial><mass value="1.5"/><inertia ixx="0.02" ixy="0" ixz="0" iyy="0.02" iyz="0" izz="0.04"/></inertial></link>

@@ -136,6 +136,7 @@ class Elaborator {
 
   // the shape statement (model_shapes.cpp)
   void shape(const Instance& instance, const std::string& name, const std::string& what);
+  void mesh_file_and_scale(VisualShape& shape, const Arguments& args, const std::string& what, const Environment& env);
   GiNaC::ex shape_length(const ExprPtr& value, const std::string& what, const std::string& role,
                          const Environment& env);
 

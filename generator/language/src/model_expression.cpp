@@ -550,6 +550,9 @@ Value Elaborator::evaluate(const ExprPtr& ptr, const Environment& env) {
       unit(e.basis_index - 1, 0) = 1;
       return Value::of(eomgen::Vector(frame_named(e.name, env), unit));
     }
+    case Expr::Kind::text:
+      throw SourceError(e.location, fmt::format("expected an expression, got the string \"{}\" (only a mesh's 'file' "
+                                                "is a string)", e.number_text));
   }
   EOMGEN_UNREACHABLE("evaluate: an Expr::Kind outside its enumerators");
 }

@@ -205,7 +205,16 @@ class Parser {
         error(key, fmt::format("expected an argument name (key = value), got {}", describe(key)));
       next();
       expect_symbol("=", fmt::format("after the argument name '{}'", key.text).c_str());
-      out.push_back(Argument{key.text, expression(), key.location});
+      if (peek().kind == Token::Kind::string) {  // a file name: a value of its own, never an operand
+        const Token& t = next();
+        auto text = std::make_shared<Expr>();
+        text->kind = Expr::Kind::text;
+        text->location = t.location;
+        text->number_text = t.text;
+        out.push_back(Argument{key.text, text, key.location});
+      } else {
+        out.push_back(Argument{key.text, expression(), key.location});
+      }
       if (!is_symbol(")")) expect_symbol(",", "or ')' after an argument");
     }
     next();
@@ -394,7 +403,8 @@ const SourceLocation& start_of(const Expr& e) {
     case Expr::Kind::call:
     case Expr::Kind::list:
     case Expr::Kind::in_frame:
-    case Expr::Kind::basis: return e.location;
+    case Expr::Kind::basis:
+    case Expr::Kind::text: return e.location;
   }
   EOMGEN_UNREACHABLE("start_of: an Expr::Kind outside its enumerators");
 }

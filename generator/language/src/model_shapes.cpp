@@ -29,6 +29,7 @@ const KindSyntax kinds[] = {
     {"cylinder", ShapeKind::cylinder, {"body", "radius", "length", "axis", "at", "frame"}},
     {"disk", ShapeKind::disk, {"body", "radius", "axis", "thickness", "at", "frame"}},
     {"rod", ShapeKind::rod, {"from", "to", "radius", "body"}},
+    {"mesh", ShapeKind::mesh, {"body", "file", "scale", "at", "frame"}},
 };
 
 bool has_state(const Variables& vars, const ex& e) {
@@ -55,6 +56,45 @@ ex Elaborator::shape_length(const ExprPtr& value, const std::string& what,
   return e;
 }
 
+// A mesh's file, a string, and its scale: one factor for all three axes or [X, Y, Z], each a
+// constant that is not zero (a negative factor mirrors, as URDFs use for left and right parts).
+// The factors are pure numbers: the file's coordinates are lengths in metres.
+void Elaborator::mesh_file_and_scale(VisualShape& shape, const Arguments& args, const std::string& what,
+                                     const Environment& env) {
+  const Argument& file = args.require("file", "the mesh's STL file, a string such as \"meshes/link1.stl\"");
+  if (file.value->kind != Expr::Kind::text)
+    throw SourceError(start_of(*file.value), fmt::format("{}: 'file' must be a string in double quotes, such as "
+                                                         "\"meshes/link1.stl\"", what));
+  shape.file = file.value->number_text;
+  if (shape.file.empty()) throw SourceError(file.value->location, fmt::format("{}: 'file' is empty: expected a file name", what));
+  const Argument* scale = args.find("scale");
+  if (!scale) return;
+  std::vector<ExprPtr> factors;
+  if (scale->value->kind == Expr::Kind::list) {
+    if (scale->value->args.size() != 3)
+      throw SourceError(start_of(*scale->value), fmt::format("{}: 'scale' must be one factor or [X, Y, Z], the "
+                                                             "factors along the axes 1, 2, 3 of the shape's frame", what));
+    factors = scale->value->args;
+  } else {
+    factors = {scale->value, scale->value, scale->value};
+  }
+  const MechanicalSystem& sys = model_.system;
+  for (std::size_t i = 0; i < 3; ++i) {
+    const std::string role = factors[0] == factors[1] ? std::string("'scale'") : fmt::format("factor {} of 'scale'", i + 1);
+    const ex e = scalar(factors[i], env, fmt::format("{}: {}", what, role));
+    const std::optional<double> at_defaults = value_at(e, sys.parameter_defaults());
+    if (has_state(sys.variables(), e) || !at_defaults || !std::isfinite(*at_defaults) || *at_defaults == 0)
+      throw SourceError(start_of(*factors[i]),
+                        fmt::format("{}: {} must be a constant that is not zero (numbers, consts and parameters, "
+                                    "not zero at the parameters' default values){}", what, role,
+                                    at_defaults && !has_state(sys.variables(), e) ? fmt::format(", got {:.6g}", *at_defaults)
+                                                                                  : std::string()));
+    units_.require(e, UnitChecks::expect(dimension::none(), start_of(*factors[i]), what,
+                                         fmt::format("{} (a pure number)", role)));
+    shape.scale[i] = e;
+  }
+}
+
 void Elaborator::shape(const Instance& in, const std::string& name, const std::string& what) {
   const Statement& s = *in.statement;
   const Environment& env = in.environment;
@@ -65,7 +105,7 @@ void Elaborator::shape(const Instance& in, const std::string& name, const std::s
     if (word == k.word) syntax = &k;
   if (!syntax)
     throw SourceError(s.shape_kind.location, fmt::format("{}: unknown kind of shape '{}': expected sphere, box, "
-                                                         "cylinder, disk or rod", what, word));
+                                                         "cylinder, disk, rod or mesh", what, word));
   const std::string described = fmt::format("{} ({})", what, word);
   const Arguments args(*this, in, described, syntax->arguments);
   VisualShape shape;
@@ -120,7 +160,9 @@ void Elaborator::shape(const Instance& in, const std::string& name, const std::s
     args.require("at", "the shape's centre, a point; or 'body = BODY', whose centre it then is");
   }
 
-  if (shape.kind == ShapeKind::box) {
+  if (shape.kind == ShapeKind::mesh) {
+    mesh_file_and_scale(shape, args, described, env);
+  } else if (shape.kind == ShapeKind::box) {
     const Argument& size = args.require("size", "the edge lengths [X, Y, Z] along the frame's axes 1, 2, 3");
     if (size.value->kind != Expr::Kind::list || size.value->args.size() != 3)
       throw SourceError(start_of(*size.value), fmt::format("{}: 'size' must be [X, Y, Z], the edge lengths along the "

@@ -41,7 +41,8 @@ struct Name {
 struct Expr {
   /// sum and product are flat, one node for `a + b - c + ...`: a sum of any length is then a
   /// loop, not a recursion as deep as it is long.
-  enum class Kind { number, name, negate, sum, product, power, call, list, in_frame, basis };
+  /// text: a string in double quotes, which only an argument's value can be (a mesh's file)
+  enum class Kind { number, name, negate, sum, product, power, call, list, in_frame, basis, text };
   /// The operator before an operand of a sum (+, or - when inverse) or a product (*, or /).
   struct Operation {
     bool inverse = false;
@@ -49,7 +50,7 @@ struct Expr {
   };
   Kind kind;
   SourceLocation location;    // sum and product: their first operator
-  std::string number_text;    // number
+  std::string number_text;    // number; text: the string's contents
   Name name;                  // name, call (function), in_frame and basis (frame)
   int basis_index = 0;        // basis: 1, 2 or 3
   std::vector<ExprPtr> args;  // operands, call arguments, list elements; in_frame: the list
@@ -104,7 +105,7 @@ struct Statement {
   ExprPtr value2;           // constraint right side; loop last value
   std::string text;         // model description
   std::vector<Argument> arguments;  // NAME(key = value, ...); shape: KIND(key = value, ...)
-  Name shape_kind;          // shape: sphere, box, cylinder, disk or rod, as written
+  Name shape_kind;          // shape: sphere, box, cylinder, disk, rod or mesh, as written
   Name frame;               // output ... in FRAME
   bool has_frame = false;
   std::vector<Statement> body;  // loop body

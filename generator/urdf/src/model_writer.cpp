@@ -64,6 +64,26 @@ std::string printable(const std::string& s) {
   return out;
 }
 
+// whether a model file can hold \p s in double quotes: no quote, no control character, UTF-8
+bool quotable(const std::string& s) {
+  for (std::size_t i = 0; i < s.size();) {
+    const auto u = static_cast<unsigned char>(s[i]);
+    if (u == '"' || u < 0x20 || u == 0x7f) return false;
+    if (u < 0x80) {
+      ++i;
+      continue;
+    }
+    // a UTF-8 sequence: its length from the lead byte, then continuation bytes (no overlong
+    // two-byte forms; the lexer says the rest)
+    const std::size_t length = u >= 0xc2 && u <= 0xdf ? 2 : u >= 0xe0 && u <= 0xef ? 3 : u >= 0xf0 && u <= 0xf4 ? 4 : 0;
+    if (length == 0 || i + length > s.size()) return false;
+    for (std::size_t k = 1; k < length; ++k)
+      if ((static_cast<unsigned char>(s[i + k]) & 0xc0) != 0x80) return false;
+    i += length;
+  }
+  return true;
+}
+
 // a number as a factor or a list entry: a negative one in parentheses where it follows an operator
 std::string factor(const Number& n) { return n.value < 0 ? "(" + n.text + ")" : n.text; }
 
@@ -567,8 +587,13 @@ class Writer {
     for (std::size_t k = 0; k < l.visuals.size(); ++k) {
       const Visual& v = l.visuals[k];
       const std::string name = fmt::format("{}_visual{}", id, k + 1);
-      if (v.kind == Visual::Kind::mesh) {
-        line(fmt::format("# visual {}: mesh '{}' (not drawn; the body is drawn as its default)", k + 1, printable(v.mesh)));
+      if (v.kind == Visual::Kind::mesh && !quotable(v.mesh)) {
+        line(fmt::format("# visual {}: mesh '{}' (not drawn: its name has a quote, a control character or a byte that "
+                         "is not UTF-8, which a model file cannot quote)", k + 1, printable(v.mesh)));
+        continue;
+      }
+      if (v.kind == Visual::Kind::mesh && std::any_of(v.scale.begin(), v.scale.end(), [](const Number& n) { return n.is_zero(); })) {
+        line(fmt::format("# visual {}: mesh '{}' (not drawn: a scale of 0 flattens it)", k + 1, printable(v.mesh)));
         continue;
       }
       if (v.kind == Visual::Kind::unsupported) {
@@ -598,11 +623,29 @@ class Writer {
         case Visual::Kind::sphere:
           line(fmt::format("shape {} = sphere({}radius = {}, {})", name, body, v.radius.text, place));
           break;
-        case Visual::Kind::mesh:
+        case Visual::Kind::mesh: {
+          const bool unscaled = std::all_of(v.scale.begin(), v.scale.end(), [](const Number& n) { return n.value == 1; });
+          line(fmt::format("shape {} = mesh({}file = \"{}\", {}{})", name, body, mesh_path(v.mesh),
+                           unscaled ? "" : fmt::format("scale = {}, ", column(v.scale)), place));
+          break;
+        }
         case Visual::Kind::unsupported:
           break;
       }
     }
+  }
+
+  // A mesh's file as the written model names it: a path relative to the URDF becomes one
+  // relative to where the model is written (options_.model_directory); package:// and file://
+  // names, and absolute paths, stay as written (docs/robots.md, "Meshes").
+  std::string mesh_path(const std::string& file) const {
+    namespace fs = std::filesystem;
+    if (options_.model_directory.empty() || file.find("://") != std::string::npos || fs::path(file).is_absolute())
+      return file;
+    const fs::path absolute = (fs::absolute(fs::path(robot_.file)).parent_path() / file).lexically_normal();
+    const fs::path relative = absolute.lexically_relative(fs::absolute(options_.model_directory).lexically_normal());
+    const std::string text = (relative.empty() ? absolute : relative).generic_string();
+    return quotable(text) ? text : file;
   }
 
   void outputs() {

@@ -334,6 +334,7 @@ class Reader {
     } else if (kind == "mesh") {
       v.kind = Visual::Kind::mesh;
       v.mesh = required(*shape, "filename");
+      v.scale = triple(*shape, "scale", what + ": mesh scale", {Number{"1", 1}, Number{"1", 1}, Number{"1", 1}});
     } else {
       // a visual draws, it weighs nothing: one eomgen cannot draw is kept as a comment
       v.kind = Visual::Kind::unsupported;

@@ -16,8 +16,9 @@ namespace eomgen {
 struct VisualShape {
   /// sphere: `radius`; box: `size` (edge lengths along the frame's axes 1, 2, 3); cylinder:
   /// `radius` and `length` along `axis`; disk: `radius` and `length` (its thickness) along
-  /// `axis`; rod: from `at` to `to`, of `radius`.
-  enum class Kind { sphere, box, cylinder, disk, rod };
+  /// `axis`; rod: from `at` to `to`, of `radius`; mesh: the triangles of `file`, their
+  /// coordinates along the frame's axes from `at`, times `scale`.
+  enum class Kind { sphere, box, cylinder, disk, rod, mesh };
   Kind kind = Kind::sphere;
   std::string name;               // the statement's name
   std::string body;               // the rigid body or particle it belongs to (its colour and name in the view); empty: none
@@ -30,6 +31,12 @@ struct VisualShape {
   /// cylinder and disk: the axis's components in `frame` (constant; any length, it is
   /// normalized where it is drawn); the other kinds: unused
   std::array<GiNaC::ex, 3> axis{0, 0, 1};
+  /// mesh: the file as written (a path relative to the model's directory, an absolute one, or
+  /// a URDF's package:// or file:// address), found and read where the animation is written
+  std::string file;
+  /// mesh: the factors of its coordinates along the frame's axes (numbers and parameters, not
+  /// zero; negative mirrors); the other kinds: unused
+  std::array<GiNaC::ex, 3> scale{1, 1, 1};
   SourceLocation location;
 };
 

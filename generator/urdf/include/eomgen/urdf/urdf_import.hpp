@@ -6,8 +6,8 @@
 // joint), the joint origins as written in the file, a parameter for each link's mass, mass
 // centre and inertia (`upper_arm_link_mass`), an input and a generalized force per actuated
 // joint, a damper per `<dynamics damping>`, a constraint per `<mimic>`, shapes from the
-// box, cylinder and sphere visuals, and the pose of every leaf link as outputs. What the file
-// says that the equations do not use (limits, efforts, friction, meshes) is kept as comments.
+// box, cylinder, sphere and mesh visuals, and the pose of every leaf link as outputs. What the file
+// says that the equations do not use (limits, efforts, friction) is kept as comments.
 // docs/robots.md describes the mapping joint by joint.
 #include <string>
 #include <vector>
@@ -26,6 +26,9 @@ struct ImportOptions {
   /// Make fixed, at their zero position, the moving joints that move only links without mass
   /// (a gripper's fingers published without inertia), instead of refusing them.
   bool fix_massless_joints = false;
+  /// Where the written model will be: a mesh file named relative to the URDF is written
+  /// relative to this directory. Empty: as written in the URDF (the model read in its place).
+  std::string model_directory;
 };
 
 struct ImportResult {

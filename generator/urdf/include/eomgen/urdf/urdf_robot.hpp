@@ -47,6 +47,7 @@ struct Visual {
   Triple size;          ///< box
   Number radius, length;  ///< cylinder (along z of its origin), sphere
   std::string mesh;     ///< mesh file name as written; the element's name for `unsupported`
+  Triple scale;         ///< mesh: the factors along its origin's axes (1 1 1 when not written)
   SourceLocation location;
 };
 
