@@ -388,6 +388,32 @@ TEST(UrdfModel, MeshVisualsBecomeMeshShapesPlacedByTheirOrigins) {
   EXPECT_THAT(text, ::testing::HasSubstr("# visual 4: mesh 'flat.stl' (not drawn: a scale of 0 flattens it)"));
 }
 
+TEST(UrdfModel, ALinkWhoseVisualsAreAllMeshesThatAreNotSTLIsDrawnByItsCollisionGeometry) {
+  const std::string text = written(R"(<robot name="r"><link name="base"/>
+    <joint name="j" type="revolute"><parent link="base"/><child link="arm"/><axis xyz="0 0 1"/></joint>
+    <link name="arm"><inertial><mass value="2"/>
+      <inertia ixx="0.01" ixy="0" ixz="0" iyy="0.03" iyz="0" izz="0.02"/></inertial>
+      <visual><geometry><mesh filename="arm.dae"/></geometry></visual>
+      <collision><geometry><box/></geometry></collision>
+      <collision><origin xyz="0 0 0.1"/><geometry><mesh filename="arm.STL"/></geometry></collision></link>
+    <joint name="k" type="revolute"><parent link="arm"/><child link="hand"/><axis xyz="0 0 1"/></joint>
+    <link name="hand"><inertial><mass value="1"/>
+      <inertia ixx="0.01" ixy="0" ixz="0" iyy="0.03" iyz="0" izz="0.02"/></inertial>
+      <visual><geometry><mesh filename="hand.dae"/></geometry></visual>
+      <visual><geometry><sphere radius="0.05"/></geometry></visual>
+      <collision><geometry><mesh filename="hand.stl"/></geometry></collision></link></robot>)");
+  // a collision geometry this reader would refuse as a visual (a box without a size) is left out
+  EXPECT_THAT(text, ::testing::HasSubstr("# visual 1: mesh 'arm.dae' (not STL, which is all the animation draws: the "
+                                         "link is drawn by its collision geometry instead)"));
+  EXPECT_THAT(text, ::testing::HasSubstr("point arm_collision1_at = arm_origin + [0, 0, 0.1] in arm\n"
+                                         "shape arm_collision1 = mesh(body = arm_body, file = \"arm.STL\", at = "
+                                         "arm_collision1_at, frame = arm)"));
+  // a link with one visual that can be drawn keeps its visuals
+  EXPECT_THAT(text, ::testing::HasSubstr("shape hand_visual2 = sphere("));
+  EXPECT_THAT(text, ::testing::HasSubstr("shape hand_visual1 = mesh(body = hand_body, file = \"hand.dae\""));
+  EXPECT_THAT(text, ::testing::Not(::testing::HasSubstr("hand.stl")));
+}
+
 TEST(UrdfModel, AMeshNamedRelativeToTheURDFIsNamedRelativeToWhereTheModelIsWritten) {
   urdf::ImportOptions options;
   options.model_directory = "/robots/out/models";

@@ -84,6 +84,37 @@ bool quotable(const std::string& s) {
   return true;
 }
 
+// whether the animation can draw a geometry: a box, cylinder or sphere, or an STL mesh
+bool drawable(const Visual& v) {
+  switch (v.kind) {
+    case Visual::Kind::box:
+    case Visual::Kind::cylinder:
+    case Visual::Kind::sphere: return true;
+    case Visual::Kind::mesh: {
+      std::string extension = std::filesystem::path(v.mesh).extension().string();
+      for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+      return extension == ".stl";
+    }
+    case Visual::Kind::unsupported: return false;
+  }
+  EOMGEN_UNREACHABLE("a Visual::Kind outside its enumerators");
+}
+
+// What draws a link: its visuals, or its collision geometry where it has visuals, all of them
+// meshes that are not STL (a robot's COLLADA visuals beside STL collision meshes), and some
+// collision geometry can be drawn.
+struct DrawnGeometry {
+  const std::vector<Visual>& shapes;
+  const char* label;  // the shapes' names: <link>_visual<k> or <link>_collision<k>
+};
+DrawnGeometry drawn_geometry(const Link& l) {
+  const bool meshes_not_stl = !l.visuals.empty() && std::all_of(l.visuals.begin(), l.visuals.end(), [](const Visual& v) {
+    return v.kind == Visual::Kind::mesh && !drawable(v);
+  });
+  if (meshes_not_stl && std::any_of(l.collisions.begin(), l.collisions.end(), drawable)) return {l.collisions, "collision"};
+  return {l.visuals, "visual"};
+}
+
 // a number as a factor or a list entry: a negative one in parentheses where it follows an operator
 std::string factor(const Number& n) { return n.value < 0 ? "(" + n.text + ")" : n.text; }
 
@@ -218,11 +249,12 @@ class Writer {
           claim(id + p, what, l.location);
         if (l.inertial->origin.turns()) claim(id + "_inertia", what, l.location);
       }
-      for (std::size_t k = 0; k < l.visuals.size(); ++k) {
-        const std::string v = fmt::format("{}_visual{}", id, k + 1);
-        claim(v, what, l.visuals[k].location);
-        claim(v + "_at", what, l.visuals[k].location);
-        if (l.visuals[k].origin.turns()) claim(v + "_frame", what, l.visuals[k].location);
+      const DrawnGeometry drawn = drawn_geometry(l);
+      for (std::size_t k = 0; k < drawn.shapes.size(); ++k) {
+        const std::string v = fmt::format("{}_{}{}", id, drawn.label, k + 1);
+        claim(v, what, drawn.shapes[k].location);
+        claim(v + "_at", what, drawn.shapes[k].location);
+        if (drawn.shapes[k].origin.turns()) claim(v + "_frame", what, drawn.shapes[k].location);
       }
     }
     if (options_.floating_base) {
@@ -584,20 +616,25 @@ class Writer {
 
   void shapes(const Link& l) {
     const std::string& id = link_id_[l.name];
-    for (std::size_t k = 0; k < l.visuals.size(); ++k) {
-      const Visual& v = l.visuals[k];
-      const std::string name = fmt::format("{}_visual{}", id, k + 1);
+    const DrawnGeometry drawn = drawn_geometry(l);
+    if (&drawn.shapes == &l.collisions)
+      for (std::size_t k = 0; k < l.visuals.size(); ++k)
+        line(fmt::format("# visual {}: mesh '{}' (not STL, which is all the animation draws: the link is drawn by its "
+                         "collision geometry instead)", k + 1, printable(l.visuals[k].mesh)));
+    for (std::size_t k = 0; k < drawn.shapes.size(); ++k) {
+      const Visual& v = drawn.shapes[k];
+      const std::string name = fmt::format("{}_{}{}", id, drawn.label, k + 1);
       if (v.kind == Visual::Kind::mesh && !quotable(v.mesh)) {
-        line(fmt::format("# visual {}: mesh '{}' (not drawn: its name has a quote, a control character or a byte that "
-                         "is not UTF-8, which a model file cannot quote)", k + 1, printable(v.mesh)));
+        line(fmt::format("# {} {}: mesh '{}' (not drawn: its name has a quote, a control character or a byte that "
+                         "is not UTF-8, which a model file cannot quote)", drawn.label, k + 1, printable(v.mesh)));
         continue;
       }
       if (v.kind == Visual::Kind::mesh && std::any_of(v.scale.begin(), v.scale.end(), [](const Number& n) { return n.is_zero(); })) {
-        line(fmt::format("# visual {}: mesh '{}' (not drawn: a scale of 0 flattens it)", k + 1, printable(v.mesh)));
+        line(fmt::format("# {} {}: mesh '{}' (not drawn: a scale of 0 flattens it)", drawn.label, k + 1, printable(v.mesh)));
         continue;
       }
       if (v.kind == Visual::Kind::unsupported) {
-        line(fmt::format("# visual {}: <{}> (not drawn: expected box, cylinder, sphere or mesh)", k + 1, printable(v.mesh)));
+        line(fmt::format("# {} {}: <{}> (not drawn: expected box, cylinder, sphere or mesh)", drawn.label, k + 1, printable(v.mesh)));
         continue;
       }
       std::string frame = id;

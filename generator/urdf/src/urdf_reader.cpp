@@ -299,6 +299,14 @@ class Reader {
     }
     for (const XMLElement* v = e.FirstChildElement("visual"); v != nullptr; v = v->NextSiblingElement("visual"))
       if (auto visual = this->visual(*v, what)) l.visuals.push_back(*visual);
+    // a collision geometry only stands in for visuals: one this reader would refuse as a visual
+    // is left out, not an error in a file whose dynamics are sound
+    for (const XMLElement* c = e.FirstChildElement("collision"); c != nullptr; c = c->NextSiblingElement("collision")) {
+      try {
+        if (auto collision = this->visual(*c, what)) l.collisions.push_back(*collision);
+      } catch (const SourceError&) {
+      }
+    }
     return l;
   }
 

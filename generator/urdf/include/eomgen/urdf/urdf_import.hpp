@@ -6,7 +6,8 @@
 // joint), the joint origins as written in the file, a parameter for each link's mass, mass
 // centre and inertia (`upper_arm_link_mass`), an input and a generalized force per actuated
 // joint, a damper per `<dynamics damping>`, a constraint per `<mimic>`, shapes from the
-// box, cylinder, sphere and mesh visuals, and the pose of every leaf link as outputs. What the file
+// box, cylinder, sphere and mesh visuals (the collision geometry for a link whose visuals are all
+// meshes the animation cannot draw), and the pose of every leaf link as outputs. What the file
 // says that the equations do not use (limits, efforts, friction) is kept as comments.
 // docs/robots.md describes the mapping joint by joint.
 #include <string>

@@ -55,6 +55,9 @@ struct Link {
   std::string name;
   std::optional<Inertial> inertial;
   std::vector<Visual> visuals;
+  /// the <collision> geometries that read as visuals do (the others are left out): drawn in
+  /// place of visuals none of which can be drawn (COLLADA meshes, most often)
+  std::vector<Visual> collisions;
   SourceLocation location;
 };
 
