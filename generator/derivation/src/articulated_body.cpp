@@ -1,5 +1,7 @@
 #include "eomgen/derivation/articulated_body.hpp"
 
+#include <optional>
+
 #include "link_tree.hpp"
 #include "spatial_tree.hpp"
 
@@ -14,6 +16,22 @@ using GiNaC::matrix;
 struct Pivoting {
   matrix L, inverse_d, Wd, y;
 };
+
+// Column c of S as +-e_k (a joint about or along an axis of its link's frame, through its
+// origin, either way): k and the sign; none for any other column.
+struct UnitAxis {
+  unsigned k;
+  int sign;
+};
+std::optional<UnitAxis> unit_axis(const matrix& S, unsigned c) {
+  std::optional<UnitAxis> axis;
+  for (unsigned r = 0; r < S.rows(); ++r) {
+    if (S(r, c).is_zero()) continue;
+    if (axis || !(S(r, c).is_equal(1) || S(r, c).is_equal(-1))) return std::nullopt;
+    axis = UnitAxis{r, S(r, c).is_equal(1) ? 1 : -1};
+  }
+  return axis;
+}
 
 class ArticulatedBody {
  public:
@@ -89,9 +107,25 @@ class ArticulatedBody {
         f.Wd = matrix(W.rows(), W.cols());
         for (unsigned a = 0; a < W.rows(); ++a)
           for (unsigned c = 0; c < W.cols(); ++c) f.Wd(a, c) = z_.bind(f.inverse_d(a, 0) * W(a, c));
+        // Wd S = diag(1/d) L^-1 U^T S = diag(1/d) L^-1 D = L^T exactly: at a column +-e_k of S,
+        // column k of Wd is +- a column of L^T (1 on the diagonal), not (1/d) d
+        for (unsigned b = 0; b < j.S.cols(); ++b)
+          if (const std::optional<UnitAxis> e = unit_axis(j.S, b))
+            for (unsigned a = 0; a < W.rows(); ++a)
+              f.Wd(a, e->k) = e->sign * (a == b ? ex(1) : a < b ? f.L(b, a) : ex(0));
         f.y = forward_substitution(f.L, u);
-        Ia = tree_.bind_symmetric(IA.sub(W.transpose().mul(f.Wd)));
+        Ia = IA.sub(W.transpose().mul(f.Wd));
         pa = pA.add(f.Wd.transpose().mul(f.y));
+        // Ia S = U - U D^-1 D = 0 and S^T pa = S^T pA + u = tau, exactly; where S's columns are
+        // +-e_k, those are rows and columns of Ia and entries of pa, which the subexpressions
+        // (D and 1/D bound apart) would compute as x - x (1/d) d and lose
+        for (unsigned a = 0; a < j.S.cols(); ++a) {
+          const std::optional<UnitAxis> e = unit_axis(j.S, a);
+          if (!e) continue;
+          for (unsigned m = 0; m < 6; ++m) Ia(e->k, m) = Ia(m, e->k) = 0;
+          pa(e->k, 0) = e->sign * tau_[link.joint[a]];
+        }
+        Ia = tree_.bind_symmetric(Ia);
       }
       if (!link.parent) continue;
       pa = z_.bind(pa.add(Ia.mul(j.zeta)));

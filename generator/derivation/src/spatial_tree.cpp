@@ -73,7 +73,17 @@ SpatialJoint SpatialTree::make_joint(std::size_t i) const {
   };
   SpatialJoint j;
   j.E = z_.bind(dcm(s_, link.frame, fp));
-  j.r = z_.bind(resolve(s_, r, link.frame));
+  const matrix r_child = resolve(s_, r, link.frame), r_parent = resolve(s_, r, fp);
+  const auto moves = [&](const matrix& v) {
+    for (unsigned k = 0; k < 3; ++k)
+      if (vars_.contains(v(k, 0), SymbolKind::coordinate)) return true;
+    return false;
+  };
+  j.r = z_.bind(r_child);
+  if (moves(r_child) && !moves(r_parent)) {
+    j.r_parent = z_.bind(r_parent);
+    j.shift_in_parent = true;
+  }
   j.S = matrix(6, static_cast<unsigned>(link.joint.size()));
   for (unsigned c = 0; c < link.joint.size(); ++c)
     for (unsigned row = 0; row < 3; ++row) {
@@ -134,32 +144,54 @@ matrix SpatialTree::velocity_product_force(std::size_t i) const {
   return stacked(n, f);
 }
 
-// Phi (alpha; a) = (w; E a + w x r) with w = E alpha
+// Phi (alpha; a) = (w; E a + w x r) with w = E alpha; with r_p = E^T r, E a + w x r = E (a + alpha x r_p)
 matrix SpatialTree::motion_to_link(std::size_t i, const matrix& A) const {
   const SpatialJoint& j = joints_[i];
-  const matrix w = z_.bind(j.E.mul(spatial_block(A, 0)));
+  const matrix alpha = spatial_block(A, 0);
+  const matrix w = z_.bind(j.E.mul(alpha));
+  if (j.shift_in_parent) return stacked(w, j.E.mul(z_.bind(spatial_block(A, 3).add(cross3(alpha, j.r_parent)))));
   return stacked(w, j.E.mul(spatial_block(A, 3)).add(cross3(w, j.r)));
 }
 
-// Phi^T (n; f) = (E^T (n + r x f); E^T f)
+// Phi^T (n; f) = (E^T (n + r x f); E^T f) = (E^T n + r_p x E^T f; E^T f)
 matrix SpatialTree::force_to_parent(std::size_t i, const matrix& F) const {
   const SpatialJoint& j = joints_[i];
   const matrix f = z_.bind(spatial_block(F, 3));
   const matrix Et = j.E.transpose();
+  if (j.shift_in_parent) {
+    const matrix f_p = z_.bind(Et.mul(f));
+    return stacked(Et.mul(spatial_block(F, 0)).add(cross3(j.r_parent, f_p)), f_p);
+  }
   return stacked(Et.mul(spatial_block(F, 0).add(cross3(j.r, f))), Et.mul(f));
 }
 
-// Phi^T I Phi as a shift to c_p in f_i, then a rotation into f_p: with I = [[A, B], [B^T, C]]
-// and R = r^x, the shift gives [[A - B R + R H^T, H], [H^T, C]], H = B + R C
+// [[A, B], [B^T, C]] shifted by R = r^x: [[A - B R + R H^T, H], [H^T, C]], H = B + R C
+matrix SpatialTree::shifted(const matrix& A, const matrix& B, const matrix& C, const matrix& r) const {
+  const matrix R = cross_matrix(r);
+  const matrix H = z_.bind(B.add(R.mul(C)));
+  const matrix K = bind_symmetric(A.sub(B.mul(R)).add(R.mul(H.transpose())));
+  matrix out(6, 6);
+  for (unsigned row = 0; row < 3; ++row)
+    for (unsigned c = 0; c < 3; ++c) {
+      out(row, c) = K(row, c);
+      out(row + 3, c + 3) = C(row, c);
+      out(row, c + 3) = H(row, c);
+      out(c + 3, row) = H(row, c);
+    }
+  return out;
+}
+
+// Phi^T I Phi: a shift to o_p in f_i, then a rotation into f_p; or, where r is constant in f_p
+// and not in f_i, the rotation first and the shift by r_p after
 matrix SpatialTree::inertia_to_parent(std::size_t i, const matrix& I) const {
   const SpatialJoint& j = joints_[i];
-  const matrix R = cross_matrix(j.r);
   const matrix A = sub_block(I, 0, 0), B = sub_block(I, 0, 3), C = sub_block(I, 3, 3);
-  const matrix H = z_.bind(B.add(R.mul(C)));
-  const matrix K = A.sub(B.mul(R)).add(R.mul(H.transpose()));
   const matrix Et = j.E.transpose();
-  const matrix top = congruence(j.E, bind_symmetric(K)), bottom = congruence(j.E, C);
-  const matrix corner = z_.bind(Et.mul(z_.bind(H.mul(j.E))));
+  if (j.shift_in_parent)
+    return shifted(congruence(j.E, A), z_.bind(Et.mul(z_.bind(B.mul(j.E)))), congruence(j.E, C), j.r_parent);
+  const matrix moved = shifted(A, B, C, j.r);
+  const matrix top = congruence(j.E, sub_block(moved, 0, 0)), bottom = congruence(j.E, C);
+  const matrix corner = z_.bind(Et.mul(z_.bind(sub_block(moved, 0, 3).mul(j.E))));
   matrix out(6, 6);
   for (unsigned r = 0; r < 3; ++r)
     for (unsigned c = 0; c < 3; ++c) {

@@ -22,6 +22,11 @@ namespace eomgen {
 struct SpatialJoint {
   GiNaC::matrix E;      ///< C_{f_i f_p}
   GiNaC::matrix r;      ///< r^{o_i o_p} between the origins, in f_i: Phi_i = [[1, 0], [-r^x, 1]] diag(E, E)
+  /// The same vector in f_p, where the transforms take it when it is constant there and not in
+  /// f_i (a URDF joint's origin, offset in its parent and turned about itself): a shift by
+  /// constants after the rotation, not by sines and cosines before it; shift_in_parent says so.
+  GiNaC::matrix r_parent;
+  bool shift_in_parent = false;
   GiNaC::matrix S;      ///< 6 x |J(i)|
   GiNaC::matrix omega;  ///< omega_i, in f_i
   GiNaC::matrix zeta;   ///< 6x1
@@ -57,6 +62,8 @@ class SpatialTree {
   GiNaC::matrix inertia_to_parent(std::size_t i, const GiNaC::matrix& I) const;
 
   /// X^T A X for a symmetric A, each entry of the upper triangle bound once
+  GiNaC::matrix shifted(const GiNaC::matrix& A, const GiNaC::matrix& B, const GiNaC::matrix& C,
+                        const GiNaC::matrix& r) const;
   GiNaC::matrix congruence(const GiNaC::matrix& X, const GiNaC::matrix& A) const;
   /// the upper triangle of a symmetric matrix, bound once and mirrored
   GiNaC::matrix bind_symmetric(const GiNaC::matrix& A) const;
