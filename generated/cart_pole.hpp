@@ -22,7 +22,7 @@ struct Model {
   static constexpr const char* name = "cart_pole";
   static constexpr const char* description = "Cart-pole: a uniform rod hinged on a cart pushed along a rail";
   static constexpr const char* generator_version = "0.1.0";
-  static constexpr const char* model_hash = "bcd9bb2cddeebe2f";
+  static constexpr const char* model_hash = "98b0967c5660b308";
   static constexpr std::array<const char*, nq> coordinate_names{{"x", "theta"}};
   static constexpr std::array<const char*, nu> input_names{{"u"}};
   static constexpr std::array<const char*, np> parameter_names{{"mc", "mp", "l", "rp", "g"}};
@@ -70,15 +70,17 @@ struct Model {
       const Scalar w3 = p.l * p.l;
       const Scalar w4 = Scalar(0.25) * p.mp * w2 + Scalar(0.3333333333333333) * p.mp * w3;
       const Scalar w5 = Scalar(1) / w4 * w1;
+      const Scalar w6 = w5 * w1 - p.mp;
       k0 = w1;
       k1 = w0;
       k2 = w4;
       k3 = p.g * p.mp * Scalar(0.5) * p.l;
       k4 = Scalar(0.041666666666666664) * (Scalar(4) * p.mp * w3 + p.mp * w2 * Scalar(3));
       k5 = w0 * Scalar(0.5);
-      k6 = w5 * w1 - p.mp;
-      k7 = Scalar(0.5) * p.l;
-      k8 = w5;
+      k6 = w6 + p.mp;
+      k7 = w6;
+      k8 = Scalar(0.5) * p.l;
+      k9 = w5;
     }
     /// The parameters these constants were computed from.
     const Parameters<Scalar>& parameters() const noexcept { return p; }
@@ -86,7 +88,7 @@ struct Model {
    private:
     friend struct Model;
     Parameters<Scalar> p;
-    Scalar k0, k1, k2, k3, k4, k5, k6, k7, k8;
+    Scalar k0, k1, k2, k3, k4, k5, k6, k7, k8, k9;
   };
 
   /// M(q, t), symmetric positive (semi)definite
@@ -286,14 +288,14 @@ struct Model {
     using std::log; using std::abs; using std::pow;
     Eigen::Matrix<Scalar, 2, 1> pivot;
     const Scalar w0 = sin(q(1));
-    const Scalar w1 = cos(q(1));
-    const Scalar w2 = w0 * w0 * c.p.mp - w1 * c.k6 * w1 + c.p.mc;
-    const Scalar w3 = Scalar(1) / w2;
-    const Scalar w4 = c.p.g * (w1 * c.k6 * w0 + w0 * w1 * c.p.mp) * w3 - w3 * (w0 * qd(1) * c.p.mp * qd(1) * c.k7 - u(0));
+    const Scalar w1 = c.p.mc - (c.k7 - w0 * w0 * c.k6);
+    const Scalar w2 = cos(q(1));
+    const Scalar w3 = Scalar(1) / w1;
+    const Scalar w4 = c.p.g * c.k6 * w0 * w2 * w3 - w3 * (w0 * qd(1) * c.p.mp * qd(1) * c.k8 - u(0));
     pivot(0) = c.k2;
-    pivot(1) = w2;
+    pivot(1) = w1;
     qdd(0) = w4;
-    qdd(1) = c.k8 * (c.p.g * w0 + w1 * w4);
+    qdd(1) = c.k9 * (w2 * w4 + c.p.g * w0);
     bool regular = true;
     for (int k = 0; k < 2; ++k) regular = regular && pivot(k) > Scalar(0);
     using std::isfinite;

@@ -22,7 +22,7 @@ struct Model {
   static constexpr const char* name = "double_pendulum";
   static constexpr const char* description = "Planar double pendulum: two point masses on massless rods, relative angles";
   static constexpr const char* generator_version = "0.1.0";
-  static constexpr const char* model_hash = "87c55cd4302b9760";
+  static constexpr const char* model_hash = "f9bec19c6579bc27";
   static constexpr std::array<const char*, nq> coordinate_names{{"theta1", "theta2"}};
   static constexpr std::array<const char*, nu> input_names{{}};
   static constexpr std::array<const char*, np> parameter_names{{"m1", "m2", "l1", "l2", "g"}};
@@ -71,6 +71,7 @@ struct Model {
       const Scalar w4 = p.m2 * w2;
       const Scalar w5 = p.l2 * p.m2;
       const Scalar w6 = w5 * Scalar(1) / w1;
+      const Scalar w7 = w6 * w5 - p.m2;
       k0 = p.l1 * Scalar(2) * p.l2 * p.m2;
       k1 = w1 + w3 + w4;
       k2 = p.l1 * p.l2 * p.m2;
@@ -79,10 +80,12 @@ struct Model {
       k5 = p.g * p.l2 * p.m2;
       k6 = (w3 + w4) * Scalar(0.5);
       k7 = w0 * Scalar(0.5) * p.m2;
-      k8 = w6 * w5 - p.m2;
-      k9 = w3;
-      k10 = p.m1 * p.l1;
-      k11 = w6;
+      k8 = p.m2 + w7;
+      k9 = -w7;
+      k10 = w3;
+      k11 = p.m1 * p.l1;
+      k12 = w7;
+      k13 = w6;
     }
     /// The parameters these constants were computed from.
     const Parameters<Scalar>& parameters() const noexcept { return p; }
@@ -91,7 +94,7 @@ struct Model {
     friend struct Model;
     Parameters<Scalar> p;
     Scalar k0, k1, k2, k3, k4, k5, k6, k7, k8, k9;
-    Scalar k10, k11;
+    Scalar k10, k11, k12, k13;
   };
 
   /// M(q, t), symmetric positive (semi)definite
@@ -309,20 +312,20 @@ struct Model {
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
     Eigen::Matrix<Scalar, 2, 1> pivot;
-    const Scalar w0 = cos(q(1));
-    const Scalar w1 = sin(q(1));
-    const Scalar w2 = c.p.l1 * (w1 * w1 * c.p.m2 - w0 * w0 * c.k8);
-    const Scalar w3 = c.k9 + c.p.l1 * w2;
-    const Scalar w4 = Scalar(1) / w3;
-    const Scalar w5 = c.p.g * sin(q(0));
-    const Scalar w6 = qd(0) * c.p.l1 * w1 * qd(0);
-    const Scalar w7 = qd(1) + qd(0);
-    const Scalar w8 = c.p.g * cos(q(0));
-    const Scalar w9 = c.p.l1 * (w6 * c.k8 * w0 + w1 * (w7 * c.p.m2 * c.p.l2 * w7 + c.p.m2 * qd(0) * c.p.l1 * w0 * qd(0))) * w4 - (w2 + c.k10) * w4 * w5 + w8 * c.p.l1 * (w1 * c.k8 * w0 + w1 * w0 * c.p.m2) * w4;
+    const Scalar w0 = sin(q(1));
+    const Scalar w1 = c.p.l1 * (w0 * w0 * c.k8 + c.k9);
+    const Scalar w2 = c.k10 + c.p.l1 * w1;
+    const Scalar w3 = c.p.g * cos(q(0));
+    const Scalar w4 = cos(q(1));
+    const Scalar w5 = Scalar(1) / w2;
+    const Scalar w6 = c.p.g * sin(q(0));
+    const Scalar w7 = qd(0) * c.p.l1 * w0 * qd(0);
+    const Scalar w8 = qd(1) + qd(0);
+    const Scalar w9 = w3 * c.p.l1 * c.k8 * w0 * w4 * w5 - (w1 + c.k11) * w5 * w6 + w5 * c.p.l1 * (w7 * c.k12 * w4 + w0 * (w8 * c.p.m2 * c.p.l2 * w8 + c.p.m2 * qd(0) * c.p.l1 * w4 * qd(0)));
     pivot(0) = c.k3;
-    pivot(1) = w3;
+    pivot(1) = w2;
     qdd(0) = w9;
-    qdd(1) = -(c.k11 * (w1 * w8 + w6 + (c.p.l1 * w9 + w5) * w0) + w9);
+    qdd(1) = -(w9 + c.k13 * (w4 * (c.p.l1 * w9 + w6) + w0 * w3 + w7));
     bool regular = true;
     for (int k = 0; k < 2; ++k) regular = regular && pivot(k) > Scalar(0);
     using std::isfinite;

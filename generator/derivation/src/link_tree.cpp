@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <set>
 
+#include "eomgen/mechanics/kinematics.hpp"
+
 namespace eomgen {
 namespace {
 
@@ -104,8 +106,19 @@ class TreeBuilder {
     std::vector<Link> links;
     for (const Particle& p : s_.particles())
       links.push_back(Link{p.name, p.mass, matrix(3, 3), particle_frame(p.point), p.point, {}, std::nullopt, {}});
-    for (const RigidBody& b : s_.rigid_bodies())
-      links.push_back(Link{b.name, b.mass, b.inertia, b.frame, b.mass_centre, {}, std::nullopt, {}});
+    for (const RigidBody& b : s_.rigid_bodies()) {
+      // the recursions refer a body to the frame its own frame is a constant turn of (a URDF
+      // link's, whose inertia axes are turned from it): its joint is then a plain turn, and the
+      // constant turn goes into the inertia, which is constant
+      FrameId f = b.frame;
+      while (s_.frame(f).parent && constant(s_.frame(f).rotation.dcm())) f = *s_.frame(f).parent;
+      matrix inertia = b.inertia;
+      if (f != b.frame) {
+        const matrix C = dcm(s_, b.frame, f);
+        inertia = C.transpose().mul(b.inertia).mul(C);
+      }
+      links.push_back(Link{b.name, b.mass, inertia, f, b.mass_centre, {}, std::nullopt, {}});
+    }
     for (Link& link : links) link.origin = fixed_origin(link.centre, link.frame);
     links.erase(std::remove_if(links.begin(), links.end(), [&](const Link& l) { return deps(l).empty(); }),
                 links.end());

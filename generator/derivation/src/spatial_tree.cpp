@@ -3,6 +3,7 @@
 #include <functional>
 
 #include "eomgen/mechanics/kinematics.hpp"
+#include "eomgen/mechanics/rotation.hpp"
 #include "eomgen/symbolic/graph_calculus.hpp"
 #include "load_forces.hpp"
 
@@ -79,6 +80,7 @@ SpatialJoint SpatialTree::make_joint(std::size_t i) const {
       if (vars_.contains(v(k, 0), SymbolKind::coordinate)) return true;
     return false;
   };
+  j.turn = turn_of(link, fp);
   j.r = z_.bind(r_child);
   if (moves(r_child) && !moves(r_parent)) {
     j.r_parent = z_.bind(r_parent);
@@ -165,6 +167,59 @@ matrix SpatialTree::force_to_parent(std::size_t i, const matrix& F) const {
   return stacked(Et.mul(spatial_block(F, 0).add(cross3(j.r, f))), Et.mul(f));
 }
 
+// E = C_k(q) F: F = E at q = 0, a signed permutation, and C_k(q) F equal to E term by term
+std::optional<SpatialJoint::Turn> SpatialTree::turn_of(const Link& link, FrameId fp) const {
+  if (link.joint.size() != 1) return std::nullopt;
+  const ex q = vars_.coordinates()[link.joint[0]].q;
+  const matrix E = dcm(s_, link.frame, fp);
+  matrix F(3, 3);
+  for (unsigned r = 0; r < 3; ++r)
+    for (unsigned c = 0; c < 3; ++c) {
+      F(r, c) = E(r, c).subs(q == 0).eval();
+      if (!(F(r, c).is_zero() || F(r, c).is_equal(1) || F(r, c).is_equal(-1))) return std::nullopt;
+    }
+  for (int axis = 1; axis <= 3; ++axis) {
+    const matrix turned = principal_rotation(axis, q).mul(F);
+    bool equal = true;
+    for (unsigned r = 0; r < 3 && equal; ++r)
+      for (unsigned c = 0; c < 3 && equal; ++c) equal = (E(r, c) - turned(r, c)).expand().is_zero();
+    if (!equal) continue;
+    const ex c = z_.bind(GiNaC::cos(q)), s = z_.bind(GiNaC::sin(q));
+    return SpatialJoint::Turn{axis, F, c, s, z_.bind(s * s), z_.bind(s * c)};
+  }
+  return std::nullopt;
+}
+
+// C_k^T A C_k with the entries of the plane (a, b) of the turn written in sin^2 q and sin q cos q
+// (shared by the joint): with d = p - u and w the sum of the off-diagonal pair r, q,
+// x = d s^2 + w s c and y = d s c - w s^2 give p - x, u + x, y + r and y + q; a block isotropic
+// about the axis (d = 0, w = 0) stays as it is. The row and column of k turn by the single
+// angle. Then F^T ( ) F, which only moves entries and signs.
+matrix SpatialTree::turned(std::size_t i, const matrix& A, bool symmetric) const {
+  const SpatialJoint& j = joints_[i];
+  if (!j.turn) {
+    if (symmetric) return congruence(j.E, A);
+    return z_.bind(j.E.transpose().mul(z_.bind(A.mul(j.E))));
+  }
+  const SpatialJoint::Turn& t = *j.turn;
+  const unsigned k = static_cast<unsigned>(t.axis - 1), a = (k + 1) % 3, b = (k + 2) % 3;
+  const ex p = A(a, a), u = A(b, b), r = A(a, b), q = A(b, a);
+  const ex d = z_.bind(p - u), w = z_.bind(r + q);
+  const ex x = z_.bind(d * t.ss + w * t.sc), y = z_.bind(d * t.sc - w * t.ss);
+  matrix B(3, 3);
+  B(a, a) = p - x;
+  B(b, b) = u + x;
+  B(a, b) = y + r;
+  B(b, a) = y + q;
+  B(k, k) = A(k, k);
+  B(a, k) = t.c * A(a, k) - t.s * A(b, k);
+  B(b, k) = t.s * A(a, k) + t.c * A(b, k);
+  B(k, a) = symmetric ? B(a, k) : t.c * A(k, a) - t.s * A(k, b);
+  B(k, b) = symmetric ? B(b, k) : t.s * A(k, a) + t.c * A(k, b);
+  B = symmetric ? bind_symmetric(B) : z_.bind(B);
+  return t.F.transpose().mul(B).mul(t.F);
+}
+
 // [[A, B], [B^T, C]] shifted by R = r^x: [[A - B R + R H^T, H], [H^T, C]], H = B + R C
 matrix SpatialTree::shifted(const matrix& A, const matrix& B, const matrix& C, const matrix& r) const {
   const matrix R = cross_matrix(r);
@@ -186,12 +241,10 @@ matrix SpatialTree::shifted(const matrix& A, const matrix& B, const matrix& C, c
 matrix SpatialTree::inertia_to_parent(std::size_t i, const matrix& I) const {
   const SpatialJoint& j = joints_[i];
   const matrix A = sub_block(I, 0, 0), B = sub_block(I, 0, 3), C = sub_block(I, 3, 3);
-  const matrix Et = j.E.transpose();
-  if (j.shift_in_parent)
-    return shifted(congruence(j.E, A), z_.bind(Et.mul(z_.bind(B.mul(j.E)))), congruence(j.E, C), j.r_parent);
+  if (j.shift_in_parent) return shifted(turned(i, A, true), turned(i, B, false), turned(i, C, true), j.r_parent);
   const matrix moved = shifted(A, B, C, j.r);
-  const matrix top = congruence(j.E, sub_block(moved, 0, 0)), bottom = congruence(j.E, C);
-  const matrix corner = z_.bind(Et.mul(z_.bind(sub_block(moved, 0, 3).mul(j.E))));
+  const matrix top = turned(i, sub_block(moved, 0, 0), true), bottom = turned(i, C, true);
+  const matrix corner = turned(i, sub_block(moved, 0, 3), false);
   matrix out(6, 6);
   for (unsigned r = 0; r < 3; ++r)
     for (unsigned c = 0; c < 3; ++c) {

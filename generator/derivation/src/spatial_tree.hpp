@@ -7,6 +7,8 @@
 // stay linear in the size of the tree.
 #include <ginac/ginac.h>
 
+#include <optional>
+
 #include <cstddef>
 #include <vector>
 
@@ -27,6 +29,16 @@ struct SpatialJoint {
   /// constants after the rotation, not by sines and cosines before it; shift_in_parent says so.
   GiNaC::matrix r_parent;
   bool shift_in_parent = false;
+  /// E = C_k(q) F for a joint of one coordinate turning about axis k of a frame that quarter
+  /// turns F (a signed permutation, often 1) place in the parent: blocks are then turned in the
+  /// products sin^2 q and sin q cos q, and one isotropic about the axis stays as it is.
+  struct Turn {
+    int axis;              // k: 1, 2 or 3
+    GiNaC::matrix F;       // entries 0, 1 and -1
+    GiNaC::ex c, s;        // cos q, sin q (bound)
+    GiNaC::ex ss, sc;      // sin^2 q, sin q cos q (bound)
+  };
+  std::optional<Turn> turn;
   GiNaC::matrix S;      ///< 6 x |J(i)|
   GiNaC::matrix omega;  ///< omega_i, in f_i
   GiNaC::matrix zeta;   ///< 6x1
@@ -62,14 +74,19 @@ class SpatialTree {
   GiNaC::matrix inertia_to_parent(std::size_t i, const GiNaC::matrix& I) const;
 
   /// X^T A X for a symmetric A, each entry of the upper triangle bound once
+  GiNaC::matrix congruence(const GiNaC::matrix& X, const GiNaC::matrix& A) const;
+  /// E^T A E of link i's joint for a 3x3 A (symmetric or not): in sin^2 q and sin q cos q where the
+  /// joint turns about an axis (SpatialJoint::turn), else by congruence or products
+  GiNaC::matrix turned(std::size_t i, const GiNaC::matrix& A, bool symmetric) const;
+  /// [[A, B], [B^T, C]] moved by r: [[A - B R + R H^T, H], [H^T, C]], H = B + R C, R = r^x
   GiNaC::matrix shifted(const GiNaC::matrix& A, const GiNaC::matrix& B, const GiNaC::matrix& C,
                         const GiNaC::matrix& r) const;
-  GiNaC::matrix congruence(const GiNaC::matrix& X, const GiNaC::matrix& A) const;
   /// the upper triangle of a symmetric matrix, bound once and mirrored
   GiNaC::matrix bind_symmetric(const GiNaC::matrix& A) const;
 
  private:
   SpatialJoint make_joint(std::size_t i) const;
+  std::optional<SpatialJoint::Turn> turn_of(const Link& link, FrameId fp) const;
   GiNaC::matrix origin_inertia(std::size_t i) const;
 
   const MechanicalSystem& s_;
