@@ -22,7 +22,7 @@ struct Model {
   static constexpr const char* name = "double_pendulum";
   static constexpr const char* description = "Planar double pendulum: two point masses on massless rods, relative angles";
   static constexpr const char* generator_version = "0.1.0";
-  static constexpr const char* model_hash = "f9bec19c6579bc27";
+  static constexpr const char* model_hash = "2a2c873b34c646cc";
   static constexpr std::array<const char*, nq> coordinate_names{{"theta1", "theta2"}};
   static constexpr std::array<const char*, nu> input_names{{}};
   static constexpr std::array<const char*, np> parameter_names{{"m1", "m2", "l1", "l2", "g"}};
@@ -319,13 +319,14 @@ struct Model {
     const Scalar w4 = cos(q(1));
     const Scalar w5 = Scalar(1) / w2;
     const Scalar w6 = c.p.g * sin(q(0));
-    const Scalar w7 = qd(0) * c.p.l1 * w0 * qd(0);
+    const Scalar w7 = qd(0) * c.p.l1 * qd(0);
     const Scalar w8 = qd(1) + qd(0);
-    const Scalar w9 = w3 * c.p.l1 * c.k8 * w0 * w4 * w5 - (w1 + c.k11) * w5 * w6 + w5 * c.p.l1 * (w7 * c.k12 * w4 + w0 * (w8 * c.p.m2 * c.p.l2 * w8 + c.p.m2 * qd(0) * c.p.l1 * w4 * qd(0)));
+    const Scalar w9 = w7 * w0;
+    const Scalar w10 = w3 * c.p.l1 * c.k8 * w0 * w4 * w5 - (w1 + c.k11) * w5 * w6 + c.p.l1 * (w0 * (w7 * w4 * c.p.m2 + w8 * c.p.m2 * c.p.l2 * w8) + w4 * w9 * c.k12) * w5;
     pivot(0) = c.k3;
     pivot(1) = w2;
-    qdd(0) = w9;
-    qdd(1) = -(w9 + c.k13 * (w4 * (c.p.l1 * w9 + w6) + w0 * w3 + w7));
+    qdd(0) = w10;
+    qdd(1) = -(w10 + c.k13 * (w0 * w3 + w4 * (c.p.l1 * w10 + w6) + w9));
     bool regular = true;
     for (int k = 0; k < 2; ++k) regular = regular && pivot(k) > Scalar(0);
     using std::isfinite;

@@ -100,8 +100,12 @@ SpatialJoint SpatialTree::make_joint(std::size_t i) const {
   const matrix alpha =
       map_entries(w_rel, [&](const ex& e) { return vars_.without_accelerations(vars_.time_derivative(e)); })
           .add(cross3(w, w_rel_bound));
-  const matrix w_x_r = z_.bind(cross3(w, j.r));
-  const matrix a = cross3(w, w_x_r).add(cross3(w, z_.bind(v_rel)).mul_scalar(2)).add(a_rel);
+  // w x (w x r) = E (omega_p x (omega_p x r_p)): by the constants r_p where the shift is made
+  // in the parent
+  const matrix centripetal =
+      j.shift_in_parent ? j.E.mul(z_.bind(cross3(omega_p, z_.bind(cross3(omega_p, j.r_parent)))))
+                        : cross3(w, z_.bind(cross3(w, j.r)));
+  const matrix a = centripetal.add(cross3(w, z_.bind(v_rel)).mul_scalar(2)).add(a_rel);
   j.zeta = z_.bind(stacked(alpha, a));
   return j;
 }
