@@ -30,6 +30,19 @@ matrix sub_block(const matrix& m, unsigned row, unsigned column) {
   return out;
 }
 
+// [[A, B], [B^T, C]]
+matrix symmetric_blocks(const matrix& A, const matrix& B, const matrix& C) {
+  matrix out(6, 6);
+  for (unsigned r = 0; r < 3; ++r)
+    for (unsigned c = 0; c < 3; ++c) {
+      out(r, c) = A(r, c);
+      out(r + 3, c + 3) = C(r, c);
+      out(r, c + 3) = B(r, c);
+      out(c + 3, r) = B(r, c);
+    }
+  return out;
+}
+
 }  // namespace
 
 matrix spatial_block(const matrix& v, unsigned first) {
@@ -228,16 +241,7 @@ matrix SpatialTree::turned(std::size_t i, const matrix& A, bool symmetric) const
 matrix SpatialTree::shifted(const matrix& A, const matrix& B, const matrix& C, const matrix& r) const {
   const matrix R = cross_matrix(r);
   const matrix H = z_.bind(B.add(R.mul(C)));
-  const matrix K = bind_symmetric(A.sub(B.mul(R)).add(R.mul(H.transpose())));
-  matrix out(6, 6);
-  for (unsigned row = 0; row < 3; ++row)
-    for (unsigned c = 0; c < 3; ++c) {
-      out(row, c) = K(row, c);
-      out(row + 3, c + 3) = C(row, c);
-      out(row, c + 3) = H(row, c);
-      out(c + 3, row) = H(row, c);
-    }
-  return out;
+  return symmetric_blocks(bind_symmetric(A.sub(B.mul(R)).add(R.mul(H.transpose()))), H, C);
 }
 
 // Phi^T I Phi: a shift to o_p in f_i, then a rotation into f_p; or, where r is constant in f_p
@@ -245,19 +249,19 @@ matrix SpatialTree::shifted(const matrix& A, const matrix& B, const matrix& C, c
 matrix SpatialTree::inertia_to_parent(std::size_t i, const matrix& I) const {
   const SpatialJoint& j = joints_[i];
   const matrix A = sub_block(I, 0, 0), B = sub_block(I, 0, 3), C = sub_block(I, 3, 3);
-  if (j.shift_in_parent) return shifted(turned(i, A, true), turned(i, B, false), turned(i, C, true), j.r_parent);
+  // one statement each: the order of the bindings is the order of the subexpressions, which
+  // the order of a call's arguments would leave to the compiler
+  if (j.shift_in_parent) {
+    const matrix A_p = turned(i, A, true);
+    const matrix B_p = turned(i, B, false);
+    const matrix C_p = turned(i, C, true);
+    return shifted(A_p, B_p, C_p, j.r_parent);
+  }
   const matrix moved = shifted(A, B, C, j.r);
-  const matrix top = turned(i, sub_block(moved, 0, 0), true), bottom = turned(i, C, true);
+  const matrix top = turned(i, sub_block(moved, 0, 0), true);
+  const matrix bottom = turned(i, C, true);
   const matrix corner = turned(i, sub_block(moved, 0, 3), false);
-  matrix out(6, 6);
-  for (unsigned r = 0; r < 3; ++r)
-    for (unsigned c = 0; c < 3; ++c) {
-      out(r, c) = top(r, c);
-      out(r + 3, c + 3) = bottom(r, c);
-      out(r, c + 3) = corner(r, c);
-      out(c + 3, r) = corner(r, c);
-    }
-  return out;
+  return symmetric_blocks(top, corner, bottom);
 }
 
 matrix SpatialTree::congruence(const matrix& X, const matrix& A) const {
