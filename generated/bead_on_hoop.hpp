@@ -22,7 +22,7 @@ struct Model {
   static constexpr const char* name = "bead_on_hoop";
   static constexpr const char* description = "Bead sliding on a hoop turning at a constant rate about its vertical diameter";
   static constexpr const char* generator_version = "0.1.0";
-  static constexpr const char* model_hash = "ea7536c701ac5fc3";
+  static constexpr const char* model_hash = "19071c8042e20dec";
   static constexpr std::array<const char*, nq> coordinate_names{{"theta"}};
   static constexpr std::array<const char*, nu> input_names{{}};
   static constexpr std::array<const char*, np> parameter_names{{"m", "R", "Omega", "g"}};
@@ -275,7 +275,7 @@ struct Model {
     outputs(t, q, qd, u, Constants<Scalar>(p), y);
   }
 
-  /// qdd of M qdd = F by the articulated-body algorithm; false if M is not positive definite (a pivot is not positive) or qdd is not finite
+  /// qdd of M qdd = F by the composite-body M and F and M's LDL^T factors; false if M is not positive definite (a pivot is not positive) or qdd is not finite
   template <class Scalar>
   static bool forward_dynamics([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] Vector<Scalar>& qdd) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
@@ -284,15 +284,12 @@ struct Model {
     Eigen::Matrix<Scalar, 1, 1> pivot;
     const Scalar w0 = cos(q(0));
     const Scalar w1 = c.p.R * w0;
-    const Scalar w2 = w1 * c.p.m;
-    const Scalar w3 = sin(q(0));
-    const Scalar w4 = w3 * c.p.R;
-    const Scalar w5 = w4 * c.p.m;
-    const Scalar w6 = w1 * w2 + w4 * w5;
-    const Scalar w7 = Scalar(1) / w6;
-    const Scalar w8 = qd(0) * qd(0);
-    pivot(0) = w6;
-    qdd(0) = -(w7 * w5 * (c.p.g + w8 * c.p.R * w0) - w7 * w2 * (w8 * w3 * c.p.R + w3 * c.k7));
+    const Scalar w2 = sin(q(0));
+    const Scalar w3 = w2 * c.p.R;
+    const Scalar w4 = w1 * w1 * c.p.m + w3 * w3 * c.p.m;
+    const Scalar w5 = qd(0) * qd(0);
+    pivot(0) = w4;
+    qdd(0) = Scalar(1) / w4 * (w1 * c.p.m * (w5 * w2 * c.p.R + w2 * c.k7) - w3 * c.p.m * (c.p.g + w5 * c.p.R * w0));
     bool regular = true;
     for (int k = 0; k < 1; ++k) regular = regular && pivot(k) > Scalar(0);
     using std::isfinite;
@@ -300,7 +297,7 @@ struct Model {
     return regular;
   }
 
-  /// qdd of M qdd = F by the articulated-body algorithm; false if M is not positive definite (a pivot is not positive) or qdd is not finite
+  /// qdd of M qdd = F by the composite-body M and F and M's LDL^T factors; false if M is not positive definite (a pivot is not positive) or qdd is not finite
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
   template <class Scalar>

@@ -22,7 +22,7 @@ struct Model {
   static constexpr const char* name = "cart_pole";
   static constexpr const char* description = "Cart-pole: a uniform rod hinged on a cart pushed along a rail";
   static constexpr const char* generator_version = "0.1.0";
-  static constexpr const char* model_hash = "98b0967c5660b308";
+  static constexpr const char* model_hash = "a9cdcf0cf6858838";
   static constexpr std::array<const char*, nq> coordinate_names{{"x", "theta"}};
   static constexpr std::array<const char*, nu> input_names{{"u"}};
   static constexpr std::array<const char*, np> parameter_names{{"mc", "mp", "l", "rp", "g"}};
@@ -65,22 +65,17 @@ struct Model {
       using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
       using std::log; using std::abs; using std::pow;
       const Scalar w0 = p.mp + p.mc;
-      const Scalar w1 = p.mp * Scalar(0.5) * p.l;
-      const Scalar w2 = p.rp * p.rp;
-      const Scalar w3 = p.l * p.l;
-      const Scalar w4 = Scalar(0.25) * p.mp * w2 + Scalar(0.3333333333333333) * p.mp * w3;
-      const Scalar w5 = Scalar(1) / w4 * w1;
-      const Scalar w6 = w5 * w1 - p.mp;
-      k0 = w1;
+      const Scalar w1 = p.rp * p.rp;
+      const Scalar w2 = p.l * p.l;
+      const Scalar w3 = Scalar(0.25) * p.mp * w1 + Scalar(0.3333333333333333) * p.mp * w2;
+      k0 = p.mp * Scalar(0.5) * p.l;
       k1 = w0;
-      k2 = w4;
+      k2 = w3;
       k3 = p.g * p.mp * Scalar(0.5) * p.l;
-      k4 = Scalar(0.041666666666666664) * (Scalar(4) * p.mp * w3 + p.mp * w2 * Scalar(3));
+      k4 = Scalar(0.041666666666666664) * (Scalar(4) * p.mp * w2 + p.mp * w1 * Scalar(3));
       k5 = w0 * Scalar(0.5);
-      k6 = w6 + p.mp;
-      k7 = w6;
-      k8 = Scalar(0.5) * p.l;
-      k9 = w5;
+      k6 = Scalar(1) / w3;
+      k7 = Scalar(0.5) * p.l;
     }
     /// The parameters these constants were computed from.
     const Parameters<Scalar>& parameters() const noexcept { return p; }
@@ -88,7 +83,7 @@ struct Model {
    private:
     friend struct Model;
     Parameters<Scalar> p;
-    Scalar k0, k1, k2, k3, k4, k5, k6, k7, k8, k9;
+    Scalar k0, k1, k2, k3, k4, k5, k6, k7;
   };
 
   /// M(q, t), symmetric positive (semi)definite
@@ -280,22 +275,25 @@ struct Model {
     outputs(t, q, qd, u, Constants<Scalar>(p), y);
   }
 
-  /// qdd of M qdd = F by the articulated-body algorithm; false if M is not positive definite (a pivot is not positive) or qdd is not finite
+  /// qdd of M qdd = F by the composite-body M and F and M's LDL^T factors; false if M is not positive definite (a pivot is not positive) or qdd is not finite
   template <class Scalar>
   static bool forward_dynamics([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] Vector<Scalar>& qdd) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
     Eigen::Matrix<Scalar, 2, 1> pivot;
-    const Scalar w0 = sin(q(1));
-    const Scalar w1 = c.p.mc - (c.k7 - w0 * w0 * c.k6);
-    const Scalar w2 = cos(q(1));
-    const Scalar w3 = Scalar(1) / w1;
-    const Scalar w4 = c.p.g * c.k6 * w0 * w2 * w3 - w3 * (w0 * qd(1) * c.p.mp * qd(1) * c.k8 - u(0));
+    const Scalar w0 = cos(q(1));
+    const Scalar w1 = w0 * c.k0;
+    const Scalar w2 = c.k6 * w1;
+    const Scalar w3 = c.k1 - w2 * w1;
+    const Scalar w4 = sin(q(1));
+    const Scalar w5 = c.p.g * w4;
+    const Scalar w6 = w5 * c.k0;
+    const Scalar w7 = Scalar(1) / w3 * (w2 * w6 - (w5 * c.p.mp * w0 + (qd(1) * c.p.mp * qd(1) * c.k7 - c.p.mp * c.p.g * w0) * w4 - u(0)));
     pivot(0) = c.k2;
-    pivot(1) = w1;
-    qdd(0) = w4;
-    qdd(1) = c.k9 * (w2 * w4 + c.p.g * w0);
+    pivot(1) = w3;
+    qdd(0) = w7;
+    qdd(1) = c.k6 * w6 + w2 * w7;
     bool regular = true;
     for (int k = 0; k < 2; ++k) regular = regular && pivot(k) > Scalar(0);
     using std::isfinite;
@@ -303,7 +301,7 @@ struct Model {
     return regular;
   }
 
-  /// qdd of M qdd = F by the articulated-body algorithm; false if M is not positive definite (a pivot is not positive) or qdd is not finite
+  /// qdd of M qdd = F by the composite-body M and F and M's LDL^T factors; false if M is not positive definite (a pivot is not positive) or qdd is not finite
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
   template <class Scalar>

@@ -22,7 +22,7 @@ struct Model {
   static constexpr const char* name = "double_pendulum";
   static constexpr const char* description = "Planar double pendulum: two point masses on massless rods, relative angles";
   static constexpr const char* generator_version = "0.1.0";
-  static constexpr const char* model_hash = "2a2c873b34c646cc";
+  static constexpr const char* model_hash = "9cc9183baf9bd3d7";
   static constexpr std::array<const char*, nq> coordinate_names{{"theta1", "theta2"}};
   static constexpr std::array<const char*, nu> input_names{{}};
   static constexpr std::array<const char*, np> parameter_names{{"m1", "m2", "l1", "l2", "g"}};
@@ -69,9 +69,6 @@ struct Model {
       const Scalar w2 = p.l1 * p.l1;
       const Scalar w3 = p.m1 * w2;
       const Scalar w4 = p.m2 * w2;
-      const Scalar w5 = p.l2 * p.m2;
-      const Scalar w6 = w5 * Scalar(1) / w1;
-      const Scalar w7 = w6 * w5 - p.m2;
       k0 = p.l1 * Scalar(2) * p.l2 * p.m2;
       k1 = w1 + w3 + w4;
       k2 = p.l1 * p.l2 * p.m2;
@@ -80,12 +77,11 @@ struct Model {
       k5 = p.g * p.l2 * p.m2;
       k6 = (w3 + w4) * Scalar(0.5);
       k7 = w0 * Scalar(0.5) * p.m2;
-      k8 = p.m2 + w7;
-      k9 = -w7;
-      k10 = w3;
-      k11 = p.m1 * p.l1;
-      k12 = w7;
-      k13 = w6;
+      k8 = p.l2 * p.m2;
+      k9 = Scalar(1) / w1;
+      k10 = p.l1 * p.m2;
+      k11 = w3;
+      k12 = p.m1 * p.l1;
     }
     /// The parameters these constants were computed from.
     const Parameters<Scalar>& parameters() const noexcept { return p; }
@@ -94,7 +90,7 @@ struct Model {
     friend struct Model;
     Parameters<Scalar> p;
     Scalar k0, k1, k2, k3, k4, k5, k6, k7, k8, k9;
-    Scalar k10, k11, k12, k13;
+    Scalar k10, k11, k12;
   };
 
   /// M(q, t), symmetric positive (semi)definite
@@ -305,28 +301,31 @@ struct Model {
     outputs(t, q, qd, u, Constants<Scalar>(p), y);
   }
 
-  /// qdd of M qdd = F by the articulated-body algorithm; false if M is not positive definite (a pivot is not positive) or qdd is not finite
+  /// qdd of M qdd = F by the composite-body M and F and M's LDL^T factors; false if M is not positive definite (a pivot is not positive) or qdd is not finite
   template <class Scalar>
   static bool forward_dynamics([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] Vector<Scalar>& qdd) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
     Eigen::Matrix<Scalar, 2, 1> pivot;
-    const Scalar w0 = sin(q(1));
-    const Scalar w1 = c.p.l1 * (w0 * w0 * c.k8 + c.k9);
-    const Scalar w2 = c.k10 + c.p.l1 * w1;
-    const Scalar w3 = c.p.g * cos(q(0));
-    const Scalar w4 = cos(q(1));
-    const Scalar w5 = Scalar(1) / w2;
-    const Scalar w6 = c.p.g * sin(q(0));
-    const Scalar w7 = qd(0) * c.p.l1 * qd(0);
-    const Scalar w8 = qd(1) + qd(0);
-    const Scalar w9 = w7 * w0;
-    const Scalar w10 = w3 * c.p.l1 * c.k8 * w0 * w4 * w5 - (w1 + c.k11) * w5 * w6 + c.p.l1 * (w0 * (w7 * w4 * c.p.m2 + w8 * c.p.m2 * c.p.l2 * w8) + w4 * w9 * c.k12) * w5;
+    const Scalar w0 = cos(q(1));
+    const Scalar w1 = w0 * c.k8;
+    const Scalar w2 = c.p.l1 * w1;
+    const Scalar w3 = c.k3 + w2;
+    const Scalar w4 = w3 * c.k9;
+    const Scalar w5 = w4 * w3 - (c.k11 + c.k3 + w2 + (w1 + c.k10) * c.p.l1);
+    const Scalar w6 = sin(q(1));
+    const Scalar w7 = c.p.g * cos(q(0));
+    const Scalar w8 = c.p.g * sin(q(0));
+    const Scalar w9 = qd(0) * c.p.l1 * qd(0);
+    const Scalar w10 = w6 * w7 + w0 * w8 + w9 * w6;
+    const Scalar w11 = w10 * c.k8;
+    const Scalar w12 = qd(1) + qd(0);
+    const Scalar w13 = Scalar(1) / w5 * (w11 * w4 - (c.p.l1 * (w6 * ((w6 * w8 - w7 * w0 - w9 * w0) * c.p.m2 - w12 * c.p.m2 * c.p.l2 * w12) + w0 * w10 * c.p.m2) + c.k12 * w8 + w11));
     pivot(0) = c.k3;
-    pivot(1) = w2;
-    qdd(0) = w10;
-    qdd(1) = -(w10 + c.k13 * (w0 * w3 + w4 * (c.p.l1 * w10 + w6) + w9));
+    pivot(1) = -w5;
+    qdd(0) = -w13;
+    qdd(1) = -(w11 * c.k9 - w13 * w4);
     bool regular = true;
     for (int k = 0; k < 2; ++k) regular = regular && pivot(k) > Scalar(0);
     using std::isfinite;
@@ -334,7 +333,7 @@ struct Model {
     return regular;
   }
 
-  /// qdd of M qdd = F by the articulated-body algorithm; false if M is not positive definite (a pivot is not positive) or qdd is not finite
+  /// qdd of M qdd = F by the composite-body M and F and M's LDL^T factors; false if M is not positive definite (a pivot is not positive) or qdd is not finite
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
   template <class Scalar>

@@ -22,7 +22,7 @@ struct Model {
   static constexpr const char* name = "heavy_top";
   static constexpr const char* description = "Heavy symmetric top spinning on a fixed pivot at its tip, 3-1-3 Euler angles";
   static constexpr const char* generator_version = "0.1.0";
-  static constexpr const char* model_hash = "d38ce416e6a71b12";
+  static constexpr const char* model_hash = "07141cf3d68f0ec0";
   static constexpr std::array<const char*, nq> coordinate_names{{"psi", "theta", "phi"}};
   static constexpr std::array<const char*, nu> input_names{{}};
   static constexpr std::array<const char*, np> parameter_names{{"m", "l", "J1", "J3", "g"}};
@@ -70,6 +70,7 @@ struct Model {
       k2 = Scalar(0.5) * p.J3;
       k3 = Scalar(0.5) * w0;
       k4 = p.g * p.m * p.l;
+      k5 = Scalar(1) / p.J3;
     }
     /// The parameters these constants were computed from.
     const Parameters<Scalar>& parameters() const noexcept { return p; }
@@ -77,7 +78,7 @@ struct Model {
    private:
     friend struct Model;
     Parameters<Scalar> p;
-    Scalar k0, k1, k2, k3, k4;
+    Scalar k0, k1, k2, k3, k4, k5;
   };
 
   /// M(q, t), symmetric positive (semi)definite
@@ -335,65 +336,45 @@ struct Model {
     outputs(t, q, qd, u, Constants<Scalar>(p), y);
   }
 
-  /// qdd of M qdd = F by the articulated-body algorithm; false if M is not positive definite (a pivot is not positive) or qdd is not finite
+  /// qdd of M qdd = F by the composite-body M and F and M's LDL^T factors; false if M is not positive definite (a pivot is not positive) or qdd is not finite
   template <class Scalar>
   static bool forward_dynamics([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] Vector<Scalar>& qdd) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
     Eigen::Matrix<Scalar, 3, 1> pivot;
-    const Scalar w0 = sin(q(1));
-    const Scalar w1 = sin(q(2));
-    const Scalar w2 = w0 * w1;
-    const Scalar w3 = w2 * c.k0;
-    const Scalar w4 = cos(q(1));
-    const Scalar w5 = w4 * c.p.J3;
-    const Scalar w6 = cos(q(2));
-    const Scalar w7 = w0 * w6;
-    const Scalar w8 = w7 * c.k0;
-    const Scalar w9 = w2 * w3 + w4 * w5 + w7 * w8;
-    const Scalar w10 = Scalar(1) / w9;
-    const Scalar w11 = w1 * c.k0;
-    const Scalar w12 = c.k0 * w6;
-    const Scalar w13 = w7 * w11 - w12 * w2;
-    const Scalar w14 = w10 * w13;
-    const Scalar w15 = w14 * w13 - (w11 * w1 + w12 * w6);
-    const Scalar w16 = w10 * w5;
-    const Scalar w17 = Scalar(1) / w15;
-    const Scalar w18 = w14 * w5;
-    const Scalar w19 = w17 * w18;
-    const Scalar w20 = w16 * w5 - w19 * w18 - c.p.J3;
-    const Scalar w21 = w7 * c.p.g;
-    const Scalar w22 = w2 * c.k1;
-    const Scalar w23 = w6 * c.k1 + w14 * w22;
-    const Scalar w24 = Scalar(1) / w20;
-    const Scalar w25 = w0 * qd(0) * w6 - qd(1) * w1;
-    const Scalar w26 = qd(1) * w6 + w0 * qd(0) * w1;
-    const Scalar w27 = c.k0 * w26;
-    const Scalar w28 = w25 * c.k0;
-    const Scalar w29 = w26 * w28 - w25 * w27;
-    const Scalar w30 = w4 * qd(0) + qd(2);
-    const Scalar w31 = w30 * c.p.J3;
-    const Scalar w32 = w30 * w28 - w25 * w31;
-    const Scalar w33 = w30 * w27 - w26 * w31;
-    const Scalar w34 = w29 * w4 - w32 * w2 + w7 * w33;
-    const Scalar w35 = w34 * w14 - (w32 * w6 + w33 * w1);
-    const Scalar w36 = w3 * w14 + w12;
-    const Scalar w37 = w25 * qd(2) + qd(1) * w4 * qd(0) * w1;
-    const Scalar w38 = qd(1) * w0 * qd(0);
-    const Scalar w39 = w7 * c.k1;
-    const Scalar w40 = w1 * c.k1 - w39 * w14;
-    const Scalar w41 = c.p.g * w2;
-    const Scalar w42 = w11 - w8 * w14;
-    const Scalar w43 = w26 * qd(2) - qd(1) * w4 * qd(0) * w6;
-    const Scalar w44 = w21 * (w16 * w22 - w19 * w23) * w24 + w24 * (w29 + w19 * w35 - w34 * w16) - w24 * (w3 * w16 - w36 * w19) * w37 + w38 - w24 * (w19 * w40 + w39 * w16) * w41 + w24 * (w8 * w16 + w42 * w19) * w43;
-    const Scalar w45 = w19 * w44 + w42 * w17 * w43 + w17 * w35 - w17 * w23 * w21 - w19 * w38 + w36 * w17 * w37 - w41 * w17 * w40;
-    pivot(0) = w9;
-    pivot(1) = -w15;
-    pivot(2) = -w20;
-    qdd(0) = -(w16 * w44 - w45 * w14 - w8 * w10 * w43 + w10 * w3 * w37 + w34 * w10 - w10 * w22 * w21 - w38 * w16 + w39 * w10 * w41);
-    qdd(1) = w45;
-    qdd(2) = w44;
+    const Scalar w0 = sin(q(2));
+    const Scalar w1 = w0 * c.k0;
+    const Scalar w2 = cos(q(2));
+    const Scalar w3 = c.k0 * w2;
+    const Scalar w4 = w1 * w0 + w3 * w2;
+    const Scalar w5 = Scalar(1) / w4;
+    const Scalar w6 = sin(q(1));
+    const Scalar w7 = w6 * w2;
+    const Scalar w8 = w6 * w0;
+    const Scalar w9 = w7 * w1 - w3 * w8;
+    const Scalar w10 = w5 * w9;
+    const Scalar w11 = cos(q(1));
+    const Scalar w12 = w11 * c.p.J3;
+    const Scalar w13 = c.k5 * w12;
+    const Scalar w14 = w10 * w9 - (w8 * w8 * c.k0 + w11 * w12 + w7 * w7 * c.k0) + w13 * w12;
+    const Scalar w15 = qd(1) * w2 + w6 * qd(0) * w0;
+    const Scalar w16 = w11 * qd(0) + qd(2);
+    const Scalar w17 = c.k0 * w15;
+    const Scalar w18 = w16 * c.p.J3;
+    const Scalar w19 = c.k1 * c.p.g * w8 - (w15 * qd(2) - qd(1) * w11 * qd(0) * w2) * c.k0 + w16 * w17 - w15 * w18;
+    const Scalar w20 = w6 * qd(0) * w2 - qd(1) * w0;
+    const Scalar w21 = w20 * c.k0;
+    const Scalar w22 = qd(1) * w6 * qd(0) * c.p.J3 + w20 * w17 - w15 * w21;
+    const Scalar w23 = w16 * w21 - w20 * w18 - c.k0 * (w20 * qd(2) + qd(1) * w11 * qd(0) * w0) + c.k1 * w7 * c.p.g;
+    const Scalar w24 = w23 * w2 + w19 * w0;
+    const Scalar w25 = Scalar(1) / w14 * (w13 * w22 - (w11 * w22 - w7 * w19 + w23 * w8) - w24 * w10);
+    pivot(0) = c.p.J3;
+    pivot(1) = w4;
+    pivot(2) = -w14;
+    qdd(0) = w25;
+    qdd(1) = w10 * w25 + w5 * w24;
+    qdd(2) = c.k5 * w22 - w13 * w25;
     bool regular = true;
     for (int k = 0; k < 3; ++k) regular = regular && pivot(k) > Scalar(0);
     using std::isfinite;
@@ -401,7 +382,7 @@ struct Model {
     return regular;
   }
 
-  /// qdd of M qdd = F by the articulated-body algorithm; false if M is not positive definite (a pivot is not positive) or qdd is not finite
+  /// qdd of M qdd = F by the composite-body M and F and M's LDL^T factors; false if M is not positive definite (a pivot is not positive) or qdd is not finite
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
   template <class Scalar>

@@ -22,7 +22,7 @@ struct Model {
   static constexpr const char* name = "planar_chain";
   static constexpr const char* description = "Planar chain of n uniform rods with relative joint angles (n-link pendulum)";
   static constexpr const char* generator_version = "0.1.0";
-  static constexpr const char* model_hash = "b3953f2ce9c3923c";
+  static constexpr const char* model_hash = "7438dcbd4e18678f";
   static constexpr std::array<const char*, nq> coordinate_names{{"q1", "q2", "q3", "q4"}};
   static constexpr std::array<const char*, nu> input_names{{}};
   static constexpr std::array<const char*, np> parameter_names{{"m", "l", "rd", "g"}};
@@ -63,29 +63,22 @@ struct Model {
       using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
       using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
       using std::log; using std::abs; using std::pow;
-      const Scalar w0 = p.m * Scalar(0.5) * p.l;
-      const Scalar w1 = p.l * p.l;
-      const Scalar w2 = p.m * Scalar(0.3333333333333333) * w1;
-      const Scalar w3 = p.rd * p.rd;
-      const Scalar w4 = Scalar(0.25) * w3 * p.m;
-      const Scalar w5 = w2 + w4;
-      const Scalar w6 = Scalar(1) / w5 * w0;
-      const Scalar w7 = w6 * w0 - p.m;
-      k0 = w0;
+      const Scalar w0 = p.l * p.l;
+      const Scalar w1 = p.m * Scalar(0.3333333333333333) * w0;
+      const Scalar w2 = p.rd * p.rd;
+      const Scalar w3 = Scalar(0.25) * w2 * p.m;
+      const Scalar w4 = w1 + w3;
+      k0 = p.m * Scalar(0.5) * p.l;
       k1 = p.m * p.l;
       k2 = Scalar(2) * p.m * p.l;
-      k3 = w5;
+      k3 = w4;
       k4 = -(p.m * p.l * Scalar(3));
-      k5 = -w4 - w2;
+      k5 = -w3 - w1;
       k6 = Scalar(0.5) * p.l;
-      k7 = Scalar(0.08333333333333333) * p.m * (w1 + w3 * Scalar(3));
+      k7 = Scalar(0.08333333333333333) * p.m * (w0 + w2 * Scalar(3));
       k8 = p.m * Scalar(0.5);
       k9 = p.g * p.m;
-      k10 = p.m + w7;
-      k11 = -w7;
-      k12 = -w0;
-      k13 = w7;
-      k14 = w6;
+      k10 = Scalar(1) / w4;
     }
     /// The parameters these constants were computed from.
     const Parameters<Scalar>& parameters() const noexcept { return p; }
@@ -94,7 +87,7 @@ struct Model {
     friend struct Model;
     Parameters<Scalar> p;
     Scalar k0, k1, k2, k3, k4, k5, k6, k7, k8, k9;
-    Scalar k10, k11, k12, k13, k14;
+    Scalar k10;
   };
 
   /// M(q, t), symmetric positive (semi)definite
@@ -467,95 +460,88 @@ struct Model {
     outputs(t, q, qd, u, Constants<Scalar>(p), y);
   }
 
-  /// qdd of M qdd = F by the articulated-body algorithm; false if M is not positive definite (a pivot is not positive) or qdd is not finite
+  /// qdd of M qdd = F by the composite-body M and F and M's LDL^T factors; false if M is not positive definite (a pivot is not positive) or qdd is not finite
   template <class Scalar>
   static bool forward_dynamics([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] Vector<Scalar>& qdd) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
     Eigen::Matrix<Scalar, 4, 1> pivot;
-    const Scalar w0 = sin(q(3));
-    const Scalar w1 = w0 * w0 * c.k10;
-    const Scalar w2 = w1 + c.k11;
-    const Scalar w3 = w2 * c.p.l;
-    const Scalar w4 = c.k3 + w3 * c.p.l;
-    const Scalar w5 = cos(q(3));
-    const Scalar w6 = w5 * w0 * c.k10;
-    const Scalar w7 = w3 + c.k0;
-    const Scalar w8 = Scalar(1) / w4;
-    const Scalar w9 = c.p.l * w6;
-    const Scalar w10 = w8 * w9;
-    const Scalar w11 = w7 * w10 - w6;
-    const Scalar w12 = sin(q(2));
-    const Scalar w13 = cos(q(2));
-    const Scalar w14 = w12 * w13;
-    const Scalar w15 = w12 * w12;
-    const Scalar w16 = c.p.m - (w1 - c.p.m) - w9 * w10;
-    const Scalar w17 = w8 * w7;
-    const Scalar w18 = w7 * w17 - (w2 + c.p.m);
-    const Scalar w19 = w16 + w18;
-    const Scalar w20 = Scalar(2) * w11 * w14 - w15 * w19;
-    const Scalar w21 = w20 + w18;
-    const Scalar w22 = c.p.l * w21;
-    const Scalar w23 = c.p.l * w22 + c.k5;
-    const Scalar w24 = Scalar(1) / w23;
-    const Scalar w25 = w22 + c.k12;
-    const Scalar w26 = w24 * w25;
-    const Scalar w27 = c.p.m - w21 + w26 * w25;
-    const Scalar w28 = w11 - (w19 * w14 + w15 * Scalar(2) * w11);
-    const Scalar w29 = w28 * c.p.l;
-    const Scalar w30 = w24 * w29;
-    const Scalar w31 = w28 - w25 * w30;
-    const Scalar w32 = sin(q(1));
-    const Scalar w33 = cos(q(1));
-    const Scalar w34 = w32 * w33;
-    const Scalar w35 = w32 * w32;
-    const Scalar w36 = w29 * w30 + w20 + w16 + c.p.m;
-    const Scalar w37 = w27 - w36;
-    const Scalar w38 = c.p.l * (w27 - (Scalar(2) * w31 * w34 + w35 * w37));
-    const Scalar w39 = w38 * c.p.l + c.k3;
-    const Scalar w40 = Scalar(1) / w39;
-    const Scalar w41 = c.p.g * sin(q(0));
-    const Scalar w42 = qd(1) + qd(0);
-    const Scalar w43 = c.p.l * w42 * w42;
-    const Scalar w44 = w12 * w43;
-    const Scalar w45 = w43 * w13;
-    const Scalar w46 = w42 + qd(2);
-    const Scalar w47 = w46 + qd(3);
-    const Scalar w48 = w46 * c.p.l * w46;
-    const Scalar w49 = w47 * c.p.m * w47 * c.k6 + c.p.m * w5 * w48;
-    const Scalar w50 = w48 * w0;
-    const Scalar w51 = c.k13 * w50;
-    const Scalar w52 = w5 * w51 + w0 * w49;
-    const Scalar w53 = w52 * c.p.l;
-    const Scalar w54 = w11 * w44 + w16 * w45 + w5 * w49 - w0 * w51 + w46 * c.p.m * w46 * c.k6 - w53 * w10;
-    const Scalar w55 = w52 - w45 * w11 + w18 * w44 - w53 * w17;
-    const Scalar w56 = w12 * w54 + w13 * w55;
-    const Scalar w57 = w56 * c.p.l;
-    const Scalar w58 = qd(0) * qd(0) * c.p.l;
-    const Scalar w59 = w33 * w58;
-    const Scalar w60 = w32 * w58;
-    const Scalar w61 = c.p.g * cos(q(0));
-    const Scalar w62 = w40 * (w38 + c.k0) * w41 + w40 * c.p.l * (w32 * (w57 * w30 - w36 * w59 - w60 * w31 - (w54 * w13 - w12 * w55 + c.p.m * c.k6 * w42 * w42)) - w33 * (w56 - w31 * w59 - w27 * w60 - w26 * w57)) + w40 * c.p.l * (w31 - (w35 * Scalar(2) * w31 - w37 * w34)) * w61;
-    const Scalar w63 = -w62;
-    const Scalar w64 = c.p.l * w62 - w41;
-    const Scalar w65 = w61 * w33 + w32 * w64 + w59;
-    const Scalar w66 = w32 * w61 - w33 * w64 + w60;
-    const Scalar w67 = w63 + w24 * w57 - w65 * w30 + w26 * w66;
-    const Scalar w68 = w67 + w62;
-    const Scalar w69 = w66 - c.p.l * w68;
-    const Scalar w70 = w45 - w69 * w12 + w65 * w13;
-    const Scalar w71 = w69 * w13 + w44 + w65 * w12;
-    const Scalar w72 = w8 * w53 + w70 * w10 + w68 - w17 * w71;
-    const Scalar w73 = w68 - w72;
+    const Scalar w0 = cos(q(3));
+    const Scalar w1 = w0 * c.k0;
+    const Scalar w2 = w1 * c.p.l;
+    const Scalar w3 = c.k3 + w2;
+    const Scalar w4 = c.k10 * w3;
+    const Scalar w5 = w1 + c.k1;
+    const Scalar w6 = c.p.l * w5 + c.k3 + w2 + c.k3;
+    const Scalar w7 = w6 - w4 * w3;
+    const Scalar w8 = c.k0 + w5;
+    const Scalar w9 = cos(q(2));
+    const Scalar w10 = sin(q(2));
+    const Scalar w11 = sin(q(3));
+    const Scalar w12 = c.k0 * w11;
+    const Scalar w13 = -(w10 * w12);
+    const Scalar w14 = w8 * w9 + w13;
+    const Scalar w15 = c.p.l * w14;
+    const Scalar w16 = -(w6 + w15);
+    const Scalar w17 = w1 * w9 + w13;
+    const Scalar w18 = w3 + w17 * c.p.l;
+    const Scalar w19 = w16 + w18 * w4;
+    const Scalar w20 = Scalar(1) / w7;
+    const Scalar w21 = w19 * w20;
+    const Scalar w22 = c.k2 + w14;
+    const Scalar w23 = -(w22 * c.p.l + w6 + w15 + c.k3);
+    const Scalar w24 = c.k10 * w18;
+    const Scalar w25 = w19 * w21 + w23 + w18 * w24;
+    const Scalar w26 = cos(q(1));
+    const Scalar w27 = w12 * w9;
+    const Scalar w28 = sin(q(1));
+    const Scalar w29 = (w27 + w8 * w10) * w28;
+    const Scalar w30 = w29 - w26 * (w22 + c.k0);
+    const Scalar w31 = w30 * c.p.l;
+    const Scalar w32 = w18 + (w26 * w17 - (w27 + w1 * w10) * w28) * c.p.l;
+    const Scalar w33 = w32 * w4 + w16 + c.p.l * (w29 - w26 * w14);
+    const Scalar w34 = w31 + w23 + w21 * w33 + w32 * w24;
+    const Scalar w35 = Scalar(1) / w25;
+    const Scalar w36 = w34 * w35;
+    const Scalar w37 = w33 * w20;
+    const Scalar w38 = c.k10 * w32;
+    const Scalar w39 = w37 * w33 - w34 * w36 + w38 * w32 + w31 + w23 + (w30 + c.k4) * c.p.l + c.k5;
+    const Scalar w40 = c.p.g * sin(q(0));
+    const Scalar w41 = c.p.g * cos(q(0));
+    const Scalar w42 = qd(0) * qd(0) * c.p.l;
+    const Scalar w43 = w28 * w40 - w41 * w26 - w26 * w42;
+    const Scalar w44 = w28 * w41 + w26 * w40 + w28 * w42;
+    const Scalar w45 = qd(1) + qd(0);
+    const Scalar w46 = c.p.l * w45 * w45;
+    const Scalar w47 = w46 * w9 - w9 * w43 - w10 * w44;
+    const Scalar w48 = w10 * w46 - w10 * w43 + w44 * w9;
+    const Scalar w49 = w45 + qd(2);
+    const Scalar w50 = w49 * c.p.l * w49;
+    const Scalar w51 = w11 * w47 + w0 * w48 + w50 * w11;
+    const Scalar w52 = w51 * c.p.m;
+    const Scalar w53 = w49 + qd(3);
+    const Scalar w54 = w53 * c.p.m * w53 * c.k6 + c.p.m * (w0 * w47 - w48 * w11 + w0 * w50);
+    const Scalar w55 = w52 * w11 + w0 * w54 + w49 * c.p.m * w49 * c.k6 + c.p.m * w47;
+    const Scalar w56 = w54 * w11 - w52 * w0;
+    const Scalar w57 = w56 - c.p.m * w48;
+    const Scalar w58 = w55 * w10 + w57 * w9;
+    const Scalar w59 = w51 * c.k0;
+    const Scalar w60 = c.p.l * w56 - c.k0 * w48 - w59;
+    const Scalar w61 = w60 - c.k0 * w44 + w58 * c.p.l;
+    const Scalar w62 = w60 + w4 * w59;
+    const Scalar w63 = w61 + w21 * w62 + w59 * w24;
+    const Scalar w64 = (c.k0 * w40 + c.p.l * (w26 * (c.p.m * w44 - w58) - w28 * (c.p.m * c.k6 * w45 * w45 - c.p.m * w43 - (w57 * w10 - w55 * w9))) - w61 - w38 * w59 - w37 * w62 + w63 * w36) * Scalar(1) / w39;
+    const Scalar w65 = w64 * w36 + w63 * w35;
+    const Scalar w66 = w62 * w20 - w65 * w21 + w64 * w37;
     pivot(0) = c.k3;
-    pivot(1) = w4;
-    pivot(2) = -w23;
-    pivot(3) = w39;
-    qdd(0) = w63;
-    qdd(1) = -w67;
-    qdd(2) = w72;
-    qdd(3) = w73 + c.k14 * (w5 * (w73 * c.p.l - w71) - w70 * w0 - w50);
+    pivot(1) = w7;
+    pivot(2) = -w25;
+    pivot(3) = -w39;
+    qdd(0) = w64;
+    qdd(1) = -w65;
+    qdd(2) = w66;
+    qdd(3) = -(w4 * w66 + c.k10 * w59 - w65 * w24 + w64 * w38);
     bool regular = true;
     for (int k = 0; k < 4; ++k) regular = regular && pivot(k) > Scalar(0);
     using std::isfinite;
@@ -563,7 +549,7 @@ struct Model {
     return regular;
   }
 
-  /// qdd of M qdd = F by the articulated-body algorithm; false if M is not positive definite (a pivot is not positive) or qdd is not finite
+  /// qdd of M qdd = F by the composite-body M and F and M's LDL^T factors; false if M is not positive definite (a pivot is not positive) or qdd is not finite
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
   template <class Scalar>

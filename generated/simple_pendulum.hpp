@@ -22,7 +22,7 @@ struct Model {
   static constexpr const char* name = "simple_pendulum";
   static constexpr const char* description = "Simple pendulum: a point mass on a massless rod in a vertical plane";
   static constexpr const char* generator_version = "0.1.0";
-  static constexpr const char* model_hash = "d7c9e2b268f2e523";
+  static constexpr const char* model_hash = "f2f41584b854aba9";
   static constexpr std::array<const char*, nq> coordinate_names{{"theta"}};
   static constexpr std::array<const char*, nu> input_names{{}};
   static constexpr std::array<const char*, np> parameter_names{{"m", "l", "g"}};
@@ -67,7 +67,8 @@ struct Model {
       k0 = w1;
       k1 = p.g * p.m * p.l;
       k2 = p.m * Scalar(0.5) * w0;
-      k3 = Scalar(1) / w1 * p.m * p.l;
+      k3 = p.m * p.l;
+      k4 = Scalar(1) / w1;
     }
     /// The parameters these constants were computed from.
     const Parameters<Scalar>& parameters() const noexcept { return p; }
@@ -75,7 +76,7 @@ struct Model {
    private:
     friend struct Model;
     Parameters<Scalar> p;
-    Scalar k0, k1, k2, k3;
+    Scalar k0, k1, k2, k3, k4;
   };
 
   /// M(q, t), symmetric positive (semi)definite
@@ -258,7 +259,7 @@ struct Model {
     outputs(t, q, qd, u, Constants<Scalar>(p), y);
   }
 
-  /// qdd of M qdd = F by the articulated-body algorithm; false if M is not positive definite (a pivot is not positive) or qdd is not finite
+  /// qdd of M qdd = F by the composite-body M and F and M's LDL^T factors; false if M is not positive definite (a pivot is not positive) or qdd is not finite
   template <class Scalar>
   static bool forward_dynamics([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] Vector<Scalar>& qdd) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
@@ -266,7 +267,7 @@ struct Model {
     using std::log; using std::abs; using std::pow;
     Eigen::Matrix<Scalar, 1, 1> pivot;
     pivot(0) = c.k0;
-    qdd(0) = -(c.p.g * sin(q(0)) * c.k3);
+    qdd(0) = -(c.k3 * c.p.g * sin(q(0)) * c.k4);
     bool regular = true;
     for (int k = 0; k < 1; ++k) regular = regular && pivot(k) > Scalar(0);
     using std::isfinite;
@@ -274,7 +275,7 @@ struct Model {
     return regular;
   }
 
-  /// qdd of M qdd = F by the articulated-body algorithm; false if M is not positive definite (a pivot is not positive) or qdd is not finite
+  /// qdd of M qdd = F by the composite-body M and F and M's LDL^T factors; false if M is not positive definite (a pivot is not positive) or qdd is not finite
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
   template <class Scalar>

@@ -22,7 +22,7 @@ struct Model {
   static constexpr const char* name = "spacecraft_panel";
   static constexpr const char* description = "Spacecraft bus spinning about b3 with a solar panel hinged about b2 (notes Example 3.1)";
   static constexpr const char* generator_version = "0.1.0";
-  static constexpr const char* model_hash = "8020d90908dac574";
+  static constexpr const char* model_hash = "dd026c59e1b83a73";
   static constexpr std::array<const char*, nq> coordinate_names{{"gamma", "theta"}};
   static constexpr std::array<const char*, nu> input_names{{"tau_b", "tau_p"}};
   static constexpr std::array<const char*, np> parameter_names{{"l_fh", "l_ef", "w_p", "t_p", "m_b", "J_b1", "J_b2", "J_b3", "m_p"}};
@@ -82,13 +82,10 @@ struct Model {
       const Scalar w11 = w9 + w10;
       const Scalar w12 = -w6;
       const Scalar w13 = Scalar(0.08333333333333333) * p.m_p * w2;
-      const Scalar w14 = w10 + w13;
-      const Scalar w15 = Scalar(1) / w11;
+      const Scalar w14 = p.l_fh * p.m_p * p.l_fh;
+      const Scalar w15 = w14 + w9 + w13;
       const Scalar w16 = p.l_ef * Scalar(0.5) * p.m_p;
-      const Scalar w17 = w15 * w16;
-      const Scalar w18 = w9 + w13;
-      const Scalar w19 = p.l_fh * (w17 * w16 - p.m_p) * p.l_fh - w18;
-      const Scalar w20 = w0 * p.m_p * Scalar(3);
+      const Scalar w17 = w0 * p.m_p * Scalar(3);
       k0 = w4 * Scalar(0.08333333333333333);
       k1 = w7 * Scalar(0.08333333333333333);
       k2 = w8;
@@ -101,17 +98,15 @@ struct Model {
       k9 = (w1 + w6) * Scalar(0.041666666666666664);
       k10 = w4 * Scalar(0.041666666666666664);
       k11 = Scalar(0.5) * w8;
-      k12 = w14 + p.l_fh * p.m_p * p.l_fh + w19;
-      k13 = -w19;
-      k14 = p.l_ef * Scalar(0.5);
-      k15 = Scalar(0.08333333333333333) * (w2 + w5) * p.m_p;
-      k16 = (w20 + (w0 + w2) * p.m_p) * Scalar(0.08333333333333333);
-      k17 = w17;
-      k18 = ((w0 + w5) * p.m_p + w20) * Scalar(0.08333333333333333);
-      k19 = w18;
-      k20 = w16;
-      k21 = w14;
-      k22 = w15;
+      k12 = w10 + w13 + w14 - w15;
+      k13 = w15;
+      k14 = p.l_fh * w16;
+      k15 = Scalar(1) / w11;
+      k16 = ((w0 + w5) * p.m_p + w17) * Scalar(0.08333333333333333);
+      k17 = (w17 + (w0 + w2) * p.m_p) * Scalar(0.08333333333333333);
+      k18 = p.l_ef * Scalar(0.5);
+      k19 = w16;
+      k20 = Scalar(0.08333333333333333) * (w2 + w5) * p.m_p;
     }
     /// The parameters these constants were computed from.
     const Parameters<Scalar>& parameters() const noexcept { return p; }
@@ -121,7 +116,7 @@ struct Model {
     Parameters<Scalar> p;
     Scalar k0, k1, k2, k3, k4, k5, k6, k7, k8, k9;
     Scalar k10, k11, k12, k13, k14, k15, k16, k17, k18, k19;
-    Scalar k20, k21, k22;
+    Scalar k20;
   };
 
   /// M(q, t), symmetric positive (semi)definite
@@ -327,7 +322,7 @@ struct Model {
     outputs(t, q, qd, u, Constants<Scalar>(p), y);
   }
 
-  /// qdd of M qdd = F by the articulated-body algorithm; false if M is not positive definite (a pivot is not positive) or qdd is not finite
+  /// qdd of M qdd = F by the composite-body M and F and M's LDL^T factors; false if M is not positive definite (a pivot is not positive) or qdd is not finite
   template <class Scalar>
   static bool forward_dynamics([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] Vector<Scalar>& qdd) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
@@ -335,20 +330,22 @@ struct Model {
     using std::log; using std::abs; using std::pow;
     Eigen::Matrix<Scalar, 2, 1> pivot;
     const Scalar w0 = sin(q(1));
-    const Scalar w1 = c.p.J_b3 + c.k12 * w0 * w0 + c.k13;
-    const Scalar w2 = cos(q(1));
-    const Scalar w3 = w2 * qd(0);
-    const Scalar w4 = w0 * qd(0);
-    const Scalar w5 = c.k14 * w4;
-    const Scalar w6 = w3 * c.k15;
-    const Scalar w7 = c.k16 * w4;
-    const Scalar w8 = w4 * w6 - w7 * w3 - u(1);
-    const Scalar w9 = c.k18 * qd(1);
-    const Scalar w10 = Scalar(1) / w1 * (w2 * (c.p.l_fh * (w3 * c.p.m_p * w5 + w8 * c.k17) - (w4 * w9 - qd(1) * w7 + qd(1) * w4 * c.k19)) + w0 * ((w4 * w5 + qd(1) * qd(1) * c.k14) * c.p.m_p * c.p.l_fh + c.k21 * qd(1) * w3 - (w4 * c.p.l_fh * w4 + w3 * w3 * c.p.l_fh) * c.k20 + w3 * w9 - qd(1) * w6) - u(0));
+    const Scalar w1 = cos(q(1));
+    const Scalar w2 = w1 * c.k14;
+    const Scalar w3 = w2 * c.k15;
+    const Scalar w4 = c.p.J_b3 + w0 * w0 * c.k12 + c.k13 - w2 * w3;
+    const Scalar w5 = w0 * qd(0);
+    const Scalar w6 = c.k16 * qd(1);
+    const Scalar w7 = c.k17 * w5;
+    const Scalar w8 = w1 * qd(0);
+    const Scalar w9 = c.k18 * w5;
+    const Scalar w10 = w8 * c.k20;
+    const Scalar w11 = w5 * w10 - w7 * w8 - u(1);
+    const Scalar w12 = (w1 * (w5 * w6 - qd(1) * w7 + qd(1) * w5 * c.k1 - w8 * c.p.m_p * w9 * c.p.l_fh) - w0 * ((w5 * w9 + qd(1) * qd(1) * c.k18) * c.p.m_p * c.p.l_fh - (c.k19 * (w5 * c.p.l_fh * w5 + w8 * w8 * c.p.l_fh) - qd(1) * w8 * c.k0 + qd(1) * w10 - w8 * w6)) + u(0) - w11 * w3) * Scalar(1) / w4;
     pivot(0) = c.k4;
-    pivot(1) = w1;
-    qdd(0) = -w10;
-    qdd(1) = -(c.k17 * w2 * w10 * c.p.l_fh + w8 * c.k22);
+    pivot(1) = w4;
+    qdd(0) = w12;
+    qdd(1) = w12 * w3 - w11 * c.k15;
     bool regular = true;
     for (int k = 0; k < 2; ++k) regular = regular && pivot(k) > Scalar(0);
     using std::isfinite;
@@ -356,7 +353,7 @@ struct Model {
     return regular;
   }
 
-  /// qdd of M qdd = F by the articulated-body algorithm; false if M is not positive definite (a pivot is not positive) or qdd is not finite
+  /// qdd of M qdd = F by the composite-body M and F and M's LDL^T factors; false if M is not positive definite (a pivot is not positive) or qdd is not finite
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
   template <class Scalar>

@@ -22,7 +22,7 @@ struct Model {
   static constexpr const char* name = "spherical_pendulum";
   static constexpr const char* description = "Spherical pendulum: a point mass on a massless rod with a ball-joint pivot";
   static constexpr const char* generator_version = "0.1.0";
-  static constexpr const char* model_hash = "b58d5c3ea9fbc5e6";
+  static constexpr const char* model_hash = "5c18b5e14eacf81f";
   static constexpr std::array<const char*, nq> coordinate_names{{"theta", "phi"}};
   static constexpr std::array<const char*, nu> input_names{{}};
   static constexpr std::array<const char*, np> parameter_names{{"m", "l", "g"}};
@@ -281,7 +281,7 @@ struct Model {
     outputs(t, q, qd, u, Constants<Scalar>(p), y);
   }
 
-  /// qdd of M qdd = F by the articulated-body algorithm; false if M is not positive definite (a pivot is not positive) or qdd is not finite
+  /// qdd of M qdd = F by the composite-body M and F and M's LDL^T factors; false if M is not positive definite (a pivot is not positive) or qdd is not finite
   template <class Scalar>
   static bool forward_dynamics([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] Vector<Scalar>& qdd) noexcept {
     using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
@@ -290,18 +290,15 @@ struct Model {
     Eigen::Matrix<Scalar, 2, 1> pivot;
     const Scalar w0 = sin(q(0));
     const Scalar w1 = c.p.l * w0;
-    const Scalar w2 = c.p.m * w1;
-    const Scalar w3 = w2 * w1;
-    const Scalar w4 = cos(q(0));
-    const Scalar w5 = c.p.l * w4;
-    const Scalar w6 = w5 * c.p.m;
-    const Scalar w7 = w3 + w6 * w5;
-    const Scalar w8 = qd(0) * qd(0);
-    const Scalar w9 = Scalar(1) / w7;
-    pivot(0) = w7;
-    pivot(1) = w3;
-    qdd(0) = (c.p.l * w0 * qd(1) * qd(1) + w8 * c.p.l * w0) * w6 * w9 - w9 * w2 * (c.p.g + w8 * c.p.l * w4);
-    qdd(1) = -(qd(1) * c.k4 * qd(0) * w4 * w2 * Scalar(1) / w3);
+    const Scalar w2 = c.p.m * w1 * w1;
+    const Scalar w3 = cos(q(0));
+    const Scalar w4 = c.p.l * w3;
+    const Scalar w5 = w2 + w4 * c.p.m * w4;
+    const Scalar w6 = qd(0) * qd(0);
+    pivot(0) = w2;
+    pivot(1) = w5;
+    qdd(0) = -(Scalar(1) / w5 * (w1 * c.p.m * (c.p.g + w6 * c.p.l * w3) - w4 * c.p.m * (c.p.l * w0 * qd(1) * qd(1) + w6 * c.p.l * w0)));
+    qdd(1) = -(qd(1) * c.k4 * qd(0) * w3 * c.p.m * w1 * Scalar(1) / w2);
     bool regular = true;
     for (int k = 0; k < 2; ++k) regular = regular && pivot(k) > Scalar(0);
     using std::isfinite;
@@ -309,7 +306,7 @@ struct Model {
     return regular;
   }
 
-  /// qdd of M qdd = F by the articulated-body algorithm; false if M is not positive definite (a pivot is not positive) or qdd is not finite
+  /// qdd of M qdd = F by the composite-body M and F and M's LDL^T factors; false if M is not positive definite (a pivot is not positive) or qdd is not finite
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
   template <class Scalar>

@@ -62,16 +62,21 @@ Eigen::VectorXd articulated(const ForwardDynamics& fd, const GiNaC::exmap& state
   return qdd;
 }
 
+// both forms (the recursion, and M's factors), each against Kane's M^-1 F
 void expect_kane_accelerations(const MechanicalSystem& s, int states = 3) {
-  auto derived = derive_forward_dynamics(s);
-  const auto* reason = std::get_if<std::string>(&derived);
-  ASSERT_EQ(reason, nullptr) << *reason;
-  const ForwardDynamics& fd = std::get<ForwardDynamics>(derived);
   const EquationsOfMotion eom = derive_equations(s);
-  std::mt19937 rng(14);
-  for (int k = 0; k < states; ++k) {
-    const GiNaC::exmap state = random_state(s, rng);
-    EXPECT_TRUE(testing::matrices_near_relative(articulated(fd, state), reference(eom, state), 1e-12));
+  for (const ForwardDynamics::Form form : {ForwardDynamics::Form::articulated_body, ForwardDynamics::Form::mass_matrix}) {
+    SCOPED_TRACE(form == ForwardDynamics::Form::articulated_body ? "articulated body" : "mass matrix");
+    auto derived = derive_forward_dynamics(s, form);
+    const auto* reason = std::get_if<std::string>(&derived);
+    ASSERT_EQ(reason, nullptr) << *reason;
+    const ForwardDynamics& fd = std::get<ForwardDynamics>(derived);
+    EXPECT_EQ(fd.form, form);
+    std::mt19937 rng(14);
+    for (int k = 0; k < states; ++k) {
+      const GiNaC::exmap state = random_state(s, rng);
+      EXPECT_TRUE(testing::matrices_near_relative(articulated(fd, state), reference(eom, state), 1e-12));
+    }
   }
 }
 
@@ -79,6 +84,25 @@ std::string rejection(const MechanicalSystem& s) {
   auto derived = derive_forward_dynamics(s);
   const auto* reason = std::get_if<std::string>(&derived);
   return reason ? *reason : "(a forward dynamics)";
+}
+
+// The recursion grows linearly with the links and M's factors cubically: short chains take
+// the factors, long ones the recursion; the choice is the form of fewer weighted operations
+TEST(ArticulatedBody, ShortChainsTakeTheFactorsOfMAndLongOnesTheRecursion) {
+  for (const auto& [n, expected] : std::vector<std::pair<double, ForwardDynamics::Form>>{
+           {2, ForwardDynamics::Form::mass_matrix}, {24, ForwardDynamics::Form::articulated_body}}) {
+    SCOPED_TRACE(n);
+    auto derived = derive_forward_dynamics(shipped("planar_chain", {{"n", n}}).system);
+    const ForwardDynamics& fd = std::get<ForwardDynamics>(derived);
+    EXPECT_EQ(fd.form, expected);
+    EXPECT_GT(fd.estimated_operations, 0);
+    const double recursion = expected == ForwardDynamics::Form::articulated_body ? fd.estimated_operations
+                                                                                  : fd.estimated_operations_other;
+    const double factors = expected == ForwardDynamics::Form::mass_matrix ? fd.estimated_operations
+                                                                          : fd.estimated_operations_other;
+    EXPECT_EQ(factors < 1.15 * recursion, expected == ForwardDynamics::Form::mass_matrix)
+        << "factors " << factors << ", recursion " << recursion;
+  }
 }
 
 TEST(ArticulatedBody, PlanarChainsMatchKane) {

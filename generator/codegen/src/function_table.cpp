@@ -1,5 +1,7 @@
 #include "function_table.hpp"
 
+#include <fmt/format.h>
+
 #include "eomgen/derivation/articulated_body.hpp"
 #include "eomgen/derivation/composite_body.hpp"
 #include "eomgen/derivation/linearization.hpp"
@@ -84,9 +86,14 @@ void add_energies_and_outputs(std::vector<FunctionSpec>& table, const ModelEquat
 
 // qdd without M, for a tree without constraints; the pivots come first, as they are computed
 FunctionSpec forward_dynamics(const ForwardDynamics& fd) {
+  const char* how = nullptr;
+  switch (fd.form) {
+    case ForwardDynamics::Form::articulated_body: how = "by the articulated-body algorithm"; break;
+    case ForwardDynamics::Form::mass_matrix: how = "by the composite-body M and F and M's LDL^T factors"; break;
+  }
   FunctionSpec f = function("forward_dynamics",
-                            "qdd of M qdd = F by the articulated-body algorithm; false if M is not positive "
-                            "definite (a pivot is not positive) or qdd is not finite",
+                            fmt::format("qdd of M qdd = F {}; false if M is not positive definite (a pivot is not "
+                                        "positive) or qdd is not finite", how),
                             states_and_inputs, {Array::accelerations});
   for (std::size_t k = 0; k < fd.pivots.size(); ++k) f.targets.push_back({{Array::pivots, k, 0}, fd.pivots[k]});
   add_vector(f, Array::accelerations, fd.accelerations);
