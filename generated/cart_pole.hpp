@@ -22,7 +22,7 @@ struct Model {
   static constexpr const char* name = "cart_pole";
   static constexpr const char* description = "Cart-pole: a uniform rod hinged on a cart pushed along a rail";
   static constexpr const char* generator_version = "0.1.0";
-  static constexpr const char* model_hash = "a9cdcf0cf6858838";
+  static constexpr const char* model_hash = "7154da9fcafcbdcd";
   static constexpr std::array<const char*, nq> coordinate_names{{"x", "theta"}};
   static constexpr std::array<const char*, nu> input_names{{"u"}};
   static constexpr std::array<const char*, np> parameter_names{{"mc", "mp", "l", "rp", "g"}};
@@ -67,15 +67,16 @@ struct Model {
       const Scalar w0 = p.mp + p.mc;
       const Scalar w1 = p.rp * p.rp;
       const Scalar w2 = p.l * p.l;
-      const Scalar w3 = Scalar(0.25) * p.mp * w1 + Scalar(0.3333333333333333) * p.mp * w2;
+      const Scalar w3 = (w1 * Scalar(3) + w2) * Scalar(0.08333333333333333) * p.mp + Scalar(0.25) * p.mp * w2;
       k0 = p.mp * Scalar(0.5) * p.l;
       k1 = w0;
-      k2 = w3;
+      k2 = Scalar(0.25) * p.mp * w1 + Scalar(0.3333333333333333) * p.mp * w2;
       k3 = p.g * p.mp * Scalar(0.5) * p.l;
       k4 = Scalar(0.041666666666666664) * (Scalar(4) * p.mp * w2 + p.mp * w1 * Scalar(3));
       k5 = w0 * Scalar(0.5);
       k6 = Scalar(1) / w3;
       k7 = Scalar(0.5) * p.l;
+      k8 = w3;
     }
     /// The parameters these constants were computed from.
     const Parameters<Scalar>& parameters() const noexcept { return p; }
@@ -83,7 +84,7 @@ struct Model {
    private:
     friend struct Model;
     Parameters<Scalar> p;
-    Scalar k0, k1, k2, k3, k4, k5, k6, k7;
+    Scalar k0, k1, k2, k3, k4, k5, k6, k7, k8;
   };
 
   /// M(q, t), symmetric positive (semi)definite
@@ -285,15 +286,15 @@ struct Model {
     const Scalar w0 = cos(q(1));
     const Scalar w1 = w0 * c.k0;
     const Scalar w2 = c.k6 * w1;
-    const Scalar w3 = c.k1 - w2 * w1;
+    const Scalar w3 = c.k1 - w1 * w2;
     const Scalar w4 = sin(q(1));
     const Scalar w5 = c.p.g * w4;
     const Scalar w6 = w5 * c.k0;
-    const Scalar w7 = Scalar(1) / w3 * (w2 * w6 - (w5 * c.p.mp * w0 + (qd(1) * c.p.mp * qd(1) * c.k7 - c.p.mp * c.p.g * w0) * w4 - u(0)));
-    pivot(0) = c.k2;
+    const Scalar w7 = Scalar(1) / w3 * (w5 * c.p.mp * w0 + (qd(1) * c.p.mp * qd(1) * c.k7 - c.p.mp * c.p.g * w0) * w4 - u(0) - w6 * w2);
+    pivot(0) = c.k8;
     pivot(1) = w3;
-    qdd(0) = w7;
-    qdd(1) = c.k6 * w6 + w2 * w7;
+    qdd(0) = -w7;
+    qdd(1) = c.k6 * w6 - w7 * w2;
     bool regular = true;
     for (int k = 0; k < 2; ++k) regular = regular && pivot(k) > Scalar(0);
     using std::isfinite;

@@ -33,15 +33,17 @@ class CompositeBody {
   }
 
  private:
-  // Ic_i = I_i + sum over the children c of Phi_c^T Ic_c Phi_c. The force Ic_i S_i that a unit
+  // Ic_i = I_i + sum over the children c of Phi_c^T Ic_c Phi_c, as ten numbers each. The force Ic_i S_i that a unit
   // rate of joint i needs, carried inward to every ancestor j, gives M_J(j)J(i) = S_j^T F.
   void composite_inertias() {
-    std::vector<matrix> composite(tree_.size());
-    for (std::size_t i = 0; i < tree_.size(); ++i) composite[i] = tree_.spatial_inertia(i);
+    std::vector<RigidInertia> composite;
+    for (std::size_t i = 0; i < tree_.size(); ++i) composite.push_back(tree_.rigid_inertia(i));
     for (std::size_t i = tree_.size(); i-- > 0;) {
       const Link& link = tree_.link(i);
-      const matrix Ic = tree_.bind_symmetric(composite[i]);
-      if (link.parent) composite[*link.parent] = composite[*link.parent].add(tree_.inertia_to_parent(i, Ic));
+      RigidInertia& own = composite[i];
+      own = {z_.bind(own.m), z_.bind(own.h), tree_.bind_symmetric(own.J)};
+      const matrix Ic = own.spatial();
+      if (link.parent) composite[*link.parent] = composite[*link.parent].add(tree_.rigid_inertia_to_parent(i, own));
       const matrix& S = tree_.joint(i).S;
       if (S.cols() == 0) continue;
       matrix F = z_.bind(Ic.mul(S));

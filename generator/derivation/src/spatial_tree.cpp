@@ -264,6 +264,41 @@ matrix SpatialTree::inertia_to_parent(std::size_t i, const matrix& I) const {
   return symmetric_blocks(top, corner, bottom);
 }
 
+matrix RigidInertia::spatial() const {
+  const matrix H = cross_matrix(h);
+  matrix C(3, 3);
+  for (unsigned k = 0; k < 3; ++k) C(k, k) = m;
+  return symmetric_blocks(J, H, C);
+}
+
+RigidInertia RigidInertia::add(const RigidInertia& other) const {
+  return {m + other.m, h.add(other.h), J.add(other.J)};
+}
+
+RigidInertia SpatialTree::rigid_inertia(std::size_t i) const {
+  const Link& link = links_[i];
+  return {link.mass, centre_offsets_[i].mul_scalar(link.mass), origin_inertia(i)};
+}
+
+// shifted by r: h' = h + m r, J' = J - h^x r^x - r^x h'^x (the shift of the 6x6 with B = h^x,
+// C = m 1); turned: h' = E^T h, J' = E^T J E
+RigidInertia SpatialTree::rigid_inertia_to_parent(std::size_t i, const RigidInertia& I) const {
+  const SpatialJoint& j = joints_[i];
+  const auto shift = [&](const RigidInertia& in, const matrix& r) {
+    const matrix h = z_.bind(in.h.add(r.mul_scalar(in.m)));
+    const matrix R = cross_matrix(r);
+    const matrix J = bind_symmetric(in.J.sub(cross_matrix(in.h).mul(R)).sub(R.mul(cross_matrix(h))));
+    return RigidInertia{in.m, h, J};
+  };
+  const auto turn = [&](const RigidInertia& in) {
+    const matrix h = z_.bind(j.E.transpose().mul(in.h));
+    const matrix J = turned(i, in.J, true);
+    return RigidInertia{in.m, h, J};
+  };
+  if (j.shift_in_parent) return shift(turn(I), j.r_parent);
+  return turn(shift(I, j.r));
+}
+
 matrix SpatialTree::congruence(const matrix& X, const matrix& A) const {
   const matrix AX = z_.bind(A.mul(X));
   matrix out(X.cols(), X.cols());

@@ -44,6 +44,18 @@ struct SpatialJoint {
   GiNaC::matrix zeta;   ///< 6x1
 };
 
+/// A rigid body's spatial inertia about a link's origin, as its ten numbers: the mass m, the
+/// first moment h = m c and the inertia J about the origin, so that the 6x6 is
+/// [[J, h^x], [(h^x)^T, m 1]]. Composite inertias stay rigid, and moving ten numbers costs about
+/// half of moving the matrix.
+struct RigidInertia {
+  GiNaC::ex m;
+  GiNaC::matrix h;  ///< 3x1
+  GiNaC::matrix J;  ///< 3x3, symmetric
+  GiNaC::matrix spatial() const;
+  RigidInertia add(const RigidInertia& other) const;
+};
+
 class SpatialTree {
  public:
   /// The joints of every link, bound in `z`, which must outlive this object.
@@ -72,6 +84,10 @@ class SpatialTree {
   GiNaC::matrix force_to_parent(std::size_t i, const GiNaC::matrix& F) const;
   /// Phi_i^T I Phi_i for a symmetric spatial inertia I of link i
   GiNaC::matrix inertia_to_parent(std::size_t i, const GiNaC::matrix& I) const;
+  /// link i's own inertia as its ten numbers
+  RigidInertia rigid_inertia(std::size_t i) const;
+  /// Phi_i^T I Phi_i for a rigid inertia of link i (the ten numbers bound)
+  RigidInertia rigid_inertia_to_parent(std::size_t i, const RigidInertia& I) const;
 
   /// X^T A X for a symmetric A, each entry of the upper triangle bound once
   GiNaC::matrix congruence(const GiNaC::matrix& X, const GiNaC::matrix& A) const;
