@@ -22,7 +22,7 @@ struct Model {
   static constexpr const char* name = "cart_pole";
   static constexpr const char* description = "Cart-pole: a uniform rod hinged on a cart pushed along a rail";
   static constexpr const char* generator_version = "0.1.0";
-  static constexpr const char* model_hash = "7154da9fcafcbdcd";
+  static constexpr const char* model_hash = "6a4c17a9eadf2226";
   static constexpr std::array<const char*, nq> coordinate_names{{"x", "theta"}};
   static constexpr std::array<const char*, nu> input_names{{"u"}};
   static constexpr std::array<const char*, np> parameter_names{{"mc", "mp", "l", "rp", "g"}};
@@ -72,8 +72,8 @@ struct Model {
       k1 = w0;
       k2 = Scalar(0.25) * p.mp * w1 + Scalar(0.3333333333333333) * p.mp * w2;
       k3 = p.g * p.mp * Scalar(0.5) * p.l;
-      k4 = Scalar(0.041666666666666664) * (Scalar(4) * p.mp * w2 + p.mp * w1 * Scalar(3));
-      k5 = w0 * Scalar(0.5);
+      k4 = w0 * Scalar(0.5);
+      k5 = Scalar(0.16666666666666666) * p.mp * w2 + Scalar(0.125) * p.mp * w1;
       k6 = Scalar(1) / w3;
       k7 = Scalar(0.5) * p.l;
       k8 = w3;
@@ -220,7 +220,7 @@ struct Model {
     using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
     using std::log; using std::abs; using std::pow;
     Scalar T = Scalar(0);
-    T = c.k4 * qd(1) * qd(1) - qd(1) * cos(q(1)) * c.k0 * qd(0) + qd(0) * qd(0) * c.k5;
+    T = qd(0) * qd(0) * c.k4 - qd(1) * cos(q(1)) * c.k0 * qd(0) + c.k5 * qd(1) * qd(1);
     return T;
   }
 

@@ -59,6 +59,22 @@ TEST(Lower, IntermediatesAreFollowedAndShared) {
   EXPECT_EQ(ir::count_operations(p).multiplications, 2u);  // x*y once, z1*z1 once
 }
 
+// GiNaC holds (0.1845 x + y) y as 1/2000 (369 x + 2000 y) y; the content goes back into the sum
+TEST(Lower, TheRationalContentGiNaCTakesOutOfASumInAProductGoesBackIntoIt) {
+  Symbols s;
+  Subexpressions z;
+  const ex sum = GiNaC::numeric(369, 2000) * s.x + s.y;
+  const ex held = sum * s.y;
+  ASSERT_EQ(GiNaC::ex_to<GiNaC::numeric>(held.op(held.nops() - 1)), GiNaC::numeric(1, 2000)) << held;
+  EXPECT_EQ(print_cpp(lower({{a, held}}, z, s.names())), "    y(0) = q(1) * (q(0) * Scalar(0.1845) + q(1));\n");
+  // the same through an intermediate; it goes in where it saves multiplications, and stays out
+  // where it would scale terms that have none
+  const ex bound = z.bind(GiNaC::numeric(369) * s.x + GiNaC::numeric(2000) * s.y);
+  EXPECT_EQ(ir::count_operations(lower({{a, bound * s.y / 2000}}, z, s.names())).multiplications, 2u);
+  EXPECT_EQ(ir::count_operations(lower({{a, (3 * s.x + 5 * s.y) * s.y / 7}}, z, s.names())).multiplications, 3u);
+  EXPECT_EQ(ir::count_operations(lower({{a, (s.x + s.y) * s.y / 7}}, z, s.names())).multiplications, 2u);
+}
+
 TEST(Lower, ZeroTargetsAreDropped) {
   Symbols s;
   Subexpressions none;

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstring>
 #include <iterator>
+#include <optional>
 #include <tuple>
 #include <unordered_map>
 
@@ -195,7 +196,58 @@ class Lowering {
     return intern(Node{Op::power, {b, node(exponent)}, 0.0, {}, {}});
   }
 
+  // The numeric factor of a term of a sum (1 for a term without one).
+  static GiNaC::numeric coefficient_of(const ex& term) {
+    if (GiNaC::is_a<GiNaC::numeric>(term)) return GiNaC::ex_to<GiNaC::numeric>(term);
+    GiNaC::numeric c = 1;
+    if (GiNaC::is_a<GiNaC::mul>(term))
+      for (std::size_t i = 0; i < term.nops(); ++i)
+        if (GiNaC::is_a<GiNaC::numeric>(term.op(i))) c *= GiNaC::ex_to<GiNaC::numeric>(term.op(i));
+    return c;
+  }
+
+  // Multiplications by coefficients other than +-1 in the terms of \p sum times c.
+  static int scaled_terms(const ex& sum, const GiNaC::numeric& c) {
+    int count = 0;
+    for (std::size_t i = 0; i < sum.nops(); ++i)
+      if (!GiNaC::is_a<GiNaC::numeric>(sum.op(i)) && GiNaC::abs(c * coefficient_of(sum.op(i))) != 1) ++count;
+    return count;
+  }
+
+  // GiNaC keeps a sum that is a factor of a product primitive, with its rational content in the
+  // product's coefficient: 0.1845*x*z + y*z is held as 1/2000*(369*x + 2000*y)*z, which costs
+  // three multiplications by numbers where one does. The sum (or the intermediate it is) whose
+  // terms the coefficient makes cheapest takes the coefficient back; a call then computes
+  // (0.1845*x + y)*z.
+  std::optional<std::size_t> folded_product(const ex& e) {
+    GiNaC::numeric c = 1;
+    for (std::size_t i = 0; i < e.nops(); ++i)
+      if (GiNaC::is_a<GiNaC::numeric>(e.op(i))) c *= GiNaC::ex_to<GiNaC::numeric>(e.op(i));
+    if (c == 1 || c == -1) return std::nullopt;
+    std::optional<std::size_t> best;
+    ex best_sum;
+    int best_saving = 0;
+    for (std::size_t i = 0; i < e.nops(); ++i) {
+      ex f = e.op(i);
+      if (GiNaC::is_a<GiNaC::symbol>(f))
+        if (const ex* definition = definitions_.find(f)) f = *definition;
+      if (!GiNaC::is_a<GiNaC::add>(f)) continue;
+      const int saving = 1 + scaled_terms(f, 1) - scaled_terms(f, c);
+      if (saving > best_saving) best = i, best_sum = f, best_saving = saving;
+    }
+    if (!best) return std::nullopt;
+    std::vector<std::size_t> terms;
+    for (std::size_t i = 0; i < best_sum.nops(); ++i) terms.push_back(node(c * best_sum.op(i)));
+    std::vector<std::size_t> factors{nary(Op::add, terms)};
+    ex rest = 1;
+    for (std::size_t i = 0; i < e.nops(); ++i)
+      if (i != *best && !GiNaC::is_a<GiNaC::numeric>(e.op(i))) rest *= e.op(i);
+    if (!rest.is_equal(1)) factors.push_back(node(rest));
+    return factors.size() == 1 ? factors[0] : nary(Op::multiply, factors);
+  }
+
   std::size_t product(const ex& e) {
+    if (const std::optional<std::size_t> folded = folded_product(e)) return *folded;
     // numeric coefficient, factors above and below the line
     double coefficient = 1.0;
     std::vector<std::size_t> above, below;
