@@ -22,7 +22,7 @@ struct Model {
   static constexpr const char* name = "quaternion_rigid_body";
   static constexpr const char* description = "Free rigid body, scalar-last quaternion attitude with the unit-norm constraint, body torque input";
   static constexpr const char* generator_version = "0.1.0";
-  static constexpr const char* model_hash = "514ab65788b37532";
+  static constexpr const char* model_hash = "54f3d8659352ff66";
   static constexpr std::array<const char*, nq> coordinate_names{{"e1", "e2", "e3", "eta"}};
   static constexpr std::array<const char*, nu> input_names{{"tau1", "tau2", "tau3"}};
   static constexpr std::array<const char*, np> parameter_names{{"m", "J1", "J2", "J3"}};
@@ -137,12 +137,12 @@ struct Model {
     using std::log; using std::abs; using std::pow;
     const Scalar w0 = Scalar(4) * q(0) * qd(2) + Scalar(4) * qd(1) * q(3) - Scalar(4) * q(1) * qd(3) - Scalar(4) * qd(0) * q(2);
     const Scalar w1 = qd(1) * Scalar(2) * q(0) + Scalar(2) * q(2) * qd(3) - Scalar(2) * qd(0) * q(1) - Scalar(2) * q(3) * qd(2);
-    const Scalar w2 = Scalar(4) * q(1) * qd(2) - Scalar(4) * qd(1) * q(2) - Scalar(4) * qd(0) * q(3) + Scalar(4) * q(0) * qd(3);
-    const Scalar w3 = Scalar(2) * q(0) * qd(2) - Scalar(2) * qd(0) * q(2) - Scalar(2) * q(1) * qd(3) + qd(1) * Scalar(2) * q(3);
-    F(0) = -(w0 * w1 * c.k6 * q(3) - Scalar(2) * q(1) * u(2) - w2 * w3 * q(1) * c.k7 - w2 * c.k8 * w1 * q(2) - Scalar(2) * u(0) * q(3) + Scalar(2) * u(1) * q(2));
-    F(1) = Scalar(2) * q(2) * u(0) - c.k8 * w1 * q(3) * w2 - Scalar(2) * q(0) * u(2) + Scalar(2) * u(1) * q(3) - w0 * w1 * c.k6 * q(2) - w3 * q(0) * c.k7 * w2;
-    F(2) = -(Scalar(2) * q(1) * u(0) + c.k8 * q(0) * w1 * w2 - w3 * c.k7 * q(3) * w2 - w0 * w1 * q(1) * c.k6 - Scalar(2) * q(0) * u(1) - Scalar(2) * u(2) * q(3));
-    F(3) = -(Scalar(2) * q(1) * u(1) + Scalar(2) * q(0) * u(0) - c.k8 * w1 * q(1) * w2 + w3 * q(2) * c.k7 * w2 - q(0) * w1 * c.k6 * w0 + Scalar(2) * u(2) * q(2));
+    const Scalar w2 = Scalar(2) * qd(0) * q(3) + qd(1) * Scalar(2) * q(2) - Scalar(2) * q(0) * qd(3) - Scalar(2) * q(1) * qd(2);
+    const Scalar w3 = Scalar(4) * qd(1) * q(0) + Scalar(4) * q(2) * qd(3) - Scalar(4) * qd(0) * q(1) - Scalar(4) * q(3) * qd(2);
+    F(0) = -(w0 * w1 * c.k6 * q(3) + w0 * q(1) * w2 * c.k7 - Scalar(2) * q(1) * u(2) + c.k8 * w2 * q(2) * w3 - Scalar(2) * u(0) * q(3) + Scalar(2) * u(1) * q(2));
+    F(1) = Scalar(2) * q(2) * u(0) + w3 * c.k8 * w2 * q(3) - Scalar(2) * q(0) * u(2) + Scalar(2) * u(1) * q(3) - w0 * w1 * c.k6 * q(2) + w0 * q(0) * w2 * c.k7;
+    F(2) = -(Scalar(2) * q(1) * u(0) - w3 * c.k8 * q(0) * w2 - w0 * w1 * q(1) * c.k6 + w0 * w2 * c.k7 * q(3) - Scalar(2) * q(0) * u(1) - Scalar(2) * u(2) * q(3));
+    F(3) = -(Scalar(2) * q(1) * u(1) + Scalar(2) * q(0) * u(0) + c.k8 * q(1) * w2 * w3 - q(0) * w1 * c.k6 * w0 + Scalar(2) * u(2) * q(2) - w0 * w2 * q(2) * c.k7);
   }
 
   /// F(q, qd, t, u): everything of Lagrange's equations except M qdd
@@ -165,8 +165,8 @@ struct Model {
     const Scalar w3 = q(0) * q(0);
     const Scalar w4 = Scalar(4) * q(0) * qd(2) + Scalar(4) * qd(1) * q(3) - Scalar(4) * q(1) * qd(3) - Scalar(4) * qd(0) * q(2);
     const Scalar w5 = qd(1) * Scalar(2) * q(0) + Scalar(2) * q(2) * qd(3) - Scalar(2) * qd(0) * q(1) - Scalar(2) * q(3) * qd(2);
-    const Scalar w6 = Scalar(4) * q(1) * qd(2) - Scalar(4) * qd(1) * q(2) - Scalar(4) * qd(0) * q(3) + Scalar(4) * q(0) * qd(3);
-    const Scalar w7 = Scalar(2) * q(0) * qd(2) - Scalar(2) * qd(0) * q(2) - Scalar(2) * q(1) * qd(3) + qd(1) * Scalar(2) * q(3);
+    const Scalar w6 = Scalar(2) * qd(0) * q(3) + qd(1) * Scalar(2) * q(2) - Scalar(2) * q(0) * qd(3) - Scalar(2) * q(1) * qd(2);
+    const Scalar w7 = Scalar(4) * qd(1) * q(0) + Scalar(4) * q(2) * qd(3) - Scalar(4) * qd(0) * q(1) - Scalar(4) * q(3) * qd(2);
     M(0, 0) = c.k0 * w0 + c.k1 * w1 + c.k2 * w2;
     M(0, 1) = -(c.k3 * q(2) * q(3) + c.k1 * q(0) * q(1));
     M(0, 2) = -(c.k2 * q(0) * q(2) + c.k4 * q(1) * q(3));
@@ -177,10 +177,10 @@ struct Model {
     M(2, 2) = c.k2 * w3 + c.k1 * w0 + c.k0 * w1;
     M(2, 3) = -(c.k1 * q(2) * q(3) + c.k3 * q(0) * q(1));
     M(3, 3) = c.k0 * w3 + c.k1 * w2 + c.k2 * w1;
-    F(0) = -(w4 * w5 * c.k6 * q(3) - Scalar(2) * q(1) * u(2) - w6 * w7 * q(1) * c.k7 - w6 * c.k8 * w5 * q(2) - Scalar(2) * u(0) * q(3) + Scalar(2) * u(1) * q(2));
-    F(1) = Scalar(2) * q(2) * u(0) - c.k8 * w5 * q(3) * w6 - Scalar(2) * q(0) * u(2) + Scalar(2) * u(1) * q(3) - w4 * w5 * c.k6 * q(2) - w7 * q(0) * c.k7 * w6;
-    F(2) = -(Scalar(2) * q(1) * u(0) + c.k8 * q(0) * w5 * w6 - w7 * c.k7 * q(3) * w6 - w4 * w5 * q(1) * c.k6 - Scalar(2) * q(0) * u(1) - Scalar(2) * u(2) * q(3));
-    F(3) = -(Scalar(2) * q(1) * u(1) + Scalar(2) * q(0) * u(0) - c.k8 * w5 * q(1) * w6 + w7 * q(2) * c.k7 * w6 - q(0) * w5 * c.k6 * w4 + Scalar(2) * u(2) * q(2));
+    F(0) = -(w4 * w5 * c.k6 * q(3) + w4 * q(1) * w6 * c.k7 - Scalar(2) * q(1) * u(2) + c.k8 * w6 * q(2) * w7 - Scalar(2) * u(0) * q(3) + Scalar(2) * u(1) * q(2));
+    F(1) = Scalar(2) * q(2) * u(0) + w7 * c.k8 * w6 * q(3) - Scalar(2) * q(0) * u(2) + Scalar(2) * u(1) * q(3) - w4 * w5 * c.k6 * q(2) + w4 * q(0) * w6 * c.k7;
+    F(2) = -(Scalar(2) * q(1) * u(0) - w7 * c.k8 * q(0) * w6 - w4 * w5 * q(1) * c.k6 + w4 * w6 * c.k7 * q(3) - Scalar(2) * q(0) * u(1) - Scalar(2) * u(2) * q(3));
+    F(3) = -(Scalar(2) * q(1) * u(1) + Scalar(2) * q(0) * u(0) + c.k8 * q(1) * w6 * w7 - q(0) * w5 * c.k6 * w4 + Scalar(2) * u(2) * q(2) - w4 * w6 * q(2) * c.k7);
     M(1, 0) = M(0, 1);
     M(2, 0) = M(0, 2);
     M(3, 0) = M(0, 3);

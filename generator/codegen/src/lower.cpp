@@ -227,13 +227,19 @@ class Lowering {
     std::optional<std::size_t> best;
     ex best_sum;
     int best_saving = 0;
+    std::uint64_t best_signature = 0;
     for (std::size_t i = 0; i < e.nops(); ++i) {
       ex f = e.op(i);
       if (GiNaC::is_a<GiNaC::symbol>(f))
         if (const ex* definition = definitions_.find(f)) f = *definition;
       if (!GiNaC::is_a<GiNaC::add>(f)) continue;
       const int saving = 1 + scaled_terms(f, 1) - scaled_terms(f, c);
-      if (saving > best_saving) best = i, best_sum = f, best_saving = saving;
+      if (saving <= 0) continue;
+      // between sums that save alike, the one first by content: GiNaC's order of the factors
+      // follows hash values that change from process to process
+      const std::uint64_t signature = nodes_[magnitude(node(f))].signature;
+      if (saving > best_saving || (saving == best_saving && signature < best_signature))
+        best = i, best_sum = f, best_saving = saving, best_signature = signature;
     }
     if (!best) return std::nullopt;
     std::vector<std::size_t> terms;
