@@ -47,6 +47,11 @@ const std::string arm =
 
 Model with_shapes(const std::string& shapes) { return parse_model(arm + shapes, "arm.eom"); }
 
+// the error of one shape statement on line 12, after the arm
+void expect(const std::string& shape, int column, const std::string& message) {
+  expect_model_error(arm + shape + "\n", 12, column, message);
+}
+
 TEST(ShapeStatement, SphereOfABodyIsAtItsCentreInItsFrame) {
   const Model model = with_shapes("shape ball = sphere(body = link, radius = d)\n");
   ASSERT_EQ(model.shapes.size(), 1u);
@@ -147,9 +152,6 @@ TEST(ShapeStatement, ShapesLeaveTheEquationsAlone) {
 // --- errors, each at the argument that is wrong, line 12 ---
 
 TEST(ShapeStatement, ErrorsSayWhatWasExpected) {
-  auto expect = [](const std::string& shape, int column, const std::string& message) {
-    expect_model_error(arm + shape + "\n", 12, column, message);
-  };
   expect("shape s = cone(body = link, radius = d)", 11, "shape 's': unknown kind of shape 'cone': expected sphere, box, cylinder, disk, rod or mesh");
   expect("shape s = sphere(body = lnk, radius = d)", 25, "unknown body or particle 'lnk'");
   expect("shape s = sphere(body = tip, radius = d)", 25,
@@ -207,9 +209,6 @@ TEST(ShapeStatement, MeshKeepsItsFileAsWrittenAndItsScaleAlongTheFramesAxes) {
 }
 
 TEST(ShapeStatement, MeshErrorsSayWhatWasExpected) {
-  auto expect = [](const std::string& shape, int column, const std::string& message) {
-    expect_model_error(arm + shape + "\n", 12, column, message);
-  };
   expect("shape s = mesh(body = link)", 1, "shape 's' (mesh): missing argument 'file' (the mesh's STL file, a string");
   expect("shape s = mesh(body = link, file = link)", 36, "shape 's' (mesh): 'file' must be a string in double quotes");
   expect("shape s = mesh(body = link, file = \"\")", 36, "shape 's' (mesh): 'file' is empty");
