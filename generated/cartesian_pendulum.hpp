@@ -3,10 +3,13 @@
 // does not throw: safe to call from a real-time loop.
 #pragma once
 
+#include <Eigen/Cholesky>
 #include <Eigen/Core>
 
 #include <array>
 #include <cmath>
+#include <type_traits>
+#include <utility>
 
 namespace eomgen_models {
 namespace cartesian_pendulum {
@@ -22,7 +25,7 @@ struct Model {
   static constexpr const char* name = "cartesian_pendulum";
   static constexpr const char* description = "Planar pendulum in Cartesian coordinates with the rod-length constraint";
   static constexpr const char* generator_version = "0.1.0";
-  static constexpr const char* model_hash = "2442564c880d6aae";
+  static constexpr const char* model_hash = "a75885ce62a363eb";
   static constexpr std::array<const char*, nq> coordinate_names{{"x", "y"}};
   static constexpr std::array<const char*, nu> input_names{{}};
   static constexpr std::array<const char*, np> parameter_names{{"m", "l", "g"}};
@@ -31,6 +34,8 @@ struct Model {
   static constexpr std::array<int, nh> holonomic_rows{{0}};  // row of Xi of each entry of phi
   static constexpr std::array<int, ni> independent_speeds{{}};  // their coordinate indices
   static constexpr std::array<const char*, ny> output_names{{"bob_vel_1", "bob_vel_2", "bob_vel_3", "angle", "length_error"}};
+  static constexpr int npi = 10;  // inertial parameters: 10 per body (regressor)
+  static constexpr std::array<const char*, npi> inertial_parameter_names{{"bob.m", "bob.mx", "bob.my", "bob.mz", "bob.Ixx", "bob.Ixy", "bob.Iyy", "bob.Ixz", "bob.Iyz", "bob.Izz"}};
   static constexpr bool has_forward_dynamics = false;  // forward_dynamics(), without M
   static constexpr bool prefers_forward_dynamics = false;  // fewer operations than M, F and their Cholesky solve
 
@@ -41,6 +46,14 @@ struct Model {
   template <class Scalar> using ConstraintVector = Eigen::Matrix<Scalar, nc, 1>;
   template <class Scalar> using HolonomicVector = Eigen::Matrix<Scalar, nh, 1>;
   template <class Scalar> using OutputVector = Eigen::Matrix<Scalar, ny, 1>;
+
+  /// Whether an Eigen expression of type Derived can be rows x cols: its sizes fixed to those,
+  /// or dynamic (then eigen_assert tests them).
+  template <class Derived>
+  static constexpr bool fits(int rows, int cols) noexcept {
+    return (int(Derived::RowsAtCompileTime) == Eigen::Dynamic || int(Derived::RowsAtCompileTime) == rows) &&
+           (int(Derived::ColsAtCompileTime) == Eigen::Dynamic || int(Derived::ColsAtCompileTime) == cols);
+  }
 
   /// Parameters, defaulted to the model's values.
   template <class Scalar>
@@ -59,9 +72,6 @@ struct Model {
    public:
     /// Computes every constant from a copy of the parameters.
     explicit Constants(const Parameters<Scalar>& parameters) noexcept : p(parameters) {
-      using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-      using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-      using std::log; using std::abs; using std::pow;
       const Scalar w0 = p.g * p.m;
       k0 = -w0;
       k1 = -(p.l * p.l);
@@ -78,11 +88,12 @@ struct Model {
   };
 
   /// M(q, t), symmetric positive (semi)definite
-  template <class Scalar>
-  static void mass_matrix([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] MassMatrix<Scalar>& M) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class Out0>
+  static void mass_matrix([[maybe_unused]] const typename DerivedQ::Scalar& t, [[maybe_unused]] const Eigen::MatrixBase<DerivedQ>& q, const Constants<typename DerivedQ::Scalar>& c, Out0&& M) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(nq, nq), "M: expected nq x nq");
+    eigen_assert(q.size() == nq && M.rows() == nq && M.cols() == nq);
     M(0, 0) = c.p.m;
     M(1, 1) = c.p.m;
     M(0, 1) = Scalar(0);
@@ -92,17 +103,20 @@ struct Model {
   /// M(q, t), symmetric positive (semi)definite
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static void mass_matrix([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] MassMatrix<Scalar>& M) noexcept {
-    mass_matrix(t, q, Constants<Scalar>(p), M);
+  template <class DerivedQ, class Out0>
+  static void mass_matrix(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& M) noexcept {
+    mass_matrix(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(M));
   }
 
   /// F(q, qd, t, u): everything of Lagrange's equations except M qdd
-  template <class Scalar>
-  static void forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] Vector<Scalar>& F) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class DerivedQd, class DerivedU, class Out0>
+  static void forcing([[maybe_unused]] const typename DerivedQ::Scalar& t, [[maybe_unused]] const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Eigen::MatrixBase<DerivedQd>& qd, [[maybe_unused]] const Eigen::MatrixBase<DerivedU>& u, const Constants<typename DerivedQ::Scalar>& c, Out0&& F) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<DerivedU>(nu, 1), "u: expected a column of nu entries");
+    static_assert(fits<std::decay_t<Out0>>(nq, 1), "F: expected nq x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && u.size() == nu && F.rows() == nq && F.cols() == 1);
     F(1) = c.k0;
     F(0) = Scalar(0);
   }
@@ -110,17 +124,21 @@ struct Model {
   /// F(q, qd, t, u): everything of Lagrange's equations except M qdd
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static void forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] Vector<Scalar>& F) noexcept {
-    forcing(t, q, qd, u, Constants<Scalar>(p), F);
+  template <class DerivedQ, class DerivedQd, class DerivedU, class Out0>
+  static void forcing(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedU>& u, const Parameters<typename DerivedQ::Scalar>& p, Out0&& F) noexcept {
+    forcing(t, q, qd, u, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(F));
   }
 
   /// M and F together, sharing their common subexpressions
-  template <class Scalar>
-  static void mass_matrix_and_forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] MassMatrix<Scalar>& M, [[maybe_unused]] Vector<Scalar>& F) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class DerivedQd, class DerivedU, class Out0, class Out1>
+  static void mass_matrix_and_forcing([[maybe_unused]] const typename DerivedQ::Scalar& t, [[maybe_unused]] const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Eigen::MatrixBase<DerivedQd>& qd, [[maybe_unused]] const Eigen::MatrixBase<DerivedU>& u, const Constants<typename DerivedQ::Scalar>& c, Out0&& M, Out1&& F) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<DerivedU>(nu, 1), "u: expected a column of nu entries");
+    static_assert(fits<std::decay_t<Out0>>(nq, nq), "M: expected nq x nq");
+    static_assert(fits<std::decay_t<Out1>>(nq, 1), "F: expected nq x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && u.size() == nu && M.rows() == nq && M.cols() == nq && F.rows() == nq && F.cols() == 1);
     M(0, 0) = c.p.m;
     M(1, 1) = c.p.m;
     F(1) = c.k0;
@@ -132,17 +150,18 @@ struct Model {
   /// M and F together, sharing their common subexpressions
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static void mass_matrix_and_forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] MassMatrix<Scalar>& M, [[maybe_unused]] Vector<Scalar>& F) noexcept {
-    mass_matrix_and_forcing(t, q, qd, u, Constants<Scalar>(p), M, F);
+  template <class DerivedQ, class DerivedQd, class DerivedU, class Out0, class Out1>
+  static void mass_matrix_and_forcing(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedU>& u, const Parameters<typename DerivedQ::Scalar>& p, Out0&& M, Out1&& F) noexcept {
+    mass_matrix_and_forcing(t, q, qd, u, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(M), std::forward<Out1>(F));
   }
 
   /// Xi(q, t) of the Pfaffian constraints Xi qd + Xi_t = 0
-  template <class Scalar>
-  static void constraint_jacobian([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] ConstraintJacobian<Scalar>& Xi) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class Out0>
+  static void constraint_jacobian([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& Xi) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(nc, nq), "Xi: expected nc x nq");
+    eigen_assert(q.size() == nq && Xi.rows() == nc && Xi.cols() == nq);
     Xi(0, 0) = Scalar(2) * q(0);
     Xi(0, 1) = Scalar(2) * q(1);
   }
@@ -150,68 +169,72 @@ struct Model {
   /// Xi(q, t) of the Pfaffian constraints Xi qd + Xi_t = 0
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static void constraint_jacobian([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintJacobian<Scalar>& Xi) noexcept {
-    constraint_jacobian(t, q, Constants<Scalar>(p), Xi);
+  template <class DerivedQ, class Out0>
+  static void constraint_jacobian(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& Xi) noexcept {
+    constraint_jacobian(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(Xi));
   }
 
   /// Xi_t(q, t)
-  template <class Scalar>
-  static void constraint_rate_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] ConstraintVector<Scalar>& Xi_t) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class Out0>
+  static void constraint_rate_term([[maybe_unused]] const typename DerivedQ::Scalar& t, [[maybe_unused]] const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& Xi_t) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(nc, 1), "Xi_t: expected nc x 1");
+    eigen_assert(q.size() == nq && Xi_t.rows() == nc && Xi_t.cols() == 1);
     Xi_t(0) = Scalar(0);
   }
 
   /// Xi_t(q, t)
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static void constraint_rate_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintVector<Scalar>& Xi_t) noexcept {
-    constraint_rate_term(t, q, Constants<Scalar>(p), Xi_t);
+  template <class DerivedQ, class Out0>
+  static void constraint_rate_term(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& Xi_t) noexcept {
+    constraint_rate_term(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(Xi_t));
   }
 
   /// dXi/dt qd + dXi_t/dt, so that Xi qdd + b = 0
-  template <class Scalar>
-  static void constraint_acceleration_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] ConstraintVector<Scalar>& b) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void constraint_acceleration_term([[maybe_unused]] const typename DerivedQ::Scalar& t, [[maybe_unused]] const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& b) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(nc, 1), "b: expected nc x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && b.rows() == nc && b.cols() == 1);
     b(0) = qd(0) * qd(0) * Scalar(2) + Scalar(2) * qd(1) * qd(1);
   }
 
   /// dXi/dt qd + dXi_t/dt, so that Xi qdd + b = 0
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static void constraint_acceleration_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintVector<Scalar>& b) noexcept {
-    constraint_acceleration_term(t, q, qd, Constants<Scalar>(p), b);
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void constraint_acceleration_term(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Parameters<typename DerivedQ::Scalar>& p, Out0&& b) noexcept {
+    constraint_acceleration_term(t, q, qd, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(b));
   }
 
   /// phi(q, t) of the holonomic constraints
-  template <class Scalar>
-  static void holonomic_residuals([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] HolonomicVector<Scalar>& phi) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class Out0>
+  static void holonomic_residuals([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Constants<typename DerivedQ::Scalar>& c, Out0&& phi) noexcept {
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(nh, 1), "phi: expected nh x 1");
+    eigen_assert(q.size() == nq && phi.rows() == nh && phi.cols() == 1);
     phi(0) = q(1) * q(1) + q(0) * q(0) + c.k1;
   }
 
   /// phi(q, t) of the holonomic constraints
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static void holonomic_residuals([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] HolonomicVector<Scalar>& phi) noexcept {
-    holonomic_residuals(t, q, Constants<Scalar>(p), phi);
+  template <class DerivedQ, class Out0>
+  static void holonomic_residuals(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& phi) noexcept {
+    holonomic_residuals(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(phi));
   }
 
   /// T(q, qd, t)
-  template <class Scalar>
-  static Scalar kinetic_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Constants<Scalar>& c) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class DerivedQd>
+  static typename DerivedQ::Scalar kinetic_energy([[maybe_unused]] const typename DerivedQ::Scalar& t, [[maybe_unused]] const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Constants<typename DerivedQ::Scalar>& c) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    eigen_assert(q.size() == nq && qd.size() == nq);
     Scalar T = Scalar(0);
     T = (qd(0) * qd(0) + qd(1) * qd(1)) * c.k2;
     return T;
@@ -220,17 +243,17 @@ struct Model {
   /// T(q, qd, t)
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static Scalar kinetic_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Parameters<Scalar>& p) noexcept {
-    return kinetic_energy(t, q, qd, Constants<Scalar>(p));
+  template <class DerivedQ, class DerivedQd>
+  static typename DerivedQ::Scalar kinetic_energy(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Parameters<typename DerivedQ::Scalar>& p) noexcept {
+    return kinetic_energy(t, q, qd, Constants<typename DerivedQ::Scalar>(p));
   }
 
   /// V(q, t)
-  template <class Scalar>
-  static Scalar potential_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ>
+  static typename DerivedQ::Scalar potential_energy([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Constants<typename DerivedQ::Scalar>& c) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    eigen_assert(q.size() == nq);
     Scalar V = Scalar(0);
     V = c.k3 * q(1);
     return V;
@@ -239,17 +262,21 @@ struct Model {
   /// V(q, t)
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static Scalar potential_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p) noexcept {
-    return potential_energy(t, q, Constants<Scalar>(p));
+  template <class DerivedQ>
+  static typename DerivedQ::Scalar potential_energy(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p) noexcept {
+    return potential_energy(t, q, Constants<typename DerivedQ::Scalar>(p));
   }
 
   /// the model's named outputs, in the order of output_names
-  template <class Scalar>
-  static void outputs([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] OutputVector<Scalar>& y) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class DerivedQd, class DerivedU, class Out0>
+  static void outputs([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, [[maybe_unused]] const Eigen::MatrixBase<DerivedU>& u, const Constants<typename DerivedQ::Scalar>& c, Out0&& y) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<DerivedU>(nu, 1), "u: expected a column of nu entries");
+    static_assert(fits<std::decay_t<Out0>>(ny, 1), "y: expected ny x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && u.size() == nu && y.rows() == ny && y.cols() == 1);
+    using std::atan2; using std::sqrt;
     y(0) = qd(0);
     y(1) = qd(1);
     y(3) = atan2(q(0), -q(1));
@@ -260,9 +287,275 @@ struct Model {
   /// the model's named outputs, in the order of output_names
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static void outputs([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] OutputVector<Scalar>& y) noexcept {
-    outputs(t, q, qd, u, Constants<Scalar>(p), y);
+  template <class DerivedQ, class DerivedQd, class DerivedU, class Out0>
+  static void outputs(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedU>& u, const Parameters<typename DerivedQ::Scalar>& p, Out0&& y) noexcept {
+    outputs(t, q, qd, u, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(y));
+  }
+
+  /// tau and lambda with M qdd = F + Xi^T lambda + tau for a qdd that satisfies the constraints, tau the least (orthogonal to every row of Xi); M qdd - F from M and F
+  template <class DerivedQ, class DerivedQd, class DerivedQdd, class DerivedU, class Out0, class Out1>
+  static void inverse_dynamics([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedQdd>& qdd, [[maybe_unused]] const Eigen::MatrixBase<DerivedU>& u, const Constants<typename DerivedQ::Scalar>& c, Out0&& tau, Out1&& lambda) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<DerivedQdd>(nq, 1), "qdd: expected a column of nq entries");
+    static_assert(fits<DerivedU>(nu, 1), "u: expected a column of nu entries");
+    static_assert(fits<std::decay_t<Out0>>(nq, 1), "tau: expected nq x 1");
+    static_assert(fits<std::decay_t<Out1>>(nc, 1), "lambda: expected nc x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && qdd.size() == nq && u.size() == nu && tau.rows() == nq && tau.cols() == 1 && lambda.rows() == nc && lambda.cols() == 1);
+    Eigen::Matrix<Scalar, nc, nq> Xi;
+    tau(0) = qdd(0) * c.p.m;
+    tau(1) = c.k3 + qdd(1) * c.p.m;
+    Xi(0, 0) = Scalar(2) * q(0);
+    Xi(0, 1) = Scalar(2) * q(1);
+    const Eigen::Matrix<Scalar, nq, 1> total = tau;
+    lambda = (Xi * Xi.transpose()).ldlt().solve(Xi * total);
+    tau = total - Xi.transpose() * lambda;
+  }
+
+  /// tau and lambda with M qdd = F + Xi^T lambda + tau for a qdd that satisfies the constraints, tau the least (orthogonal to every row of Xi); M qdd - F from M and F
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class DerivedQd, class DerivedQdd, class DerivedU, class Out0, class Out1>
+  static void inverse_dynamics(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedQdd>& qdd, const Eigen::MatrixBase<DerivedU>& u, const Parameters<typename DerivedQ::Scalar>& p, Out0&& tau, Out1&& lambda) noexcept {
+    inverse_dynamics(t, q, qd, qdd, u, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(tau), std::forward<Out1>(lambda));
+  }
+
+  /// G(q) = dV/dq: the generalized forces of gravity and springs, with C qd + G = -F at zero input and no other loads
+  template <class DerivedQ, class Out0>
+  static void gravity_forces([[maybe_unused]] const Eigen::MatrixBase<DerivedQ>& q, const Constants<typename DerivedQ::Scalar>& c, Out0&& G) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(nq, 1), "G: expected nq x 1");
+    eigen_assert(q.size() == nq && G.rows() == nq && G.cols() == 1);
+    G(1) = c.k3;
+    G(0) = Scalar(0);
+  }
+
+  /// G(q) = dV/dq: the generalized forces of gravity and springs, with C qd + G = -F at zero input and no other loads
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class Out0>
+  static void gravity_forces(const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& G) noexcept {
+    gravity_forces(q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(G));
+  }
+
+  /// C(q, qd) from the Christoffel symbols of M: dM/dt - 2 C is skew-symmetric
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void coriolis_matrix([[maybe_unused]] const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Eigen::MatrixBase<DerivedQd>& qd, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& C) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(nq, nq), "C: expected nq x nq");
+    eigen_assert(q.size() == nq && qd.size() == nq && C.rows() == nq && C.cols() == nq);
+    C(0, 0) = Scalar(0);
+    C(0, 1) = Scalar(0);
+    C(1, 0) = Scalar(0);
+    C(1, 1) = Scalar(0);
+  }
+
+  /// C(q, qd) from the Christoffel symbols of M: dM/dt - 2 C is skew-symmetric
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void coriolis_matrix(const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Parameters<typename DerivedQ::Scalar>& p, Out0&& C) noexcept {
+    coriolis_matrix(q, qd, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(C));
+  }
+
+  /// J = dy/dqd of the output bob_vel
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_bob_vel([[maybe_unused]] const typename DerivedQ::Scalar& t, [[maybe_unused]] const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& J) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, nq), "J: expected 3 x nq");
+    eigen_assert(q.size() == nq && J.rows() == 3 && J.cols() == nq);
+    J(0, 0) = Scalar(1);
+    J(1, 1) = Scalar(1);
+    J(0, 1) = Scalar(0);
+    J(1, 0) = Scalar(0);
+    J(2, 0) = Scalar(0);
+    J(2, 1) = Scalar(0);
+  }
+
+  /// J = dy/dqd of the output bob_vel
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_bob_vel(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& J) noexcept {
+    output_jacobian_bob_vel(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(J));
+  }
+
+  /// Jdot qd of the output bob_vel: its rate at qdd = 0
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_bob_vel([[maybe_unused]] const typename DerivedQ::Scalar& t, [[maybe_unused]] const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Eigen::MatrixBase<DerivedQd>& qd, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& Jdot_qd) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, 1), "Jdot_qd: expected 3 x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && Jdot_qd.rows() == 3 && Jdot_qd.cols() == 1);
+    Jdot_qd(0) = Scalar(0);
+    Jdot_qd(1) = Scalar(0);
+    Jdot_qd(2) = Scalar(0);
+  }
+
+  /// Jdot qd of the output bob_vel: its rate at qdd = 0
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_bob_vel(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Parameters<typename DerivedQ::Scalar>& p, Out0&& Jdot_qd) noexcept {
+    output_bias_bob_vel(t, q, qd, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(Jdot_qd));
+  }
+
+  /// J = dy/dq of the output angle
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_angle([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& J) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(1, nq), "J: expected 1 x nq");
+    eigen_assert(q.size() == nq && J.rows() == 1 && J.cols() == nq);
+    const Scalar w0 = q(1) * q(1) + q(0) * q(0);
+    J(0, 0) = -(q(1) / w0);
+    J(0, 1) = q(0) / w0;
+  }
+
+  /// J = dy/dq of the output angle
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_angle(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& J) noexcept {
+    output_jacobian_angle(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(J));
+  }
+
+  /// Jdot qd of the output angle: its acceleration at qdd = 0
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_angle([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& Jdot_qd) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(1, 1), "Jdot_qd: expected 1 x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && Jdot_qd.rows() == 1 && Jdot_qd.cols() == 1);
+    const Scalar w0 = q(1) * q(1);
+    const Scalar w1 = q(0) * q(0);
+    const Scalar w2 = w0 + w1;
+    const Scalar w3 = w2 * w2;
+    Jdot_qd(0) = -((qd(1) * Scalar(2) * w1 / w3 - Scalar(2) * q(0) * qd(0) * q(1) / w3 - qd(1) / w2) * qd(0) + qd(1) * (qd(0) / w2 - w0 * Scalar(2) * qd(0) / w3 + qd(1) * Scalar(2) * q(0) * q(1) / w3));
+  }
+
+  /// Jdot qd of the output angle: its acceleration at qdd = 0
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_angle(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Parameters<typename DerivedQ::Scalar>& p, Out0&& Jdot_qd) noexcept {
+    output_bias_angle(t, q, qd, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(Jdot_qd));
+  }
+
+  /// J = dy/dq of the output length_error
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_length_error([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& J) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(1, nq), "J: expected 1 x nq");
+    eigen_assert(q.size() == nq && J.rows() == 1 && J.cols() == nq);
+    using std::sqrt;
+    const Scalar w0 = sqrt(q(1) * q(1) + q(0) * q(0));
+    J(0, 0) = q(0) / w0;
+    J(0, 1) = q(1) / w0;
+  }
+
+  /// J = dy/dq of the output length_error
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_length_error(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& J) noexcept {
+    output_jacobian_length_error(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(J));
+  }
+
+  /// Jdot qd of the output length_error: its acceleration at qdd = 0
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_length_error([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& Jdot_qd) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(1, 1), "Jdot_qd: expected 1 x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && Jdot_qd.rows() == 1 && Jdot_qd.cols() == 1);
+    using std::sqrt;
+    const Scalar w0 = q(1) * q(1);
+    const Scalar w1 = q(0) * q(0);
+    const Scalar w2 = sqrt(w0 + w1);
+    const Scalar w3 = w2 * w2 * w2;
+    Jdot_qd(0) = -(qd(1) * (qd(1) * w0 / w3 + q(0) * qd(0) * q(1) / w3 - qd(1) / w2) + qd(0) * (w1 * qd(0) / w3 - qd(0) / w2 + qd(1) * q(0) * q(1) / w3));
+  }
+
+  /// Jdot qd of the output length_error: its acceleration at qdd = 0
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_length_error(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Parameters<typename DerivedQ::Scalar>& p, Out0&& Jdot_qd) noexcept {
+    output_bias_length_error(t, q, qd, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(Jdot_qd));
+  }
+
+  /// Y with M qdd - F = Y pi + (the loads other than gravity, negated), pi the inertial parameters (inertial_parameter_names)
+  template <class DerivedQ, class DerivedQd, class DerivedQdd, class Out0>
+  static void regressor([[maybe_unused]] const typename DerivedQ::Scalar& t, [[maybe_unused]] const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedQdd>& qdd, const Constants<typename DerivedQ::Scalar>& c, Out0&& Y) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<DerivedQdd>(nq, 1), "qdd: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(nq, npi), "Y: expected nq x npi");
+    eigen_assert(q.size() == nq && qd.size() == nq && qdd.size() == nq && Y.rows() == nq && Y.cols() == npi);
+    Y(0, 0) = qdd(0);
+    Y(1, 0) = c.p.g + qdd(1);
+    Y(0, 1) = Scalar(0);
+    Y(0, 2) = Scalar(0);
+    Y(0, 3) = Scalar(0);
+    Y(0, 4) = Scalar(0);
+    Y(0, 5) = Scalar(0);
+    Y(0, 6) = Scalar(0);
+    Y(0, 7) = Scalar(0);
+    Y(0, 8) = Scalar(0);
+    Y(0, 9) = Scalar(0);
+    Y(1, 1) = Scalar(0);
+    Y(1, 2) = Scalar(0);
+    Y(1, 3) = Scalar(0);
+    Y(1, 4) = Scalar(0);
+    Y(1, 5) = Scalar(0);
+    Y(1, 6) = Scalar(0);
+    Y(1, 7) = Scalar(0);
+    Y(1, 8) = Scalar(0);
+    Y(1, 9) = Scalar(0);
+  }
+
+  /// Y with M qdd - F = Y pi + (the loads other than gravity, negated), pi the inertial parameters (inertial_parameter_names)
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class DerivedQd, class DerivedQdd, class Out0>
+  static void regressor(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedQdd>& qdd, const Parameters<typename DerivedQ::Scalar>& p, Out0&& Y) noexcept {
+    regressor(t, q, qd, qdd, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(Y));
+  }
+
+  /// pi of the model's parameters: every body's m, m c and inertia about its origin, in its frame
+  template <class Scalar, class Out0>
+  static void inertial_parameters(const Constants<Scalar>& c, Out0&& pi) noexcept {
+    static_assert(fits<std::decay_t<Out0>>(npi, 1), "pi: expected npi x 1");
+    eigen_assert(pi.rows() == npi && pi.cols() == 1);
+    pi(0) = c.p.m;
+    pi(1) = Scalar(0);
+    pi(2) = Scalar(0);
+    pi(3) = Scalar(0);
+    pi(4) = Scalar(0);
+    pi(5) = Scalar(0);
+    pi(6) = Scalar(0);
+    pi(7) = Scalar(0);
+    pi(8) = Scalar(0);
+    pi(9) = Scalar(0);
+  }
+
+  /// pi of the model's parameters: every body's m, m c and inertia about its origin, in its frame
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar, class Out0>
+  static void inertial_parameters(const Parameters<Scalar>& p, Out0&& pi) noexcept {
+    inertial_parameters(Constants<Scalar>(p), std::forward<Out0>(pi));
   }
 };
 

@@ -7,6 +7,8 @@
 
 #include <array>
 #include <cmath>
+#include <type_traits>
+#include <utility>
 
 namespace eomgen_models {
 namespace planar_chain {
@@ -22,7 +24,7 @@ struct Model {
   static constexpr const char* name = "planar_chain";
   static constexpr const char* description = "Planar chain of n uniform rods with relative joint angles (n-link pendulum)";
   static constexpr const char* generator_version = "0.1.0";
-  static constexpr const char* model_hash = "4e32a3603e4cc947";
+  static constexpr const char* model_hash = "402b299a27a2d31e";
   static constexpr std::array<const char*, nq> coordinate_names{{"q1", "q2", "q3", "q4"}};
   static constexpr std::array<const char*, nu> input_names{{}};
   static constexpr std::array<const char*, np> parameter_names{{"m", "l", "rd", "g"}};
@@ -31,6 +33,8 @@ struct Model {
   static constexpr std::array<int, nh> holonomic_rows{{}};  // row of Xi of each entry of phi
   static constexpr std::array<int, ni> independent_speeds{{}};  // their coordinate indices
   static constexpr std::array<const char*, ny> output_names{{"tip_1", "tip_2", "tip_3", "tip_velocity_1", "tip_velocity_2", "tip_velocity_3"}};
+  static constexpr int npi = 40;  // inertial parameters: 10 per body (regressor)
+  static constexpr std::array<const char*, npi> inertial_parameter_names{{"rod1.m", "rod1.mx", "rod1.my", "rod1.mz", "rod1.Ixx", "rod1.Ixy", "rod1.Iyy", "rod1.Ixz", "rod1.Iyz", "rod1.Izz", "rod2.m", "rod2.mx", "rod2.my", "rod2.mz", "rod2.Ixx", "rod2.Ixy", "rod2.Iyy", "rod2.Ixz", "rod2.Iyz", "rod2.Izz", "rod3.m", "rod3.mx", "rod3.my", "rod3.mz", "rod3.Ixx", "rod3.Ixy", "rod3.Iyy", "rod3.Ixz", "rod3.Iyz", "rod3.Izz", "rod4.m", "rod4.mx", "rod4.my", "rod4.mz", "rod4.Ixx", "rod4.Ixy", "rod4.Iyy", "rod4.Ixz", "rod4.Iyz", "rod4.Izz"}};
   static constexpr bool has_forward_dynamics = true;  // forward_dynamics(), without M
   static constexpr bool prefers_forward_dynamics = true;  // fewer operations than M, F and their Cholesky solve
 
@@ -41,6 +45,14 @@ struct Model {
   template <class Scalar> using ConstraintVector = Eigen::Matrix<Scalar, nc, 1>;
   template <class Scalar> using HolonomicVector = Eigen::Matrix<Scalar, nh, 1>;
   template <class Scalar> using OutputVector = Eigen::Matrix<Scalar, ny, 1>;
+
+  /// Whether an Eigen expression of type Derived can be rows x cols: its sizes fixed to those,
+  /// or dynamic (then eigen_assert tests them).
+  template <class Derived>
+  static constexpr bool fits(int rows, int cols) noexcept {
+    return (int(Derived::RowsAtCompileTime) == Eigen::Dynamic || int(Derived::RowsAtCompileTime) == rows) &&
+           (int(Derived::ColsAtCompileTime) == Eigen::Dynamic || int(Derived::ColsAtCompileTime) == cols);
+  }
 
   /// Parameters, defaulted to the model's values.
   template <class Scalar>
@@ -60,22 +72,25 @@ struct Model {
    public:
     /// Computes every constant from a copy of the parameters.
     explicit Constants(const Parameters<Scalar>& parameters) noexcept : p(parameters) {
-      using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-      using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-      using std::log; using std::abs; using std::pow;
-      const Scalar w0 = p.l * p.l;
-      const Scalar w1 = Scalar(0.08333333333333333) * p.m * (w0 + p.rd * p.rd * Scalar(3));
-      const Scalar w2 = Scalar(0.25) * p.m * w0 + w1;
-      k0 = p.m * Scalar(0.5) * p.l;
+      const Scalar w0 = p.m * Scalar(0.5) * p.l;
+      const Scalar w1 = p.l * p.l;
+      const Scalar w2 = p.rd * p.rd;
+      const Scalar w3 = Scalar(0.08333333333333333) * p.m * (w1 + w2 * Scalar(3));
+      const Scalar w4 = Scalar(0.25) * p.m * w1 + w3;
+      k0 = w0;
       k1 = p.m * p.l;
       k2 = Scalar(2) * p.m * p.l;
-      k3 = w2;
+      k3 = w4;
       k4 = -(p.m * p.l * Scalar(3));
       k5 = Scalar(0.5) * p.l;
-      k6 = w1;
+      k6 = w3;
       k7 = p.m * Scalar(0.5);
       k8 = p.g * p.m;
-      k9 = Scalar(1) / w2;
+      k9 = Scalar(1) / w4;
+      k10 = p.m * Scalar(0.3333333333333333) * w1 + Scalar(0.25) * w2 * p.m;
+      k11 = Scalar(2) * p.l;
+      k12 = -w0;
+      k13 = w2 * p.m * Scalar(0.5);
     }
     /// The parameters these constants were computed from.
     const Parameters<Scalar>& parameters() const noexcept { return p; }
@@ -84,14 +99,17 @@ struct Model {
     friend struct Model;
     Parameters<Scalar> p;
     Scalar k0, k1, k2, k3, k4, k5, k6, k7, k8, k9;
+    Scalar k10, k11, k12, k13;
   };
 
   /// M(q, t), symmetric positive (semi)definite
-  template <class Scalar>
-  static void mass_matrix([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] MassMatrix<Scalar>& M) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class Out0>
+  static void mass_matrix([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Constants<typename DerivedQ::Scalar>& c, Out0&& M) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(nq, nq), "M: expected nq x nq");
+    eigen_assert(q.size() == nq && M.rows() == nq && M.cols() == nq);
+    using std::sin; using std::cos;
     const Scalar w0 = cos(q(3)) * c.k0;
     const Scalar w1 = w0 + c.k1;
     const Scalar w2 = c.k0 + w1;
@@ -136,17 +154,21 @@ struct Model {
   /// M(q, t), symmetric positive (semi)definite
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static void mass_matrix([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] MassMatrix<Scalar>& M) noexcept {
-    mass_matrix(t, q, Constants<Scalar>(p), M);
+  template <class DerivedQ, class Out0>
+  static void mass_matrix(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& M) noexcept {
+    mass_matrix(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(M));
   }
 
   /// F(q, qd, t, u): everything of Lagrange's equations except M qdd
-  template <class Scalar>
-  static void forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] Vector<Scalar>& F) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class DerivedQd, class DerivedU, class Out0>
+  static void forcing([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, [[maybe_unused]] const Eigen::MatrixBase<DerivedU>& u, const Constants<typename DerivedQ::Scalar>& c, Out0&& F) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<DerivedU>(nu, 1), "u: expected a column of nu entries");
+    static_assert(fits<std::decay_t<Out0>>(nq, 1), "F: expected nq x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && u.size() == nu && F.rows() == nq && F.cols() == 1);
+    using std::sin; using std::cos;
     const Scalar w0 = c.p.g * sin(q(0));
     const Scalar w1 = cos(q(1));
     const Scalar w2 = sin(q(3));
@@ -184,17 +206,22 @@ struct Model {
   /// F(q, qd, t, u): everything of Lagrange's equations except M qdd
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static void forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] Vector<Scalar>& F) noexcept {
-    forcing(t, q, qd, u, Constants<Scalar>(p), F);
+  template <class DerivedQ, class DerivedQd, class DerivedU, class Out0>
+  static void forcing(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedU>& u, const Parameters<typename DerivedQ::Scalar>& p, Out0&& F) noexcept {
+    forcing(t, q, qd, u, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(F));
   }
 
   /// M and F together, sharing their common subexpressions
-  template <class Scalar>
-  static void mass_matrix_and_forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] MassMatrix<Scalar>& M, [[maybe_unused]] Vector<Scalar>& F) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class DerivedQd, class DerivedU, class Out0, class Out1>
+  static void mass_matrix_and_forcing([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, [[maybe_unused]] const Eigen::MatrixBase<DerivedU>& u, const Constants<typename DerivedQ::Scalar>& c, Out0&& M, Out1&& F) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<DerivedU>(nu, 1), "u: expected a column of nu entries");
+    static_assert(fits<std::decay_t<Out0>>(nq, nq), "M: expected nq x nq");
+    static_assert(fits<std::decay_t<Out1>>(nq, 1), "F: expected nq x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && u.size() == nu && M.rows() == nq && M.cols() == nq && F.rows() == nq && F.cols() == 1);
+    using std::sin; using std::cos;
     const Scalar w0 = cos(q(3));
     const Scalar w1 = w0 * c.k0;
     const Scalar w2 = w1 + c.k1;
@@ -267,81 +294,84 @@ struct Model {
   /// M and F together, sharing their common subexpressions
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static void mass_matrix_and_forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] MassMatrix<Scalar>& M, [[maybe_unused]] Vector<Scalar>& F) noexcept {
-    mass_matrix_and_forcing(t, q, qd, u, Constants<Scalar>(p), M, F);
+  template <class DerivedQ, class DerivedQd, class DerivedU, class Out0, class Out1>
+  static void mass_matrix_and_forcing(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedU>& u, const Parameters<typename DerivedQ::Scalar>& p, Out0&& M, Out1&& F) noexcept {
+    mass_matrix_and_forcing(t, q, qd, u, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(M), std::forward<Out1>(F));
   }
 
   /// Xi(q, t) of the Pfaffian constraints Xi qd + Xi_t = 0
-  template <class Scalar>
-  static void constraint_jacobian([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] ConstraintJacobian<Scalar>& Xi) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class Out0>
+  static void constraint_jacobian([[maybe_unused]] const typename DerivedQ::Scalar& t, [[maybe_unused]] const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, [[maybe_unused]] Out0&& Xi) noexcept {
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(nc, nq), "Xi: expected nc x nq");
+    eigen_assert(q.size() == nq && Xi.rows() == nc && Xi.cols() == nq);
   }
 
   /// Xi(q, t) of the Pfaffian constraints Xi qd + Xi_t = 0
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static void constraint_jacobian([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintJacobian<Scalar>& Xi) noexcept {
-    constraint_jacobian(t, q, Constants<Scalar>(p), Xi);
+  template <class DerivedQ, class Out0>
+  static void constraint_jacobian(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& Xi) noexcept {
+    constraint_jacobian(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(Xi));
   }
 
   /// Xi_t(q, t)
-  template <class Scalar>
-  static void constraint_rate_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] ConstraintVector<Scalar>& Xi_t) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class Out0>
+  static void constraint_rate_term([[maybe_unused]] const typename DerivedQ::Scalar& t, [[maybe_unused]] const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, [[maybe_unused]] Out0&& Xi_t) noexcept {
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(nc, 1), "Xi_t: expected nc x 1");
+    eigen_assert(q.size() == nq && Xi_t.rows() == nc && Xi_t.cols() == 1);
   }
 
   /// Xi_t(q, t)
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static void constraint_rate_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintVector<Scalar>& Xi_t) noexcept {
-    constraint_rate_term(t, q, Constants<Scalar>(p), Xi_t);
+  template <class DerivedQ, class Out0>
+  static void constraint_rate_term(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& Xi_t) noexcept {
+    constraint_rate_term(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(Xi_t));
   }
 
   /// dXi/dt qd + dXi_t/dt, so that Xi qdd + b = 0
-  template <class Scalar>
-  static void constraint_acceleration_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] ConstraintVector<Scalar>& b) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void constraint_acceleration_term([[maybe_unused]] const typename DerivedQ::Scalar& t, [[maybe_unused]] const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Eigen::MatrixBase<DerivedQd>& qd, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, [[maybe_unused]] Out0&& b) noexcept {
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(nc, 1), "b: expected nc x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && b.rows() == nc && b.cols() == 1);
   }
 
   /// dXi/dt qd + dXi_t/dt, so that Xi qdd + b = 0
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static void constraint_acceleration_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintVector<Scalar>& b) noexcept {
-    constraint_acceleration_term(t, q, qd, Constants<Scalar>(p), b);
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void constraint_acceleration_term(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Parameters<typename DerivedQ::Scalar>& p, Out0&& b) noexcept {
+    constraint_acceleration_term(t, q, qd, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(b));
   }
 
   /// phi(q, t) of the holonomic constraints
-  template <class Scalar>
-  static void holonomic_residuals([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] HolonomicVector<Scalar>& phi) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class Out0>
+  static void holonomic_residuals([[maybe_unused]] const typename DerivedQ::Scalar& t, [[maybe_unused]] const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, [[maybe_unused]] Out0&& phi) noexcept {
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(nh, 1), "phi: expected nh x 1");
+    eigen_assert(q.size() == nq && phi.rows() == nh && phi.cols() == 1);
   }
 
   /// phi(q, t) of the holonomic constraints
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static void holonomic_residuals([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] HolonomicVector<Scalar>& phi) noexcept {
-    holonomic_residuals(t, q, Constants<Scalar>(p), phi);
+  template <class DerivedQ, class Out0>
+  static void holonomic_residuals(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& phi) noexcept {
+    holonomic_residuals(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(phi));
   }
 
   /// T(q, qd, t)
-  template <class Scalar>
-  static Scalar kinetic_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Constants<Scalar>& c) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class DerivedQd>
+  static typename DerivedQ::Scalar kinetic_energy([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Constants<typename DerivedQ::Scalar>& c) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    eigen_assert(q.size() == nq && qd.size() == nq);
+    using std::sin; using std::cos;
     Scalar T = Scalar(0);
     const Scalar w0 = qd(1) + qd(0);
     const Scalar w1 = w0 + qd(2);
@@ -377,17 +407,18 @@ struct Model {
   /// T(q, qd, t)
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static Scalar kinetic_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Parameters<Scalar>& p) noexcept {
-    return kinetic_energy(t, q, qd, Constants<Scalar>(p));
+  template <class DerivedQ, class DerivedQd>
+  static typename DerivedQ::Scalar kinetic_energy(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Parameters<typename DerivedQ::Scalar>& p) noexcept {
+    return kinetic_energy(t, q, qd, Constants<typename DerivedQ::Scalar>(p));
   }
 
   /// V(q, t)
-  template <class Scalar>
-  static Scalar potential_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ>
+  static typename DerivedQ::Scalar potential_energy([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Constants<typename DerivedQ::Scalar>& c) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    eigen_assert(q.size() == nq);
+    using std::sin; using std::cos;
     Scalar V = Scalar(0);
     const Scalar w0 = cos(q(0));
     const Scalar w1 = sin(q(1));
@@ -407,17 +438,21 @@ struct Model {
   /// V(q, t)
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static Scalar potential_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p) noexcept {
-    return potential_energy(t, q, Constants<Scalar>(p));
+  template <class DerivedQ>
+  static typename DerivedQ::Scalar potential_energy(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p) noexcept {
+    return potential_energy(t, q, Constants<typename DerivedQ::Scalar>(p));
   }
 
   /// the model's named outputs, in the order of output_names
-  template <class Scalar>
-  static void outputs([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] OutputVector<Scalar>& y) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class DerivedQd, class DerivedU, class Out0>
+  static void outputs([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, [[maybe_unused]] const Eigen::MatrixBase<DerivedU>& u, const Constants<typename DerivedQ::Scalar>& c, Out0&& y) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<DerivedU>(nu, 1), "u: expected a column of nu entries");
+    static_assert(fits<std::decay_t<Out0>>(ny, 1), "y: expected ny x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && u.size() == nu && y.rows() == ny && y.cols() == 1);
+    using std::sin; using std::cos;
     const Scalar w0 = q(0) + q(1) + q(2) + q(3);
     const Scalar w1 = sin(w0);
     const Scalar w2 = q(0) + q(1);
@@ -449,17 +484,21 @@ struct Model {
   /// the model's named outputs, in the order of output_names
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static void outputs([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] OutputVector<Scalar>& y) noexcept {
-    outputs(t, q, qd, u, Constants<Scalar>(p), y);
+  template <class DerivedQ, class DerivedQd, class DerivedU, class Out0>
+  static void outputs(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedU>& u, const Parameters<typename DerivedQ::Scalar>& p, Out0&& y) noexcept {
+    outputs(t, q, qd, u, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(y));
   }
 
   /// qdd of M qdd = F by the composite-body M and F and M's LDL^T factors; false if M is not positive definite (a pivot is not positive) or qdd is not finite
-  template <class Scalar>
-  static bool forward_dynamics([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] Vector<Scalar>& qdd) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class DerivedQd, class DerivedU, class Out0>
+  static bool forward_dynamics([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, [[maybe_unused]] const Eigen::MatrixBase<DerivedU>& u, const Constants<typename DerivedQ::Scalar>& c, Out0&& qdd) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<DerivedU>(nu, 1), "u: expected a column of nu entries");
+    static_assert(fits<std::decay_t<Out0>>(nq, 1), "qdd: expected nq x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && u.size() == nu && qdd.rows() == nq && qdd.cols() == 1);
+    using std::sin; using std::cos;
     Eigen::Matrix<Scalar, 4, 1> pivot;
     const Scalar w0 = cos(q(3));
     const Scalar w1 = w0 * c.k0;
@@ -546,9 +585,689 @@ struct Model {
   /// qdd of M qdd = F by the composite-body M and F and M's LDL^T factors; false if M is not positive definite (a pivot is not positive) or qdd is not finite
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static bool forward_dynamics([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] Vector<Scalar>& qdd) noexcept {
-    return forward_dynamics(t, q, qd, u, Constants<Scalar>(p), qdd);
+  template <class DerivedQ, class DerivedQd, class DerivedU, class Out0>
+  static bool forward_dynamics(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedU>& u, const Parameters<typename DerivedQ::Scalar>& p, Out0&& qdd) noexcept {
+    return forward_dynamics(t, q, qd, u, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(qdd));
+  }
+
+  /// tau = M qdd - F: the generalized forces to add to produce qdd, by the Newton-Euler recursion
+  template <class DerivedQ, class DerivedQd, class DerivedQdd, class DerivedU, class Out0>
+  static void inverse_dynamics([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedQdd>& qdd, [[maybe_unused]] const Eigen::MatrixBase<DerivedU>& u, const Constants<typename DerivedQ::Scalar>& c, Out0&& tau) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<DerivedQdd>(nq, 1), "qdd: expected a column of nq entries");
+    static_assert(fits<DerivedU>(nu, 1), "u: expected a column of nu entries");
+    static_assert(fits<std::decay_t<Out0>>(nq, 1), "tau: expected nq x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && qdd.size() == nq && u.size() == nu && tau.rows() == nq && tau.cols() == 1);
+    using std::sin; using std::cos;
+    const Scalar w0 = sin(q(1));
+    const Scalar w1 = cos(q(3));
+    const Scalar w2 = qd(1) + qd(0);
+    const Scalar w3 = c.p.l * w2 * w2;
+    const Scalar w4 = cos(q(2));
+    const Scalar w5 = qdd(0) + qdd(1);
+    const Scalar w6 = c.p.g * cos(q(0));
+    const Scalar w7 = qd(0) * qd(0) * c.p.l;
+    const Scalar w8 = c.p.g * sin(q(0));
+    const Scalar w9 = qdd(0) * c.p.l + w8;
+    const Scalar w10 = cos(q(1));
+    const Scalar w11 = w0 * w6 + w0 * w7 + w9 * w10;
+    const Scalar w12 = c.p.l * w5 + w11;
+    const Scalar w13 = sin(q(2));
+    const Scalar w14 = w6 * w10 - w9 * w0 + w10 * w7;
+    const Scalar w15 = w3 * w4 - w12 * w13 + w14 * w4;
+    const Scalar w16 = sin(q(3));
+    const Scalar w17 = w5 + qdd(2);
+    const Scalar w18 = w12 * w4 + w13 * w3 + w14 * w13;
+    const Scalar w19 = c.p.l * w17 + w18;
+    const Scalar w20 = w2 + qd(2);
+    const Scalar w21 = w20 * c.p.l * w20;
+    const Scalar w22 = w15 * w16 + w1 * w19 + w21 * w16;
+    const Scalar w23 = qdd(3) + w17;
+    const Scalar w24 = c.p.m * w22 + w23 * c.k0;
+    const Scalar w25 = w20 + qd(3);
+    const Scalar w26 = (w15 * w1 - w19 * w16 + w1 * w21) * c.p.m + w25 * c.p.m * w25 * c.k5;
+    const Scalar w27 = w1 * w24 - w26 * w16;
+    const Scalar w28 = w27 + c.k0 * w17 + c.p.m * w18;
+    const Scalar w29 = w15 * c.p.m + w20 * c.p.m * w20 * c.k5 + w24 * w16 + w1 * w26;
+    const Scalar w30 = w29 * w13 - w28 * w4;
+    const Scalar w31 = c.k0 * w22 + w23 * c.k10;
+    const Scalar w32 = w31 + c.k10 * w17 + w27 * c.p.l + c.k0 * w18;
+    const Scalar w33 = c.k0 * w11 - w30 * c.p.l + c.k10 * w5 + w32;
+    tau(0) = -((w0 * (w28 * w13 + w29 * w4 + c.p.m * c.k5 * w2 * w2 + w14 * c.p.m) + (w30 - c.k0 * w5 - c.p.m * w11) * w10) * c.p.l - c.k0 * w8 - w33 - qdd(0) * c.k10);
+    tau(1) = w33;
+    tau(2) = w32;
+    tau(3) = w31;
+  }
+
+  /// tau = M qdd - F: the generalized forces to add to produce qdd, by the Newton-Euler recursion
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class DerivedQd, class DerivedQdd, class DerivedU, class Out0>
+  static void inverse_dynamics(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedQdd>& qdd, const Eigen::MatrixBase<DerivedU>& u, const Parameters<typename DerivedQ::Scalar>& p, Out0&& tau) noexcept {
+    inverse_dynamics(t, q, qd, qdd, u, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(tau));
+  }
+
+  /// G(q) = dV/dq: the generalized forces of gravity and springs, with C qd + G = -F at zero input and no other loads
+  template <class DerivedQ, class Out0>
+  static void gravity_forces(const Eigen::MatrixBase<DerivedQ>& q, const Constants<typename DerivedQ::Scalar>& c, Out0&& G) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(nq, 1), "G: expected nq x 1");
+    eigen_assert(q.size() == nq && G.rows() == nq && G.cols() == 1);
+    using std::sin; using std::cos;
+    const Scalar w0 = sin(q(1));
+    const Scalar w1 = sin(q(0));
+    const Scalar w2 = cos(q(1));
+    const Scalar w3 = cos(q(0));
+    const Scalar w4 = w0 * w1 - w2 * w3;
+    const Scalar w5 = sin(q(2));
+    const Scalar w6 = w2 * w1 + w0 * w3;
+    const Scalar w7 = cos(q(2));
+    const Scalar w8 = w4 * w5 - w6 * w7;
+    const Scalar w9 = c.k5 * (cos(q(3)) * w8 + (w6 * w5 + w4 * w7) * sin(q(3)));
+    const Scalar w10 = c.p.l * w8;
+    const Scalar w11 = -w10;
+    const Scalar w12 = c.p.l * w1;
+    const Scalar w13 = w6 * c.p.l;
+    const Scalar w14 = w12 + w13;
+    const Scalar w15 = c.k5 * w8;
+    const Scalar w16 = w6 * c.k5;
+    G(0) = -(c.k8 * (w15 - w14) - c.k8 * (w11 + w14 - w9) - c.k8 * c.k5 * w1 - c.k8 * (w16 + w12));
+    G(1) = c.k8 * w16 - c.k8 * (w9 - (w11 + w13)) - c.k8 * (w15 - w13);
+    G(2) = -(c.k8 * (w9 + w10) + c.k8 * w15);
+    G(3) = -(c.k8 * w9);
+  }
+
+  /// G(q) = dV/dq: the generalized forces of gravity and springs, with C qd + G = -F at zero input and no other loads
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class Out0>
+  static void gravity_forces(const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& G) noexcept {
+    gravity_forces(q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(G));
+  }
+
+  /// C(q, qd) from the Christoffel symbols of M: dM/dt - 2 C is skew-symmetric
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void coriolis_matrix(const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Constants<typename DerivedQ::Scalar>& c, Out0&& C) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(nq, nq), "C: expected nq x nq");
+    eigen_assert(q.size() == nq && qd.size() == nq && C.rows() == nq && C.cols() == nq);
+    using std::sin; using std::cos;
+    const Scalar w0 = c.k0 * sin(q(3));
+    const Scalar w1 = cos(q(2));
+    const Scalar w2 = w0 * w1;
+    const Scalar w3 = cos(q(3)) * c.k0;
+    const Scalar w4 = c.k0 + w3 + c.k1;
+    const Scalar w5 = sin(q(2));
+    const Scalar w6 = w2 + w4 * w5;
+    const Scalar w7 = cos(q(1));
+    const Scalar w8 = w6 * w7;
+    const Scalar w9 = sin(q(1));
+    const Scalar w10 = -(w5 * w0);
+    const Scalar w11 = w4 * w1 + w10;
+    const Scalar w12 = w8 + w9 * (c.k2 + w11 + c.k0);
+    const Scalar w13 = w12 * c.k11;
+    const Scalar w14 = w2 + w3 * w5;
+    const Scalar w15 = (w14 * w7 + w9 * (w3 * w1 + w10)) * c.p.l;
+    const Scalar w16 = c.k11 * w0;
+    const Scalar w17 = w14 * c.p.l;
+    const Scalar w18 = w16 * Scalar(0.5) + w17;
+    const Scalar w19 = w15 + w18;
+    const Scalar w20 = c.p.l * (w8 + w9 * w11);
+    const Scalar w21 = w6 * c.k11;
+    const Scalar w22 = w20 + Scalar(0.5) * w21;
+    const Scalar w23 = w13 * Scalar(0.5) * qd(0);
+    const Scalar w24 = w15 * Scalar(0.5) * qd(3);
+    const Scalar w25 = w21 + w20;
+    const Scalar w26 = Scalar(0.5) * w25 * qd(2);
+    const Scalar w27 = Scalar(0.5) * w20 * qd(2);
+    const Scalar w28 = w15 + w14 * c.k11 + w16;
+    const Scalar w29 = w28 * Scalar(0.5) * qd(3);
+    const Scalar w30 = qd(1) * Scalar(0.5) * w25;
+    const Scalar w31 = qd(1) * Scalar(0.5) * w20;
+    const Scalar w32 = w15 + w17;
+    const Scalar w33 = Scalar(0.5) * w32 * qd(3);
+    const Scalar w34 = w16 + w17;
+    const Scalar w35 = w15 + w34;
+    const Scalar w36 = Scalar(0.5) * qd(3) * w35;
+    const Scalar w37 = w6 * c.p.l;
+    const Scalar w38 = qd(0) * w22;
+    const Scalar w39 = qd(1) * w28 * Scalar(0.5);
+    const Scalar w40 = Scalar(0.5) * w32 * qd(2);
+    const Scalar w41 = qd(0) * w19;
+    const Scalar w42 = w15 * qd(1) * Scalar(0.5);
+    const Scalar w43 = Scalar(0.5) * w35 * qd(2);
+    const Scalar w44 = c.p.l * w0;
+    const Scalar w45 = w44 + w17;
+    const Scalar w46 = qd(1) * Scalar(0.5) * w21;
+    const Scalar w47 = Scalar(0.5) * qd(3) * w17;
+    const Scalar w48 = Scalar(0.5) * qd(0) * w25;
+    const Scalar w49 = w34 * Scalar(0.5) * qd(3);
+    const Scalar w50 = -(Scalar(0.5) * qd(0) * w20);
+    const Scalar w51 = w34 * Scalar(0.5) * qd(2);
+    const Scalar w52 = w28 * Scalar(0.5) * qd(0);
+    const Scalar w53 = -(w15 * Scalar(0.5) * qd(0));
+    const Scalar w54 = qd(1) * w18;
+    const Scalar w55 = Scalar(0.5) * w17 * qd(2);
+    const Scalar w56 = Scalar(0.5) * qd(0) * w35;
+    const Scalar w57 = -(qd(1) * Scalar(0.5) * w17);
+    const Scalar w58 = -(Scalar(0.5) * qd(0) * w32);
+    const Scalar w59 = w16 * Scalar(0.5) * qd(2);
+    const Scalar w60 = qd(1) * w34 * Scalar(0.5);
+    C(0, 0) = -(w13 * qd(1) * Scalar(0.5) + qd(3) * w19 + w22 * qd(2));
+    C(0, 1) = -(w23 + w24 + w26 + w27 + w29 + qd(1) * w12 * c.p.l);
+    C(0, 2) = -(w30 + w31 + w33 + w36 + (w37 + w20) * qd(2) + w38);
+    C(0, 3) = -(w39 + w40 + w41 + w42 + w43 + (w15 + w45) * qd(3));
+    C(1, 0) = w23 + w24 - w26 - w29 + w27;
+    C(1, 1) = -(qd(3) * w18 + Scalar(0.5) * w21 * qd(2));
+    C(1, 2) = -(w46 + w47 + w37 * qd(2) + w48 + w49 + w50);
+    C(1, 3) = -(w51 + w45 * qd(3) + w52 + w53 + w54 + w55);
+    C(2, 0) = w30 - w36 - w31 + w33 + w38;
+    C(2, 1) = w46 + w47 + w48 - w49 + w50;
+    C(2, 2) = -(w16 * Scalar(0.5) * qd(3));
+    C(2, 3) = -(w56 + qd(3) * w44 + w57 + w58 + w59 + w60);
+    C(3, 0) = w39 + w41 - w40 - w42 + w43;
+    C(3, 1) = w51 + w52 + w53 + w54 - w55;
+    C(3, 2) = w56 + w57 + w58 + w59 + w60;
+    C(3, 3) = Scalar(0);
+  }
+
+  /// C(q, qd) from the Christoffel symbols of M: dM/dt - 2 C is skew-symmetric
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void coriolis_matrix(const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Parameters<typename DerivedQ::Scalar>& p, Out0&& C) noexcept {
+    coriolis_matrix(q, qd, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(C));
+  }
+
+  /// J = dy/dq of the output tip
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_tip([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Constants<typename DerivedQ::Scalar>& c, Out0&& J) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, nq), "J: expected 3 x nq");
+    eigen_assert(q.size() == nq && J.rows() == 3 && J.cols() == nq);
+    using std::sin; using std::cos;
+    const Scalar w0 = q(0) + q(1) + q(2) + q(3);
+    const Scalar w1 = cos(w0) * c.p.l;
+    const Scalar w2 = q(0) + q(1) + q(2);
+    const Scalar w3 = cos(w2) * c.p.l;
+    const Scalar w4 = q(0) + q(1);
+    const Scalar w5 = cos(w4) * c.p.l;
+    const Scalar w6 = c.p.l * sin(w0);
+    const Scalar w7 = sin(w4) * c.p.l;
+    const Scalar w8 = sin(w2) * c.p.l;
+    J(0, 0) = w1 + c.p.l * cos(q(0)) + w3 + w5;
+    J(0, 1) = w1 + w3 + w5;
+    J(0, 2) = w1 + w3;
+    J(0, 3) = w1;
+    J(1, 0) = w6 + w7 + c.p.l * sin(q(0)) + w8;
+    J(1, 1) = w6 + w7 + w8;
+    J(1, 2) = w6 + w8;
+    J(1, 3) = w6;
+    J(2, 0) = Scalar(0);
+    J(2, 1) = Scalar(0);
+    J(2, 2) = Scalar(0);
+    J(2, 3) = Scalar(0);
+  }
+
+  /// J = dy/dq of the output tip
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_tip(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& J) noexcept {
+    output_jacobian_tip(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(J));
+  }
+
+  /// Jdot qd of the output tip: its acceleration at qdd = 0
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_tip([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Constants<typename DerivedQ::Scalar>& c, Out0&& Jdot_qd) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, 1), "Jdot_qd: expected 3 x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && Jdot_qd.rows() == 3 && Jdot_qd.cols() == 1);
+    using std::sin; using std::cos;
+    const Scalar w0 = q(0) + q(1) + q(2) + q(3);
+    const Scalar w1 = sin(w0);
+    const Scalar w2 = c.p.l * qd(3) * w1;
+    const Scalar w3 = c.p.l * w1;
+    const Scalar w4 = q(0) + q(1);
+    const Scalar w5 = sin(w4) * c.p.l;
+    const Scalar w6 = q(0) + q(1) + q(2);
+    const Scalar w7 = sin(w6) * c.p.l;
+    const Scalar w8 = w3 + w7;
+    const Scalar w9 = w8 * qd(2);
+    const Scalar w10 = w3 + w5 + w7;
+    const Scalar w11 = qd(1) * w10;
+    const Scalar w12 = cos(w0);
+    const Scalar w13 = w12 * c.p.l;
+    const Scalar w14 = cos(w6) * c.p.l;
+    const Scalar w15 = w13 + w14;
+    const Scalar w16 = w15 * qd(2);
+    const Scalar w17 = w12 * c.p.l * qd(3);
+    const Scalar w18 = cos(w4) * c.p.l;
+    const Scalar w19 = w13 + w14 + w18;
+    const Scalar w20 = qd(1) * w19;
+    Jdot_qd(0) = -((c.p.l * w1 * qd(2) + qd(1) * c.p.l * w1 + qd(0) * c.p.l * w1 + w2) * qd(3) + qd(0) * (qd(0) * (w3 + w5 + c.p.l * sin(q(0)) + w7) + w9 + w2 + w11) + (w10 * qd(0) + w9 + w2 + w11) * qd(1) + (w8 * qd(1) + w9 + w2 + w8 * qd(0)) * qd(2));
+    Jdot_qd(1) = (qd(0) * w15 + w16 + w17 + qd(1) * w15) * qd(2) + qd(1) * (w20 + w16 + qd(0) * w19 + w17) + qd(0) * ((w13 + c.p.l * cos(q(0)) + w14 + w18) * qd(0) + w20 + w16 + w17) + (w12 * qd(0) * c.p.l + w12 * c.p.l * qd(2) + w17 + w12 * qd(1) * c.p.l) * qd(3);
+    Jdot_qd(2) = Scalar(0);
+  }
+
+  /// Jdot qd of the output tip: its acceleration at qdd = 0
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_tip(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Parameters<typename DerivedQ::Scalar>& p, Out0&& Jdot_qd) noexcept {
+    output_bias_tip(t, q, qd, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(Jdot_qd));
+  }
+
+  /// J = dy/dqd of the output tip_velocity
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_tip_velocity([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Constants<typename DerivedQ::Scalar>& c, Out0&& J) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, nq), "J: expected 3 x nq");
+    eigen_assert(q.size() == nq && J.rows() == 3 && J.cols() == nq);
+    using std::sin; using std::cos;
+    const Scalar w0 = q(1) + q(2);
+    const Scalar w1 = q(1) + q(2) + q(3);
+    const Scalar w2 = c.p.l * cos(w0) + cos(q(1)) * c.p.l + c.p.l + c.p.l * cos(w1);
+    const Scalar w3 = cos(q(0));
+    const Scalar w4 = sin(q(1)) * c.p.l + sin(w1) * c.p.l + c.p.l * sin(w0);
+    const Scalar w5 = sin(q(0));
+    const Scalar w6 = q(0) + q(1);
+    const Scalar w7 = sin(w6);
+    const Scalar w8 = q(2) + q(3);
+    const Scalar w9 = sin(q(2)) * c.p.l + c.p.l * sin(w8);
+    const Scalar w10 = cos(w6);
+    const Scalar w11 = c.p.l * cos(w8) + c.p.l + c.p.l * cos(q(2));
+    const Scalar w12 = q(0) + q(1) + q(2);
+    const Scalar w13 = cos(w12);
+    const Scalar w14 = cos(q(3)) * c.p.l + c.p.l;
+    const Scalar w15 = sin(w12);
+    const Scalar w16 = sin(q(3));
+    const Scalar w17 = q(0) + q(1) + q(2) + q(3);
+    J(0, 0) = w2 * w3 - w4 * w5;
+    J(0, 1) = -(w7 * w9 - w10 * w11);
+    J(0, 2) = w13 * w14 - w15 * c.p.l * w16;
+    J(0, 3) = cos(w17) * c.p.l;
+    J(1, 0) = w4 * w3 + w2 * w5;
+    J(1, 1) = w7 * w11 + w10 * w9;
+    J(1, 2) = w15 * w14 + w13 * c.p.l * w16;
+    J(1, 3) = c.p.l * sin(w17);
+    J(2, 0) = Scalar(0);
+    J(2, 1) = Scalar(0);
+    J(2, 2) = Scalar(0);
+    J(2, 3) = Scalar(0);
+  }
+
+  /// J = dy/dqd of the output tip_velocity
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_tip_velocity(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& J) noexcept {
+    output_jacobian_tip_velocity(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(J));
+  }
+
+  /// Jdot qd of the output tip_velocity: its rate at qdd = 0
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_tip_velocity([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Constants<typename DerivedQ::Scalar>& c, Out0&& Jdot_qd) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, 1), "Jdot_qd: expected 3 x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && Jdot_qd.rows() == 3 && Jdot_qd.cols() == 1);
+    using std::sin; using std::cos;
+    const Scalar w0 = q(1) + q(2);
+    const Scalar w1 = qd(0) * c.p.l * cos(w0);
+    const Scalar w2 = q(1) + q(2) + q(3);
+    const Scalar w3 = cos(w2);
+    const Scalar w4 = qd(0) * c.p.l * w3;
+    const Scalar w5 = cos(q(1)) * qd(0) * c.p.l;
+    const Scalar w6 = w1 + qd(0) * c.p.l + w4 + w5;
+    const Scalar w7 = sin(q(0));
+    const Scalar w8 = q(0) + q(1) + q(2);
+    const Scalar w9 = cos(w8);
+    const Scalar w10 = sin(q(3));
+    const Scalar w11 = w9 * c.p.l * w10 * qd(2);
+    const Scalar w12 = q(0) + q(1);
+    const Scalar w13 = sin(w12);
+    const Scalar w14 = q(2) + q(3);
+    const Scalar w15 = cos(w14);
+    const Scalar w16 = qd(1) * c.p.l * w15;
+    const Scalar w17 = qd(1) * c.p.l * cos(q(2));
+    const Scalar w18 = w16 + w17 + qd(1) * c.p.l;
+    const Scalar w19 = w13 * w18;
+    const Scalar w20 = cos(q(3));
+    const Scalar w21 = w20 * c.p.l * qd(2) + c.p.l * qd(2);
+    const Scalar w22 = sin(w8);
+    const Scalar w23 = w21 * w22;
+    const Scalar w24 = cos(w12);
+    const Scalar w25 = sin(w14);
+    const Scalar w26 = qd(1) * c.p.l * w25 + qd(1) * sin(q(2)) * c.p.l;
+    const Scalar w27 = w24 * w26;
+    const Scalar w28 = qd(0) * c.p.l * sin(w0);
+    const Scalar w29 = sin(w2);
+    const Scalar w30 = w29 * qd(0) * c.p.l;
+    const Scalar w31 = w28 + sin(q(1)) * qd(0) * c.p.l + w30;
+    const Scalar w32 = cos(q(0));
+    const Scalar w33 = w31 * w32;
+    const Scalar w34 = q(0) + q(1) + q(2) + q(3);
+    const Scalar w35 = c.p.l * qd(3) * sin(w34);
+    const Scalar w36 = w1 + w4 + w5;
+    const Scalar w37 = w16 + w17;
+    const Scalar w38 = w28 + w30;
+    const Scalar w39 = w1 + w4;
+    const Scalar w40 = w22 * c.p.l * w10 * qd(2);
+    const Scalar w41 = w13 * w26;
+    const Scalar w42 = cos(w34) * c.p.l * qd(3);
+    const Scalar w43 = -w42;
+    const Scalar w44 = w9 * w21;
+    const Scalar w45 = -w40;
+    const Scalar w46 = w24 * w18;
+    const Scalar w47 = -w41;
+    const Scalar w48 = -(w31 * w7);
+    Jdot_qd(0) = -((w6 * w7 + w11 + w19 + w23 + w27 + w33 + w35) * qd(0) + (qd(1) * w13 * c.p.l * w15 + w29 * qd(0) * c.p.l * w32 + qd(1) * w24 * c.p.l * w25 + w11 + qd(0) * c.p.l * w7 * w3 + w20 * w22 * c.p.l * qd(2) + w35) * qd(3) + (w36 * w7 + w11 + w19 + w23 + w27 + w33 + w35) * qd(1) + (w37 * w13 + w11 + w38 * w32 + w23 + w27 + w39 * w7 + w35) * qd(2));
+    Jdot_qd(1) = qd(0) * (w6 * w32 + w45 + w46 + w42 + w44 + w47 + w48) - (w7 * w38 + w40 + w41 + w43 - w39 * w32 - w44 - w37 * w24) * qd(2) + (w36 * w32 + w45 + w46 + w42 + w44 + w47 + w48) * qd(1) - (w40 + w29 * qd(0) * c.p.l * w7 + qd(1) * w13 * c.p.l * w25 + w43 - w20 * w9 * c.p.l * qd(2) - qd(1) * w24 * c.p.l * w15 - qd(0) * c.p.l * w32 * w3) * qd(3);
+    Jdot_qd(2) = Scalar(0);
+  }
+
+  /// Jdot qd of the output tip_velocity: its rate at qdd = 0
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_tip_velocity(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Parameters<typename DerivedQ::Scalar>& p, Out0&& Jdot_qd) noexcept {
+    output_bias_tip_velocity(t, q, qd, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(Jdot_qd));
+  }
+
+  /// Y with M qdd - F = Y pi + (the loads other than gravity, negated), pi the inertial parameters (inertial_parameter_names)
+  template <class DerivedQ, class DerivedQd, class DerivedQdd, class Out0>
+  static void regressor([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedQdd>& qdd, const Constants<typename DerivedQ::Scalar>& c, Out0&& Y) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<DerivedQdd>(nq, 1), "qdd: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(nq, npi), "Y: expected nq x npi");
+    eigen_assert(q.size() == nq && qd.size() == nq && qdd.size() == nq && Y.rows() == nq && Y.cols() == npi);
+    using std::sin; using std::cos;
+    const Scalar w0 = c.p.g * cos(q(0));
+    const Scalar w1 = c.p.g * sin(q(0));
+    const Scalar w2 = cos(q(1));
+    const Scalar w3 = sin(q(1));
+    const Scalar w4 = qd(0) * qd(0) * c.p.l;
+    const Scalar w5 = qdd(0) * c.p.l + w1;
+    const Scalar w6 = w3 * w0 + w3 * w4 + w5 * w2;
+    const Scalar w7 = w0 * w2 - w5 * w3 + w2 * w4;
+    const Scalar w8 = qd(1) + qd(0);
+    const Scalar w9 = w8 * w8;
+    const Scalar w10 = qdd(0) + qdd(1);
+    const Scalar w11 = -w6;
+    const Scalar w12 = cos(q(2));
+    const Scalar w13 = c.p.l * w10 + w6;
+    const Scalar w14 = sin(q(2));
+    const Scalar w15 = c.p.l * w8 * w8;
+    const Scalar w16 = w13 * w12 + w14 * w15 + w7 * w14;
+    const Scalar w17 = w15 * w12 - w13 * w14 + w7 * w12;
+    const Scalar w18 = w12 * w16 - w17 * w14;
+    const Scalar w19 = w18 * c.p.l;
+    const Scalar w20 = w8 + qd(2);
+    const Scalar w21 = w20 * w20;
+    const Scalar w22 = w10 + qdd(2);
+    const Scalar w23 = w21 * w12 + w14 * w22;
+    const Scalar w24 = w17 - c.p.l * w23;
+    const Scalar w25 = w14 * w21 - w22 * w12;
+    const Scalar w26 = -w16;
+    const Scalar w27 = c.p.l * w25 + w26;
+    const Scalar w28 = sin(q(3));
+    const Scalar w29 = cos(q(3));
+    const Scalar w30 = c.p.l * w22 + w16;
+    const Scalar w31 = w20 * c.p.l * w20;
+    const Scalar w32 = w17 * w28 + w29 * w30 + w31 * w28;
+    const Scalar w33 = w17 * w29 - w30 * w28 + w29 * w31;
+    const Scalar w34 = w32 * w28 + w29 * w33;
+    const Scalar w35 = w33 * w28 - w29 * w32;
+    const Scalar w36 = w34 * w14 + w35 * w12;
+    const Scalar w37 = w35 * c.p.l;
+    const Scalar w38 = c.p.l * w36 + w37;
+    const Scalar w39 = qdd(3) + w22;
+    const Scalar w40 = w20 + qd(3);
+    const Scalar w41 = w40 * w40;
+    const Scalar w42 = w39 * w28 + w29 * w41;
+    const Scalar w43 = w29 * w39 - w28 * w41;
+    const Scalar w44 = w42 * w14 - w43 * w12;
+    const Scalar w45 = w43 * w14 + w42 * w12;
+    const Scalar w46 = w33 - w42 * c.p.l;
+    const Scalar w47 = w45 * c.p.l - w46;
+    const Scalar w48 = w32 + w43 * c.p.l;
+    const Scalar w49 = -(w48 - w44 * c.p.l);
+    Y(0, 1) = w0;
+    Y(0, 2) = -w1;
+    Y(0, 9) = qdd(0);
+    Y(0, 10) = -(c.p.l * (w3 * w7 - w2 * w6));
+    Y(0, 11) = w7 - c.p.l * (w2 * w9 + w3 * w10);
+    Y(0, 12) = (w3 * w9 - w2 * w10) * c.p.l + w11;
+    Y(0, 19) = w10;
+    Y(0, 20) = -((w3 * (w14 * w16 + w17 * w12) - w18 * w2) * c.p.l - w19);
+    Y(0, 21) = w24 + c.p.l * (w3 * w25 - w2 * w23);
+    Y(0, 22) = w27 + (w2 * w25 + w3 * w23) * c.p.l;
+    Y(0, 29) = w22;
+    Y(0, 30) = -(w38 + (w2 * w36 + (w34 * w12 - w35 * w14) * w3) * c.p.l);
+    Y(0, 31) = -(w47 - c.p.l * (w3 * w44 - w2 * w45));
+    Y(0, 32) = w49 + c.p.l * (w2 * w44 + w3 * w45);
+    Y(0, 39) = w39;
+    Y(1, 11) = w7;
+    Y(1, 12) = w11;
+    Y(1, 19) = w10;
+    Y(1, 20) = w19;
+    Y(1, 21) = w24;
+    Y(1, 22) = w27;
+    Y(1, 29) = w22;
+    Y(1, 30) = -w38;
+    Y(1, 31) = -w47;
+    Y(1, 32) = w49;
+    Y(1, 39) = w39;
+    Y(2, 21) = w17;
+    Y(2, 22) = w26;
+    Y(2, 29) = w22;
+    Y(2, 30) = -w37;
+    Y(2, 31) = w46;
+    Y(2, 32) = -w48;
+    Y(2, 39) = w39;
+    Y(3, 31) = w33;
+    Y(3, 32) = -w32;
+    Y(3, 39) = w39;
+    Y(0, 0) = Scalar(0);
+    Y(0, 3) = Scalar(0);
+    Y(0, 4) = Scalar(0);
+    Y(0, 5) = Scalar(0);
+    Y(0, 6) = Scalar(0);
+    Y(0, 7) = Scalar(0);
+    Y(0, 8) = Scalar(0);
+    Y(0, 13) = Scalar(0);
+    Y(0, 14) = Scalar(0);
+    Y(0, 15) = Scalar(0);
+    Y(0, 16) = Scalar(0);
+    Y(0, 17) = Scalar(0);
+    Y(0, 18) = Scalar(0);
+    Y(0, 23) = Scalar(0);
+    Y(0, 24) = Scalar(0);
+    Y(0, 25) = Scalar(0);
+    Y(0, 26) = Scalar(0);
+    Y(0, 27) = Scalar(0);
+    Y(0, 28) = Scalar(0);
+    Y(0, 33) = Scalar(0);
+    Y(0, 34) = Scalar(0);
+    Y(0, 35) = Scalar(0);
+    Y(0, 36) = Scalar(0);
+    Y(0, 37) = Scalar(0);
+    Y(0, 38) = Scalar(0);
+    Y(1, 0) = Scalar(0);
+    Y(1, 1) = Scalar(0);
+    Y(1, 2) = Scalar(0);
+    Y(1, 3) = Scalar(0);
+    Y(1, 4) = Scalar(0);
+    Y(1, 5) = Scalar(0);
+    Y(1, 6) = Scalar(0);
+    Y(1, 7) = Scalar(0);
+    Y(1, 8) = Scalar(0);
+    Y(1, 9) = Scalar(0);
+    Y(1, 10) = Scalar(0);
+    Y(1, 13) = Scalar(0);
+    Y(1, 14) = Scalar(0);
+    Y(1, 15) = Scalar(0);
+    Y(1, 16) = Scalar(0);
+    Y(1, 17) = Scalar(0);
+    Y(1, 18) = Scalar(0);
+    Y(1, 23) = Scalar(0);
+    Y(1, 24) = Scalar(0);
+    Y(1, 25) = Scalar(0);
+    Y(1, 26) = Scalar(0);
+    Y(1, 27) = Scalar(0);
+    Y(1, 28) = Scalar(0);
+    Y(1, 33) = Scalar(0);
+    Y(1, 34) = Scalar(0);
+    Y(1, 35) = Scalar(0);
+    Y(1, 36) = Scalar(0);
+    Y(1, 37) = Scalar(0);
+    Y(1, 38) = Scalar(0);
+    Y(2, 0) = Scalar(0);
+    Y(2, 1) = Scalar(0);
+    Y(2, 2) = Scalar(0);
+    Y(2, 3) = Scalar(0);
+    Y(2, 4) = Scalar(0);
+    Y(2, 5) = Scalar(0);
+    Y(2, 6) = Scalar(0);
+    Y(2, 7) = Scalar(0);
+    Y(2, 8) = Scalar(0);
+    Y(2, 9) = Scalar(0);
+    Y(2, 10) = Scalar(0);
+    Y(2, 11) = Scalar(0);
+    Y(2, 12) = Scalar(0);
+    Y(2, 13) = Scalar(0);
+    Y(2, 14) = Scalar(0);
+    Y(2, 15) = Scalar(0);
+    Y(2, 16) = Scalar(0);
+    Y(2, 17) = Scalar(0);
+    Y(2, 18) = Scalar(0);
+    Y(2, 19) = Scalar(0);
+    Y(2, 20) = Scalar(0);
+    Y(2, 23) = Scalar(0);
+    Y(2, 24) = Scalar(0);
+    Y(2, 25) = Scalar(0);
+    Y(2, 26) = Scalar(0);
+    Y(2, 27) = Scalar(0);
+    Y(2, 28) = Scalar(0);
+    Y(2, 33) = Scalar(0);
+    Y(2, 34) = Scalar(0);
+    Y(2, 35) = Scalar(0);
+    Y(2, 36) = Scalar(0);
+    Y(2, 37) = Scalar(0);
+    Y(2, 38) = Scalar(0);
+    Y(3, 0) = Scalar(0);
+    Y(3, 1) = Scalar(0);
+    Y(3, 2) = Scalar(0);
+    Y(3, 3) = Scalar(0);
+    Y(3, 4) = Scalar(0);
+    Y(3, 5) = Scalar(0);
+    Y(3, 6) = Scalar(0);
+    Y(3, 7) = Scalar(0);
+    Y(3, 8) = Scalar(0);
+    Y(3, 9) = Scalar(0);
+    Y(3, 10) = Scalar(0);
+    Y(3, 11) = Scalar(0);
+    Y(3, 12) = Scalar(0);
+    Y(3, 13) = Scalar(0);
+    Y(3, 14) = Scalar(0);
+    Y(3, 15) = Scalar(0);
+    Y(3, 16) = Scalar(0);
+    Y(3, 17) = Scalar(0);
+    Y(3, 18) = Scalar(0);
+    Y(3, 19) = Scalar(0);
+    Y(3, 20) = Scalar(0);
+    Y(3, 21) = Scalar(0);
+    Y(3, 22) = Scalar(0);
+    Y(3, 23) = Scalar(0);
+    Y(3, 24) = Scalar(0);
+    Y(3, 25) = Scalar(0);
+    Y(3, 26) = Scalar(0);
+    Y(3, 27) = Scalar(0);
+    Y(3, 28) = Scalar(0);
+    Y(3, 29) = Scalar(0);
+    Y(3, 30) = Scalar(0);
+    Y(3, 33) = Scalar(0);
+    Y(3, 34) = Scalar(0);
+    Y(3, 35) = Scalar(0);
+    Y(3, 36) = Scalar(0);
+    Y(3, 37) = Scalar(0);
+    Y(3, 38) = Scalar(0);
+  }
+
+  /// Y with M qdd - F = Y pi + (the loads other than gravity, negated), pi the inertial parameters (inertial_parameter_names)
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class DerivedQd, class DerivedQdd, class Out0>
+  static void regressor(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedQdd>& qdd, const Parameters<typename DerivedQ::Scalar>& p, Out0&& Y) noexcept {
+    regressor(t, q, qd, qdd, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(Y));
+  }
+
+  /// pi of the model's parameters: every body's m, m c and inertia about its origin, in its frame
+  template <class Scalar, class Out0>
+  static void inertial_parameters(const Constants<Scalar>& c, Out0&& pi) noexcept {
+    static_assert(fits<std::decay_t<Out0>>(npi, 1), "pi: expected npi x 1");
+    eigen_assert(pi.rows() == npi && pi.cols() == 1);
+    pi(0) = c.p.m;
+    pi(2) = c.k12;
+    pi(4) = c.k3;
+    pi(6) = c.k13;
+    pi(9) = c.k3;
+    pi(10) = c.p.m;
+    pi(12) = c.k12;
+    pi(14) = c.k3;
+    pi(16) = c.k13;
+    pi(19) = c.k3;
+    pi(20) = c.p.m;
+    pi(22) = c.k12;
+    pi(24) = c.k3;
+    pi(26) = c.k13;
+    pi(29) = c.k3;
+    pi(30) = c.p.m;
+    pi(32) = c.k12;
+    pi(34) = c.k3;
+    pi(36) = c.k13;
+    pi(39) = c.k3;
+    pi(1) = Scalar(0);
+    pi(3) = Scalar(0);
+    pi(5) = Scalar(0);
+    pi(7) = Scalar(0);
+    pi(8) = Scalar(0);
+    pi(11) = Scalar(0);
+    pi(13) = Scalar(0);
+    pi(15) = Scalar(0);
+    pi(17) = Scalar(0);
+    pi(18) = Scalar(0);
+    pi(21) = Scalar(0);
+    pi(23) = Scalar(0);
+    pi(25) = Scalar(0);
+    pi(27) = Scalar(0);
+    pi(28) = Scalar(0);
+    pi(31) = Scalar(0);
+    pi(33) = Scalar(0);
+    pi(35) = Scalar(0);
+    pi(37) = Scalar(0);
+    pi(38) = Scalar(0);
+  }
+
+  /// pi of the model's parameters: every body's m, m c and inertia about its origin, in its frame
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar, class Out0>
+  static void inertial_parameters(const Parameters<Scalar>& p, Out0&& pi) noexcept {
+    inertial_parameters(Constants<Scalar>(p), std::forward<Out0>(pi));
   }
 };
 

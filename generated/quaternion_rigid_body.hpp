@@ -3,10 +3,13 @@
 // does not throw: safe to call from a real-time loop.
 #pragma once
 
+#include <Eigen/Cholesky>
 #include <Eigen/Core>
 
 #include <array>
 #include <cmath>
+#include <type_traits>
+#include <utility>
 
 namespace eomgen_models {
 namespace quaternion_rigid_body {
@@ -22,7 +25,7 @@ struct Model {
   static constexpr const char* name = "quaternion_rigid_body";
   static constexpr const char* description = "Free rigid body, scalar-last quaternion attitude with the unit-norm constraint, body torque input";
   static constexpr const char* generator_version = "0.1.0";
-  static constexpr const char* model_hash = "54f3d8659352ff66";
+  static constexpr const char* model_hash = "c006f5d8c24ef29b";
   static constexpr std::array<const char*, nq> coordinate_names{{"e1", "e2", "e3", "eta"}};
   static constexpr std::array<const char*, nu> input_names{{"tau1", "tau2", "tau3"}};
   static constexpr std::array<const char*, np> parameter_names{{"m", "J1", "J2", "J3"}};
@@ -31,6 +34,8 @@ struct Model {
   static constexpr std::array<int, nh> holonomic_rows{{0}};  // row of Xi of each entry of phi
   static constexpr std::array<int, ni> independent_speeds{{}};  // their coordinate indices
   static constexpr std::array<const char*, ny> output_names{{"omega_1", "omega_2", "omega_3", "angular_momentum_1", "angular_momentum_2", "angular_momentum_3", "quaternion_norm"}};
+  static constexpr int npi = 10;  // inertial parameters: 10 per body (regressor)
+  static constexpr std::array<const char*, npi> inertial_parameter_names{{"satellite.m", "satellite.mx", "satellite.my", "satellite.mz", "satellite.Ixx", "satellite.Ixy", "satellite.Iyy", "satellite.Ixz", "satellite.Iyz", "satellite.Izz"}};
   static constexpr bool has_forward_dynamics = false;  // forward_dynamics(), without M
   static constexpr bool prefers_forward_dynamics = false;  // fewer operations than M, F and their Cholesky solve
 
@@ -41,6 +46,14 @@ struct Model {
   template <class Scalar> using ConstraintVector = Eigen::Matrix<Scalar, nc, 1>;
   template <class Scalar> using HolonomicVector = Eigen::Matrix<Scalar, nh, 1>;
   template <class Scalar> using OutputVector = Eigen::Matrix<Scalar, ny, 1>;
+
+  /// Whether an Eigen expression of type Derived can be rows x cols: its sizes fixed to those,
+  /// or dynamic (then eigen_assert tests them).
+  template <class Derived>
+  static constexpr bool fits(int rows, int cols) noexcept {
+    return (int(Derived::RowsAtCompileTime) == Eigen::Dynamic || int(Derived::RowsAtCompileTime) == rows) &&
+           (int(Derived::ColsAtCompileTime) == Eigen::Dynamic || int(Derived::ColsAtCompileTime) == cols);
+  }
 
   /// Parameters, defaulted to the model's values.
   template <class Scalar>
@@ -60,9 +73,6 @@ struct Model {
    public:
     /// Computes every constant from a copy of the parameters.
     explicit Constants(const Parameters<Scalar>& parameters) noexcept : p(parameters) {
-      using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-      using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-      using std::log; using std::abs; using std::pow;
       const Scalar w0 = p.J2 - p.J1;
       const Scalar w1 = -p.J3;
       const Scalar w2 = p.J1 + w1;
@@ -82,6 +92,9 @@ struct Model {
       k12 = Scalar(2) * p.J1;
       k13 = p.J2 * Scalar(2);
       k14 = Scalar(2) * p.J3;
+      k15 = Scalar(8) * p.J1;
+      k16 = Scalar(8) * p.J3;
+      k17 = p.J2 * Scalar(8);
     }
     /// The parameters these constants were computed from.
     const Parameters<Scalar>& parameters() const noexcept { return p; }
@@ -90,15 +103,16 @@ struct Model {
     friend struct Model;
     Parameters<Scalar> p;
     Scalar k0, k1, k2, k3, k4, k5, k6, k7, k8, k9;
-    Scalar k10, k11, k12, k13, k14;
+    Scalar k10, k11, k12, k13, k14, k15, k16, k17;
   };
 
   /// M(q, t), symmetric positive (semi)definite
-  template <class Scalar>
-  static void mass_matrix([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] MassMatrix<Scalar>& M) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class Out0>
+  static void mass_matrix([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Constants<typename DerivedQ::Scalar>& c, Out0&& M) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(nq, nq), "M: expected nq x nq");
+    eigen_assert(q.size() == nq && M.rows() == nq && M.cols() == nq);
     const Scalar w0 = q(3) * q(3);
     const Scalar w1 = q(1) * q(1);
     const Scalar w2 = q(2) * q(2);
@@ -124,17 +138,20 @@ struct Model {
   /// M(q, t), symmetric positive (semi)definite
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static void mass_matrix([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] MassMatrix<Scalar>& M) noexcept {
-    mass_matrix(t, q, Constants<Scalar>(p), M);
+  template <class DerivedQ, class Out0>
+  static void mass_matrix(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& M) noexcept {
+    mass_matrix(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(M));
   }
 
   /// F(q, qd, t, u): everything of Lagrange's equations except M qdd
-  template <class Scalar>
-  static void forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] Vector<Scalar>& F) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class DerivedQd, class DerivedU, class Out0>
+  static void forcing([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedU>& u, const Constants<typename DerivedQ::Scalar>& c, Out0&& F) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<DerivedU>(nu, 1), "u: expected a column of nu entries");
+    static_assert(fits<std::decay_t<Out0>>(nq, 1), "F: expected nq x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && u.size() == nu && F.rows() == nq && F.cols() == 1);
     const Scalar w0 = Scalar(4) * q(0) * qd(2) + Scalar(4) * qd(1) * q(3) - Scalar(4) * q(1) * qd(3) - Scalar(4) * qd(0) * q(2);
     const Scalar w1 = qd(1) * Scalar(2) * q(0) + Scalar(2) * q(2) * qd(3) - Scalar(2) * qd(0) * q(1) - Scalar(2) * q(3) * qd(2);
     const Scalar w2 = Scalar(2) * qd(0) * q(3) + qd(1) * Scalar(2) * q(2) - Scalar(2) * q(0) * qd(3) - Scalar(2) * q(1) * qd(2);
@@ -148,17 +165,21 @@ struct Model {
   /// F(q, qd, t, u): everything of Lagrange's equations except M qdd
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static void forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] Vector<Scalar>& F) noexcept {
-    forcing(t, q, qd, u, Constants<Scalar>(p), F);
+  template <class DerivedQ, class DerivedQd, class DerivedU, class Out0>
+  static void forcing(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedU>& u, const Parameters<typename DerivedQ::Scalar>& p, Out0&& F) noexcept {
+    forcing(t, q, qd, u, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(F));
   }
 
   /// M and F together, sharing their common subexpressions
-  template <class Scalar>
-  static void mass_matrix_and_forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] MassMatrix<Scalar>& M, [[maybe_unused]] Vector<Scalar>& F) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class DerivedQd, class DerivedU, class Out0, class Out1>
+  static void mass_matrix_and_forcing([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedU>& u, const Constants<typename DerivedQ::Scalar>& c, Out0&& M, Out1&& F) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<DerivedU>(nu, 1), "u: expected a column of nu entries");
+    static_assert(fits<std::decay_t<Out0>>(nq, nq), "M: expected nq x nq");
+    static_assert(fits<std::decay_t<Out1>>(nq, 1), "F: expected nq x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && u.size() == nu && M.rows() == nq && M.cols() == nq && F.rows() == nq && F.cols() == 1);
     const Scalar w0 = q(3) * q(3);
     const Scalar w1 = q(1) * q(1);
     const Scalar w2 = q(2) * q(2);
@@ -192,17 +213,18 @@ struct Model {
   /// M and F together, sharing their common subexpressions
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static void mass_matrix_and_forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] MassMatrix<Scalar>& M, [[maybe_unused]] Vector<Scalar>& F) noexcept {
-    mass_matrix_and_forcing(t, q, qd, u, Constants<Scalar>(p), M, F);
+  template <class DerivedQ, class DerivedQd, class DerivedU, class Out0, class Out1>
+  static void mass_matrix_and_forcing(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedU>& u, const Parameters<typename DerivedQ::Scalar>& p, Out0&& M, Out1&& F) noexcept {
+    mass_matrix_and_forcing(t, q, qd, u, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(M), std::forward<Out1>(F));
   }
 
   /// Xi(q, t) of the Pfaffian constraints Xi qd + Xi_t = 0
-  template <class Scalar>
-  static void constraint_jacobian([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] ConstraintJacobian<Scalar>& Xi) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class Out0>
+  static void constraint_jacobian([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& Xi) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(nc, nq), "Xi: expected nc x nq");
+    eigen_assert(q.size() == nq && Xi.rows() == nc && Xi.cols() == nq);
     Xi(0, 0) = Scalar(2) * q(0);
     Xi(0, 1) = Scalar(2) * q(1);
     Xi(0, 2) = Scalar(2) * q(2);
@@ -212,68 +234,73 @@ struct Model {
   /// Xi(q, t) of the Pfaffian constraints Xi qd + Xi_t = 0
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static void constraint_jacobian([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintJacobian<Scalar>& Xi) noexcept {
-    constraint_jacobian(t, q, Constants<Scalar>(p), Xi);
+  template <class DerivedQ, class Out0>
+  static void constraint_jacobian(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& Xi) noexcept {
+    constraint_jacobian(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(Xi));
   }
 
   /// Xi_t(q, t)
-  template <class Scalar>
-  static void constraint_rate_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] ConstraintVector<Scalar>& Xi_t) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class Out0>
+  static void constraint_rate_term([[maybe_unused]] const typename DerivedQ::Scalar& t, [[maybe_unused]] const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& Xi_t) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(nc, 1), "Xi_t: expected nc x 1");
+    eigen_assert(q.size() == nq && Xi_t.rows() == nc && Xi_t.cols() == 1);
     Xi_t(0) = Scalar(0);
   }
 
   /// Xi_t(q, t)
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static void constraint_rate_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintVector<Scalar>& Xi_t) noexcept {
-    constraint_rate_term(t, q, Constants<Scalar>(p), Xi_t);
+  template <class DerivedQ, class Out0>
+  static void constraint_rate_term(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& Xi_t) noexcept {
+    constraint_rate_term(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(Xi_t));
   }
 
   /// dXi/dt qd + dXi_t/dt, so that Xi qdd + b = 0
-  template <class Scalar>
-  static void constraint_acceleration_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] ConstraintVector<Scalar>& b) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void constraint_acceleration_term([[maybe_unused]] const typename DerivedQ::Scalar& t, [[maybe_unused]] const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& b) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(nc, 1), "b: expected nc x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && b.rows() == nc && b.cols() == 1);
     b(0) = qd(0) * qd(0) * Scalar(2) + qd(3) * qd(3) * Scalar(2) + Scalar(2) * qd(1) * qd(1) + Scalar(2) * qd(2) * qd(2);
   }
 
   /// dXi/dt qd + dXi_t/dt, so that Xi qdd + b = 0
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static void constraint_acceleration_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintVector<Scalar>& b) noexcept {
-    constraint_acceleration_term(t, q, qd, Constants<Scalar>(p), b);
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void constraint_acceleration_term(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Parameters<typename DerivedQ::Scalar>& p, Out0&& b) noexcept {
+    constraint_acceleration_term(t, q, qd, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(b));
   }
 
   /// phi(q, t) of the holonomic constraints
-  template <class Scalar>
-  static void holonomic_residuals([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] HolonomicVector<Scalar>& phi) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class Out0>
+  static void holonomic_residuals([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& phi) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(nh, 1), "phi: expected nh x 1");
+    eigen_assert(q.size() == nq && phi.rows() == nh && phi.cols() == 1);
     phi(0) = q(1) * q(1) + q(0) * q(0) + q(3) * q(3) - Scalar(1) + q(2) * q(2);
   }
 
   /// phi(q, t) of the holonomic constraints
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static void holonomic_residuals([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] HolonomicVector<Scalar>& phi) noexcept {
-    holonomic_residuals(t, q, Constants<Scalar>(p), phi);
+  template <class DerivedQ, class Out0>
+  static void holonomic_residuals(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& phi) noexcept {
+    holonomic_residuals(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(phi));
   }
 
   /// T(q, qd, t)
-  template <class Scalar>
-  static Scalar kinetic_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Constants<Scalar>& c) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class DerivedQd>
+  static typename DerivedQ::Scalar kinetic_energy([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Constants<typename DerivedQ::Scalar>& c) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    eigen_assert(q.size() == nq && qd.size() == nq);
     Scalar T = Scalar(0);
     const Scalar w0 = Scalar(2) * q(0) * qd(2) - Scalar(2) * qd(0) * q(2) - Scalar(2) * q(1) * qd(3) + qd(1) * Scalar(2) * q(3);
     const Scalar w1 = qd(1) * Scalar(2) * q(0) + Scalar(2) * q(2) * qd(3) - Scalar(2) * qd(0) * q(1) - Scalar(2) * q(3) * qd(2);
@@ -285,17 +312,17 @@ struct Model {
   /// T(q, qd, t)
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static Scalar kinetic_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Parameters<Scalar>& p) noexcept {
-    return kinetic_energy(t, q, qd, Constants<Scalar>(p));
+  template <class DerivedQ, class DerivedQd>
+  static typename DerivedQ::Scalar kinetic_energy(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Parameters<typename DerivedQ::Scalar>& p) noexcept {
+    return kinetic_energy(t, q, qd, Constants<typename DerivedQ::Scalar>(p));
   }
 
   /// V(q, t)
-  template <class Scalar>
-  static Scalar potential_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ>
+  static typename DerivedQ::Scalar potential_energy([[maybe_unused]] const typename DerivedQ::Scalar& t, [[maybe_unused]] const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    eigen_assert(q.size() == nq);
     Scalar V = Scalar(0);
     return V;
   }
@@ -303,17 +330,21 @@ struct Model {
   /// V(q, t)
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static Scalar potential_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p) noexcept {
-    return potential_energy(t, q, Constants<Scalar>(p));
+  template <class DerivedQ>
+  static typename DerivedQ::Scalar potential_energy(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p) noexcept {
+    return potential_energy(t, q, Constants<typename DerivedQ::Scalar>(p));
   }
 
   /// the model's named outputs, in the order of output_names
-  template <class Scalar>
-  static void outputs([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] OutputVector<Scalar>& y) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class DerivedQd, class DerivedU, class Out0>
+  static void outputs([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, [[maybe_unused]] const Eigen::MatrixBase<DerivedU>& u, const Constants<typename DerivedQ::Scalar>& c, Out0&& y) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<DerivedU>(nu, 1), "u: expected a column of nu entries");
+    static_assert(fits<std::decay_t<Out0>>(ny, 1), "y: expected ny x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && u.size() == nu && y.rows() == ny && y.cols() == 1);
+    using std::sqrt;
     const Scalar w0 = q(0) * qd(2) - qd(0) * q(2) - q(1) * qd(3) + qd(1) * q(3);
     const Scalar w1 = q(2) * q(3);
     const Scalar w2 = q(0) * q(1);
@@ -342,9 +373,514 @@ struct Model {
   /// the model's named outputs, in the order of output_names
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static void outputs([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] OutputVector<Scalar>& y) noexcept {
-    outputs(t, q, qd, u, Constants<Scalar>(p), y);
+  template <class DerivedQ, class DerivedQd, class DerivedU, class Out0>
+  static void outputs(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedU>& u, const Parameters<typename DerivedQ::Scalar>& p, Out0&& y) noexcept {
+    outputs(t, q, qd, u, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(y));
+  }
+
+  /// tau and lambda with M qdd = F + Xi^T lambda + tau for a qdd that satisfies the constraints, tau the least (orthogonal to every row of Xi); M qdd - F by the Newton-Euler recursion
+  template <class DerivedQ, class DerivedQd, class DerivedQdd, class DerivedU, class Out0, class Out1>
+  static void inverse_dynamics([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedQdd>& qdd, const Eigen::MatrixBase<DerivedU>& u, const Constants<typename DerivedQ::Scalar>& c, Out0&& tau, Out1&& lambda) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<DerivedQdd>(nq, 1), "qdd: expected a column of nq entries");
+    static_assert(fits<DerivedU>(nu, 1), "u: expected a column of nu entries");
+    static_assert(fits<std::decay_t<Out0>>(nq, 1), "tau: expected nq x 1");
+    static_assert(fits<std::decay_t<Out1>>(nc, 1), "lambda: expected nc x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && qdd.size() == nq && u.size() == nu && tau.rows() == nq && tau.cols() == 1 && lambda.rows() == nc && lambda.cols() == 1);
+    Eigen::Matrix<Scalar, nc, nq> Xi;
+    const Scalar w0 = qd(1) * Scalar(2) * q(0) + Scalar(2) * q(2) * qd(3) - Scalar(2) * qd(0) * q(1) - Scalar(2) * q(3) * qd(2);
+    const Scalar w1 = w0 * c.p.J3;
+    const Scalar w2 = Scalar(2) * q(0) * qd(2) - Scalar(2) * qd(0) * q(2) - Scalar(2) * q(1) * qd(3) + qd(1) * Scalar(2) * q(3);
+    const Scalar w3 = c.p.J2 * w2;
+    const Scalar w4 = w1 * w2 - w0 * w3 - (qdd(1) * Scalar(2) * q(2) + qdd(0) * Scalar(2) * q(3) - qdd(3) * Scalar(2) * q(0) - Scalar(2) * q(1) * qdd(2)) * c.p.J1;
+    const Scalar w5 = Scalar(2) * qd(0) * q(3) + qd(1) * Scalar(2) * q(2) - Scalar(2) * q(0) * qd(3) - Scalar(2) * q(1) * qd(2);
+    const Scalar w6 = w5 * c.p.J1;
+    const Scalar w7 = w5 * w3 - (qdd(1) * Scalar(2) * q(0) - qdd(0) * Scalar(2) * q(1) + qdd(3) * Scalar(2) * q(2) - Scalar(2) * qdd(2) * q(3)) * c.p.J3 - w6 * w2;
+    const Scalar w8 = w1 * w5 - w6 * w0 + (qdd(1) * Scalar(2) * q(3) - qdd(3) * Scalar(2) * q(1) + Scalar(2) * q(0) * qdd(2) - qdd(0) * Scalar(2) * q(2)) * c.p.J2;
+    tau(0) = -(w4 * Scalar(2) * q(3) - Scalar(2) * q(1) * w7 + Scalar(2) * w8 * q(2) + Scalar(2) * q(1) * u(2) - Scalar(2) * u(1) * q(2) + Scalar(2) * u(0) * q(3));
+    tau(1) = -(w4 * Scalar(2) * q(2) + Scalar(2) * q(2) * u(0) - Scalar(2) * q(0) * u(2) + Scalar(2) * u(1) * q(3) + Scalar(2) * q(0) * w7 - Scalar(2) * w8 * q(3));
+    tau(2) = Scalar(2) * q(1) * u(0) - Scalar(2) * q(0) * u(1) - Scalar(2) * u(2) * q(3) + w4 * Scalar(2) * q(1) + Scalar(2) * w7 * q(3) + Scalar(2) * q(0) * w8;
+    tau(3) = -(Scalar(2) * w7 * q(2) + Scalar(2) * q(1) * w8 - w4 * Scalar(2) * q(0) - (Scalar(2) * q(1) * u(1) + Scalar(2) * q(0) * u(0) + Scalar(2) * u(2) * q(2)));
+    Xi(0, 0) = Scalar(2) * q(0);
+    Xi(0, 1) = Scalar(2) * q(1);
+    Xi(0, 2) = Scalar(2) * q(2);
+    Xi(0, 3) = Scalar(2) * q(3);
+    const Eigen::Matrix<Scalar, nq, 1> total = tau;
+    lambda = (Xi * Xi.transpose()).ldlt().solve(Xi * total);
+    tau = total - Xi.transpose() * lambda;
+  }
+
+  /// tau and lambda with M qdd = F + Xi^T lambda + tau for a qdd that satisfies the constraints, tau the least (orthogonal to every row of Xi); M qdd - F by the Newton-Euler recursion
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class DerivedQd, class DerivedQdd, class DerivedU, class Out0, class Out1>
+  static void inverse_dynamics(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedQdd>& qdd, const Eigen::MatrixBase<DerivedU>& u, const Parameters<typename DerivedQ::Scalar>& p, Out0&& tau, Out1&& lambda) noexcept {
+    inverse_dynamics(t, q, qd, qdd, u, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(tau), std::forward<Out1>(lambda));
+  }
+
+  /// G(q) = dV/dq: the generalized forces of gravity and springs, with C qd + G = -F at zero input and no other loads
+  template <class DerivedQ, class Out0>
+  static void gravity_forces([[maybe_unused]] const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& G) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(nq, 1), "G: expected nq x 1");
+    eigen_assert(q.size() == nq && G.rows() == nq && G.cols() == 1);
+    G(0) = Scalar(0);
+    G(1) = Scalar(0);
+    G(2) = Scalar(0);
+    G(3) = Scalar(0);
+  }
+
+  /// G(q) = dV/dq: the generalized forces of gravity and springs, with C qd + G = -F at zero input and no other loads
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class Out0>
+  static void gravity_forces(const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& G) noexcept {
+    gravity_forces(q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(G));
+  }
+
+  /// C(q, qd) from the Christoffel symbols of M: dM/dt - 2 C is skew-symmetric
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void coriolis_matrix(const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Constants<typename DerivedQ::Scalar>& c, Out0&& C) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(nq, nq), "C: expected nq x nq");
+    eigen_assert(q.size() == nq && qd.size() == nq && C.rows() == nq && C.cols() == nq);
+    const Scalar w0 = c.k15 * q(3);
+    const Scalar w1 = q(1) * c.k16;
+    const Scalar w2 = c.k17 * q(2);
+    const Scalar w3 = c.k3 * q(2);
+    const Scalar w4 = w3 * Scalar(0.5) * qd(3);
+    const Scalar w5 = c.k5 * q(3);
+    const Scalar w6 = Scalar(0.5) * w5 * qd(2);
+    const Scalar w7 = c.k4 * q(3);
+    const Scalar w8 = Scalar(0.5) * w7 * qd(2);
+    const Scalar w9 = c.k3 * q(3);
+    const Scalar w10 = w9 * Scalar(0.5) * qd(2);
+    const Scalar w11 = c.k5 * q(2);
+    const Scalar w12 = w11 * Scalar(0.5) * qd(3);
+    const Scalar w13 = q(0) * c.k16;
+    const Scalar w14 = qd(1) * Scalar(0.5) * w13;
+    const Scalar w15 = c.k4 * q(2);
+    const Scalar w16 = w15 * Scalar(0.5) * qd(3);
+    const Scalar w17 = Scalar(0.5) * qd(0) * w1;
+    const Scalar w18 = -(qd(1) * w9 * Scalar(0.5));
+    const Scalar w19 = Scalar(0.5) * qd(0) * w2;
+    const Scalar w20 = c.k4 * q(1);
+    const Scalar w21 = w20 * Scalar(0.5) * qd(3);
+    const Scalar w22 = -(qd(1) * Scalar(0.5) * w5);
+    const Scalar w23 = c.k17 * q(0);
+    const Scalar w24 = -(w23 * Scalar(0.5) * qd(2));
+    const Scalar w25 = c.k5 * q(1);
+    const Scalar w26 = Scalar(0.5) * w25 * qd(3);
+    const Scalar w27 = c.k3 * q(1);
+    const Scalar w28 = w27 * Scalar(0.5) * qd(3);
+    const Scalar w29 = qd(1) * Scalar(0.5) * w7;
+    const Scalar w30 = w20 * Scalar(0.5) * qd(2);
+    const Scalar w31 = -(qd(1) * w15 * Scalar(0.5));
+    const Scalar w32 = -(Scalar(0.5) * qd(0) * w0);
+    const Scalar w33 = q(0) * c.k15;
+    const Scalar w34 = Scalar(0.5) * w33 * qd(3);
+    const Scalar w35 = qd(1) * w3 * Scalar(0.5);
+    const Scalar w36 = Scalar(0.5) * w25 * qd(2);
+    const Scalar w37 = qd(1) * w11 * Scalar(0.5);
+    const Scalar w38 = -(w27 * Scalar(0.5) * qd(2));
+    const Scalar w39 = c.k17 * q(3);
+    const Scalar w40 = q(2) * c.k15;
+    const Scalar w41 = w9 * Scalar(0.5) * qd(0);
+    const Scalar w42 = c.k4 * q(0);
+    const Scalar w43 = w42 * Scalar(0.5) * qd(3);
+    const Scalar w44 = Scalar(0.5) * qd(0) * w5;
+    const Scalar w45 = c.k5 * q(0);
+    const Scalar w46 = Scalar(0.5) * w45 * qd(3);
+    const Scalar w47 = -(Scalar(0.5) * qd(0) * w7);
+    const Scalar w48 = -(qd(1) * Scalar(0.5) * w40);
+    const Scalar w49 = q(1) * c.k15;
+    const Scalar w50 = w49 * Scalar(0.5) * qd(2);
+    const Scalar w51 = c.k3 * q(0);
+    const Scalar w52 = -(w51 * Scalar(0.5) * qd(3));
+    const Scalar w53 = w15 * Scalar(0.5) * qd(0);
+    const Scalar w54 = w11 * Scalar(0.5) * qd(0);
+    const Scalar w55 = w42 * Scalar(0.5) * qd(2);
+    const Scalar w56 = w3 * Scalar(0.5) * qd(0);
+    const Scalar w57 = Scalar(0.5) * w45 * qd(2);
+    const Scalar w58 = w51 * Scalar(0.5) * qd(2);
+    const Scalar w59 = qd(1) * w39 * Scalar(0.5);
+    const Scalar w60 = c.k17 * q(1);
+    const Scalar w61 = Scalar(0.5) * w60 * qd(3);
+    const Scalar w62 = c.k16 * q(3);
+    const Scalar w63 = -(Scalar(0.5) * w25 * qd(0));
+    const Scalar w64 = qd(1) * Scalar(0.5) * w45;
+    const Scalar w65 = qd(1) * w42 * Scalar(0.5);
+    const Scalar w66 = q(2) * c.k16;
+    const Scalar w67 = -(Scalar(0.5) * w66 * qd(3));
+    const Scalar w68 = w51 * qd(1) * Scalar(0.5);
+    const Scalar w69 = w27 * Scalar(0.5) * qd(0);
+    const Scalar w70 = -(w20 * Scalar(0.5) * qd(0));
+    const Scalar w71 = w62 * Scalar(0.5) * qd(2);
+    C(0, 0) = Scalar(0.5) * w0 * qd(3) + qd(1) * Scalar(0.5) * w1 + Scalar(0.5) * w2 * qd(2);
+    C(0, 1) = -(w4 + w6 + w8 + w10 - w12 + w14 - w16 + qd(1) * c.k1 * q(0) - w17);
+    C(0, 2) = w18 + w19 - w21 + w22 + w24 + w26 + w28 - c.k2 * q(0) * qd(2) - w29;
+    C(0, 3) = -(w30 + w31 + w32 + c.k0 * q(0) * qd(3) + w34 + w35 - w36 - w37 + w38);
+    C(1, 0) = -(w4 - w6 + w10 + c.k1 * q(1) * qd(0) + w16 + w17 + w12 - w14 - w8);
+    C(1, 1) = w39 * Scalar(0.5) * qd(3) + Scalar(0.5) * w40 * qd(2) + Scalar(0.5) * qd(0) * w13;
+    C(1, 2) = -(w41 + w43 - w44 - w46 + w47 + w48 + c.k0 * q(1) * qd(2) + w50 + w52);
+    C(1, 3) = -(qd(3) * c.k2 * q(1) + w53 + w54 + w55 + w56 - w57 - w58 - w59 + w61);
+    C(2, 0) = -(w18 + w19 + w29 + w22 + w21 + w24 + w26 + w28 + c.k2 * q(2) * qd(0));
+    C(2, 1) = w41 - c.k0 * q(2) * qd(1) + w43 + w47 + w48 + w44 + w50 + w52 + w46;
+    C(2, 2) = w23 * Scalar(0.5) * qd(0) + w62 * Scalar(0.5) * qd(3) + qd(1) * w49 * Scalar(0.5);
+    C(2, 3) = w63 + w64 - c.k1 * q(2) * qd(3) + w65 + w67 - w68 - w69 + w70 + w71;
+    C(3, 0) = w30 + w31 - qd(0) * c.k0 * q(3) + w32 + w37 + w36 + w34 + w35 + w38;
+    C(3, 1) = -(w53 - w54 + w55 + w59 + qd(1) * c.k2 * q(3) + w57 - w61 + w58 - w56);
+    C(3, 2) = -(w63 + w64 + c.k1 * q(3) * qd(2) + w69 + w65 + w67 + w70 + w68 + w71);
+    C(3, 3) = Scalar(0.5) * w66 * qd(2) + Scalar(0.5) * qd(0) * w33 + qd(1) * Scalar(0.5) * w60;
+  }
+
+  /// C(q, qd) from the Christoffel symbols of M: dM/dt - 2 C is skew-symmetric
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void coriolis_matrix(const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Parameters<typename DerivedQ::Scalar>& p, Out0&& C) noexcept {
+    coriolis_matrix(q, qd, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(C));
+  }
+
+  /// J = dy/dqd of the output omega
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_omega([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& J) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, nq), "J: expected 3 x nq");
+    eigen_assert(q.size() == nq && J.rows() == 3 && J.cols() == nq);
+    const Scalar w0 = Scalar(2) * q(3);
+    const Scalar w1 = Scalar(2) * q(2);
+    const Scalar w2 = Scalar(2) * q(1);
+    const Scalar w3 = -w2;
+    const Scalar w4 = Scalar(2) * q(0);
+    const Scalar w5 = -w4;
+    const Scalar w6 = -w1;
+    J(0, 0) = w0;
+    J(0, 1) = w1;
+    J(0, 2) = w3;
+    J(0, 3) = w5;
+    J(1, 0) = w6;
+    J(1, 1) = w0;
+    J(1, 2) = w4;
+    J(1, 3) = w3;
+    J(2, 0) = w2;
+    J(2, 1) = w5;
+    J(2, 2) = w0;
+    J(2, 3) = w6;
+  }
+
+  /// J = dy/dqd of the output omega
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_omega(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& J) noexcept {
+    output_jacobian_omega(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(J));
+  }
+
+  /// Jdot qd of the output omega: its rate at qdd = 0
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_omega([[maybe_unused]] const typename DerivedQ::Scalar& t, [[maybe_unused]] const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Eigen::MatrixBase<DerivedQd>& qd, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& Jdot_qd) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, 1), "Jdot_qd: expected 3 x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && Jdot_qd.rows() == 3 && Jdot_qd.cols() == 1);
+    Jdot_qd(0) = Scalar(0);
+    Jdot_qd(1) = Scalar(0);
+    Jdot_qd(2) = Scalar(0);
+  }
+
+  /// Jdot qd of the output omega: its rate at qdd = 0
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_omega(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Parameters<typename DerivedQ::Scalar>& p, Out0&& Jdot_qd) noexcept {
+    output_bias_omega(t, q, qd, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(Jdot_qd));
+  }
+
+  /// J = dy/dqd of the output angular_momentum
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_angular_momentum([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Constants<typename DerivedQ::Scalar>& c, Out0&& J) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, nq), "J: expected 3 x nq");
+    eigen_assert(q.size() == nq && J.rows() == 3 && J.cols() == nq);
+    const Scalar w0 = q(2) * q(3);
+    const Scalar w1 = q(0) * q(1);
+    const Scalar w2 = w0 - w1;
+    const Scalar w3 = q(0) * q(0);
+    const Scalar w4 = -w3;
+    const Scalar w5 = q(1) * q(1);
+    const Scalar w6 = q(3) * q(3);
+    const Scalar w7 = -w6;
+    const Scalar w8 = q(2) * q(2);
+    const Scalar w9 = w4 + w5 + w7 + w8;
+    const Scalar w10 = q(0) * q(2);
+    const Scalar w11 = q(1) * q(3);
+    const Scalar w12 = w10 + w11;
+    const Scalar w13 = q(0) * q(3);
+    const Scalar w14 = q(1) * q(2);
+    const Scalar w15 = w13 - w14;
+    const Scalar w16 = -w8;
+    const Scalar w17 = w4 + w16 + w5 + w6;
+    const Scalar w18 = w0 + w1;
+    const Scalar w19 = w13 + w14;
+    const Scalar w20 = w16 + w5 + w3 + w7;
+    const Scalar w21 = w10 - w11;
+    J(0, 0) = c.k2 * w2 * q(2) - w9 * c.k12 * q(3) + c.k1 * q(1) * w12;
+    J(0, 1) = -(c.k1 * q(0) * w12 + w9 * c.k12 * q(2) + c.k2 * w2 * q(3));
+    J(0, 2) = w9 * c.k12 * q(1) - c.k2 * w2 * q(0) + c.k1 * w12 * q(3);
+    J(0, 3) = w9 * c.k12 * q(0) - c.k1 * q(2) * w12 + c.k2 * w2 * q(1);
+    J(1, 0) = -(c.k1 * q(1) * w15 + w17 * c.k13 * q(2) - c.k0 * w18 * q(3));
+    J(1, 1) = c.k0 * w18 * q(2) + w17 * c.k13 * q(3) + c.k1 * q(0) * w15;
+    J(1, 2) = -(c.k0 * w18 * q(1) + c.k1 * w15 * q(3) - w17 * c.k13 * q(0));
+    J(1, 3) = c.k1 * w15 * q(2) - c.k0 * q(0) * w18 - w17 * c.k13 * q(1);
+    J(2, 0) = -(c.k2 * w19 * q(2) + c.k14 * q(1) * w20 - c.k0 * w21 * q(3));
+    J(2, 1) = c.k0 * w21 * q(2) + c.k2 * w19 * q(3) + c.k14 * q(0) * w20;
+    J(2, 2) = -(c.k14 * w20 * q(3) - c.k2 * w19 * q(0) + c.k0 * q(1) * w21);
+    J(2, 3) = c.k14 * w20 * q(2) - c.k0 * q(0) * w21 - c.k2 * w19 * q(1);
+  }
+
+  /// J = dy/dqd of the output angular_momentum
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_angular_momentum(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& J) noexcept {
+    output_jacobian_angular_momentum(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(J));
+  }
+
+  /// Jdot qd of the output angular_momentum: its rate at qdd = 0
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_angular_momentum([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Constants<typename DerivedQ::Scalar>& c, Out0&& Jdot_qd) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, 1), "Jdot_qd: expected 3 x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && Jdot_qd.rows() == 3 && Jdot_qd.cols() == 1);
+    const Scalar w0 = qd(0) * q(3) - q(0) * qd(3) + qd(1) * q(2) - q(1) * qd(2);
+    const Scalar w1 = c.k12 * q(0) * w0;
+    const Scalar w2 = q(0) * qd(2) - qd(0) * q(2) - q(1) * qd(3) + qd(1) * q(3);
+    const Scalar w3 = w2 * c.k13 * q(1);
+    const Scalar w4 = q(0) * q(0);
+    const Scalar w5 = -w4;
+    const Scalar w6 = q(1) * q(1);
+    const Scalar w7 = q(3) * q(3);
+    const Scalar w8 = -w7;
+    const Scalar w9 = q(2) * q(2);
+    const Scalar w10 = w5 + w6 + w8 + w9;
+    const Scalar w11 = qd(0) * q(1) - q(2) * qd(3) - qd(1) * q(0) + q(3) * qd(2);
+    const Scalar w12 = c.k14 * q(2) * w11;
+    const Scalar w13 = q(2) * q(3);
+    const Scalar w14 = q(0) * q(1);
+    const Scalar w15 = w13 - w14;
+    const Scalar w16 = q(0) * q(2);
+    const Scalar w17 = q(1) * q(3);
+    const Scalar w18 = w16 + w17;
+    const Scalar w19 = c.k12 * q(2) * w0;
+    const Scalar w20 = w2 * c.k13 * q(3);
+    const Scalar w21 = c.k14 * q(0) * w11;
+    const Scalar w22 = -(c.k12 * q(1) * w0);
+    const Scalar w23 = c.k14 * q(3) * w11;
+    const Scalar w24 = w2 * c.k13 * q(0);
+    const Scalar w25 = c.k12 * q(3) * w0;
+    const Scalar w26 = -(w2 * c.k13 * q(2));
+    const Scalar w27 = c.k14 * q(1) * w11;
+    const Scalar w28 = w13 + w14;
+    const Scalar w29 = -w21;
+    const Scalar w30 = -w9;
+    const Scalar w31 = w5 + w30 + w6 + w7;
+    const Scalar w32 = q(0) * q(3);
+    const Scalar w33 = q(1) * q(2);
+    const Scalar w34 = w32 - w33;
+    const Scalar w35 = w30 + w6 + w4 + w8;
+    const Scalar w36 = w16 - w17;
+    const Scalar w37 = w32 + w33;
+    Jdot_qd(0) = Scalar(2) * qd(0) * (w1 + w3 + w10 * qd(3) * c.p.J1 + w12 - w15 * c.k13 * qd(2) - qd(1) * c.k14 * w18) + (w15 * c.k13 * qd(0) - w10 * qd(1) * c.p.J1 - w19 - c.k14 * qd(3) * w18 - w20 + w21) * Scalar(2) * qd(2) + (w22 + w23 + c.k14 * qd(0) * w18 + w15 * c.k13 * qd(3) + w24 + w10 * c.p.J1 * qd(2)) * qd(1) * Scalar(2) + Scalar(2) * (w25 + w26 + w27 - w10 * qd(0) * c.p.J1 + c.k14 * w18 * qd(2) - qd(1) * w15 * c.k13) * qd(3);
+    Jdot_qd(1) = (c.k12 * w28 * qd(0) + w29 + w31 * qd(1) * c.p.J2 + w19 + w20 - c.k14 * w34 * qd(2)) * Scalar(2) * qd(3) - Scalar(2) * qd(0) * (w22 - qd(1) * c.k14 * w34 - w31 * c.p.J2 * qd(2) + w23 + c.k12 * w28 * qd(3) + w24) + (w1 - w31 * c.p.J2 * qd(3) + w3 - c.k12 * w28 * qd(2) + w12 - c.k14 * qd(0) * w34) * qd(1) * Scalar(2) + Scalar(2) * qd(2) * (qd(1) * c.k12 * w28 + w25 + w26 + w27 + c.k14 * w34 * qd(3) - w31 * c.p.J2 * qd(0));
+    Jdot_qd(2) = Scalar(2) * (c.k12 * qd(0) * w36 - w35 * c.p.J3 * qd(2) + w22 + w23 + w24 + qd(1) * c.k13 * w37) * qd(3) - qd(1) * Scalar(2) * (w25 + w26 + qd(0) * w35 * c.p.J3 + w27 + c.k12 * w36 * qd(2) + c.k13 * w37 * qd(3)) + Scalar(2) * qd(2) * (w1 + qd(1) * c.k12 * w36 + w3 + w35 * qd(3) * c.p.J3 - c.k13 * w37 * qd(0) + w12) + Scalar(2) * qd(0) * (w29 + w19 - c.k12 * w36 * qd(3) + c.k13 * w37 * qd(2) + w20 + qd(1) * w35 * c.p.J3);
+  }
+
+  /// Jdot qd of the output angular_momentum: its rate at qdd = 0
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_angular_momentum(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Parameters<typename DerivedQ::Scalar>& p, Out0&& Jdot_qd) noexcept {
+    output_bias_angular_momentum(t, q, qd, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(Jdot_qd));
+  }
+
+  /// J = dy/dq of the output quaternion_norm
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_quaternion_norm([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& J) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(1, nq), "J: expected 1 x nq");
+    eigen_assert(q.size() == nq && J.rows() == 1 && J.cols() == nq);
+    using std::sqrt;
+    const Scalar w0 = sqrt(q(1) * q(1) + q(0) * q(0) + q(3) * q(3) + q(2) * q(2));
+    J(0, 0) = q(0) / w0;
+    J(0, 1) = q(1) / w0;
+    J(0, 2) = q(2) / w0;
+    J(0, 3) = q(3) / w0;
+  }
+
+  /// J = dy/dq of the output quaternion_norm
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_quaternion_norm(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& J) noexcept {
+    output_jacobian_quaternion_norm(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(J));
+  }
+
+  /// Jdot qd of the output quaternion_norm: its acceleration at qdd = 0
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_quaternion_norm([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& Jdot_qd) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(1, 1), "Jdot_qd: expected 1 x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && Jdot_qd.rows() == 1 && Jdot_qd.cols() == 1);
+    using std::sqrt;
+    const Scalar w0 = q(1) * q(1);
+    const Scalar w1 = q(0) * q(0);
+    const Scalar w2 = q(3) * q(3);
+    const Scalar w3 = q(2) * q(2);
+    const Scalar w4 = sqrt(w0 + w1 + w2 + w3);
+    const Scalar w5 = w4 * w4 * w4;
+    Jdot_qd(0) = -((qd(1) * q(0) * q(1) / w5 + w1 * qd(0) / w5 + q(0) * q(2) * qd(2) / w5 + q(0) * qd(3) * q(3) / w5 - qd(0) / w4) * qd(0) + (qd(1) * q(1) * q(2) / w5 + q(2) * qd(3) * q(3) / w5 - qd(2) / w4 + q(0) * qd(0) * q(2) / w5 + w3 * qd(2) / w5) * qd(2) + (qd(1) * w0 / w5 - qd(1) / w4 + q(0) * qd(0) * q(1) / w5 + q(1) * qd(3) * q(3) / w5 + q(1) * q(2) * qd(2) / w5) * qd(1) + (w2 * qd(3) / w5 - qd(3) / w4 + qd(1) * q(1) * q(3) / w5 + q(2) * q(3) * qd(2) / w5 + q(0) * qd(0) * q(3) / w5) * qd(3));
+  }
+
+  /// Jdot qd of the output quaternion_norm: its acceleration at qdd = 0
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_quaternion_norm(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Parameters<typename DerivedQ::Scalar>& p, Out0&& Jdot_qd) noexcept {
+    output_bias_quaternion_norm(t, q, qd, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(Jdot_qd));
+  }
+
+  /// Y with M qdd - F = Y pi + (the loads other than gravity, negated), pi the inertial parameters (inertial_parameter_names)
+  template <class DerivedQ, class DerivedQd, class DerivedQdd, class Out0>
+  static void regressor([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedQdd>& qdd, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& Y) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<DerivedQdd>(nq, 1), "qdd: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(nq, npi), "Y: expected nq x npi");
+    eigen_assert(q.size() == nq && qd.size() == nq && qdd.size() == nq && Y.rows() == nq && Y.cols() == npi);
+    const Scalar w0 = Scalar(2) * q(0) * qd(2) - Scalar(2) * qd(0) * q(2) - Scalar(2) * q(1) * qd(3) + qd(1) * Scalar(2) * q(3);
+    const Scalar w1 = Scalar(2) * qd(0) * q(3) + qd(1) * Scalar(2) * q(2) - Scalar(2) * q(0) * qd(3) - Scalar(2) * q(1) * qd(2);
+    const Scalar w2 = w0 * w1;
+    const Scalar w3 = w2 * Scalar(2) * q(1);
+    const Scalar w4 = qd(1) * Scalar(2) * q(0) + Scalar(2) * q(2) * qd(3) - Scalar(2) * qd(0) * q(1) - Scalar(2) * q(3) * qd(2);
+    const Scalar w5 = w4 * w1;
+    const Scalar w6 = Scalar(2) * w5 * q(2);
+    const Scalar w7 = qdd(0) * Scalar(4) * q(3) + Scalar(4) * qdd(1) * q(2) - qdd(3) * Scalar(4) * q(0) - Scalar(4) * q(1) * qdd(2);
+    const Scalar w8 = qdd(1) * Scalar(2) * q(3) - qdd(3) * Scalar(2) * q(1) + Scalar(2) * q(0) * qdd(2) - qdd(0) * Scalar(2) * q(2);
+    const Scalar w9 = w8 + w5;
+    const Scalar w10 = w0 * w4;
+    const Scalar w11 = qdd(1) * Scalar(2) * q(2) + qdd(0) * Scalar(2) * q(3) - qdd(3) * Scalar(2) * q(0) - Scalar(2) * q(1) * qdd(2);
+    const Scalar w12 = w11 - w10;
+    const Scalar w13 = w1 * w1;
+    const Scalar w14 = w0 * w0;
+    const Scalar w15 = w13 - w14;
+    const Scalar w16 = Scalar(2) * q(3) * w10;
+    const Scalar w17 = Scalar(4) * q(0) * qdd(2) - qdd(0) * Scalar(4) * q(2) - qdd(3) * Scalar(4) * q(1) + Scalar(4) * qdd(1) * q(3);
+    const Scalar w18 = w11 + w10;
+    const Scalar w19 = -(w4 * w4);
+    const Scalar w20 = w13 + w19;
+    const Scalar w21 = qdd(1) * Scalar(2) * q(0) - qdd(0) * Scalar(2) * q(1) + qdd(3) * Scalar(2) * q(2) - Scalar(2) * qdd(2) * q(3);
+    const Scalar w22 = w21 - w2;
+    const Scalar w23 = w21 + w2;
+    const Scalar w24 = w14 + w19;
+    const Scalar w25 = w8 - w5;
+    const Scalar w26 = Scalar(4) * qdd(2) * q(3) - qdd(3) * Scalar(4) * q(2) - Scalar(4) * qdd(1) * q(0) + qdd(0) * Scalar(4) * q(1);
+    const Scalar w27 = w2 * Scalar(2) * q(0);
+    const Scalar w28 = -(Scalar(2) * w5 * q(3));
+    const Scalar w29 = Scalar(2) * q(2) * w10;
+    const Scalar w30 = Scalar(2) * q(0) * w5;
+    const Scalar w31 = w2 * Scalar(2) * q(3);
+    const Scalar w32 = Scalar(2) * q(1) * w10;
+    const Scalar w33 = Scalar(2) * q(1) * w5;
+    const Scalar w34 = w2 * Scalar(2) * q(2);
+    const Scalar w35 = Scalar(2) * q(0) * w10;
+    Y(0, 4) = -(w3 - w6 - w7 * q(3));
+    Y(0, 5) = w9 * Scalar(2) * q(3) - w12 * Scalar(2) * q(2) + w15 * Scalar(2) * q(1);
+    Y(0, 6) = w3 + w16 - w17 * q(2);
+    Y(0, 7) = Scalar(2) * q(1) * w18 + Scalar(2) * w20 * q(2) - w22 * Scalar(2) * q(3);
+    Y(0, 8) = Scalar(2) * w23 * q(2) + w24 * Scalar(2) * q(3) + w25 * Scalar(2) * q(1);
+    Y(0, 9) = -(w16 + w6 - w26 * q(1));
+    Y(1, 4) = w27 + w28 + w7 * q(2);
+    Y(1, 5) = w12 * Scalar(2) * q(3) + w9 * Scalar(2) * q(2) - w15 * Scalar(2) * q(0);
+    Y(1, 6) = -(w27 - w17 * q(3) - w29);
+    Y(1, 7) = -(Scalar(2) * w20 * q(3) + w22 * Scalar(2) * q(2) + Scalar(2) * q(0) * w18);
+    Y(1, 8) = -(Scalar(2) * w23 * q(3) + w25 * Scalar(2) * q(0) - w24 * Scalar(2) * q(2));
+    Y(1, 9) = -(w26 * q(0) + w29 + w28);
+    Y(2, 4) = -(w30 + w31 + q(1) * w7);
+    Y(2, 5) = -(w9 * Scalar(2) * q(1) - w15 * Scalar(2) * q(3) - w12 * Scalar(2) * q(0));
+    Y(2, 6) = w31 - w32 + w17 * q(0);
+    Y(2, 7) = w22 * Scalar(2) * q(1) - Scalar(2) * q(0) * w20 + Scalar(2) * q(3) * w18;
+    Y(2, 8) = w25 * Scalar(2) * q(3) - w24 * Scalar(2) * q(1) - Scalar(2) * q(0) * w23;
+    Y(2, 9) = w30 + w26 * q(3) + w32;
+    Y(3, 4) = w33 - q(0) * w7 + w34;
+    Y(3, 5) = -(w12 * Scalar(2) * q(1) + w9 * Scalar(2) * q(0) + w15 * Scalar(2) * q(2));
+    Y(3, 6) = -(w35 + w17 * q(1) + w34);
+    Y(3, 7) = Scalar(2) * q(1) * w20 + w22 * Scalar(2) * q(0) - Scalar(2) * q(2) * w18;
+    Y(3, 8) = Scalar(2) * q(1) * w23 - w25 * Scalar(2) * q(2) - w24 * Scalar(2) * q(0);
+    Y(3, 9) = w35 - w26 * q(2) - w33;
+    Y(0, 0) = Scalar(0);
+    Y(0, 1) = Scalar(0);
+    Y(0, 2) = Scalar(0);
+    Y(0, 3) = Scalar(0);
+    Y(1, 0) = Scalar(0);
+    Y(1, 1) = Scalar(0);
+    Y(1, 2) = Scalar(0);
+    Y(1, 3) = Scalar(0);
+    Y(2, 0) = Scalar(0);
+    Y(2, 1) = Scalar(0);
+    Y(2, 2) = Scalar(0);
+    Y(2, 3) = Scalar(0);
+    Y(3, 0) = Scalar(0);
+    Y(3, 1) = Scalar(0);
+    Y(3, 2) = Scalar(0);
+    Y(3, 3) = Scalar(0);
+  }
+
+  /// Y with M qdd - F = Y pi + (the loads other than gravity, negated), pi the inertial parameters (inertial_parameter_names)
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class DerivedQd, class DerivedQdd, class Out0>
+  static void regressor(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedQdd>& qdd, const Parameters<typename DerivedQ::Scalar>& p, Out0&& Y) noexcept {
+    regressor(t, q, qd, qdd, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(Y));
+  }
+
+  /// pi of the model's parameters: every body's m, m c and inertia about its origin, in its frame
+  template <class Scalar, class Out0>
+  static void inertial_parameters(const Constants<Scalar>& c, Out0&& pi) noexcept {
+    static_assert(fits<std::decay_t<Out0>>(npi, 1), "pi: expected npi x 1");
+    eigen_assert(pi.rows() == npi && pi.cols() == 1);
+    pi(0) = c.p.m;
+    pi(4) = c.p.J1;
+    pi(6) = c.p.J2;
+    pi(9) = c.p.J3;
+    pi(1) = Scalar(0);
+    pi(2) = Scalar(0);
+    pi(3) = Scalar(0);
+    pi(5) = Scalar(0);
+    pi(7) = Scalar(0);
+    pi(8) = Scalar(0);
+  }
+
+  /// pi of the model's parameters: every body's m, m c and inertia about its origin, in its frame
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar, class Out0>
+  static void inertial_parameters(const Parameters<Scalar>& p, Out0&& pi) noexcept {
+    inertial_parameters(Constants<Scalar>(p), std::forward<Out0>(pi));
   }
 };
 

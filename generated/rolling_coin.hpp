@@ -3,10 +3,13 @@
 // does not throw: safe to call from a real-time loop.
 #pragma once
 
+#include <Eigen/Cholesky>
 #include <Eigen/Core>
 
 #include <array>
 #include <cmath>
+#include <type_traits>
+#include <utility>
 
 namespace eomgen_models {
 namespace rolling_coin {
@@ -22,7 +25,7 @@ struct Model {
   static constexpr const char* name = "rolling_coin";
   static constexpr const char* description = "Thin disk (coin) rolling without slip on a plane: twist, lean, roll";
   static constexpr const char* generator_version = "0.1.0";
-  static constexpr const char* model_hash = "b6389ffb7e08968e";
+  static constexpr const char* model_hash = "ea8362ff284fc086";
   static constexpr std::array<const char*, nq> coordinate_names{{"x", "y", "psi", "theta", "phi"}};
   static constexpr std::array<const char*, nu> input_names{{}};
   static constexpr std::array<const char*, np> parameter_names{{"m", "r", "g"}};
@@ -31,6 +34,8 @@ struct Model {
   static constexpr std::array<int, nh> holonomic_rows{{}};  // row of Xi of each entry of phi
   static constexpr std::array<int, ni> independent_speeds{{2, 3, 4}};  // their coordinate indices
   static constexpr std::array<const char*, ny> output_names{{"centre_1", "centre_2", "centre_3", "centre_velocity_1", "centre_velocity_2", "centre_velocity_3", "contact_1", "contact_2", "contact_3", "omega_1", "omega_2", "omega_3"}};
+  static constexpr int npi = 10;  // inertial parameters: 10 per body (regressor)
+  static constexpr std::array<const char*, npi> inertial_parameter_names{{"coin.m", "coin.mx", "coin.my", "coin.mz", "coin.Ixx", "coin.Ixy", "coin.Iyy", "coin.Ixz", "coin.Iyz", "coin.Izz"}};
   static constexpr bool has_forward_dynamics = false;  // forward_dynamics(), without M
   static constexpr bool prefers_forward_dynamics = false;  // fewer operations than M, F and their Cholesky solve
 
@@ -41,6 +46,14 @@ struct Model {
   template <class Scalar> using ConstraintVector = Eigen::Matrix<Scalar, nc, 1>;
   template <class Scalar> using HolonomicVector = Eigen::Matrix<Scalar, nh, 1>;
   template <class Scalar> using OutputVector = Eigen::Matrix<Scalar, ny, 1>;
+
+  /// Whether an Eigen expression of type Derived can be rows x cols: its sizes fixed to those,
+  /// or dynamic (then eigen_assert tests them).
+  template <class Derived>
+  static constexpr bool fits(int rows, int cols) noexcept {
+    return (int(Derived::RowsAtCompileTime) == Eigen::Dynamic || int(Derived::RowsAtCompileTime) == rows) &&
+           (int(Derived::ColsAtCompileTime) == Eigen::Dynamic || int(Derived::ColsAtCompileTime) == cols);
+  }
 
   /// Parameters, defaulted to the model's values.
   template <class Scalar>
@@ -59,14 +72,13 @@ struct Model {
    public:
     /// Computes every constant from a copy of the parameters.
     explicit Constants(const Parameters<Scalar>& parameters) noexcept : p(parameters) {
-      using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-      using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-      using std::log; using std::abs; using std::pow;
       const Scalar w0 = p.r * p.r;
       k0 = w0 * Scalar(0.25) * p.m;
       k1 = w0 * p.m * Scalar(0.5);
       k2 = p.g * p.m;
       k3 = p.m * Scalar(0.5);
+      k4 = Scalar(0.5) * Scalar(0);
+      k5 = Scalar(2) * p.m;
     }
     /// The parameters these constants were computed from.
     const Parameters<Scalar>& parameters() const noexcept { return p; }
@@ -74,15 +86,17 @@ struct Model {
    private:
     friend struct Model;
     Parameters<Scalar> p;
-    Scalar k0, k1, k2, k3;
+    Scalar k0, k1, k2, k3, k4, k5;
   };
 
   /// M(q, t), symmetric positive (semi)definite
-  template <class Scalar>
-  static void mass_matrix([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] MassMatrix<Scalar>& M) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class Out0>
+  static void mass_matrix([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Constants<typename DerivedQ::Scalar>& c, Out0&& M) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(nq, nq), "M: expected nq x nq");
+    eigen_assert(q.size() == nq && M.rows() == nq && M.cols() == nq);
+    using std::sin; using std::cos;
     const Scalar w0 = sin(q(4));
     const Scalar w1 = cos(q(3));
     const Scalar w2 = w0 * w1;
@@ -123,17 +137,21 @@ struct Model {
   /// M(q, t), symmetric positive (semi)definite
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static void mass_matrix([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] MassMatrix<Scalar>& M) noexcept {
-    mass_matrix(t, q, Constants<Scalar>(p), M);
+  template <class DerivedQ, class Out0>
+  static void mass_matrix(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& M) noexcept {
+    mass_matrix(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(M));
   }
 
   /// F(q, qd, t, u): everything of Lagrange's equations except M qdd
-  template <class Scalar>
-  static void forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] Vector<Scalar>& F) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class DerivedQd, class DerivedU, class Out0>
+  static void forcing([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, [[maybe_unused]] const Eigen::MatrixBase<DerivedU>& u, const Constants<typename DerivedQ::Scalar>& c, Out0&& F) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<DerivedU>(nu, 1), "u: expected a column of nu entries");
+    static_assert(fits<std::decay_t<Out0>>(nq, 1), "F: expected nq x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && u.size() == nu && F.rows() == nq && F.cols() == 1);
+    using std::sin; using std::cos;
     const Scalar w0 = cos(q(3));
     const Scalar w1 = w0 * qd(2);
     const Scalar w2 = cos(q(4));
@@ -161,17 +179,22 @@ struct Model {
   /// F(q, qd, t, u): everything of Lagrange's equations except M qdd
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static void forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] Vector<Scalar>& F) noexcept {
-    forcing(t, q, qd, u, Constants<Scalar>(p), F);
+  template <class DerivedQ, class DerivedQd, class DerivedU, class Out0>
+  static void forcing(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedU>& u, const Parameters<typename DerivedQ::Scalar>& p, Out0&& F) noexcept {
+    forcing(t, q, qd, u, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(F));
   }
 
   /// M and F together, sharing their common subexpressions
-  template <class Scalar>
-  static void mass_matrix_and_forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] MassMatrix<Scalar>& M, [[maybe_unused]] Vector<Scalar>& F) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class DerivedQd, class DerivedU, class Out0, class Out1>
+  static void mass_matrix_and_forcing([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, [[maybe_unused]] const Eigen::MatrixBase<DerivedU>& u, const Constants<typename DerivedQ::Scalar>& c, Out0&& M, Out1&& F) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<DerivedU>(nu, 1), "u: expected a column of nu entries");
+    static_assert(fits<std::decay_t<Out0>>(nq, nq), "M: expected nq x nq");
+    static_assert(fits<std::decay_t<Out1>>(nq, 1), "F: expected nq x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && u.size() == nu && M.rows() == nq && M.cols() == nq && F.rows() == nq && F.cols() == 1);
+    using std::sin; using std::cos;
     const Scalar w0 = sin(q(4));
     const Scalar w1 = cos(q(3));
     const Scalar w2 = w0 * w1;
@@ -229,17 +252,19 @@ struct Model {
   /// M and F together, sharing their common subexpressions
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static void mass_matrix_and_forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] MassMatrix<Scalar>& M, [[maybe_unused]] Vector<Scalar>& F) noexcept {
-    mass_matrix_and_forcing(t, q, qd, u, Constants<Scalar>(p), M, F);
+  template <class DerivedQ, class DerivedQd, class DerivedU, class Out0, class Out1>
+  static void mass_matrix_and_forcing(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedU>& u, const Parameters<typename DerivedQ::Scalar>& p, Out0&& M, Out1&& F) noexcept {
+    mass_matrix_and_forcing(t, q, qd, u, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(M), std::forward<Out1>(F));
   }
 
   /// Xi(q, t) of the Pfaffian constraints Xi qd + Xi_t = 0
-  template <class Scalar>
-  static void constraint_jacobian([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] ConstraintJacobian<Scalar>& Xi) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class Out0>
+  static void constraint_jacobian([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Constants<typename DerivedQ::Scalar>& c, Out0&& Xi) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(nc, nq), "Xi: expected nc x nq");
+    eigen_assert(q.size() == nq && Xi.rows() == nc && Xi.cols() == nq);
+    using std::sin; using std::cos;
     const Scalar w0 = sin(q(3));
     const Scalar w1 = cos(q(2));
     const Scalar w2 = cos(q(3));
@@ -261,17 +286,18 @@ struct Model {
   /// Xi(q, t) of the Pfaffian constraints Xi qd + Xi_t = 0
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static void constraint_jacobian([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintJacobian<Scalar>& Xi) noexcept {
-    constraint_jacobian(t, q, Constants<Scalar>(p), Xi);
+  template <class DerivedQ, class Out0>
+  static void constraint_jacobian(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& Xi) noexcept {
+    constraint_jacobian(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(Xi));
   }
 
   /// Xi_t(q, t)
-  template <class Scalar>
-  static void constraint_rate_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] ConstraintVector<Scalar>& Xi_t) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class Out0>
+  static void constraint_rate_term([[maybe_unused]] const typename DerivedQ::Scalar& t, [[maybe_unused]] const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& Xi_t) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(nc, 1), "Xi_t: expected nc x 1");
+    eigen_assert(q.size() == nq && Xi_t.rows() == nc && Xi_t.cols() == 1);
     Xi_t(0) = Scalar(0);
     Xi_t(1) = Scalar(0);
   }
@@ -279,17 +305,20 @@ struct Model {
   /// Xi_t(q, t)
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static void constraint_rate_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintVector<Scalar>& Xi_t) noexcept {
-    constraint_rate_term(t, q, Constants<Scalar>(p), Xi_t);
+  template <class DerivedQ, class Out0>
+  static void constraint_rate_term(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& Xi_t) noexcept {
+    constraint_rate_term(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(Xi_t));
   }
 
   /// dXi/dt qd + dXi_t/dt, so that Xi qdd + b = 0
-  template <class Scalar>
-  static void constraint_acceleration_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] ConstraintVector<Scalar>& b) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void constraint_acceleration_term([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Constants<typename DerivedQ::Scalar>& c, Out0&& b) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(nc, 1), "b: expected nc x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && b.rows() == nc && b.cols() == 1);
+    using std::sin; using std::cos;
     const Scalar w0 = cos(q(3));
     const Scalar w1 = cos(q(2));
     const Scalar w2 = sin(q(2));
@@ -303,33 +332,35 @@ struct Model {
   /// dXi/dt qd + dXi_t/dt, so that Xi qdd + b = 0
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static void constraint_acceleration_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintVector<Scalar>& b) noexcept {
-    constraint_acceleration_term(t, q, qd, Constants<Scalar>(p), b);
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void constraint_acceleration_term(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Parameters<typename DerivedQ::Scalar>& p, Out0&& b) noexcept {
+    constraint_acceleration_term(t, q, qd, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(b));
   }
 
   /// phi(q, t) of the holonomic constraints
-  template <class Scalar>
-  static void holonomic_residuals([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] HolonomicVector<Scalar>& phi) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class Out0>
+  static void holonomic_residuals([[maybe_unused]] const typename DerivedQ::Scalar& t, [[maybe_unused]] const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, [[maybe_unused]] Out0&& phi) noexcept {
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(nh, 1), "phi: expected nh x 1");
+    eigen_assert(q.size() == nq && phi.rows() == nh && phi.cols() == 1);
   }
 
   /// phi(q, t) of the holonomic constraints
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static void holonomic_residuals([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] HolonomicVector<Scalar>& phi) noexcept {
-    holonomic_residuals(t, q, Constants<Scalar>(p), phi);
+  template <class DerivedQ, class Out0>
+  static void holonomic_residuals(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& phi) noexcept {
+    holonomic_residuals(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(phi));
   }
 
   /// T(q, qd, t)
-  template <class Scalar>
-  static Scalar kinetic_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Constants<Scalar>& c) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class DerivedQd>
+  static typename DerivedQ::Scalar kinetic_energy([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Constants<typename DerivedQ::Scalar>& c) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    eigen_assert(q.size() == nq && qd.size() == nq);
+    using std::sin; using std::cos;
     Scalar T = Scalar(0);
     const Scalar w0 = sin(q(4));
     const Scalar w1 = cos(q(3)) * qd(2);
@@ -346,17 +377,18 @@ struct Model {
   /// T(q, qd, t)
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static Scalar kinetic_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Parameters<Scalar>& p) noexcept {
-    return kinetic_energy(t, q, qd, Constants<Scalar>(p));
+  template <class DerivedQ, class DerivedQd>
+  static typename DerivedQ::Scalar kinetic_energy(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Parameters<typename DerivedQ::Scalar>& p) noexcept {
+    return kinetic_energy(t, q, qd, Constants<typename DerivedQ::Scalar>(p));
   }
 
   /// V(q, t)
-  template <class Scalar>
-  static Scalar potential_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ>
+  static typename DerivedQ::Scalar potential_energy([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Constants<typename DerivedQ::Scalar>& c) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    eigen_assert(q.size() == nq);
+    using std::cos;
     Scalar V = Scalar(0);
     V = c.k2 * cos(q(3)) * c.p.r;
     return V;
@@ -365,17 +397,21 @@ struct Model {
   /// V(q, t)
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static Scalar potential_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p) noexcept {
-    return potential_energy(t, q, Constants<Scalar>(p));
+  template <class DerivedQ>
+  static typename DerivedQ::Scalar potential_energy(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p) noexcept {
+    return potential_energy(t, q, Constants<typename DerivedQ::Scalar>(p));
   }
 
   /// the model's named outputs, in the order of output_names
-  template <class Scalar>
-  static void outputs([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] OutputVector<Scalar>& y) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class DerivedQd, class DerivedU, class Out0>
+  static void outputs([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, [[maybe_unused]] const Eigen::MatrixBase<DerivedU>& u, const Constants<typename DerivedQ::Scalar>& c, Out0&& y) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<DerivedU>(nu, 1), "u: expected a column of nu entries");
+    static_assert(fits<std::decay_t<Out0>>(ny, 1), "y: expected ny x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && u.size() == nu && y.rows() == ny && y.cols() == 1);
+    using std::sin; using std::cos;
     const Scalar w0 = cos(q(3));
     const Scalar w1 = sin(q(3));
     y(0) = q(0);
@@ -395,9 +431,534 @@ struct Model {
   /// the model's named outputs, in the order of output_names
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static void outputs([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] OutputVector<Scalar>& y) noexcept {
-    outputs(t, q, qd, u, Constants<Scalar>(p), y);
+  template <class DerivedQ, class DerivedQd, class DerivedU, class Out0>
+  static void outputs(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedU>& u, const Parameters<typename DerivedQ::Scalar>& p, Out0&& y) noexcept {
+    outputs(t, q, qd, u, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(y));
+  }
+
+  /// tau and lambda with M qdd = F + Xi^T lambda + tau for a qdd that satisfies the constraints, tau the least (orthogonal to every row of Xi); M qdd - F from M and F
+  template <class DerivedQ, class DerivedQd, class DerivedQdd, class DerivedU, class Out0, class Out1>
+  static void inverse_dynamics([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedQdd>& qdd, [[maybe_unused]] const Eigen::MatrixBase<DerivedU>& u, const Constants<typename DerivedQ::Scalar>& c, Out0&& tau, Out1&& lambda) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<DerivedQdd>(nq, 1), "qdd: expected a column of nq entries");
+    static_assert(fits<DerivedU>(nu, 1), "u: expected a column of nu entries");
+    static_assert(fits<std::decay_t<Out0>>(nq, 1), "tau: expected nq x 1");
+    static_assert(fits<std::decay_t<Out1>>(nc, 1), "lambda: expected nc x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && qdd.size() == nq && u.size() == nu && tau.rows() == nq && tau.cols() == 1 && lambda.rows() == nc && lambda.cols() == 1);
+    using std::sin; using std::cos;
+    Eigen::Matrix<Scalar, nc, nq> Xi;
+    const Scalar w0 = sin(q(3));
+    const Scalar w1 = sin(q(4));
+    const Scalar w2 = cos(q(3));
+    const Scalar w3 = w2 * qd(2);
+    const Scalar w4 = cos(q(4));
+    const Scalar w5 = w1 * w3 + w4 * qd(3);
+    const Scalar w6 = w1 * qd(3) - w3 * w4;
+    const Scalar w7 = c.k0 * w6;
+    const Scalar w8 = c.k0 * w5;
+    const Scalar w9 = w5 * w7 - w6 * w8 + c.k1 * w3 * qd(3);
+    const Scalar w10 = w1 * w2;
+    const Scalar w11 = c.k0 * w4;
+    const Scalar w12 = w2 * w4;
+    const Scalar w13 = w1 * c.k0;
+    const Scalar w14 = w12 * w13 - w10 * w11;
+    const Scalar w15 = w0 * qd(2);
+    const Scalar w16 = w15 - qd(4);
+    const Scalar w17 = w16 * c.k1;
+    const Scalar w18 = w15 * qd(3);
+    const Scalar w19 = w6 * w17 - w16 * w7 - (w1 * w18 + w6 * qd(4)) * c.k0;
+    const Scalar w20 = c.k0 * (w18 * w4 + w5 * qd(4)) - w5 * w17 + w16 * w8;
+    const Scalar w21 = c.p.r * w0;
+    const Scalar w22 = cos(q(2));
+    const Scalar w23 = sin(q(2));
+    tau(0) = qdd(0) * c.p.m;
+    tau(1) = qdd(1) * c.p.m;
+    tau(2) = -(c.k1 * w0 * qdd(4) - w9 * w0 + qdd(3) * w14 - w19 * w10 + w20 * w12 - (c.k0 * w10 * w10 + w12 * c.k0 * w12 + c.k1 * w0 * w0) * qdd(2));
+    tau(3) = -(w14 * qdd(2) - c.p.m * w21 * qd(3) * qd(3) * w2 * c.p.r - w1 * w20 - qdd(3) * (w1 * w13 + w21 * w21 * c.p.m + w4 * w11) - w19 * w4 + c.k2 * w21);
+    tau(4) = c.k1 * qdd(4) - w9 - c.k1 * w0 * qdd(2);
+    Xi(0, 1) = Scalar(1);
+    Xi(0, 2) = -(c.p.r * w0 * w22);
+    Xi(0, 3) = -(w2 * c.p.r * w23);
+    Xi(0, 4) = -(w1 * (w4 * w23 * w0 - w1 * w22) * c.p.r - c.p.r * w4 * (w4 * w22 + w1 * w23 * w0));
+    Xi(1, 0) = -Scalar(1);
+    Xi(1, 2) = -(c.p.r * w23 * w0);
+    Xi(1, 3) = w2 * c.p.r * w22;
+    Xi(1, 4) = -((w1 * w0 * w22 - w4 * w23) * c.p.r * w4 - w1 * c.p.r * (w4 * w0 * w22 + w1 * w23));
+    Xi(0, 0) = Scalar(0);
+    Xi(1, 1) = Scalar(0);
+    const Eigen::Matrix<Scalar, nq, 1> total = tau;
+    lambda = (Xi * Xi.transpose()).ldlt().solve(Xi * total);
+    tau = total - Xi.transpose() * lambda;
+  }
+
+  /// tau and lambda with M qdd = F + Xi^T lambda + tau for a qdd that satisfies the constraints, tau the least (orthogonal to every row of Xi); M qdd - F from M and F
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class DerivedQd, class DerivedQdd, class DerivedU, class Out0, class Out1>
+  static void inverse_dynamics(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedQdd>& qdd, const Eigen::MatrixBase<DerivedU>& u, const Parameters<typename DerivedQ::Scalar>& p, Out0&& tau, Out1&& lambda) noexcept {
+    inverse_dynamics(t, q, qd, qdd, u, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(tau), std::forward<Out1>(lambda));
+  }
+
+  /// G(q) = dV/dq: the generalized forces of gravity and springs, with C qd + G = -F at zero input and no other loads
+  template <class DerivedQ, class Out0>
+  static void gravity_forces(const Eigen::MatrixBase<DerivedQ>& q, const Constants<typename DerivedQ::Scalar>& c, Out0&& G) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(nq, 1), "G: expected nq x 1");
+    eigen_assert(q.size() == nq && G.rows() == nq && G.cols() == 1);
+    using std::sin;
+    G(3) = -(c.k2 * c.p.r * sin(q(3)));
+    G(0) = Scalar(0);
+    G(1) = Scalar(0);
+    G(2) = Scalar(0);
+    G(4) = Scalar(0);
+  }
+
+  /// G(q) = dV/dq: the generalized forces of gravity and springs, with C qd + G = -F at zero input and no other loads
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class Out0>
+  static void gravity_forces(const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& G) noexcept {
+    gravity_forces(q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(G));
+  }
+
+  /// C(q, qd) from the Christoffel symbols of M: dM/dt - 2 C is skew-symmetric
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void coriolis_matrix(const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Constants<typename DerivedQ::Scalar>& c, Out0&& C) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(nq, nq), "C: expected nq x nq");
+    eigen_assert(q.size() == nq && qd.size() == nq && C.rows() == nq && C.cols() == nq);
+    using std::sin; using std::cos;
+    const Scalar w0 = c.k4 * qd(4);
+    const Scalar w1 = cos(q(4));
+    const Scalar w2 = sin(q(3));
+    const Scalar w3 = w1 * w2;
+    const Scalar w4 = cos(q(3));
+    const Scalar w5 = w4 * w1;
+    const Scalar w6 = w4 * c.k1;
+    const Scalar w7 = sin(q(4));
+    const Scalar w8 = w7 * w2;
+    const Scalar w9 = w7 * w4;
+    const Scalar w10 = w3 * c.k0 * w5 - w2 * w6 + c.k0 * w8 * w9 - w4 * c.k1 * w2 + c.k0 * w3 * w5 + c.k0 * w9 * w8;
+    const Scalar w11 = Scalar(0.5) * w10 * qd(2);
+    const Scalar w12 = w6 * Scalar(0.5) * qd(4);
+    const Scalar w13 = c.k4 * qd(2);
+    const Scalar w14 = w6 * Scalar(0.5) * qd(3);
+    const Scalar w15 = c.k4 * qd(3);
+    const Scalar w16 = w13 + w6 * Scalar(0.5) * qd(2) + w15;
+    C(2, 2) = w0 - Scalar(0.5) * w10 * qd(3);
+    C(2, 3) = w0 - qd(3) * (c.k0 * w1 * w8 - w3 * w7 * c.k0) - w11 - w12;
+    C(2, 4) = w13 - w14 + w15;
+    C(3, 2) = w0 + w11 + w12;
+    C(3, 3) = c.k5 * c.p.r * w2 * w4 * c.p.r * Scalar(0.5) * qd(3) + w0;
+    C(3, 4) = w16;
+    C(4, 2) = -(w13 + w15 + w14);
+    C(4, 3) = -w16;
+    C(0, 0) = Scalar(0);
+    C(0, 1) = Scalar(0);
+    C(0, 2) = Scalar(0);
+    C(0, 3) = Scalar(0);
+    C(0, 4) = Scalar(0);
+    C(1, 0) = Scalar(0);
+    C(1, 1) = Scalar(0);
+    C(1, 2) = Scalar(0);
+    C(1, 3) = Scalar(0);
+    C(1, 4) = Scalar(0);
+    C(2, 0) = Scalar(0);
+    C(2, 1) = Scalar(0);
+    C(3, 0) = Scalar(0);
+    C(3, 1) = Scalar(0);
+    C(4, 0) = Scalar(0);
+    C(4, 1) = Scalar(0);
+    C(4, 4) = Scalar(0);
+  }
+
+  /// C(q, qd) from the Christoffel symbols of M: dM/dt - 2 C is skew-symmetric
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void coriolis_matrix(const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Parameters<typename DerivedQ::Scalar>& p, Out0&& C) noexcept {
+    coriolis_matrix(q, qd, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(C));
+  }
+
+  /// J = dy/dq of the output centre
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_centre([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Constants<typename DerivedQ::Scalar>& c, Out0&& J) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, nq), "J: expected 3 x nq");
+    eigen_assert(q.size() == nq && J.rows() == 3 && J.cols() == nq);
+    using std::sin;
+    J(0, 0) = Scalar(1);
+    J(1, 1) = Scalar(1);
+    J(2, 3) = -(c.p.r * sin(q(3)));
+    J(0, 1) = Scalar(0);
+    J(0, 2) = Scalar(0);
+    J(0, 3) = Scalar(0);
+    J(0, 4) = Scalar(0);
+    J(1, 0) = Scalar(0);
+    J(1, 2) = Scalar(0);
+    J(1, 3) = Scalar(0);
+    J(1, 4) = Scalar(0);
+    J(2, 0) = Scalar(0);
+    J(2, 1) = Scalar(0);
+    J(2, 2) = Scalar(0);
+    J(2, 4) = Scalar(0);
+  }
+
+  /// J = dy/dq of the output centre
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_centre(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& J) noexcept {
+    output_jacobian_centre(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(J));
+  }
+
+  /// Jdot qd of the output centre: its acceleration at qdd = 0
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_centre([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Constants<typename DerivedQ::Scalar>& c, Out0&& Jdot_qd) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, 1), "Jdot_qd: expected 3 x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && Jdot_qd.rows() == 3 && Jdot_qd.cols() == 1);
+    using std::cos;
+    Jdot_qd(2) = -(qd(3) * qd(3) * cos(q(3)) * c.p.r);
+    Jdot_qd(0) = Scalar(0);
+    Jdot_qd(1) = Scalar(0);
+  }
+
+  /// Jdot qd of the output centre: its acceleration at qdd = 0
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_centre(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Parameters<typename DerivedQ::Scalar>& p, Out0&& Jdot_qd) noexcept {
+    output_bias_centre(t, q, qd, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(Jdot_qd));
+  }
+
+  /// J = dy/dqd of the output centre_velocity
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_centre_velocity([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Constants<typename DerivedQ::Scalar>& c, Out0&& J) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, nq), "J: expected 3 x nq");
+    eigen_assert(q.size() == nq && J.rows() == 3 && J.cols() == nq);
+    using std::sin;
+    J(0, 0) = Scalar(1);
+    J(1, 1) = Scalar(1);
+    J(2, 3) = -(c.p.r * sin(q(3)));
+    J(0, 1) = Scalar(0);
+    J(0, 2) = Scalar(0);
+    J(0, 3) = Scalar(0);
+    J(0, 4) = Scalar(0);
+    J(1, 0) = Scalar(0);
+    J(1, 2) = Scalar(0);
+    J(1, 3) = Scalar(0);
+    J(1, 4) = Scalar(0);
+    J(2, 0) = Scalar(0);
+    J(2, 1) = Scalar(0);
+    J(2, 2) = Scalar(0);
+    J(2, 4) = Scalar(0);
+  }
+
+  /// J = dy/dqd of the output centre_velocity
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_centre_velocity(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& J) noexcept {
+    output_jacobian_centre_velocity(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(J));
+  }
+
+  /// Jdot qd of the output centre_velocity: its rate at qdd = 0
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_centre_velocity([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Constants<typename DerivedQ::Scalar>& c, Out0&& Jdot_qd) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, 1), "Jdot_qd: expected 3 x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && Jdot_qd.rows() == 3 && Jdot_qd.cols() == 1);
+    using std::cos;
+    Jdot_qd(2) = -(qd(3) * qd(3) * cos(q(3)) * c.p.r);
+    Jdot_qd(0) = Scalar(0);
+    Jdot_qd(1) = Scalar(0);
+  }
+
+  /// Jdot qd of the output centre_velocity: its rate at qdd = 0
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_centre_velocity(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Parameters<typename DerivedQ::Scalar>& p, Out0&& Jdot_qd) noexcept {
+    output_bias_centre_velocity(t, q, qd, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(Jdot_qd));
+  }
+
+  /// J = dy/dq of the output contact
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_contact([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Constants<typename DerivedQ::Scalar>& c, Out0&& J) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, nq), "J: expected 3 x nq");
+    eigen_assert(q.size() == nq && J.rows() == 3 && J.cols() == nq);
+    using std::sin; using std::cos;
+    const Scalar w0 = sin(q(2));
+    const Scalar w1 = sin(q(3));
+    const Scalar w2 = cos(q(3));
+    const Scalar w3 = cos(q(2));
+    J(0, 0) = Scalar(1);
+    J(0, 2) = c.p.r * w0 * w1;
+    J(0, 3) = -(w2 * c.p.r * w3);
+    J(1, 1) = Scalar(1);
+    J(1, 2) = -(c.p.r * w1 * w3);
+    J(1, 3) = -(w2 * c.p.r * w0);
+    J(0, 1) = Scalar(0);
+    J(0, 4) = Scalar(0);
+    J(1, 0) = Scalar(0);
+    J(1, 4) = Scalar(0);
+    J(2, 0) = Scalar(0);
+    J(2, 1) = Scalar(0);
+    J(2, 2) = Scalar(0);
+    J(2, 3) = Scalar(0);
+    J(2, 4) = Scalar(0);
+  }
+
+  /// J = dy/dq of the output contact
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_contact(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& J) noexcept {
+    output_jacobian_contact(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(J));
+  }
+
+  /// Jdot qd of the output contact: its acceleration at qdd = 0
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_contact([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Constants<typename DerivedQ::Scalar>& c, Out0&& Jdot_qd) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, 1), "Jdot_qd: expected 3 x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && Jdot_qd.rows() == 3 && Jdot_qd.cols() == 1);
+    using std::sin; using std::cos;
+    const Scalar w0 = cos(q(3));
+    const Scalar w1 = sin(q(2));
+    const Scalar w2 = sin(q(3));
+    const Scalar w3 = cos(q(2));
+    Jdot_qd(0) = qd(3) * (w0 * c.p.r * w1 * qd(2) + c.p.r * w2 * qd(3) * w3) + (c.p.r * w2 * w3 * qd(2) + w0 * c.p.r * w1 * qd(3)) * qd(2);
+    Jdot_qd(1) = qd(3) * (c.p.r * w1 * w2 * qd(3) - w0 * c.p.r * w3 * qd(2)) - (w0 * c.p.r * qd(3) * w3 - c.p.r * w1 * w2 * qd(2)) * qd(2);
+    Jdot_qd(2) = Scalar(0);
+  }
+
+  /// Jdot qd of the output contact: its acceleration at qdd = 0
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_contact(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Parameters<typename DerivedQ::Scalar>& p, Out0&& Jdot_qd) noexcept {
+    output_bias_contact(t, q, qd, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(Jdot_qd));
+  }
+
+  /// J = dy/dqd of the output omega
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_omega([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& J) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, nq), "J: expected 3 x nq");
+    eigen_assert(q.size() == nq && J.rows() == 3 && J.cols() == nq);
+    using std::sin; using std::cos;
+    J(0, 2) = -sin(q(3));
+    J(0, 4) = Scalar(1);
+    J(1, 3) = Scalar(1);
+    J(2, 2) = cos(q(3));
+    J(0, 0) = Scalar(0);
+    J(0, 1) = Scalar(0);
+    J(0, 3) = Scalar(0);
+    J(1, 0) = Scalar(0);
+    J(1, 1) = Scalar(0);
+    J(1, 2) = Scalar(0);
+    J(1, 4) = Scalar(0);
+    J(2, 0) = Scalar(0);
+    J(2, 1) = Scalar(0);
+    J(2, 3) = Scalar(0);
+    J(2, 4) = Scalar(0);
+  }
+
+  /// J = dy/dqd of the output omega
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_omega(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& J) noexcept {
+    output_jacobian_omega(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(J));
+  }
+
+  /// Jdot qd of the output omega: its rate at qdd = 0
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_omega([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& Jdot_qd) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, 1), "Jdot_qd: expected 3 x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && Jdot_qd.rows() == 3 && Jdot_qd.cols() == 1);
+    using std::sin; using std::cos;
+    Jdot_qd(0) = -(cos(q(3)) * qd(3) * qd(2));
+    Jdot_qd(2) = -(sin(q(3)) * qd(3) * qd(2));
+    Jdot_qd(1) = Scalar(0);
+  }
+
+  /// Jdot qd of the output omega: its rate at qdd = 0
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_omega(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Parameters<typename DerivedQ::Scalar>& p, Out0&& Jdot_qd) noexcept {
+    output_bias_omega(t, q, qd, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(Jdot_qd));
+  }
+
+  /// Y with M qdd - F = Y pi + (the loads other than gravity, negated), pi the inertial parameters (inertial_parameter_names)
+  template <class DerivedQ, class DerivedQd, class DerivedQdd, class Out0>
+  static void regressor([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedQdd>& qdd, const Constants<typename DerivedQ::Scalar>& c, Out0&& Y) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<DerivedQdd>(nq, 1), "qdd: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(nq, npi), "Y: expected nq x npi");
+    eigen_assert(q.size() == nq && qd.size() == nq && qdd.size() == nq && Y.rows() == nq && Y.cols() == npi);
+    using std::sin; using std::cos;
+    const Scalar w0 = qd(3) * qd(3);
+    const Scalar w1 = cos(q(3));
+    const Scalar w2 = sin(q(3));
+    const Scalar w3 = sin(q(2));
+    const Scalar w4 = w1 * w3;
+    const Scalar w5 = cos(q(2));
+    const Scalar w6 = w1 * w5;
+    const Scalar w7 = c.p.r * w2 * w2;
+    const Scalar w8 = w0 * w1 * c.p.r * w2 + qdd(1) * w4 + qdd(0) * w6 - c.p.g * w2 + qdd(3) * w7;
+    const Scalar w9 = cos(q(4));
+    const Scalar w10 = sin(q(4));
+    const Scalar w11 = w9 * w2 * w5 + w10 * w3;
+    const Scalar w12 = w9 * w3 * w2 - w10 * w5;
+    const Scalar w13 = w1 * c.p.r * w9 * w2;
+    const Scalar w14 = w1 * w1;
+    const Scalar w15 = w1 * w9;
+    const Scalar w16 = qdd(1) * w12 + qdd(0) * w11 - qdd(3) * w13 - w0 * c.p.r * w9 * w14 + c.p.g * w15;
+    const Scalar w17 = w10 * w2 * w5 - w9 * w3;
+    const Scalar w18 = w9 * w5 + w10 * w3 * w2;
+    const Scalar w19 = w10 * w1;
+    const Scalar w20 = w10 * w1 * c.p.r * w2;
+    const Scalar w21 = w17 * qdd(0) + qdd(1) * w18 + c.p.g * w19 - qdd(3) * w20 - w10 * w0 * c.p.r * w14;
+    const Scalar w22 = w1 * w9 * qd(2) - w10 * qd(3);
+    const Scalar w23 = w19 * qdd(2) + w22 * qd(4) - w10 * w2 * qd(3) * qd(2) + qdd(3) * w9;
+    const Scalar w24 = w2 * qd(2) - qd(4);
+    const Scalar w25 = w24 * w22;
+    const Scalar w26 = w23 + w25;
+    const Scalar w27 = w10 * w1 * qd(2) + w9 * qd(3);
+    const Scalar w28 = w24 * w27;
+    const Scalar w29 = qdd(3) * w10 - w15 * qdd(2) + w9 * w2 * qd(3) * qd(2) + qd(4) * w27;
+    const Scalar w30 = w28 + w29;
+    const Scalar w31 = w22 * w22;
+    const Scalar w32 = w27 * w27;
+    const Scalar w33 = w31 + w32;
+    const Scalar w34 = w28 - w29;
+    const Scalar w35 = w22 * w27;
+    const Scalar w36 = w2 * qdd(2) - qdd(4) + w1 * qd(3) * qd(2);
+    const Scalar w37 = -w36;
+    const Scalar w38 = w35 + w37;
+    const Scalar w39 = w24 * w24;
+    const Scalar w40 = w39 + w31;
+    const Scalar w41 = w35 + w36;
+    const Scalar w42 = w23 - w25;
+    const Scalar w43 = w39 + w32;
+    const Scalar w44 = w28 * w15;
+    const Scalar w45 = -(w25 * w19);
+    const Scalar w46 = -w32;
+    const Scalar w47 = w39 + w46;
+    const Scalar w48 = w35 * w2;
+    const Scalar w49 = w39 - w31;
+    const Scalar w50 = w46 + w31;
+    const Scalar w51 = w9 * w25;
+    const Scalar w52 = w10 * w28;
+    Y(0, 0) = w8 * w6 + w11 * w16 + w21 * w17;
+    Y(0, 1) = -(w26 * w11 + w17 * w30 + w6 * w33);
+    Y(0, 2) = -(w34 * w6 - w38 * w11 + w40 * w17);
+    Y(0, 3) = w41 * w17 + w42 * w6 - w43 * w11;
+    Y(1, 0) = w12 * w16 + w4 * w8 + w21 * w18;
+    Y(1, 1) = -(w4 * w33 + w12 * w26 + w18 * w30);
+    Y(1, 2) = w38 * w12 - w40 * w18 - w34 * w4;
+    Y(1, 3) = -(w12 * w43 - w42 * w4 - w41 * w18);
+    Y(2, 1) = w21 * w15 - w19 * w16;
+    Y(2, 2) = -(w15 * w8 + w2 * w16);
+    Y(2, 3) = w21 * w2 + w19 * w8;
+    Y(2, 4) = w2 * w36 + w44 + w45;
+    Y(2, 5) = -(w26 * w2 - w47 * w15 - w38 * w19);
+    Y(2, 6) = w23 * w19 - w44 + w48;
+    Y(2, 7) = -(w49 * w19 + w41 * w15 - w2 * w30);
+    Y(2, 8) = w50 * w2 + w42 * w15 + w34 * w19;
+    Y(2, 9) = -(w15 * w29 + w48 + w45);
+    Y(3, 0) = w7 * w8 - w13 * w16 - w21 * w20;
+    Y(3, 1) = -(w9 * w16 + w7 * w33 - w13 * w26 + w21 * w10 - w30 * w20);
+    Y(3, 2) = -(w38 * w13 - w40 * w20 - w10 * w8 + w34 * w7);
+    Y(3, 3) = w42 * w7 - w41 * w20 + w13 * w43 + w9 * w8;
+    Y(3, 4) = -(w51 + w52);
+    Y(3, 5) = w38 * w9 - w47 * w10;
+    Y(3, 6) = w52 + w23 * w9;
+    Y(3, 7) = -(w9 * w49 - w41 * w10);
+    Y(3, 8) = w34 * w9 - w10 * w42;
+    Y(3, 9) = w10 * w29 + w51;
+    Y(4, 2) = w16;
+    Y(4, 3) = -w21;
+    Y(4, 4) = w37;
+    Y(4, 5) = w26;
+    Y(4, 6) = -w35;
+    Y(4, 7) = -w30;
+    Y(4, 8) = -w50;
+    Y(4, 9) = w35;
+    Y(0, 4) = Scalar(0);
+    Y(0, 5) = Scalar(0);
+    Y(0, 6) = Scalar(0);
+    Y(0, 7) = Scalar(0);
+    Y(0, 8) = Scalar(0);
+    Y(0, 9) = Scalar(0);
+    Y(1, 4) = Scalar(0);
+    Y(1, 5) = Scalar(0);
+    Y(1, 6) = Scalar(0);
+    Y(1, 7) = Scalar(0);
+    Y(1, 8) = Scalar(0);
+    Y(1, 9) = Scalar(0);
+    Y(2, 0) = Scalar(0);
+    Y(4, 0) = Scalar(0);
+    Y(4, 1) = Scalar(0);
+  }
+
+  /// Y with M qdd - F = Y pi + (the loads other than gravity, negated), pi the inertial parameters (inertial_parameter_names)
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class DerivedQd, class DerivedQdd, class Out0>
+  static void regressor(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedQdd>& qdd, const Parameters<typename DerivedQ::Scalar>& p, Out0&& Y) noexcept {
+    regressor(t, q, qd, qdd, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(Y));
+  }
+
+  /// pi of the model's parameters: every body's m, m c and inertia about its origin, in its frame
+  template <class Scalar, class Out0>
+  static void inertial_parameters(const Constants<Scalar>& c, Out0&& pi) noexcept {
+    static_assert(fits<std::decay_t<Out0>>(npi, 1), "pi: expected npi x 1");
+    eigen_assert(pi.rows() == npi && pi.cols() == 1);
+    pi(0) = c.p.m;
+    pi(4) = c.k1;
+    pi(6) = c.k0;
+    pi(9) = c.k0;
+    pi(1) = Scalar(0);
+    pi(2) = Scalar(0);
+    pi(3) = Scalar(0);
+    pi(5) = Scalar(0);
+    pi(7) = Scalar(0);
+    pi(8) = Scalar(0);
+  }
+
+  /// pi of the model's parameters: every body's m, m c and inertia about its origin, in its frame
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar, class Out0>
+  static void inertial_parameters(const Parameters<Scalar>& p, Out0&& pi) noexcept {
+    inertial_parameters(Constants<Scalar>(p), std::forward<Out0>(pi));
   }
 };
 

@@ -7,6 +7,8 @@
 
 #include <array>
 #include <cmath>
+#include <type_traits>
+#include <utility>
 
 namespace eomgen_models {
 namespace simple_pendulum {
@@ -22,7 +24,7 @@ struct Model {
   static constexpr const char* name = "simple_pendulum";
   static constexpr const char* description = "Simple pendulum: a point mass on a massless rod in a vertical plane";
   static constexpr const char* generator_version = "0.1.0";
-  static constexpr const char* model_hash = "f2f41584b854aba9";
+  static constexpr const char* model_hash = "6d297fb46f390ec8";
   static constexpr std::array<const char*, nq> coordinate_names{{"theta"}};
   static constexpr std::array<const char*, nu> input_names{{}};
   static constexpr std::array<const char*, np> parameter_names{{"m", "l", "g"}};
@@ -31,6 +33,8 @@ struct Model {
   static constexpr std::array<int, nh> holonomic_rows{{}};  // row of Xi of each entry of phi
   static constexpr std::array<int, ni> independent_speeds{{}};  // their coordinate indices
   static constexpr std::array<const char*, ny> output_names{{"bob_pos_1", "bob_pos_2", "bob_pos_3", "bob_vel_1", "bob_vel_2", "bob_vel_3", "height"}};
+  static constexpr int npi = 10;  // inertial parameters: 10 per body (regressor)
+  static constexpr std::array<const char*, npi> inertial_parameter_names{{"bob.m", "bob.mx", "bob.my", "bob.mz", "bob.Ixx", "bob.Ixy", "bob.Iyy", "bob.Ixz", "bob.Iyz", "bob.Izz"}};
   static constexpr bool has_forward_dynamics = true;  // forward_dynamics(), without M
   static constexpr bool prefers_forward_dynamics = true;  // fewer operations than M, F and their Cholesky solve
 
@@ -41,6 +45,14 @@ struct Model {
   template <class Scalar> using ConstraintVector = Eigen::Matrix<Scalar, nc, 1>;
   template <class Scalar> using HolonomicVector = Eigen::Matrix<Scalar, nh, 1>;
   template <class Scalar> using OutputVector = Eigen::Matrix<Scalar, ny, 1>;
+
+  /// Whether an Eigen expression of type Derived can be rows x cols: its sizes fixed to those,
+  /// or dynamic (then eigen_assert tests them).
+  template <class Derived>
+  static constexpr bool fits(int rows, int cols) noexcept {
+    return (int(Derived::RowsAtCompileTime) == Eigen::Dynamic || int(Derived::RowsAtCompileTime) == rows) &&
+           (int(Derived::ColsAtCompileTime) == Eigen::Dynamic || int(Derived::ColsAtCompileTime) == cols);
+  }
 
   /// Parameters, defaulted to the model's values.
   template <class Scalar>
@@ -59,16 +71,15 @@ struct Model {
    public:
     /// Computes every constant from a copy of the parameters.
     explicit Constants(const Parameters<Scalar>& parameters) noexcept : p(parameters) {
-      using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-      using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-      using std::log; using std::abs; using std::pow;
       const Scalar w0 = p.l * p.l;
       const Scalar w1 = p.m * w0;
+      const Scalar w2 = p.m * p.l;
       k0 = w1;
       k1 = p.g * p.m * p.l;
       k2 = p.m * Scalar(0.5) * w0;
-      k3 = p.m * p.l;
+      k3 = w2;
       k4 = Scalar(1) / w1;
+      k5 = -w2;
     }
     /// The parameters these constants were computed from.
     const Parameters<Scalar>& parameters() const noexcept { return p; }
@@ -76,49 +87,56 @@ struct Model {
    private:
     friend struct Model;
     Parameters<Scalar> p;
-    Scalar k0, k1, k2, k3, k4;
+    Scalar k0, k1, k2, k3, k4, k5;
   };
 
   /// M(q, t), symmetric positive (semi)definite
-  template <class Scalar>
-  static void mass_matrix([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] MassMatrix<Scalar>& M) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class Out0>
+  static void mass_matrix([[maybe_unused]] const typename DerivedQ::Scalar& t, [[maybe_unused]] const Eigen::MatrixBase<DerivedQ>& q, const Constants<typename DerivedQ::Scalar>& c, Out0&& M) noexcept {
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(nq, nq), "M: expected nq x nq");
+    eigen_assert(q.size() == nq && M.rows() == nq && M.cols() == nq);
     M(0, 0) = c.k0;
   }
 
   /// M(q, t), symmetric positive (semi)definite
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static void mass_matrix([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] MassMatrix<Scalar>& M) noexcept {
-    mass_matrix(t, q, Constants<Scalar>(p), M);
+  template <class DerivedQ, class Out0>
+  static void mass_matrix(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& M) noexcept {
+    mass_matrix(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(M));
   }
 
   /// F(q, qd, t, u): everything of Lagrange's equations except M qdd
-  template <class Scalar>
-  static void forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] Vector<Scalar>& F) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class DerivedQd, class DerivedU, class Out0>
+  static void forcing([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Eigen::MatrixBase<DerivedQd>& qd, [[maybe_unused]] const Eigen::MatrixBase<DerivedU>& u, const Constants<typename DerivedQ::Scalar>& c, Out0&& F) noexcept {
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<DerivedU>(nu, 1), "u: expected a column of nu entries");
+    static_assert(fits<std::decay_t<Out0>>(nq, 1), "F: expected nq x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && u.size() == nu && F.rows() == nq && F.cols() == 1);
+    using std::sin;
     F(0) = -(c.k1 * sin(q(0)));
   }
 
   /// F(q, qd, t, u): everything of Lagrange's equations except M qdd
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static void forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] Vector<Scalar>& F) noexcept {
-    forcing(t, q, qd, u, Constants<Scalar>(p), F);
+  template <class DerivedQ, class DerivedQd, class DerivedU, class Out0>
+  static void forcing(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedU>& u, const Parameters<typename DerivedQ::Scalar>& p, Out0&& F) noexcept {
+    forcing(t, q, qd, u, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(F));
   }
 
   /// M and F together, sharing their common subexpressions
-  template <class Scalar>
-  static void mass_matrix_and_forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] MassMatrix<Scalar>& M, [[maybe_unused]] Vector<Scalar>& F) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class DerivedQd, class DerivedU, class Out0, class Out1>
+  static void mass_matrix_and_forcing([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Eigen::MatrixBase<DerivedQd>& qd, [[maybe_unused]] const Eigen::MatrixBase<DerivedU>& u, const Constants<typename DerivedQ::Scalar>& c, Out0&& M, Out1&& F) noexcept {
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<DerivedU>(nu, 1), "u: expected a column of nu entries");
+    static_assert(fits<std::decay_t<Out0>>(nq, nq), "M: expected nq x nq");
+    static_assert(fits<std::decay_t<Out1>>(nq, 1), "F: expected nq x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && u.size() == nu && M.rows() == nq && M.cols() == nq && F.rows() == nq && F.cols() == 1);
+    using std::sin;
     M(0, 0) = c.k0;
     F(0) = -(c.k1 * sin(q(0)));
   }
@@ -126,81 +144,83 @@ struct Model {
   /// M and F together, sharing their common subexpressions
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static void mass_matrix_and_forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] MassMatrix<Scalar>& M, [[maybe_unused]] Vector<Scalar>& F) noexcept {
-    mass_matrix_and_forcing(t, q, qd, u, Constants<Scalar>(p), M, F);
+  template <class DerivedQ, class DerivedQd, class DerivedU, class Out0, class Out1>
+  static void mass_matrix_and_forcing(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedU>& u, const Parameters<typename DerivedQ::Scalar>& p, Out0&& M, Out1&& F) noexcept {
+    mass_matrix_and_forcing(t, q, qd, u, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(M), std::forward<Out1>(F));
   }
 
   /// Xi(q, t) of the Pfaffian constraints Xi qd + Xi_t = 0
-  template <class Scalar>
-  static void constraint_jacobian([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] ConstraintJacobian<Scalar>& Xi) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class Out0>
+  static void constraint_jacobian([[maybe_unused]] const typename DerivedQ::Scalar& t, [[maybe_unused]] const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, [[maybe_unused]] Out0&& Xi) noexcept {
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(nc, nq), "Xi: expected nc x nq");
+    eigen_assert(q.size() == nq && Xi.rows() == nc && Xi.cols() == nq);
   }
 
   /// Xi(q, t) of the Pfaffian constraints Xi qd + Xi_t = 0
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static void constraint_jacobian([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintJacobian<Scalar>& Xi) noexcept {
-    constraint_jacobian(t, q, Constants<Scalar>(p), Xi);
+  template <class DerivedQ, class Out0>
+  static void constraint_jacobian(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& Xi) noexcept {
+    constraint_jacobian(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(Xi));
   }
 
   /// Xi_t(q, t)
-  template <class Scalar>
-  static void constraint_rate_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] ConstraintVector<Scalar>& Xi_t) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class Out0>
+  static void constraint_rate_term([[maybe_unused]] const typename DerivedQ::Scalar& t, [[maybe_unused]] const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, [[maybe_unused]] Out0&& Xi_t) noexcept {
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(nc, 1), "Xi_t: expected nc x 1");
+    eigen_assert(q.size() == nq && Xi_t.rows() == nc && Xi_t.cols() == 1);
   }
 
   /// Xi_t(q, t)
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static void constraint_rate_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintVector<Scalar>& Xi_t) noexcept {
-    constraint_rate_term(t, q, Constants<Scalar>(p), Xi_t);
+  template <class DerivedQ, class Out0>
+  static void constraint_rate_term(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& Xi_t) noexcept {
+    constraint_rate_term(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(Xi_t));
   }
 
   /// dXi/dt qd + dXi_t/dt, so that Xi qdd + b = 0
-  template <class Scalar>
-  static void constraint_acceleration_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] ConstraintVector<Scalar>& b) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void constraint_acceleration_term([[maybe_unused]] const typename DerivedQ::Scalar& t, [[maybe_unused]] const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Eigen::MatrixBase<DerivedQd>& qd, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, [[maybe_unused]] Out0&& b) noexcept {
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(nc, 1), "b: expected nc x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && b.rows() == nc && b.cols() == 1);
   }
 
   /// dXi/dt qd + dXi_t/dt, so that Xi qdd + b = 0
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static void constraint_acceleration_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintVector<Scalar>& b) noexcept {
-    constraint_acceleration_term(t, q, qd, Constants<Scalar>(p), b);
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void constraint_acceleration_term(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Parameters<typename DerivedQ::Scalar>& p, Out0&& b) noexcept {
+    constraint_acceleration_term(t, q, qd, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(b));
   }
 
   /// phi(q, t) of the holonomic constraints
-  template <class Scalar>
-  static void holonomic_residuals([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] HolonomicVector<Scalar>& phi) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class Out0>
+  static void holonomic_residuals([[maybe_unused]] const typename DerivedQ::Scalar& t, [[maybe_unused]] const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, [[maybe_unused]] Out0&& phi) noexcept {
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(nh, 1), "phi: expected nh x 1");
+    eigen_assert(q.size() == nq && phi.rows() == nh && phi.cols() == 1);
   }
 
   /// phi(q, t) of the holonomic constraints
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static void holonomic_residuals([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] HolonomicVector<Scalar>& phi) noexcept {
-    holonomic_residuals(t, q, Constants<Scalar>(p), phi);
+  template <class DerivedQ, class Out0>
+  static void holonomic_residuals(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& phi) noexcept {
+    holonomic_residuals(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(phi));
   }
 
   /// T(q, qd, t)
-  template <class Scalar>
-  static Scalar kinetic_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Constants<Scalar>& c) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class DerivedQd>
+  static typename DerivedQ::Scalar kinetic_energy([[maybe_unused]] const typename DerivedQ::Scalar& t, [[maybe_unused]] const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Constants<typename DerivedQ::Scalar>& c) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    eigen_assert(q.size() == nq && qd.size() == nq);
     Scalar T = Scalar(0);
     T = qd(0) * qd(0) * c.k2;
     return T;
@@ -209,17 +229,18 @@ struct Model {
   /// T(q, qd, t)
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static Scalar kinetic_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Parameters<Scalar>& p) noexcept {
-    return kinetic_energy(t, q, qd, Constants<Scalar>(p));
+  template <class DerivedQ, class DerivedQd>
+  static typename DerivedQ::Scalar kinetic_energy(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Parameters<typename DerivedQ::Scalar>& p) noexcept {
+    return kinetic_energy(t, q, qd, Constants<typename DerivedQ::Scalar>(p));
   }
 
   /// V(q, t)
-  template <class Scalar>
-  static Scalar potential_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ>
+  static typename DerivedQ::Scalar potential_energy([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Constants<typename DerivedQ::Scalar>& c) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    eigen_assert(q.size() == nq);
+    using std::cos;
     Scalar V = Scalar(0);
     V = -(c.k1 * cos(q(0)));
     return V;
@@ -228,17 +249,21 @@ struct Model {
   /// V(q, t)
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static Scalar potential_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p) noexcept {
-    return potential_energy(t, q, Constants<Scalar>(p));
+  template <class DerivedQ>
+  static typename DerivedQ::Scalar potential_energy(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p) noexcept {
+    return potential_energy(t, q, Constants<typename DerivedQ::Scalar>(p));
   }
 
   /// the model's named outputs, in the order of output_names
-  template <class Scalar>
-  static void outputs([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] OutputVector<Scalar>& y) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class DerivedQd, class DerivedU, class Out0>
+  static void outputs([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, [[maybe_unused]] const Eigen::MatrixBase<DerivedU>& u, const Constants<typename DerivedQ::Scalar>& c, Out0&& y) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<DerivedU>(nu, 1), "u: expected a column of nu entries");
+    static_assert(fits<std::decay_t<Out0>>(ny, 1), "y: expected ny x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && u.size() == nu && y.rows() == ny && y.cols() == 1);
+    using std::sin; using std::cos;
     const Scalar w0 = sin(q(0));
     const Scalar w1 = cos(q(0));
     const Scalar w2 = -(c.p.l * w1);
@@ -254,17 +279,21 @@ struct Model {
   /// the model's named outputs, in the order of output_names
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static void outputs([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] OutputVector<Scalar>& y) noexcept {
-    outputs(t, q, qd, u, Constants<Scalar>(p), y);
+  template <class DerivedQ, class DerivedQd, class DerivedU, class Out0>
+  static void outputs(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedU>& u, const Parameters<typename DerivedQ::Scalar>& p, Out0&& y) noexcept {
+    outputs(t, q, qd, u, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(y));
   }
 
   /// qdd of M qdd = F by the composite-body M and F and M's LDL^T factors; false if M is not positive definite (a pivot is not positive) or qdd is not finite
-  template <class Scalar>
-  static bool forward_dynamics([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] Vector<Scalar>& qdd) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class DerivedQd, class DerivedU, class Out0>
+  static bool forward_dynamics([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Eigen::MatrixBase<DerivedQd>& qd, [[maybe_unused]] const Eigen::MatrixBase<DerivedU>& u, const Constants<typename DerivedQ::Scalar>& c, Out0&& qdd) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<DerivedU>(nu, 1), "u: expected a column of nu entries");
+    static_assert(fits<std::decay_t<Out0>>(nq, 1), "qdd: expected nq x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && u.size() == nu && qdd.rows() == nq && qdd.cols() == 1);
+    using std::sin;
     Eigen::Matrix<Scalar, 1, 1> pivot;
     pivot(0) = c.k0;
     qdd(0) = -(c.k3 * c.p.g * sin(q(0)) * c.k4);
@@ -278,9 +307,247 @@ struct Model {
   /// qdd of M qdd = F by the composite-body M and F and M's LDL^T factors; false if M is not positive definite (a pivot is not positive) or qdd is not finite
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static bool forward_dynamics([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] Vector<Scalar>& qdd) noexcept {
-    return forward_dynamics(t, q, qd, u, Constants<Scalar>(p), qdd);
+  template <class DerivedQ, class DerivedQd, class DerivedU, class Out0>
+  static bool forward_dynamics(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedU>& u, const Parameters<typename DerivedQ::Scalar>& p, Out0&& qdd) noexcept {
+    return forward_dynamics(t, q, qd, u, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(qdd));
+  }
+
+  /// tau = M qdd - F: the generalized forces to add to produce qdd, from M and F
+  template <class DerivedQ, class DerivedQd, class DerivedQdd, class DerivedU, class Out0>
+  static void inverse_dynamics([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedQdd>& qdd, [[maybe_unused]] const Eigen::MatrixBase<DerivedU>& u, const Constants<typename DerivedQ::Scalar>& c, Out0&& tau) noexcept {
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<DerivedQdd>(nq, 1), "qdd: expected a column of nq entries");
+    static_assert(fits<DerivedU>(nu, 1), "u: expected a column of nu entries");
+    static_assert(fits<std::decay_t<Out0>>(nq, 1), "tau: expected nq x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && qdd.size() == nq && u.size() == nu && tau.rows() == nq && tau.cols() == 1);
+    using std::sin;
+    tau(0) = c.k1 * sin(q(0)) + qdd(0) * c.k0;
+  }
+
+  /// tau = M qdd - F: the generalized forces to add to produce qdd, from M and F
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class DerivedQd, class DerivedQdd, class DerivedU, class Out0>
+  static void inverse_dynamics(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedQdd>& qdd, const Eigen::MatrixBase<DerivedU>& u, const Parameters<typename DerivedQ::Scalar>& p, Out0&& tau) noexcept {
+    inverse_dynamics(t, q, qd, qdd, u, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(tau));
+  }
+
+  /// G(q) = dV/dq: the generalized forces of gravity and springs, with C qd + G = -F at zero input and no other loads
+  template <class DerivedQ, class Out0>
+  static void gravity_forces(const Eigen::MatrixBase<DerivedQ>& q, const Constants<typename DerivedQ::Scalar>& c, Out0&& G) noexcept {
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(nq, 1), "G: expected nq x 1");
+    eigen_assert(q.size() == nq && G.rows() == nq && G.cols() == 1);
+    using std::sin;
+    G(0) = c.k1 * sin(q(0));
+  }
+
+  /// G(q) = dV/dq: the generalized forces of gravity and springs, with C qd + G = -F at zero input and no other loads
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class Out0>
+  static void gravity_forces(const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& G) noexcept {
+    gravity_forces(q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(G));
+  }
+
+  /// C(q, qd) from the Christoffel symbols of M: dM/dt - 2 C is skew-symmetric
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void coriolis_matrix([[maybe_unused]] const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Eigen::MatrixBase<DerivedQd>& qd, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& C) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(nq, nq), "C: expected nq x nq");
+    eigen_assert(q.size() == nq && qd.size() == nq && C.rows() == nq && C.cols() == nq);
+    C(0, 0) = Scalar(0);
+  }
+
+  /// C(q, qd) from the Christoffel symbols of M: dM/dt - 2 C is skew-symmetric
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void coriolis_matrix(const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Parameters<typename DerivedQ::Scalar>& p, Out0&& C) noexcept {
+    coriolis_matrix(q, qd, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(C));
+  }
+
+  /// J = dy/dq of the output bob_pos
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_bob_pos([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Constants<typename DerivedQ::Scalar>& c, Out0&& J) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, nq), "J: expected 3 x nq");
+    eigen_assert(q.size() == nq && J.rows() == 3 && J.cols() == nq);
+    using std::sin; using std::cos;
+    J(0, 0) = c.p.l * cos(q(0));
+    J(1, 0) = c.p.l * sin(q(0));
+    J(2, 0) = Scalar(0);
+  }
+
+  /// J = dy/dq of the output bob_pos
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_bob_pos(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& J) noexcept {
+    output_jacobian_bob_pos(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(J));
+  }
+
+  /// Jdot qd of the output bob_pos: its acceleration at qdd = 0
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_bob_pos([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Constants<typename DerivedQ::Scalar>& c, Out0&& Jdot_qd) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, 1), "Jdot_qd: expected 3 x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && Jdot_qd.rows() == 3 && Jdot_qd.cols() == 1);
+    using std::sin; using std::cos;
+    const Scalar w0 = qd(0) * qd(0);
+    Jdot_qd(0) = -(w0 * c.p.l * sin(q(0)));
+    Jdot_qd(1) = w0 * c.p.l * cos(q(0));
+    Jdot_qd(2) = Scalar(0);
+  }
+
+  /// Jdot qd of the output bob_pos: its acceleration at qdd = 0
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_bob_pos(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Parameters<typename DerivedQ::Scalar>& p, Out0&& Jdot_qd) noexcept {
+    output_bias_bob_pos(t, q, qd, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(Jdot_qd));
+  }
+
+  /// J = dy/dqd of the output bob_vel
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_bob_vel([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Constants<typename DerivedQ::Scalar>& c, Out0&& J) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, nq), "J: expected 3 x nq");
+    eigen_assert(q.size() == nq && J.rows() == 3 && J.cols() == nq);
+    using std::sin; using std::cos;
+    J(0, 0) = c.p.l * cos(q(0));
+    J(1, 0) = c.p.l * sin(q(0));
+    J(2, 0) = Scalar(0);
+  }
+
+  /// J = dy/dqd of the output bob_vel
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_bob_vel(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& J) noexcept {
+    output_jacobian_bob_vel(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(J));
+  }
+
+  /// Jdot qd of the output bob_vel: its rate at qdd = 0
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_bob_vel([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Constants<typename DerivedQ::Scalar>& c, Out0&& Jdot_qd) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, 1), "Jdot_qd: expected 3 x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && Jdot_qd.rows() == 3 && Jdot_qd.cols() == 1);
+    using std::sin; using std::cos;
+    const Scalar w0 = qd(0) * qd(0);
+    Jdot_qd(0) = -(w0 * c.p.l * sin(q(0)));
+    Jdot_qd(1) = w0 * c.p.l * cos(q(0));
+    Jdot_qd(2) = Scalar(0);
+  }
+
+  /// Jdot qd of the output bob_vel: its rate at qdd = 0
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_bob_vel(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Parameters<typename DerivedQ::Scalar>& p, Out0&& Jdot_qd) noexcept {
+    output_bias_bob_vel(t, q, qd, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(Jdot_qd));
+  }
+
+  /// J = dy/dq of the output height
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_height([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Constants<typename DerivedQ::Scalar>& c, Out0&& J) noexcept {
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(1, nq), "J: expected 1 x nq");
+    eigen_assert(q.size() == nq && J.rows() == 1 && J.cols() == nq);
+    using std::sin;
+    J(0, 0) = c.p.l * sin(q(0));
+  }
+
+  /// J = dy/dq of the output height
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_height(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& J) noexcept {
+    output_jacobian_height(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(J));
+  }
+
+  /// Jdot qd of the output height: its acceleration at qdd = 0
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_height([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Constants<typename DerivedQ::Scalar>& c, Out0&& Jdot_qd) noexcept {
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(1, 1), "Jdot_qd: expected 1 x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && Jdot_qd.rows() == 1 && Jdot_qd.cols() == 1);
+    using std::cos;
+    Jdot_qd(0) = qd(0) * qd(0) * c.p.l * cos(q(0));
+  }
+
+  /// Jdot qd of the output height: its acceleration at qdd = 0
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_height(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Parameters<typename DerivedQ::Scalar>& p, Out0&& Jdot_qd) noexcept {
+    output_bias_height(t, q, qd, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(Jdot_qd));
+  }
+
+  /// Y with M qdd - F = Y pi + (the loads other than gravity, negated), pi the inertial parameters (inertial_parameter_names)
+  template <class DerivedQ, class DerivedQd, class DerivedQdd, class Out0>
+  static void regressor([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedQdd>& qdd, const Constants<typename DerivedQ::Scalar>& c, Out0&& Y) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<DerivedQdd>(nq, 1), "qdd: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(nq, npi), "Y: expected nq x npi");
+    eigen_assert(q.size() == nq && qd.size() == nq && qdd.size() == nq && Y.rows() == nq && Y.cols() == npi);
+    using std::sin; using std::cos;
+    Y(0, 1) = c.p.g * cos(q(0));
+    Y(0, 2) = -(c.p.g * sin(q(0)));
+    Y(0, 9) = qdd(0);
+    Y(0, 0) = Scalar(0);
+    Y(0, 3) = Scalar(0);
+    Y(0, 4) = Scalar(0);
+    Y(0, 5) = Scalar(0);
+    Y(0, 6) = Scalar(0);
+    Y(0, 7) = Scalar(0);
+    Y(0, 8) = Scalar(0);
+  }
+
+  /// Y with M qdd - F = Y pi + (the loads other than gravity, negated), pi the inertial parameters (inertial_parameter_names)
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class DerivedQd, class DerivedQdd, class Out0>
+  static void regressor(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedQdd>& qdd, const Parameters<typename DerivedQ::Scalar>& p, Out0&& Y) noexcept {
+    regressor(t, q, qd, qdd, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(Y));
+  }
+
+  /// pi of the model's parameters: every body's m, m c and inertia about its origin, in its frame
+  template <class Scalar, class Out0>
+  static void inertial_parameters(const Constants<Scalar>& c, Out0&& pi) noexcept {
+    static_assert(fits<std::decay_t<Out0>>(npi, 1), "pi: expected npi x 1");
+    eigen_assert(pi.rows() == npi && pi.cols() == 1);
+    pi(0) = c.p.m;
+    pi(2) = c.k5;
+    pi(4) = c.k0;
+    pi(9) = c.k0;
+    pi(1) = Scalar(0);
+    pi(3) = Scalar(0);
+    pi(5) = Scalar(0);
+    pi(6) = Scalar(0);
+    pi(7) = Scalar(0);
+    pi(8) = Scalar(0);
+  }
+
+  /// pi of the model's parameters: every body's m, m c and inertia about its origin, in its frame
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar, class Out0>
+  static void inertial_parameters(const Parameters<Scalar>& p, Out0&& pi) noexcept {
+    inertial_parameters(Constants<Scalar>(p), std::forward<Out0>(pi));
   }
 };
 

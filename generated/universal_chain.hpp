@@ -7,6 +7,8 @@
 
 #include <array>
 #include <cmath>
+#include <type_traits>
+#include <utility>
 
 namespace eomgen_models {
 namespace universal_chain {
@@ -22,7 +24,7 @@ struct Model {
   static constexpr const char* name = "universal_chain";
   static constexpr const char* description = "3D chain of n uniform rods hanging from universal joints";
   static constexpr const char* generator_version = "0.1.0";
-  static constexpr const char* model_hash = "03fdf33d1140aeec";
+  static constexpr const char* model_hash = "241fd35aedac1d6c";
   static constexpr std::array<const char*, nq> coordinate_names{{"alpha1", "beta1", "alpha2", "beta2", "alpha3", "beta3"}};
   static constexpr std::array<const char*, nu> input_names{{}};
   static constexpr std::array<const char*, np> parameter_names{{"m", "l", "rd", "g"}};
@@ -31,6 +33,8 @@ struct Model {
   static constexpr std::array<int, nh> holonomic_rows{{}};  // row of Xi of each entry of phi
   static constexpr std::array<int, ni> independent_speeds{{}};  // their coordinate indices
   static constexpr std::array<const char*, ny> output_names{{"tip_1", "tip_2", "tip_3", "tip_velocity_1", "tip_velocity_2", "tip_velocity_3", "first_link_axis_1", "first_link_axis_2", "first_link_axis_3"}};
+  static constexpr int npi = 30;  // inertial parameters: 10 per body (regressor)
+  static constexpr std::array<const char*, npi> inertial_parameter_names{{"link1.m", "link1.mx", "link1.my", "link1.mz", "link1.Ixx", "link1.Ixy", "link1.Iyy", "link1.Ixz", "link1.Iyz", "link1.Izz", "link2.m", "link2.mx", "link2.my", "link2.mz", "link2.Ixx", "link2.Ixy", "link2.Iyy", "link2.Ixz", "link2.Iyz", "link2.Izz", "link3.m", "link3.mx", "link3.my", "link3.mz", "link3.Ixx", "link3.Ixy", "link3.Iyy", "link3.Ixz", "link3.Iyz", "link3.Izz"}};
   static constexpr bool has_forward_dynamics = true;  // forward_dynamics(), without M
   static constexpr bool prefers_forward_dynamics = true;  // fewer operations than M, F and their Cholesky solve
 
@@ -41,6 +45,14 @@ struct Model {
   template <class Scalar> using ConstraintVector = Eigen::Matrix<Scalar, nc, 1>;
   template <class Scalar> using HolonomicVector = Eigen::Matrix<Scalar, nh, 1>;
   template <class Scalar> using OutputVector = Eigen::Matrix<Scalar, ny, 1>;
+
+  /// Whether an Eigen expression of type Derived can be rows x cols: its sizes fixed to those,
+  /// or dynamic (then eigen_assert tests them).
+  template <class Derived>
+  static constexpr bool fits(int rows, int cols) noexcept {
+    return (int(Derived::RowsAtCompileTime) == Eigen::Dynamic || int(Derived::RowsAtCompileTime) == rows) &&
+           (int(Derived::ColsAtCompileTime) == Eigen::Dynamic || int(Derived::ColsAtCompileTime) == cols);
+  }
 
   /// Parameters, defaulted to the model's values.
   template <class Scalar>
@@ -60,26 +72,27 @@ struct Model {
    public:
     /// Computes every constant from a copy of the parameters.
     explicit Constants(const Parameters<Scalar>& parameters) noexcept : p(parameters) {
-      using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-      using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-      using std::log; using std::abs; using std::pow;
-      const Scalar w0 = p.rd * p.rd;
-      const Scalar w1 = p.l * p.l;
-      const Scalar w2 = w1 + w0 * Scalar(3);
-      const Scalar w3 = Scalar(0.08333333333333333) * p.m * w2;
-      const Scalar w4 = Scalar(0.25) * p.m * w1 + w3;
-      k0 = p.m * Scalar(0.5) * p.l;
+      const Scalar w0 = p.m * Scalar(0.5) * p.l;
+      const Scalar w1 = p.rd * p.rd;
+      const Scalar w2 = p.l * p.l;
+      const Scalar w3 = w2 + w1 * Scalar(3);
+      const Scalar w4 = Scalar(0.08333333333333333) * p.m * w3;
+      const Scalar w5 = Scalar(0.25) * p.m * w2 + w4;
+      k0 = w0;
       k1 = p.m * p.l;
-      k2 = w0 * p.m * Scalar(0.5);
-      k3 = w4;
+      k2 = w1 * p.m * Scalar(0.5);
+      k3 = w5;
       k4 = Scalar(2) * p.m * p.l;
       k5 = Scalar(0.5) * p.l;
-      k6 = Scalar(0.08333333333333333) * (p.m * w1 * Scalar(3) + p.m * w2);
-      k7 = p.m * Scalar(0.3333333333333333) * w1 + Scalar(0.25) * w0 * p.m;
+      k6 = Scalar(0.08333333333333333) * (p.m * w2 * Scalar(3) + p.m * w3);
+      k7 = p.m * Scalar(0.3333333333333333) * w2 + Scalar(0.25) * w1 * p.m;
       k8 = p.m * Scalar(0.5);
-      k9 = w3;
+      k9 = w4;
       k10 = p.g * p.m;
-      k11 = Scalar(1) / w4;
+      k11 = Scalar(1) / w5;
+      k12 = Scalar(2) * p.l;
+      k13 = -(Scalar(0) * p.l);
+      k14 = -w0;
     }
     /// The parameters these constants were computed from.
     const Parameters<Scalar>& parameters() const noexcept { return p; }
@@ -88,15 +101,17 @@ struct Model {
     friend struct Model;
     Parameters<Scalar> p;
     Scalar k0, k1, k2, k3, k4, k5, k6, k7, k8, k9;
-    Scalar k10, k11;
+    Scalar k10, k11, k12, k13, k14;
   };
 
   /// M(q, t), symmetric positive (semi)definite
-  template <class Scalar>
-  static void mass_matrix([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] MassMatrix<Scalar>& M) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class Out0>
+  static void mass_matrix([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Constants<typename DerivedQ::Scalar>& c, Out0&& M) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(nq, nq), "M: expected nq x nq");
+    eigen_assert(q.size() == nq && M.rows() == nq && M.cols() == nq);
+    using std::sin; using std::cos;
     const Scalar w0 = sin(q(1));
     const Scalar w1 = cos(q(1));
     const Scalar w2 = cos(q(4));
@@ -217,17 +232,21 @@ struct Model {
   /// M(q, t), symmetric positive (semi)definite
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static void mass_matrix([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] MassMatrix<Scalar>& M) noexcept {
-    mass_matrix(t, q, Constants<Scalar>(p), M);
+  template <class DerivedQ, class Out0>
+  static void mass_matrix(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& M) noexcept {
+    mass_matrix(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(M));
   }
 
   /// F(q, qd, t, u): everything of Lagrange's equations except M qdd
-  template <class Scalar>
-  static void forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] Vector<Scalar>& F) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class DerivedQd, class DerivedU, class Out0>
+  static void forcing([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, [[maybe_unused]] const Eigen::MatrixBase<DerivedU>& u, const Constants<typename DerivedQ::Scalar>& c, Out0&& F) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<DerivedU>(nu, 1), "u: expected a column of nu entries");
+    static_assert(fits<std::decay_t<Out0>>(nq, 1), "F: expected nq x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && u.size() == nu && F.rows() == nq && F.cols() == 1);
+    using std::sin; using std::cos;
     const Scalar w0 = cos(q(1));
     const Scalar w1 = sin(q(2));
     const Scalar w2 = sin(q(3));
@@ -334,17 +353,22 @@ struct Model {
   /// F(q, qd, t, u): everything of Lagrange's equations except M qdd
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static void forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] Vector<Scalar>& F) noexcept {
-    forcing(t, q, qd, u, Constants<Scalar>(p), F);
+  template <class DerivedQ, class DerivedQd, class DerivedU, class Out0>
+  static void forcing(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedU>& u, const Parameters<typename DerivedQ::Scalar>& p, Out0&& F) noexcept {
+    forcing(t, q, qd, u, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(F));
   }
 
   /// M and F together, sharing their common subexpressions
-  template <class Scalar>
-  static void mass_matrix_and_forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] MassMatrix<Scalar>& M, [[maybe_unused]] Vector<Scalar>& F) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class DerivedQd, class DerivedU, class Out0, class Out1>
+  static void mass_matrix_and_forcing([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, [[maybe_unused]] const Eigen::MatrixBase<DerivedU>& u, const Constants<typename DerivedQ::Scalar>& c, Out0&& M, Out1&& F) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<DerivedU>(nu, 1), "u: expected a column of nu entries");
+    static_assert(fits<std::decay_t<Out0>>(nq, nq), "M: expected nq x nq");
+    static_assert(fits<std::decay_t<Out1>>(nq, 1), "F: expected nq x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && u.size() == nu && M.rows() == nq && M.cols() == nq && F.rows() == nq && F.cols() == 1);
+    using std::sin; using std::cos;
     const Scalar w0 = sin(q(1));
     const Scalar w1 = cos(q(1));
     const Scalar w2 = cos(q(4));
@@ -548,81 +572,84 @@ struct Model {
   /// M and F together, sharing their common subexpressions
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static void mass_matrix_and_forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] MassMatrix<Scalar>& M, [[maybe_unused]] Vector<Scalar>& F) noexcept {
-    mass_matrix_and_forcing(t, q, qd, u, Constants<Scalar>(p), M, F);
+  template <class DerivedQ, class DerivedQd, class DerivedU, class Out0, class Out1>
+  static void mass_matrix_and_forcing(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedU>& u, const Parameters<typename DerivedQ::Scalar>& p, Out0&& M, Out1&& F) noexcept {
+    mass_matrix_and_forcing(t, q, qd, u, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(M), std::forward<Out1>(F));
   }
 
   /// Xi(q, t) of the Pfaffian constraints Xi qd + Xi_t = 0
-  template <class Scalar>
-  static void constraint_jacobian([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] ConstraintJacobian<Scalar>& Xi) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class Out0>
+  static void constraint_jacobian([[maybe_unused]] const typename DerivedQ::Scalar& t, [[maybe_unused]] const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, [[maybe_unused]] Out0&& Xi) noexcept {
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(nc, nq), "Xi: expected nc x nq");
+    eigen_assert(q.size() == nq && Xi.rows() == nc && Xi.cols() == nq);
   }
 
   /// Xi(q, t) of the Pfaffian constraints Xi qd + Xi_t = 0
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static void constraint_jacobian([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintJacobian<Scalar>& Xi) noexcept {
-    constraint_jacobian(t, q, Constants<Scalar>(p), Xi);
+  template <class DerivedQ, class Out0>
+  static void constraint_jacobian(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& Xi) noexcept {
+    constraint_jacobian(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(Xi));
   }
 
   /// Xi_t(q, t)
-  template <class Scalar>
-  static void constraint_rate_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] ConstraintVector<Scalar>& Xi_t) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class Out0>
+  static void constraint_rate_term([[maybe_unused]] const typename DerivedQ::Scalar& t, [[maybe_unused]] const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, [[maybe_unused]] Out0&& Xi_t) noexcept {
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(nc, 1), "Xi_t: expected nc x 1");
+    eigen_assert(q.size() == nq && Xi_t.rows() == nc && Xi_t.cols() == 1);
   }
 
   /// Xi_t(q, t)
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static void constraint_rate_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintVector<Scalar>& Xi_t) noexcept {
-    constraint_rate_term(t, q, Constants<Scalar>(p), Xi_t);
+  template <class DerivedQ, class Out0>
+  static void constraint_rate_term(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& Xi_t) noexcept {
+    constraint_rate_term(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(Xi_t));
   }
 
   /// dXi/dt qd + dXi_t/dt, so that Xi qdd + b = 0
-  template <class Scalar>
-  static void constraint_acceleration_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] ConstraintVector<Scalar>& b) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void constraint_acceleration_term([[maybe_unused]] const typename DerivedQ::Scalar& t, [[maybe_unused]] const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Eigen::MatrixBase<DerivedQd>& qd, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, [[maybe_unused]] Out0&& b) noexcept {
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(nc, 1), "b: expected nc x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && b.rows() == nc && b.cols() == 1);
   }
 
   /// dXi/dt qd + dXi_t/dt, so that Xi qdd + b = 0
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static void constraint_acceleration_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintVector<Scalar>& b) noexcept {
-    constraint_acceleration_term(t, q, qd, Constants<Scalar>(p), b);
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void constraint_acceleration_term(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Parameters<typename DerivedQ::Scalar>& p, Out0&& b) noexcept {
+    constraint_acceleration_term(t, q, qd, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(b));
   }
 
   /// phi(q, t) of the holonomic constraints
-  template <class Scalar>
-  static void holonomic_residuals([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] HolonomicVector<Scalar>& phi) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class Out0>
+  static void holonomic_residuals([[maybe_unused]] const typename DerivedQ::Scalar& t, [[maybe_unused]] const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, [[maybe_unused]] Out0&& phi) noexcept {
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(nh, 1), "phi: expected nh x 1");
+    eigen_assert(q.size() == nq && phi.rows() == nh && phi.cols() == 1);
   }
 
   /// phi(q, t) of the holonomic constraints
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static void holonomic_residuals([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] HolonomicVector<Scalar>& phi) noexcept {
-    holonomic_residuals(t, q, Constants<Scalar>(p), phi);
+  template <class DerivedQ, class Out0>
+  static void holonomic_residuals(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& phi) noexcept {
+    holonomic_residuals(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(phi));
   }
 
   /// T(q, qd, t)
-  template <class Scalar>
-  static Scalar kinetic_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Constants<Scalar>& c) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class DerivedQd>
+  static typename DerivedQ::Scalar kinetic_energy([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Constants<typename DerivedQ::Scalar>& c) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    eigen_assert(q.size() == nq && qd.size() == nq);
+    using std::sin; using std::cos;
     Scalar T = Scalar(0);
     const Scalar w0 = cos(q(1));
     const Scalar w1 = w0 * qd(0);
@@ -683,17 +710,18 @@ struct Model {
   /// T(q, qd, t)
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static Scalar kinetic_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Parameters<Scalar>& p) noexcept {
-    return kinetic_energy(t, q, qd, Constants<Scalar>(p));
+  template <class DerivedQ, class DerivedQd>
+  static typename DerivedQ::Scalar kinetic_energy(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Parameters<typename DerivedQ::Scalar>& p) noexcept {
+    return kinetic_energy(t, q, qd, Constants<typename DerivedQ::Scalar>(p));
   }
 
   /// V(q, t)
-  template <class Scalar>
-  static Scalar potential_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ>
+  static typename DerivedQ::Scalar potential_energy([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Constants<typename DerivedQ::Scalar>& c) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    eigen_assert(q.size() == nq);
+    using std::sin; using std::cos;
     Scalar V = Scalar(0);
     const Scalar w0 = cos(q(0));
     const Scalar w1 = cos(q(1)) * w0;
@@ -713,17 +741,21 @@ struct Model {
   /// V(q, t)
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static Scalar potential_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p) noexcept {
-    return potential_energy(t, q, Constants<Scalar>(p));
+  template <class DerivedQ>
+  static typename DerivedQ::Scalar potential_energy(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p) noexcept {
+    return potential_energy(t, q, Constants<typename DerivedQ::Scalar>(p));
   }
 
   /// the model's named outputs, in the order of output_names
-  template <class Scalar>
-  static void outputs([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] OutputVector<Scalar>& y) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class DerivedQd, class DerivedU, class Out0>
+  static void outputs([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, [[maybe_unused]] const Eigen::MatrixBase<DerivedU>& u, const Constants<typename DerivedQ::Scalar>& c, Out0&& y) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<DerivedU>(nu, 1), "u: expected a column of nu entries");
+    static_assert(fits<std::decay_t<Out0>>(ny, 1), "y: expected ny x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && u.size() == nu && y.rows() == ny && y.cols() == 1);
+    using std::sin; using std::cos;
     const Scalar w0 = sin(q(1));
     const Scalar w1 = sin(q(4));
     const Scalar w2 = sin(q(2));
@@ -770,17 +802,21 @@ struct Model {
   /// the model's named outputs, in the order of output_names
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static void outputs([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] OutputVector<Scalar>& y) noexcept {
-    outputs(t, q, qd, u, Constants<Scalar>(p), y);
+  template <class DerivedQ, class DerivedQd, class DerivedU, class Out0>
+  static void outputs(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedU>& u, const Parameters<typename DerivedQ::Scalar>& p, Out0&& y) noexcept {
+    outputs(t, q, qd, u, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(y));
   }
 
   /// qdd of M qdd = F by the composite-body M and F and M's LDL^T factors; false if M is not positive definite (a pivot is not positive) or qdd is not finite
-  template <class Scalar>
-  static bool forward_dynamics([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] Vector<Scalar>& qdd) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class DerivedQd, class DerivedU, class Out0>
+  static bool forward_dynamics([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, [[maybe_unused]] const Eigen::MatrixBase<DerivedU>& u, const Constants<typename DerivedQ::Scalar>& c, Out0&& qdd) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<DerivedU>(nu, 1), "u: expected a column of nu entries");
+    static_assert(fits<std::decay_t<Out0>>(nq, 1), "qdd: expected nq x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && u.size() == nu && qdd.rows() == nq && qdd.cols() == 1);
+    using std::sin; using std::cos;
     Eigen::Matrix<Scalar, 6, 1> pivot;
     const Scalar w0 = sin(q(5));
     const Scalar w1 = w0 * c.k2;
@@ -1002,9 +1038,1444 @@ struct Model {
   /// qdd of M qdd = F by the composite-body M and F and M's LDL^T factors; false if M is not positive definite (a pivot is not positive) or qdd is not finite
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static bool forward_dynamics([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] Vector<Scalar>& qdd) noexcept {
-    return forward_dynamics(t, q, qd, u, Constants<Scalar>(p), qdd);
+  template <class DerivedQ, class DerivedQd, class DerivedU, class Out0>
+  static bool forward_dynamics(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedU>& u, const Parameters<typename DerivedQ::Scalar>& p, Out0&& qdd) noexcept {
+    return forward_dynamics(t, q, qd, u, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(qdd));
+  }
+
+  /// tau = M qdd - F: the generalized forces to add to produce qdd, by the Newton-Euler recursion
+  template <class DerivedQ, class DerivedQd, class DerivedQdd, class DerivedU, class Out0>
+  static void inverse_dynamics([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedQdd>& qdd, [[maybe_unused]] const Eigen::MatrixBase<DerivedU>& u, const Constants<typename DerivedQ::Scalar>& c, Out0&& tau) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<DerivedQdd>(nq, 1), "qdd: expected a column of nq entries");
+    static_assert(fits<DerivedU>(nu, 1), "u: expected a column of nu entries");
+    static_assert(fits<std::decay_t<Out0>>(nq, 1), "tau: expected nq x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && qdd.size() == nq && u.size() == nu && tau.rows() == nq && tau.cols() == 1);
+    using std::sin; using std::cos;
+    const Scalar w0 = qd(1) * c.k6;
+    const Scalar w1 = cos(q(1));
+    const Scalar w2 = w1 * qd(0);
+    const Scalar w3 = w2 * c.k6;
+    const Scalar w4 = sin(q(2));
+    const Scalar w5 = cos(q(3));
+    const Scalar w6 = w5 * qd(2);
+    const Scalar w7 = sin(q(3));
+    const Scalar w8 = w4 * w7;
+    const Scalar w9 = sin(q(1));
+    const Scalar w10 = w9 * qd(0);
+    const Scalar w11 = cos(q(2));
+    const Scalar w12 = w7 * w11;
+    const Scalar w13 = w10 * w12 - w5 * w2 - w8 * qd(1);
+    const Scalar w14 = w6 - w13;
+    const Scalar w15 = c.k6 * w14;
+    const Scalar w16 = w7 * qd(2);
+    const Scalar w17 = w5 * w4;
+    const Scalar w18 = w5 * w11;
+    const Scalar w19 = w10 * w18 - qd(1) * w17 + w2 * w7;
+    const Scalar w20 = w16 + w19;
+    const Scalar w21 = qd(1) * w1 * qd(0) + qdd(0) * w9;
+    const Scalar w22 = qdd(3) + w16 * w13 + w6 * w19 + w21 * w4 + qdd(1) * w11;
+    const Scalar w23 = sin(q(4));
+    const Scalar w24 = cos(q(5));
+    const Scalar w25 = w23 * w24;
+    const Scalar w26 = sin(q(5));
+    const Scalar w27 = qdd(0) * w1 - qd(1) * w9 * qd(0);
+    const Scalar w28 = w10 * w4 + qd(1) * w11;
+    const Scalar w29 = w7 * qdd(2) + w21 * w18 - qdd(1) * w17 + w27 * w7 + w5 * qd(3) * qd(2) - w13 * qd(3) - w28 * w6;
+    const Scalar w30 = cos(q(4));
+    const Scalar w31 = w30 * w24;
+    const Scalar w32 = w7 * qd(3) * qd(2) - w28 * w16 + qd(3) * w19 + w21 * w12 - w5 * w27 - w8 * qdd(1) - w5 * qdd(2);
+    const Scalar w33 = w28 + qd(3);
+    const Scalar w34 = w23 * w26;
+    const Scalar w35 = w30 * w26;
+    const Scalar w36 = w33 * w34 - w35 * w20 + w14 * w24;
+    const Scalar w37 = w23 * w20 + w30 * w33;
+    const Scalar w38 = qd(4) * w24;
+    const Scalar w39 = w37 + qd(5);
+    const Scalar w40 = w38 + w36;
+    const Scalar w41 = w40 * c.k6;
+    const Scalar w42 = c.k6 * w39;
+    const Scalar w43 = (w26 * qdd(4) - (w25 * w22 - w29 * w31 + w32 * w26) + qd(5) * w36 + qd(5) * qd(4) * w24 - w37 * w38) * c.k2 - w39 * w41 + w40 * w42;
+    const Scalar w44 = w25 * w33 - w14 * w26 - w31 * w20;
+    const Scalar w45 = w26 * qd(4);
+    const Scalar w46 = w44 * w38 + w45 * w36 - qdd(5) - (w23 * w29 + w30 * w22);
+    const Scalar w47 = qd(1) * c.p.l;
+    const Scalar w48 = w2 * c.p.l;
+    const Scalar w49 = qd(1) * w47 + w48 * w2;
+    const Scalar w50 = w10 * w47;
+    const Scalar w51 = cos(q(0));
+    const Scalar w52 = c.p.g * w1 * w51;
+    const Scalar w53 = c.p.g * sin(q(0));
+    const Scalar w54 = c.p.l * w27 + w53;
+    const Scalar w55 = w4 * w52 - (w50 * w11 - w49 * w4) + w54 * w11;
+    const Scalar w56 = w55 - w32 * c.p.l;
+    const Scalar w57 = w14 * c.p.l;
+    const Scalar w58 = w57 * w20;
+    const Scalar w59 = c.p.l * w33;
+    const Scalar w60 = w59 * w20;
+    const Scalar w61 = w59 * w33 + w57 * w14;
+    const Scalar w62 = w48 * w10;
+    const Scalar w63 = c.p.g * w9 * w51;
+    const Scalar w64 = qdd(1) * c.p.l + w63;
+    const Scalar w65 = w52 * w18 + w17 * w50 + w49 * w18 - w62 * w7 - w17 * w54 - w64 * w7;
+    const Scalar w66 = w8 * w54 - w64 * w5 - w52 * w12 - (w49 * w12 + w5 * w62 + w8 * w50);
+    const Scalar w67 = c.p.l * w22 - w66;
+    const Scalar w68 = w58 * w24 + w34 * w60 + w35 * w61 - w56 * w34 + w35 * w65 + w67 * w24;
+    const Scalar w69 = w44 - w45;
+    const Scalar w70 = c.k2 * w69;
+    const Scalar w71 = w46 * c.k7 - c.k0 * w68 + w69 * w41 - w70 * w40;
+    const Scalar w72 = w37 * w45 + w44 * qd(5) - qd(5) * w26 * qd(4) + w22 * w34 - w35 * w29 - w32 * w24 + w24 * qdd(4);
+    const Scalar w73 = w30 * w56 + w23 * w65 + w23 * w61 - w30 * w60;
+    const Scalar w74 = c.k7 * w72 - w70 * w39 + w73 * c.k0 + w42 * w69;
+    const Scalar w75 = c.k2 * w20;
+    const Scalar w76 = c.k5 * w39;
+    const Scalar w77 = w40 * c.k5;
+    const Scalar w78 = c.p.m * (w76 * w39 + w40 * w77) + c.p.m * (w31 * w65 - w25 * w56 - w67 * w26 + w25 * w60 + w31 * w61 - w58 * w26);
+    const Scalar w79 = c.p.m * w68 - w46 * c.k0 - c.p.m * w77 * w69;
+    const Scalar w80 = w79 * w24 - w78 * w26;
+    const Scalar w81 = w15 * w20 + c.k7 * w22 - w25 * w43 - w30 * w71 - c.k0 * w66 + w74 * w34 - w14 * w75 + w80 * c.p.l;
+    const Scalar w82 = c.k6 * w33;
+    const Scalar w83 = w31 * w43 + w14 * w82 - w23 * w71 - w35 * w74 + w29 * c.k2 - w15 * w33;
+    const Scalar w84 = c.k0 * w72 + w73 * c.p.m + w76 * c.p.m * w69;
+    const Scalar w85 = w30 * w84 - w25 * w78 - w79 * w34;
+    const Scalar w86 = w26 * w43;
+    const Scalar w87 = w74 * w24;
+    const Scalar w88 = w85 * c.p.l + w86 + c.k0 * w55 - w32 * c.k7 + w75 * w33 - w82 * w20 + w87;
+    const Scalar w89 = c.k2 * w10;
+    const Scalar w90 = w14 * c.k5;
+    const Scalar w91 = c.p.m * w66 - w80 - c.p.m * w90 * w20 - c.k0 * w22;
+    const Scalar w92 = c.k5 * w33;
+    const Scalar w93 = c.p.m * w65 + c.p.m * (w14 * w90 + w92 * w33) + w31 * w78 + w23 * w84 + w35 * w79;
+    const Scalar w94 = w5 * w88;
+    const Scalar w95 = w83 * w7;
+    tau(0) = (w0 * w2 - qd(1) * w3 + w4 * w81 + w83 * w18 + w21 * c.k2 - w88 * w12) * w9 + (qd(1) * w89 + c.k0 * w53 + (w8 * w91 - w17 * w93 + (c.p.m * w55 + w85 - c.p.m * w92 * w20 - w32 * c.k0) * w11) * c.p.l + w94 + c.k7 * w27 - w0 * w10 + w95) * w1;
+    tau(1) = qdd(1) * c.k7 + w10 * w3 + w8 * w88 - w83 * w17 + w81 * w11 + w63 * c.k0 - w2 * w89 - c.p.l * (w5 * w91 + w93 * w7);
+    tau(2) = w94 + w95;
+    tau(3) = w81;
+    tau(4) = w86 + w87;
+    tau(5) = -w71;
+  }
+
+  /// tau = M qdd - F: the generalized forces to add to produce qdd, by the Newton-Euler recursion
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class DerivedQd, class DerivedQdd, class DerivedU, class Out0>
+  static void inverse_dynamics(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedQdd>& qdd, const Eigen::MatrixBase<DerivedU>& u, const Parameters<typename DerivedQ::Scalar>& p, Out0&& tau) noexcept {
+    inverse_dynamics(t, q, qd, qdd, u, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(tau));
+  }
+
+  /// G(q) = dV/dq: the generalized forces of gravity and springs, with C qd + G = -F at zero input and no other loads
+  template <class DerivedQ, class Out0>
+  static void gravity_forces(const Eigen::MatrixBase<DerivedQ>& q, const Constants<typename DerivedQ::Scalar>& c, Out0&& G) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(nq, 1), "G: expected nq x 1");
+    eigen_assert(q.size() == nq && G.rows() == nq && G.cols() == 1);
+    using std::sin; using std::cos;
+    const Scalar w0 = cos(q(3));
+    const Scalar w1 = sin(q(1));
+    const Scalar w2 = sin(q(0));
+    const Scalar w3 = w1 * w2;
+    const Scalar w4 = sin(q(2));
+    const Scalar w5 = cos(q(0));
+    const Scalar w6 = cos(q(1));
+    const Scalar w7 = w6 * w2;
+    const Scalar w8 = cos(q(2));
+    const Scalar w9 = w4 * w5 + w7 * w8;
+    const Scalar w10 = sin(q(3));
+    const Scalar w11 = sin(q(5));
+    const Scalar w12 = sin(q(4));
+    const Scalar w13 = w0 * w9 - w3 * w10;
+    const Scalar w14 = cos(q(4));
+    const Scalar w15 = cos(q(5));
+    const Scalar w16 = w7 * c.p.l;
+    const Scalar w17 = w1 * w5;
+    const Scalar w18 = c.p.l * w17;
+    const Scalar w19 = w17 * w8;
+    const Scalar w20 = w6 * w5;
+    const Scalar w21 = w0 * w19 + w20 * w10;
+    const Scalar w22 = w20 * w4 + w2 * w8;
+    const Scalar w23 = w0 * w22;
+    const Scalar w24 = w20 * w8 - w4 * w2;
+    const Scalar w25 = w0 * w17 + w10 * w24;
+    const Scalar w26 = w0 * w24 - w10 * w17;
+    G(0) = c.k10 * (w13 * c.p.l + w16 - ((w0 * w3 + w9 * w10) * w11 + (w12 * (w7 * w4 - w5 * w8) - w13 * w14) * w15) * c.k5) + c.k10 * w7 * c.k5 + c.k10 * (w13 * c.k5 + w16);
+    G(1) = c.k10 * (w18 + w21 * c.p.l - c.k5 * (w15 * (w12 * w4 * w17 - w21 * w14) - (w0 * w20 - w10 * w19) * w11)) + c.k10 * (w18 + w21 * c.k5) + c.k10 * c.k5 * w17;
+    G(2) = -(c.k10 * (c.k5 * (w22 * w10 * w11 - (w23 * w14 + w12 * w24) * w15) - w23 * c.p.l) - w23 * c.k5 * c.k10);
+    G(3) = c.k10 * (w25 * c.p.l + (w14 * w25 * w15 + w26 * w11) * c.k5) + c.k5 * w25 * c.k10;
+    G(4) = c.k10 * c.k5 * (w12 * w26 + w14 * w22) * w15;
+    G(5) = c.k10 * c.k5 * ((w26 * w14 - w12 * w22) * w11 + w25 * w15);
+  }
+
+  /// G(q) = dV/dq: the generalized forces of gravity and springs, with C qd + G = -F at zero input and no other loads
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class Out0>
+  static void gravity_forces(const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& G) noexcept {
+    gravity_forces(q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(G));
+  }
+
+  /// C(q, qd) from the Christoffel symbols of M: dM/dt - 2 C is skew-symmetric
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void coriolis_matrix(const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Constants<typename DerivedQ::Scalar>& c, Out0&& C) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(nq, nq), "C: expected nq x nq");
+    eigen_assert(q.size() == nq && qd.size() == nq && C.rows() == nq && C.cols() == nq);
+    using std::sin; using std::cos;
+    const Scalar w0 = sin(q(1));
+    const Scalar w1 = cos(q(3));
+    const Scalar w2 = sin(q(2));
+    const Scalar w3 = w1 * w2;
+    const Scalar w4 = sin(q(5));
+    const Scalar w5 = cos(q(4));
+    const Scalar w6 = cos(q(5));
+    const Scalar w7 = w5 * w6;
+    const Scalar w8 = w7 * c.k2;
+    const Scalar w9 = w5 * w4;
+    const Scalar w10 = w9 * c.k3;
+    const Scalar w11 = w4 * w8 - w10 * w6;
+    const Scalar w12 = w4 * c.k0;
+    const Scalar w13 = c.p.l * w12;
+    const Scalar w14 = w13 - w11;
+    const Scalar w15 = w3 * w14;
+    const Scalar w16 = sin(q(4));
+    const Scalar w17 = w16 * w4;
+    const Scalar w18 = c.k3 * w17;
+    const Scalar w19 = w16 * w6;
+    const Scalar w20 = w19 * c.k2;
+    const Scalar w21 = w4 * w20 - w18 * w6;
+    const Scalar w22 = cos(q(2));
+    const Scalar w23 = sin(q(3));
+    const Scalar w24 = w2 * w23;
+    const Scalar w25 = w7 * c.k0;
+    const Scalar w26 = w25 * c.p.l;
+    const Scalar w27 = w4 * c.k2;
+    const Scalar w28 = w4 * w27;
+    const Scalar w29 = c.k3 * w6;
+    const Scalar w30 = w29 * w6;
+    const Scalar w31 = w25 + c.k1;
+    const Scalar w32 = w31 * c.p.l;
+    const Scalar w33 = w26 + w28 + w30 + w32 + c.k3;
+    const Scalar w34 = w15 - w21 * w22 + w24 * w33;
+    const Scalar w35 = w7 * w8;
+    const Scalar w36 = w9 * w10;
+    const Scalar w37 = w16 * c.k3;
+    const Scalar w38 = w16 * w37;
+    const Scalar w39 = c.k2 + w35 + w36 + w38;
+    const Scalar w40 = -(w24 * w14);
+    const Scalar w41 = -(w19 * w8);
+    const Scalar w42 = w5 * w37;
+    const Scalar w43 = -(w10 * w17);
+    const Scalar w44 = w19 * c.k0;
+    const Scalar w45 = c.p.l * w44;
+    const Scalar w46 = w41 + w42 + w43 + w45;
+    const Scalar w47 = w40 - w3 * w39 + w46 * w22;
+    const Scalar w48 = w1 * w34 + w47 * w23;
+    const Scalar w49 = cos(q(1));
+    const Scalar w50 = w1 * w22;
+    const Scalar w51 = w14 * w50;
+    const Scalar w52 = w23 * w22;
+    const Scalar w53 = w51 + w21 * w2 + w33 * w52;
+    const Scalar w54 = w24 * w53;
+    const Scalar w55 = w19 * w20;
+    const Scalar w56 = w18 * w17;
+    const Scalar w57 = w5 * c.k3;
+    const Scalar w58 = w57 * w5;
+    const Scalar w59 = w55 + w56 + w58 + w26 + w32 + c.k3;
+    const Scalar w60 = w21 * w52;
+    const Scalar w61 = w59 * w2 + w60 + w46 * w50;
+    const Scalar w62 = -(w61 * w22);
+    const Scalar w63 = w14 * w52;
+    const Scalar w64 = w39 * w50 + w2 * w46 + w63;
+    const Scalar w65 = w3 * w64;
+    const Scalar w66 = w24 * w21;
+    const Scalar w67 = w59 * w22 - w66 - w3 * w46;
+    const Scalar w68 = w54 + w62 + w34 * w52 + w65 - w2 * w67 - w47 * w50;
+    const Scalar w69 = w48 * w0;
+    const Scalar w70 = w24 * w12;
+    const Scalar w71 = -(w44 * w22);
+    const Scalar w72 = w31 + c.k0;
+    const Scalar w73 = -(w72 * w3);
+    const Scalar w74 = w70 + w71 + w73;
+    const Scalar w75 = w0 * (w48 * w49 - w0 * w68) + (w69 + w49 * c.k12 * w74) * w49;
+    const Scalar w76 = w9 * c.k2;
+    const Scalar w77 = w7 * c.k3;
+    const Scalar w78 = w10 * w7 - w7 * w76 + w9 * w77 - w9 * w8;
+    const Scalar w79 = c.k0 * w6;
+    const Scalar w80 = w79 * c.p.l;
+    const Scalar w81 = w80 + w76 * w4 - w6 * w8 - w10 * w4 + w77 * w6;
+    const Scalar w82 = w78 * w23 - w1 * w81;
+    const Scalar w83 = w82 * w23;
+    const Scalar w84 = -(w4 * w29);
+    const Scalar w85 = c.k2 * w6;
+    const Scalar w86 = w85 * w4;
+    const Scalar w87 = w27 * w6;
+    const Scalar w88 = w4 * c.k3;
+    const Scalar w89 = -(w88 * w6);
+    const Scalar w90 = w84 + w86 + w87 + w89;
+    const Scalar w91 = w9 * c.k0;
+    const Scalar w92 = -(c.k12 * w91);
+    const Scalar w93 = w90 + w92;
+    const Scalar w94 = w1 * w93 - w23 * w81;
+    const Scalar w95 = w1 * w94;
+    const Scalar w96 = w83 + w95;
+    const Scalar w97 = c.k0 * w17;
+    const Scalar w98 = w91 * w50 - w2 * w97 + w79 * w52;
+    const Scalar w99 = c.p.l * w97;
+    const Scalar w100 = w99 + w77 * w17 - w17 * w8 - w19 * w76 + w19 * w10;
+    const Scalar w101 = w52 * w81 - w2 * w100 + w78 * w50;
+    const Scalar w102 = c.k2 * w17;
+    const Scalar w103 = w19 * c.k3;
+    const Scalar w104 = w18 * w4 - w102 * w4 + w20 * w6 - w103 * w6;
+    const Scalar w105 = w52 * w93 + w50 * w81 + w104 * w2;
+    const Scalar w106 = w23 * w101 - w1 * w105 - c.p.l * (w1 * w79 - w23 * w91);
+    const Scalar w107 = w19 * w18 - w20 * w17 + w103 * w17 - w19 * w102;
+    const Scalar w108 = w107 + w92;
+    const Scalar w109 = w104 * w52 - w100 * w50 + w2 * w108;
+    const Scalar w110 = w49 * ((w96 - w98 * c.k12) * w49 + w106 * w0) + (w106 * w49 + w0 * (w50 * w101 + w105 * w52 + w109 * w2)) * w0;
+    const Scalar w111 = w26 - (w35 - w58 + w36 - w55 - w56 + w38);
+    const Scalar w112 = w41 + w42 - w9 * w18 + w43 + w57 * w16 - w7 * w20;
+    const Scalar w113 = w111 * w2 + w60 + w112 * w50;
+    const Scalar w114 = c.k12 * w44;
+    const Scalar w115 = -(w21 * w50);
+    const Scalar w116 = w114 * w52 + w115 - w2 * w11;
+    const Scalar w117 = w44 * w23;
+    const Scalar w118 = w113 * w23 + w1 * w116 + w117 * c.p.l;
+    const Scalar w119 = w44 * w50 + w25 * w2;
+    const Scalar w120 = w21 * w1;
+    const Scalar w121 = w112 * w23 - w120;
+    const Scalar w122 = w121 * w23;
+    const Scalar w123 = w21 * w23;
+    const Scalar w124 = w1 * w114 + w123;
+    const Scalar w125 = -(w1 * w124);
+    const Scalar w126 = w122 + w125;
+    const Scalar w127 = w112 + w114;
+    const Scalar w128 = w2 * w127 - w111 * w50 - w52 * w11;
+    const Scalar w129 = w49 * ((c.k12 * w119 - w126) * w49 - w0 * w118) - w0 * (w49 * w118 - w0 * (w128 * w2 - w113 * w50 + w116 * w52));
+    const Scalar w130 = w39 * w52 - w51;
+    const Scalar w131 = w115 + w46 * w52;
+    const Scalar w132 = w33 * w50 - w63;
+    const Scalar w133 = w23 * w12 - w1 * w72;
+    const Scalar w134 = w53 * w23 - w130 * w23 - w1 * w132 + w1 * w64 + c.p.l * w133;
+    const Scalar w135 = w1 * w14;
+    const Scalar w136 = w135 + w33 * w23;
+    const Scalar w137 = w1 * w136;
+    const Scalar w138 = w14 * w23;
+    const Scalar w139 = w138 + w1 * w39;
+    const Scalar w140 = -(w23 * w139);
+    const Scalar w141 = w39 * w23 - w135;
+    const Scalar w142 = -(w141 * w1);
+    const Scalar w143 = w1 * w33 - w138;
+    const Scalar w144 = w143 * w23;
+    const Scalar w145 = w137 + w140 + w142 + w144;
+    const Scalar w146 = w12 * w50 + w72 * w52;
+    const Scalar w147 = w0 * (w0 * (w130 * w50 + w2 * w131 - w52 * w132 + w64 * w52 - w53 * w50) - w49 * w134) - w49 * (w0 * w134 - w49 * (w145 + c.k12 * w146));
+    const Scalar w148 = w1 * w12;
+    const Scalar w149 = w72 * w23 + w148;
+    const Scalar w150 = w149 * c.p.l;
+    const Scalar w151 = w1 * w53 - w64 * w23;
+    const Scalar w152 = w150 + w151;
+    const Scalar w153 = w49 * w152;
+    const Scalar w154 = w64 * w50;
+    const Scalar w155 = w53 * w52;
+    const Scalar w156 = w61 * w2;
+    const Scalar w157 = c.k2 + w154 + w155 + w156;
+    const Scalar w158 = w72 * w50 - w52 * w12 - w2 * w44;
+    const Scalar w159 = w158 * c.p.l;
+    const Scalar w160 = w143 * w1;
+    const Scalar w161 = w141 * w23;
+    const Scalar w162 = c.k3 + w159 + w160 + w161 + c.p.l * (w158 + c.k4);
+    const Scalar w163 = w0 * w152;
+    const Scalar w164 = w49 * (w153 - w157 * w0) + w0 * (w162 * w49 - w163) + w49 * (w153 + w162 * w0) - w0 * (w157 * w49 + w163);
+    const Scalar w165 = w1 * w44;
+    const Scalar w166 = -(w46 * w23);
+    const Scalar w167 = w166 + w120;
+    const Scalar w168 = w143 * w52 - w141 * w50 + w167 * w2;
+    const Scalar w169 = w0 * ((w24 * w117 + w3 * w165 + w133 * w22) * c.p.l - w161 - w160) - w49 * w168;
+    const Scalar w170 = w169 * Scalar(0.5) * qd(2);
+    const Scalar w171 = w57 + w80;
+    const Scalar w172 = w2 * w171 + w99 * w52 + w37 * w50;
+    const Scalar w173 = (w3 * w91 + w97 * w22 + w24 * w79) * c.p.l;
+    const Scalar w174 = w172 * w49 + w0 * (w1 * w99 + w173 - w37 * w23);
+    const Scalar w175 = w174 * qd(5) * Scalar(0.5);
+    const Scalar w176 = w24 * w81 + w100 * w22 + w3 * w78;
+    const Scalar w177 = w3 * w81 - w104 * w22 + w24 * w93;
+    const Scalar w178 = w0 * (w173 - (w109 * w22 - w3 * w101 - w24 * w105)) + w49 * (w176 * w23 - w1 * w177);
+    const Scalar w179 = w178 * qd(5) * Scalar(0.5);
+    const Scalar w180 = w66 - w111 * w22 + w3 * w112;
+    const Scalar w181 = w21 * w3;
+    const Scalar w182 = w24 * w114 + w11 * w22 - w181;
+    const Scalar w183 = (w24 * w116 - w128 * w22 - w113 * w3 + c.p.l * (w25 * w22 - w3 * w44)) * w0 - w49 * (w180 * w23 + w1 * w182);
+    const Scalar w184 = -(w183 * Scalar(0.5) * qd(4));
+    const Scalar w185 = c.p.l * (w3 * w12 + w24 * w72);
+    const Scalar w186 = w15 - w24 * w39;
+    const Scalar w187 = w40 + w3 * w33;
+    const Scalar w188 = w0 * (w185 - (w3 * w130 - w24 * w132 + w24 * w64 - w3 * w53 - w131 * w22)) + w49 * (w23 * w186 + w23 * w34 - w1 * w187 - w47 * w1);
+    const Scalar w189 = Scalar(0.5) * w188 * qd(3);
+    const Scalar w190 = w61 * w49 + w0 * (w185 + w166 + w120);
+    const Scalar w191 = w190 * Scalar(0.5) * qd(3);
+    const Scalar w192 = w164 * Scalar(0.5) * qd(0);
+    const Scalar w193 = w7 * w27 - w9 * w29;
+    const Scalar w194 = w79 * w5;
+    const Scalar w195 = w28 + c.p.l * w194 + w30;
+    const Scalar w196 = w29 * w17 - w19 * w27;
+    const Scalar w197 = w195 * w52 - w193 * w50 - w2 * w196;
+    const Scalar w198 = w16 * w79;
+    const Scalar w199 = w49 * w197 + (w193 * w23 + (w194 * w22 - w3 * w198) * c.p.l + w195 * w1) * w0;
+    const Scalar w200 = Scalar(0.5) * qd(4) * w199;
+    const Scalar w201 = c.p.l * w74;
+    const Scalar w202 = w49 * w151 + w0 * (w159 - (w47 * w3 + w154 - w67 * w22 + w155 - w24 * w34 + w156));
+    const Scalar w203 = -(Scalar(0.5) * w202 * qd(2));
+    const Scalar w204 = w1 * w46;
+    const Scalar w205 = w204 + w123;
+    const Scalar w206 = (w137 + w140 + w142 + w149 * w22 * c.p.l + w144) * w49 - (w139 * w50 - w143 * w50 + w136 * w52 - w141 * w52 + w2 * w205) * w0;
+    const Scalar w207 = -(w206 * Scalar(0.5) * qd(3));
+    const Scalar w208 = qd(1) * w169 * Scalar(0.5);
+    const Scalar w209 = w25 * w1;
+    const Scalar w210 = w25 * w23;
+    const Scalar w211 = w111 * w23;
+    const Scalar w212 = -(w1 * w11);
+    const Scalar w213 = w211 + w212;
+    const Scalar w214 = w49 * (w122 - (w3 * w209 + w165 * w22 + w24 * w210) * c.p.l + w125) + w0 * (w124 * w52 + w2 * w213 + w121 * w50);
+    const Scalar w215 = w214 * Scalar(0.5) * qd(4);
+    const Scalar w216 = w0 * (w196 * w22 - w3 * w193 + w24 * w195) - w49 * (w2 * w194 + w198 * w50) * c.p.l;
+    const Scalar w217 = Scalar(0.5) * w216 * qd(4);
+    const Scalar w218 = qd(1) * Scalar(0.5) * w202;
+    const Scalar w219 = w1 * w97;
+    const Scalar w220 = w79 * w23 + w1 * w91;
+    const Scalar w221 = w23 * w97;
+    const Scalar w222 = w1 * w104;
+    const Scalar w223 = w23 * w100;
+    const Scalar w224 = w222 + w223;
+    const Scalar w225 = (c.p.l * (w3 * w219 - w220 * w22 + w24 * w221) + w83 + w95) * w49 - w0 * (w94 * w52 - w82 * w50 + w2 * w224);
+    const Scalar w226 = w225 * qd(5) * Scalar(0.5);
+    const Scalar w227 = c.p.l * w146;
+    const Scalar w228 = w0 * w67 - w49 * w227;
+    const Scalar w229 = Scalar(0.5) * w228 * qd(3);
+    const Scalar w230 = w98 * c.p.l;
+    const Scalar w231 = w0 * (w171 * w22 - w24 * w99 - w3 * w37) - w49 * w230;
+    const Scalar w232 = qd(5) * Scalar(0.5) * w231;
+    const Scalar w233 = Scalar(0.5) * qd(0) * w75;
+    const Scalar w234 = Scalar(0.5) * qd(0) * w147;
+    const Scalar w235 = w49 * (w211 + c.p.l * w24 * w44 + w212) - w128 * w0;
+    const Scalar w236 = w235 * Scalar(0.5) * qd(4);
+    const Scalar w237 = w99 * w23;
+    const Scalar w238 = w1 * w37;
+    const Scalar w239 = (w24 * w91 - w3 * w79) * c.p.l;
+    const Scalar w240 = w0 * (w37 * w52 - w99 * w50) - (w237 + w238 + w239) * w49;
+    const Scalar w241 = qd(5) * w240 * Scalar(0.5);
+    const Scalar w242 = qd(1) * Scalar(0.5) * w188;
+    const Scalar w243 = qd(1) * w190 * Scalar(0.5);
+    const Scalar w244 = Scalar(0.5) * w228 * qd(2);
+    const Scalar w245 = w206 * Scalar(0.5) * qd(2);
+    const Scalar w246 = w0 * w109 - w49 * (w222 + w223 - w239);
+    const Scalar w247 = w246 * qd(5) * Scalar(0.5);
+    const Scalar w248 = w195 * w23;
+    const Scalar w249 = -(w1 * w193);
+    const Scalar w250 = w0 * (w193 * w52 + w195 * w50) + w49 * (w248 + w249 - w24 * w198 * c.p.l);
+    const Scalar w251 = Scalar(0.5) * w250 * qd(4);
+    const Scalar w252 = c.p.l * w91;
+    const Scalar w253 = w57 * w23;
+    const Scalar w254 = w1 * w252;
+    const Scalar w255 = w0 * (w57 * w50 - w37 * w2 + w252 * w52) - w49 * (c.p.l * (w91 * w22 - w3 * w97) - w253 + w254);
+    const Scalar w256 = w255 * qd(5) * Scalar(0.5);
+    const Scalar w257 = -(w129 * Scalar(0.5) * qd(0));
+    const Scalar w258 = c.p.l * w198;
+    const Scalar w259 = w1 * w258;
+    const Scalar w260 = -(w196 * w23);
+    const Scalar w261 = qd(1) * Scalar(0.5) * w199;
+    const Scalar w262 = w214 * Scalar(0.5) * qd(2);
+    const Scalar w263 = w9 * w27 - w88 * w9 + w7 * w29 - w7 * w85;
+    const Scalar w264 = w263 * w23;
+    const Scalar w265 = w5 * w12;
+    const Scalar w266 = w84 + w86 - c.p.l * w265 + w87 + w89;
+    const Scalar w267 = -(w1 * w266);
+    const Scalar w268 = w16 * w12;
+    const Scalar w269 = w27 * w17 + w19 * w29 - w88 * w17 - w19 * w85;
+    const Scalar w270 = w49 * (w264 + w267 - (w268 * w3 - w265 * w22) * c.p.l) + w0 * (w266 * w52 + w263 * w50 - w2 * w269);
+    const Scalar w271 = qd(5) * Scalar(0.5) * w270;
+    const Scalar w272 = qd(1) * w183 * Scalar(0.5);
+    const Scalar w273 = w235 * Scalar(0.5) * qd(3);
+    const Scalar w274 = Scalar(0.5) * w216 * qd(2);
+    const Scalar w275 = Scalar(0.5) * w250 * qd(3);
+    const Scalar w276 = qd(1) * w174 * Scalar(0.5);
+    const Scalar w277 = w1 * w45;
+    const Scalar w278 = qd(1) * w178 * Scalar(0.5);
+    const Scalar w279 = w240 * Scalar(0.5) * qd(3);
+    const Scalar w280 = w255 * Scalar(0.5) * qd(4);
+    const Scalar w281 = -(w225 * Scalar(0.5) * qd(2));
+    const Scalar w282 = -(Scalar(0.5) * w110 * qd(0));
+    const Scalar w283 = -(w246 * Scalar(0.5) * qd(3));
+    const Scalar w284 = Scalar(0.5) * w231 * qd(2);
+    const Scalar w285 = Scalar(0.5) * qd(4) * w270;
+    const Scalar w286 = w111 * w3;
+    const Scalar w287 = w127 * w22;
+    const Scalar w288 = w24 * w11;
+    const Scalar w289 = c.p.l * w119 - Scalar(0.5) * (w180 * w3 - (w286 + w287 + w288) * w22 - w24 * w182);
+    const Scalar w290 = Scalar(0.5) * w68 + w201;
+    const Scalar w291 = w24 * w104;
+    const Scalar w292 = -(w3 * w100);
+    const Scalar w293 = -(w22 * w108);
+    const Scalar w294 = Scalar(0.5) * (w24 * w177 - (w291 + w292 + w293) * w22 + w3 * w176) - w230;
+    const Scalar w295 = -(w24 * w46);
+    const Scalar w296 = Scalar(0.5) * (w24 * w47 + w3 * w34 - (w181 + w295) * w22 + w24 * w187 + w3 * w186) - w227;
+    const Scalar w297 = w169 * Scalar(0.5) * qd(0);
+    const Scalar w298 = w61 * Scalar(0.5) * qd(3);
+    const Scalar w299 = w172 * qd(5) * Scalar(0.5);
+    const Scalar w300 = -(w197 * Scalar(0.5) * qd(4));
+    const Scalar w301 = w224 * w22 - w24 * w94 + c.p.l * (w1 * w221 - w23 * w219) + w3 * w82;
+    const Scalar w302 = w301 * qd(5) * Scalar(0.5);
+    const Scalar w303 = -(Scalar(0.5) * qd(0) * w202);
+    const Scalar w304 = w24 * w141 - w3 * w139 + c.k13 - w24 * w136 + w205 * w22 + w143 * w3;
+    const Scalar w305 = Scalar(0.5) * qd(3) * w304;
+    const Scalar w306 = c.p.l * (w1 * w210 - w209 * w23) - w121 * w3 - w24 * w124 + w213 * w22;
+    const Scalar w307 = Scalar(0.5) * w306 * qd(4);
+    const Scalar w308 = -(qd(1) * w290);
+    const Scalar w309 = Scalar(0.5) * w304 * qd(2);
+    const Scalar w310 = -(w190 * Scalar(0.5) * qd(0));
+    const Scalar w311 = -(Scalar(0.5) * qd(0) * w188);
+    const Scalar w312 = w195 * w3 + w24 * w193 - c.p.l * w1 * w198;
+    const Scalar w313 = w312 * Scalar(0.5) * qd(4);
+    const Scalar w314 = w61 * Scalar(0.5) * qd(2);
+    const Scalar w315 = w296 * qd(1);
+    const Scalar w316 = w220 * c.p.l;
+    const Scalar w317 = w316 - w24 * w37 + w99 * w3;
+    const Scalar w318 = -(qd(5) * Scalar(0.5) * w317);
+    const Scalar w319 = w316 + w291 + w292 + w293;
+    const Scalar w320 = qd(5) * w319 * Scalar(0.5);
+    const Scalar w321 = w286 + w165 * c.p.l + w287 + w288;
+    const Scalar w322 = w321 * Scalar(0.5) * qd(4);
+    const Scalar w323 = w221 * c.p.l - w37 * w22 - w57 * w3 - w24 * w252;
+    const Scalar w324 = w323 * qd(5) * Scalar(0.5);
+    const Scalar w325 = w197 * Scalar(0.5) * qd(2);
+    const Scalar w326 = -(w321 * Scalar(0.5) * qd(3));
+    const Scalar w327 = w183 * Scalar(0.5) * qd(0);
+    const Scalar w328 = Scalar(0.5) * w306 * qd(2);
+    const Scalar w329 = w24 * w266 + w269 * w22 + w263 * w3 + c.p.l * w268 * w23;
+    const Scalar w330 = qd(5) * w329 * Scalar(0.5);
+    const Scalar w331 = w312 * Scalar(0.5) * qd(3);
+    const Scalar w332 = -(qd(1) * w289);
+    const Scalar w333 = Scalar(0.5) * qd(0) * w199;
+    const Scalar w334 = w301 * Scalar(0.5) * qd(2);
+    const Scalar w335 = w323 * Scalar(0.5) * qd(4);
+    const Scalar w336 = w172 * Scalar(0.5) * qd(2);
+    const Scalar w337 = w174 * Scalar(0.5) * qd(0);
+    const Scalar w338 = w178 * Scalar(0.5) * qd(0);
+    const Scalar w339 = w319 * Scalar(0.5) * qd(3);
+    const Scalar w340 = -(w329 * Scalar(0.5) * qd(4));
+    const Scalar w341 = -(qd(1) * w294);
+    const Scalar w342 = Scalar(0.5) * w317 * qd(3);
+    const Scalar w343 = w237 + w238;
+    const Scalar w344 = qd(5) * Scalar(0.5) * w343;
+    const Scalar w345 = qd(5) * Scalar(0.5) * w224;
+    const Scalar w346 = w145 * Scalar(0.5) * qd(2);
+    const Scalar w347 = qd(1) * Scalar(0.5) * w304;
+    const Scalar w348 = w206 * Scalar(0.5) * qd(0);
+    const Scalar w349 = w248 + w249;
+    const Scalar w350 = w349 * Scalar(0.5) * qd(4);
+    const Scalar w351 = Scalar(0.5) * qd(0) * w228;
+    const Scalar w352 = -(Scalar(0.5) * w213 * qd(4));
+    const Scalar w353 = w61 * qd(1) * Scalar(0.5);
+    const Scalar w354 = -(w214 * Scalar(0.5) * qd(0));
+    const Scalar w355 = qd(1) * w197 * Scalar(0.5);
+    const Scalar w356 = -(w126 * Scalar(0.5) * qd(2));
+    const Scalar w357 = w253 - w254;
+    const Scalar w358 = -(qd(5) * w357 * Scalar(0.5));
+    const Scalar w359 = -(qd(1) * Scalar(0.5) * w306);
+    const Scalar w360 = w264 + w267;
+    const Scalar w361 = qd(5) * Scalar(0.5) * w360;
+    const Scalar w362 = w349 * Scalar(0.5) * qd(3);
+    const Scalar w363 = -(Scalar(0.5) * w213 * qd(3));
+    const Scalar w364 = Scalar(0.5) * qd(0) * w216;
+    const Scalar w365 = Scalar(0.5) * qd(3) * w343;
+    const Scalar w366 = w357 * Scalar(0.5) * qd(4);
+    const Scalar w367 = Scalar(0.5) * qd(4) * w360;
+    const Scalar w368 = Scalar(0.5) * qd(0) * w231;
+    const Scalar w369 = qd(1) * w301 * Scalar(0.5);
+    const Scalar w370 = qd(1) * w172 * Scalar(0.5);
+    const Scalar w371 = w225 * Scalar(0.5) * qd(0);
+    const Scalar w372 = Scalar(0.5) * qd(3) * w224;
+    const Scalar w373 = w96 * Scalar(0.5) * qd(2);
+    const Scalar w374 = w112 * Scalar(0.5) + w45;
+    const Scalar w375 = w252 - w107 * Scalar(0.5);
+    const Scalar w376 = Scalar(0.5) * qd(0) * w250;
+    const Scalar w377 = w349 * Scalar(0.5) * qd(2);
+    const Scalar w378 = Scalar(0.5) * w213 * qd(2);
+    const Scalar w379 = -(w374 * qd(3));
+    const Scalar w380 = -(qd(1) * w312 * Scalar(0.5));
+    const Scalar w381 = qd(5) * Scalar(0.5) * w269;
+    const Scalar w382 = w235 * Scalar(0.5) * qd(0);
+    const Scalar w383 = -(qd(5) * Scalar(0.5) * w37);
+    const Scalar w384 = -(qd(1) * w321 * Scalar(0.5));
+    const Scalar w385 = Scalar(0.5) * w224 * qd(2);
+    const Scalar w386 = -(qd(1) * Scalar(0.5) * w317);
+    const Scalar w387 = Scalar(0.5) * w343 * qd(2);
+    const Scalar w388 = -(w240 * Scalar(0.5) * qd(0));
+    const Scalar w389 = -(Scalar(0.5) * w269 * qd(4));
+    const Scalar w390 = -(w246 * Scalar(0.5) * qd(0));
+    const Scalar w391 = qd(1) * w319 * Scalar(0.5);
+    const Scalar w392 = w375 * qd(3);
+    const Scalar w393 = Scalar(0.5) * w37 * qd(4);
+    const Scalar w394 = Scalar(0.5) * qd(0) * w270 + w255 * Scalar(0.5) * qd(0) - Scalar(0.5) * w37 * qd(3) + qd(1) * w323 * Scalar(0.5) - w90 * Scalar(0.5) * qd(4) + w357 * Scalar(0.5) * qd(2) + Scalar(0.5) * w360 * qd(2) - Scalar(0.5) * w269 * qd(3) - qd(1) * w329 * Scalar(0.5);
+    C(0, 0) = Scalar(0.5) * w75 * qd(2) + qd(5) * Scalar(0.5) * w110 - w129 * Scalar(0.5) * qd(4) - Scalar(0.5) * w147 * qd(3) - w164 * qd(1) * Scalar(0.5);
+    C(0, 1) = -(w179 - w170 - w175 + w184 + w189 - w191 + w192 + w200 + qd(1) * (w69 + w49 * (w54 + w62 + w65 + w201)) + w203);
+    C(0, 2) = w207 + w208 + w215 + w217 + w218 + w226 + w229 + w232 + (w0 * (w24 * w143 - w141 * w3 - w167 * w22) + w49 * c.p.l * (w2 * w133 - w165 * w50 - w117 * w52)) * qd(2) + w233;
+    C(0, 3) = -(w234 - w236 + w241 + (w0 * w131 - w49 * (w204 + c.p.l * (w70 + w73) + w123)) * qd(3) + w242 - w243 - w244 + w245 - w247 + w251);
+    C(0, 4) = w256 + w257 + (w0 * (w258 * w52 + w196 * w50 - w2 * w193) - w49 * (w259 + (w198 * w22 + w3 * w194) * c.p.l + w260)) * qd(4) - w261 + w262 - w271 + w272 + w273 + w274 - w275;
+    C(0, 5) = -(w278 - w276 - qd(5) * ((c.p.l * (w70 - w25 * w3 + w71) - w277) * w49 + w0 * (w45 * w52 - w2 * w13)) + w279 - w280 + w281 + w282 + w283 - w284 + w285);
+    C(1, 0) = -(w179 - w200 - w192 + w184 + w189 + w175 + w170 + w191 + w203);
+    C(1, 1) = -(w289 * qd(4) - w290 * qd(2) - w294 * qd(5) - w296 * qd(3));
+    C(1, 2) = -(w297 + w298 + w299 + w300 + w302 + w303 - w305 - w168 * qd(2) - w307 + w308);
+    C(1, 3) = w309 + w310 - (w181 + w150 + w295) * qd(3) + w311 + w313 - w314 + w315 + w318 - w320 - w322;
+    C(1, 4) = w324 + w325 + w326 + w327 + w328 + w330 + w331 + w332 + w333 - qd(4) * (w24 * w258 + w3 * w196 + c.p.l * w194 * w23 + w193 * w22);
+    C(1, 5) = -(w334 - w335 + w336 + w337 + qd(5) * (w13 * w22 + (w210 + w148) * c.p.l + w24 * w45) + w338 + w339 + w340 + w341 + w342);
+    C(2, 0) = w207 + w208 - w218 + w215 - w232 - w217 + w226 - w233 - w229;
+    C(2, 1) = w297 + w298 + w307 + w299 + w300 + w305 + w303 - w302 + w308;
+    C(2, 2) = w126 * Scalar(0.5) * qd(4) - w145 * Scalar(0.5) * qd(3) + w96 * qd(5) * Scalar(0.5);
+    C(2, 3) = -(w345 - w344 + w346 - w347 + w348 - w205 * qd(3) + w350 + w351 + w352 - w353);
+    C(2, 4) = -(w354 + w355 + (w259 + w260) * qd(4) + w356 + w358 + w359 + w361 + w362 + w363 + w364);
+    C(2, 5) = w365 - qd(5) * w277 + w366 - w367 - w368 - w369 + w370 + w371 - w372 + w373;
+    C(3, 0) = w234 + w241 + w242 + w243 + w247 + w244 + w236 + w245 + w251;
+    C(3, 1) = -(w309 + w310 + w311 + w320 + w313 + w322 + w315 + w314 + w318);
+    C(3, 2) = -(w345 - w348 - w351 + w347 - w350 - w346 + w344 + w353 + w352);
+    C(3, 3) = -(w374 * qd(4) + qd(5) * w375);
+    C(3, 4) = w376 + w377 + w378 + w379 + w380 - w193 * qd(4) + w381 + w382 + w383 + w384;
+    C(3, 5) = -(qd(5) * w13 + w385 + w386 + w387 + w388 + w389 + w390 + w391 + w392 + w393);
+    C(4, 0) = -(w256 + w257 + w271 + w261 + w275 + w262 + w272 + w273 - w274);
+    C(4, 1) = -(w324 + w326 + w327 + w328 - w331 - w330 + w332 + w333 - w325);
+    C(4, 2) = w354 + w355 + w356 + w358 - w361 + w359 + w363 + w364 - w362;
+    C(4, 3) = -(w376 + w377 + w378 + w379 + w380 - w381 + w382 + w383 + w384);
+    C(4, 4) = w90 * qd(5) * Scalar(0.5);
+    C(4, 5) = -w394;
+    C(5, 0) = w278 - w279 + w284 + w276 + w281 + w280 + w282 + w283 + w285;
+    C(5, 1) = w334 - w342 - w336 + w337 + w335 + w338 + w339 + w340 + w341;
+    C(5, 2) = w365 + w372 + w366 + w368 - w373 + w367 - w371 + w369 - w370;
+    C(5, 3) = w385 - w393 + w386 + w387 + w388 + w389 + w390 + w391 + w392;
+    C(5, 4) = w394;
+    C(5, 5) = Scalar(0);
+  }
+
+  /// C(q, qd) from the Christoffel symbols of M: dM/dt - 2 C is skew-symmetric
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void coriolis_matrix(const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Parameters<typename DerivedQ::Scalar>& p, Out0&& C) noexcept {
+    coriolis_matrix(q, qd, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(C));
+  }
+
+  /// J = dy/dq of the output tip
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_tip([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Constants<typename DerivedQ::Scalar>& c, Out0&& J) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, nq), "J: expected 3 x nq");
+    eigen_assert(q.size() == nq && J.rows() == 3 && J.cols() == nq);
+    using std::sin; using std::cos;
+    const Scalar w0 = sin(q(5));
+    const Scalar w1 = cos(q(3));
+    const Scalar w2 = sin(q(1));
+    const Scalar w3 = cos(q(1));
+    const Scalar w4 = sin(q(3));
+    const Scalar w5 = cos(q(2));
+    const Scalar w6 = sin(q(4));
+    const Scalar w7 = sin(q(2));
+    const Scalar w8 = cos(q(4));
+    const Scalar w9 = w2 * w4 - w1 * w3 * w5;
+    const Scalar w10 = cos(q(5));
+    const Scalar w11 = w1 * w2 * w5 + w3 * w4;
+    const Scalar w12 = w1 * w3 - w2 * w4 * w5;
+    const Scalar w13 = cos(q(0));
+    const Scalar w14 = sin(q(0));
+    const Scalar w15 = w7 * w14 - w3 * w13 * w5;
+    const Scalar w16 = w1 * w15 + w2 * w4 * w13;
+    const Scalar w17 = w3 * w7 * w13 + w14 * w5;
+    const Scalar w18 = w16 * w8 + w6 * w17;
+    const Scalar w19 = w15 * w4 - w1 * w2 * w13;
+    const Scalar w20 = w3 * w14 * w4 + w1 * w2 * w14 * w5;
+    const Scalar w21 = w3 * w7 * w14 - w13 * w5;
+    const Scalar w22 = w7 * w13 + w3 * w14 * w5;
+    const Scalar w23 = w1 * w22 - w2 * w14 * w4;
+    const Scalar w24 = w4 * w22 + w1 * w2 * w14;
+    const Scalar w25 = w8 * w23 - w6 * w21;
+    const Scalar w26 = w3 * w4 * w13 + w1 * w2 * w13 * w5;
+    J(0, 1) = (w0 * (w1 * w2 + w3 * w4 * w5) + (w6 * w3 * w7 + w8 * w9) * w10) * c.p.l - w3 * c.p.l + c.p.l * w9;
+    J(0, 2) = w1 * w2 * w7 * c.p.l - (w2 * w0 * w7 * w4 - (w6 * w2 * w5 + w1 * w2 * w8 * w7) * w10) * c.p.l;
+    J(0, 3) = -(c.p.l * (w12 * w8 * w10 - w11 * w0) + w12 * c.p.l);
+    J(0, 4) = c.p.l * w10 * (w2 * w8 * w7 + w11 * w6);
+    J(0, 5) = -((w12 * w10 - w0 * (w11 * w8 - w6 * w2 * w7)) * c.p.l);
+    J(1, 0) = w3 * c.p.l * w13 - c.p.l * (w18 * w10 - w0 * w19) - w16 * c.p.l;
+    J(1, 1) = -(w20 * c.p.l + w2 * c.p.l * w14 + ((w1 * w3 * w14 - w2 * w14 * w4 * w5) * w0 - (w6 * w2 * w7 * w14 - w8 * w20) * w10) * c.p.l);
+    J(1, 2) = -(w1 * c.p.l * w21 + ((w6 * w22 + w1 * w8 * w21) * w10 - w0 * w4 * w21) * c.p.l);
+    J(1, 3) = -((w0 * w23 + w24 * w8 * w10) * c.p.l + w24 * c.p.l);
+    J(1, 4) = -((w6 * w23 + w8 * w21) * c.p.l * w10);
+    J(1, 5) = -((w25 * w0 + w24 * w10) * c.p.l);
+    J(2, 0) = w3 * c.p.l * w14 + c.p.l * w23 - (w24 * w0 - w25 * w10) * c.p.l;
+    J(2, 1) = w2 * c.p.l * w13 + w26 * c.p.l - ((w6 * w2 * w7 * w13 - w26 * w8) * w10 + (w2 * w4 * w13 * w5 - w1 * w3 * w13) * w0) * c.p.l;
+    J(2, 2) = -((w17 * w0 * w4 + (w6 * w15 - w1 * w8 * w17) * w10) * c.p.l - w1 * w17 * c.p.l);
+    J(2, 3) = -(c.p.l * (w8 * w19 * w10 + w16 * w0) + w19 * c.p.l);
+    J(2, 4) = -((w16 * w6 - w8 * w17) * c.p.l * w10);
+    J(2, 5) = -((w19 * w10 + w18 * w0) * c.p.l);
+    J(0, 0) = Scalar(0);
+  }
+
+  /// J = dy/dq of the output tip
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_tip(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& J) noexcept {
+    output_jacobian_tip(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(J));
+  }
+
+  /// Jdot qd of the output tip: its acceleration at qdd = 0
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_tip([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Constants<typename DerivedQ::Scalar>& c, Out0&& Jdot_qd) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, 1), "Jdot_qd: expected 3 x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && Jdot_qd.rows() == 3 && Jdot_qd.cols() == 1);
+    using std::sin; using std::cos;
+    const Scalar w0 = cos(q(3));
+    const Scalar w1 = sin(q(1));
+    const Scalar w2 = cos(q(2));
+    const Scalar w3 = cos(q(1));
+    const Scalar w4 = sin(q(3));
+    const Scalar w5 = w0 * w1 * w2 + w3 * w4;
+    const Scalar w6 = w5 * c.p.l;
+    const Scalar w7 = cos(q(4));
+    const Scalar w8 = cos(q(5));
+    const Scalar w9 = w0 * w3 - w1 * w4 * w2;
+    const Scalar w10 = sin(q(5));
+    const Scalar w11 = w9 * w10;
+    const Scalar w12 = qd(3) * qd(3);
+    const Scalar w13 = sin(q(4));
+    const Scalar w14 = sin(q(2));
+    const Scalar w15 = w1 * w4 - w0 * w3 * w2;
+    const Scalar w16 = w0 * w1 + w3 * w4 * w2;
+    const Scalar w17 = qd(1) * qd(1);
+    const Scalar w18 = w13 * w1 * w14;
+    const Scalar w19 = w5 * w7 - w18;
+    const Scalar w20 = w19 * w8 + w11;
+    const Scalar w21 = qd(4) * qd(4);
+    const Scalar w22 = qd(5) * qd(5);
+    const Scalar w23 = qd(2) * qd(2);
+    const Scalar w24 = cos(q(0));
+    const Scalar w25 = sin(q(0));
+    const Scalar w26 = w14 * w24 + w3 * w25 * w2;
+    const Scalar w27 = w3 * w14 * w25 - w24 * w2;
+    const Scalar w28 = w13 * w26 + w0 * w7 * w27;
+    const Scalar w29 = w3 * w25 * w4 + w0 * w1 * w25 * w2;
+    const Scalar w30 = -(w13 * w27);
+    const Scalar w31 = w0 * w1 * w25;
+    const Scalar w32 = w4 * w26 + w31;
+    const Scalar w33 = -(w1 * w25 * w4);
+    const Scalar w34 = w0 * w26 + w33;
+    const Scalar w35 = w14 * w25 - w3 * w24 * w2;
+    const Scalar w36 = w0 * w1 * w24;
+    const Scalar w37 = w35 * w4 - w36;
+    const Scalar w38 = w1 * w4 * w24;
+    const Scalar w39 = w0 * w35 + w38;
+    const Scalar w40 = w0 * w3 * w25 - w1 * w25 * w4 * w2;
+    const Scalar w41 = w13 * w1 * w14 * w25 - w7 * w29;
+    const Scalar w42 = w32 * w10;
+    const Scalar w43 = w7 * w34 + w30;
+    const Scalar w44 = w42 - w43 * w8;
+    const Scalar w45 = w3 * w14 * w24 + w25 * w2;
+    const Scalar w46 = w39 * w13 - w7 * w45;
+    const Scalar w47 = w3 * w4 * w24 + w0 * w1 * w24 * w2;
+    const Scalar w48 = w13 * w1 * w14 * w24 - w47 * w7;
+    const Scalar w49 = w1 * w4 * w24 * w2 - w0 * w3 * w24;
+    const Scalar w50 = w3 * c.p.l * w25;
+    const Scalar w51 = w0 * w3 * w25 * w2 + w33;
+    const Scalar w52 = c.p.l * w34;
+    const Scalar w53 = qd(0) * qd(0);
+    const Scalar w54 = w13 * w35 - w0 * w7 * w45;
+    const Scalar w55 = w13 * w45;
+    const Scalar w56 = w39 * w7 + w55;
+    const Scalar w57 = w13 * w34 + w7 * w27;
+    const Scalar w58 = w0 * w3 * w24 * w2 - w38;
+    const Scalar w59 = w3 * c.p.l * w24;
+    const Scalar w60 = w10 * w37;
+    const Scalar w61 = w39 * c.p.l;
+    const Scalar w62 = w56 * w8 - w60;
+    Jdot_qd(0) = -((w13 * w0 * w1 * w14 - w1 * w7 * w2) * c.k12 * qd(4) * w8 * qd(2) - (w6 + c.p.l * (w5 * w7 * w8 + w11)) * w12 + qd(5) * c.k12 * w10 * qd(4) * (w1 * w7 * w14 + w5 * w13) + qd(1) * c.k12 * qd(4) * (w13 * w15 - w3 * w7 * w14) * w8 - (c.p.l * w16 - c.p.l * (w10 * w15 - w7 * w8 * w16)) * qd(1) * Scalar(2) * qd(3) - w9 * w13 * c.k12 * qd(4) * qd(3) * w8 - w17 * (w1 * c.p.l + c.p.l * w20 + w6) + Scalar(2) * qd(3) * qd(2) * (w1 * w14 * c.p.l * w4 + (w1 * w7 * w14 * w4 * w8 + w0 * w1 * w10 * w14) * c.p.l) - w19 * c.p.l * w21 * w8 + qd(5) * c.k12 * (w1 * w14 * w4 * w8 + w10 * (w13 * w1 * w2 + w0 * w1 * w7 * w14)) * qd(2) - w22 * c.p.l * w20 - w23 * (w0 * w1 * c.p.l * w2 - c.p.l * (w1 * w10 * w4 * w2 + (w18 - w0 * w1 * w7 * w2) * w8)) + qd(1) * qd(5) * c.k12 * (w10 * (w13 * w3 * w14 + w7 * w15) - w8 * w16) - qd(1) * (w0 * w3 * w14 * c.p.l - (w3 * w10 * w14 * w4 - (w0 * w3 * w7 * w14 + w13 * w3 * w2) * w8) * c.p.l) * Scalar(2) * qd(2) - qd(5) * c.k12 * (w5 * w8 + w9 * w7 * w10) * qd(3));
+    Jdot_qd(1) = qd(5) * c.k12 * (w28 * w10 + w4 * w8 * w27) * qd(2) + (w13 * w29 + w1 * w7 * w14 * w25) * qd(1) * c.k12 * qd(4) * w8 + (c.p.l * (w10 * w4 * w26 - (w30 + w0 * w7 * w26) * w8) - w0 * c.p.l * w26) * w23 + qd(1) * Scalar(2) * (w0 * w1 * w14 * c.p.l * w25 - c.p.l * (w1 * w10 * w14 * w25 * w4 - w8 * (w0 * w1 * w7 * w14 * w25 + w13 * w1 * w25 * w2))) * qd(2) + Scalar(2) * (c.p.l * w4 * w27 + (w7 * w4 * w8 * w27 + w0 * w10 * w27) * c.p.l) * qd(3) * qd(2) + (w32 * w7 * w10 - w34 * w8) * qd(5) * c.k12 * qd(3) + Scalar(2) * (c.p.l * (w7 * w37 * w8 + w39 * w10) + w37 * c.p.l) * qd(0) * qd(3) - qd(1) * (w40 * w8 + w41 * w10) * qd(5) * c.k12 + w44 * w22 * c.p.l + c.k12 * w46 * qd(0) * qd(4) * w8 - c.k12 * (w7 * w26 - w13 * w0 * w27) * qd(4) * w8 * qd(2) - (w40 * c.p.l + (w40 * w7 * w8 - w10 * w29) * c.p.l) * qd(1) * Scalar(2) * qd(3) - w43 * c.p.l * w21 * w8 - qd(1) * Scalar(2) * qd(0) * (w1 * c.p.l * w24 + w47 * c.p.l - (w48 * w8 + w49 * w10) * c.p.l) - w17 * (w50 - (w10 * (w3 * w25 * w4 * w2 + w31) + (w13 * w3 * w14 * w25 - w51 * w7) * w8) * c.p.l + w51 * c.p.l) - w12 * (w52 - (w42 - w7 * w34 * w8) * c.p.l) + w32 * w13 * c.k12 * qd(4) * qd(3) * w8 - (w50 + w52 - w44 * c.p.l) * w53 + Scalar(2) * qd(0) * ((w45 * w10 * w4 + w54 * w8) * c.p.l - w0 * w45 * c.p.l) * qd(2) + (w37 * w8 + w56 * w10) * qd(5) * c.k12 * qd(0) + w57 * qd(5) * c.k12 * w10 * qd(4);
+    Jdot_qd(2) = -(w57 * c.k12 * qd(0) * qd(4) * w8 + (w43 * w10 + w32 * w8) * qd(5) * c.k12 * qd(0) - w13 * c.k12 * w37 * qd(4) * qd(3) * w8 + (c.p.l * (w10 * (w36 + w3 * w4 * w24 * w2) - w8 * (w7 * w58 - w13 * w3 * w14 * w24)) - w58 * c.p.l - w59) * w17 - qd(5) * c.k12 * (w7 * w10 * w37 - w39 * w8) * qd(3) + w12 * (w61 - (w60 - w39 * w7 * w8) * c.p.l) - qd(5) * c.k12 * (w10 * w54 - w45 * w4 * w8) * qd(2) + Scalar(2) * qd(0) * (w0 * c.p.l * w27 + (w28 * w8 - w10 * w4 * w27) * c.p.l) * qd(2) + qd(1) * Scalar(2) * qd(3) * (w49 * c.p.l + (w49 * w7 * w8 + w47 * w10) * c.p.l) + (w0 * w35 * c.p.l + ((w0 * w7 * w35 + w55) * w8 - w35 * w10 * w4) * c.p.l) * w23 + Scalar(2) * qd(3) * ((w7 * w45 * w4 * w8 + w0 * w45 * w10) * c.p.l + w45 * c.p.l * w4) * qd(2) + (w7 * w35 + w13 * w0 * w45) * c.k12 * qd(4) * w8 * qd(2) + w56 * c.p.l * w21 * w8 - qd(5) * c.k12 * w46 * w10 * qd(4) + qd(1) * (((w13 * w1 * w24 * w2 + w0 * w1 * w7 * w14 * w24) * w8 - w1 * w10 * w14 * w4 * w24) * c.p.l + w0 * w1 * w14 * c.p.l * w24) * Scalar(2) * qd(2) + w22 * c.p.l * w62 + qd(1) * qd(5) * c.k12 * (w49 * w8 - w48 * w10) + (w29 * c.p.l + w1 * c.p.l * w25 + (w40 * w10 - w41 * w8) * c.p.l) * qd(1) * Scalar(2) * qd(0) + qd(1) * (w1 * w7 * w14 * w24 + w13 * w47) * c.k12 * qd(4) * w8 - w53 * (w59 - c.p.l * w62 - w61) + Scalar(2) * ((w10 * w34 + w32 * w7 * w8) * c.p.l + w32 * c.p.l) * qd(0) * qd(3));
+  }
+
+  /// Jdot qd of the output tip: its acceleration at qdd = 0
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_tip(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Parameters<typename DerivedQ::Scalar>& p, Out0&& Jdot_qd) noexcept {
+    output_bias_tip(t, q, qd, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(Jdot_qd));
+  }
+
+  /// J = dy/dqd of the output tip_velocity
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_tip_velocity([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Constants<typename DerivedQ::Scalar>& c, Out0&& J) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, nq), "J: expected 3 x nq");
+    eigen_assert(q.size() == nq && J.rows() == 3 && J.cols() == nq);
+    using std::sin; using std::cos;
+    const Scalar w0 = cos(q(1));
+    const Scalar w1 = sin(q(5));
+    const Scalar w2 = sin(q(3));
+    const Scalar w3 = cos(q(2));
+    const Scalar w4 = cos(q(3));
+    const Scalar w5 = cos(q(4));
+    const Scalar w6 = sin(q(4));
+    const Scalar w7 = sin(q(2));
+    const Scalar w8 = cos(q(5));
+    const Scalar w9 = (w1 * w2 * w3 + (w6 * w7 - w4 * w5 * w3) * w8) * c.p.l - c.p.l - w4 * c.p.l * w3;
+    const Scalar w10 = sin(q(1));
+    const Scalar w11 = c.p.l * w2 + (w4 * w1 + w5 * w2 * w8) * c.p.l;
+    const Scalar w12 = w4 * c.p.l - (w1 * w2 - w4 * w5 * w8) * c.p.l;
+    const Scalar w13 = w4 * w10 * w3 + w0 * w2;
+    const Scalar w14 = w4 * w0 - w10 * w2 * w3;
+    const Scalar w15 = c.p.l + w5 * c.p.l * w8;
+    const Scalar w16 = w4 * w7 * c.p.l + c.p.l * ((w4 * w5 * w7 + w6 * w3) * w8 - w1 * w7 * w2);
+    const Scalar w17 = sin(q(0));
+    const Scalar w18 = w10 * w2 - w4 * w0 * w3;
+    const Scalar w19 = (w1 * (w4 * w10 + w0 * w2 * w3) + (w6 * w0 * w7 + w5 * w18) * w8) * c.p.l - w0 * c.p.l + c.p.l * w18;
+    const Scalar w20 = cos(q(0));
+    const Scalar w21 = w0 * w7 * w17 - w20 * w3;
+    const Scalar w22 = w7 * w20 + w0 * w17 * w3;
+    const Scalar w23 = w4 * w22 - w10 * w17 * w2;
+    const Scalar w24 = w2 * w22 + w4 * w10 * w17;
+    const Scalar w25 = w7 * w17 - w0 * w20 * w3;
+    const Scalar w26 = w0 * w7 * w20 + w17 * w3;
+    const Scalar w27 = w4 * w25 + w10 * w2 * w20;
+    const Scalar w28 = w25 * w2 - w4 * w10 * w20;
+    J(0, 1) = w0 * w9 + w10 * w11;
+    J(0, 2) = w6 * w10 * c.p.l * w8 * w3 + w10 * w7 * w12;
+    J(0, 3) = -(w14 * w15 - w13 * w1 * c.p.l);
+    J(0, 4) = c.p.l * w8 * (w10 * w5 * w7 + w13 * w6);
+    J(0, 5) = -((w14 * w8 - w1 * (w13 * w5 - w6 * w10 * w7)) * c.p.l);
+    J(1, 0) = -(w16 * w17 + w19 * w20);
+    J(1, 1) = -(w0 * w11 * w17 - w10 * w17 * w9);
+    J(1, 2) = -(w12 * w21 + w6 * c.p.l * w22 * w8);
+    J(1, 3) = -(w1 * c.p.l * w23 + w24 * w15);
+    J(1, 4) = -((w6 * w23 + w5 * w21) * c.p.l * w8);
+    J(1, 5) = -(((w5 * w23 - w6 * w21) * w1 + w24 * w8) * c.p.l);
+    J(2, 0) = w16 * w20 - w17 * w19;
+    J(2, 1) = w0 * w11 * w20 - w10 * w9 * w20;
+    J(2, 2) = -(w6 * w25 * c.p.l * w8 - w26 * w12);
+    J(2, 3) = -(w27 * w1 * c.p.l + w28 * w15);
+    J(2, 4) = -((w27 * w6 - w5 * w26) * c.p.l * w8);
+    J(2, 5) = -((w28 * w8 + (w27 * w5 + w6 * w26) * w1) * c.p.l);
+    J(0, 0) = Scalar(0);
+  }
+
+  /// J = dy/dqd of the output tip_velocity
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_tip_velocity(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& J) noexcept {
+    output_jacobian_tip_velocity(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(J));
+  }
+
+  /// Jdot qd of the output tip_velocity: its rate at qdd = 0
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_tip_velocity([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Constants<typename DerivedQ::Scalar>& c, Out0&& Jdot_qd) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, 1), "Jdot_qd: expected 3 x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && Jdot_qd.rows() == 3 && Jdot_qd.cols() == 1);
+    using std::sin; using std::cos;
+    const Scalar w0 = sin(q(3));
+    const Scalar w1 = cos(q(3));
+    const Scalar w2 = sin(q(5));
+    const Scalar w3 = cos(q(4));
+    const Scalar w4 = cos(q(5));
+    const Scalar w5 = w1 * w2 + w3 * w0 * w4;
+    const Scalar w6 = qd(1) * c.p.l * w0 + qd(1) * w5 * c.p.l;
+    const Scalar w7 = cos(q(1));
+    const Scalar w8 = sin(q(1));
+    const Scalar w9 = cos(q(2));
+    const Scalar w10 = w8 * w0 - w1 * w7 * w9;
+    const Scalar w11 = sin(q(4));
+    const Scalar w12 = sin(q(2));
+    const Scalar w13 = w11 * w10 - w7 * w3 * w12;
+    const Scalar w14 = c.p.l * qd(3) + w3 * c.p.l * qd(3) * w4;
+    const Scalar w15 = w1 * w8 + w7 * w0 * w9;
+    const Scalar w16 = w2 * w0 - w1 * w3 * w4;
+    const Scalar w17 = w1 * c.p.l * qd(2) - w16 * c.p.l * qd(2);
+    const Scalar w18 = w11 * w7 * w12 + w3 * w10;
+    const Scalar w19 = w2 * w18 - w4 * w15;
+    const Scalar w20 = w11 * w12 - w1 * w3 * w9;
+    const Scalar w21 = w2 * w0 * w9 + w20 * w4;
+    const Scalar w22 = qd(1) * w21 * c.p.l - qd(1) * w1 * c.p.l * w9 - qd(1) * c.p.l;
+    const Scalar w23 = w5 * c.p.l * qd(2) + c.p.l * w0 * qd(2);
+    const Scalar w24 = w1 * w8 * w9 + w7 * w0;
+    const Scalar w25 = w1 * w7 - w8 * w0 * w9;
+    const Scalar w26 = qd(1) * w16 * c.p.l - qd(1) * w1 * c.p.l;
+    const Scalar w27 = qd(1) * c.p.l * (w1 * w2 * w9 + w3 * w0 * w4 * w9) + qd(1) * c.p.l * w0 * w9;
+    const Scalar w28 = w24 * w3 - w11 * w8 * w12;
+    const Scalar w29 = w28 * w4 + w25 * w2;
+    const Scalar w30 = w1 * w3 * w2 + w0 * w4;
+    const Scalar w31 = w3 * w2 * w0 - w1 * w4;
+    const Scalar w32 = w8 * w3 * w12 + w24 * w11;
+    const Scalar w33 = w0 * w4 * w9 - w20 * w2;
+    const Scalar w34 = w1 * w3 * w12 + w11 * w9;
+    const Scalar w35 = w34 * w4 - w2 * w12 * w0;
+    const Scalar w36 = qd(1) * w1 * w12 * c.p.l + qd(1) * c.p.l * w35;
+    const Scalar w37 = w11 * w1 * w9 + w3 * w12;
+    const Scalar w38 = qd(0) * c.p.l * w15 - qd(0) * c.p.l * (w2 * w10 - w3 * w4 * w15);
+    const Scalar w39 = cos(q(0));
+    const Scalar w40 = sin(q(0));
+    const Scalar w41 = w12 * w39 + w7 * w40 * w9;
+    const Scalar w42 = w0 * w41 + w1 * w8 * w40;
+    const Scalar w43 = w1 * w41 - w8 * w40 * w0;
+    const Scalar w44 = w7 * w12 * w40 - w39 * w9;
+    const Scalar w45 = qd(0) * w12 * c.p.l * w0 + (w3 * w12 * w0 * w4 + w1 * w2 * w12) * qd(0) * c.p.l;
+    const Scalar w46 = w12 * w40 - w7 * w39 * w9;
+    const Scalar w47 = w46 * w0 - w1 * w8 * w39;
+    const Scalar w48 = w1 * w46 + w8 * w0 * w39;
+    const Scalar w49 = w7 * w12 * w39 + w40 * w9;
+    const Scalar w50 = w48 * w3 + w11 * w49;
+    const Scalar w51 = qd(0) * c.p.l * w35 + w1 * qd(0) * w12 * c.p.l;
+    const Scalar w52 = w48 * w11 - w3 * w49;
+    const Scalar w53 = qd(0) * c.p.l * w10 - w7 * qd(0) * c.p.l + (w2 * w15 + w18 * w4) * qd(0) * c.p.l;
+    const Scalar w54 = qd(0) * (w7 * w2 * w12 * w0 - (w1 * w7 * w3 * w12 + w11 * w7 * w9) * w4) * c.p.l - w1 * w7 * qd(0) * w12 * c.p.l;
+    const Scalar w55 = w1 * qd(0) * c.p.l * w9 - w21 * qd(0) * c.p.l;
+    const Scalar w56 = w11 * w43 + w3 * w44;
+    const Scalar w57 = w11 * w1 * w12 - w3 * w9;
+    const Scalar w58 = w3 * w43 - w11 * w44;
+    const Scalar w59 = w7 * w40 * w0 + w1 * w8 * w40 * w9;
+    const Scalar w60 = w1 * w7 * w40 - w8 * w40 * w0 * w9;
+    const Scalar w61 = w24 * qd(0) * c.p.l + w8 * qd(0) * c.p.l + qd(0) * c.p.l * w29;
+    const Scalar w62 = w12 * w0 * w4 + w2 * w34;
+    const Scalar w63 = w7 * w0 * w39 + w1 * w8 * w39 * w9;
+    const Scalar w64 = w8 * w0 * w39 * w9 - w1 * w7 * w39;
+    Jdot_qd(0) = qd(1) * (w6 * w7 - w2 * c.p.l * qd(3) * w10 - c.p.l * qd(4) * w13 * w4 + w14 * w15 + w7 * w17 * w12 + w11 * w7 * c.p.l * w4 * w9 * qd(2) - qd(5) * c.p.l * w19 - w8 * w22) - (w8 * w23 * w12 - qd(5) * (w24 * w4 + w25 * w3 * w2) * c.p.l - w25 * w2 * c.p.l * qd(3) - w25 * w11 * c.p.l * qd(4) * w4 - w24 * w14 + w8 * w26 - w7 * w27) * qd(3) + (qd(5) * c.p.l * w29 - w8 * w30 * w12 * c.p.l * qd(2) + w24 * c.p.l * qd(3) * w4 - w31 * qd(1) * w8 * c.p.l - w2 * c.p.l * qd(4) * w32 + w25 * w3 * w2 * c.p.l * qd(3) + qd(1) * w7 * c.p.l * w33 - w11 * w8 * w2 * c.p.l * w9 * qd(2)) * qd(5) - (w14 * w8 * w12 * w0 - w8 * w17 * w9 - w36 * w7 + w11 * w8 * w12 * c.p.l * w4 * qd(2) + qd(5) * c.p.l * (w8 * w12 * w0 * w4 + w2 * (w11 * w8 * w9 + w1 * w8 * w3 * w12)) + (w11 * w1 * w8 * w12 - w8 * w3 * w9) * c.p.l * qd(4) * w4 + w1 * w8 * w2 * w12 * c.p.l * qd(3)) * qd(2) + (w25 * w11 * c.p.l * qd(3) * w4 - w11 * qd(1) * w8 * c.p.l * w0 * w4 + w28 * c.p.l * qd(4) * w4 - qd(5) * w2 * c.p.l * w32 + w8 * w3 * c.p.l * w4 * w9 * qd(2) - w11 * w1 * w8 * w12 * c.p.l * w4 * qd(2) + qd(1) * w7 * w37 * c.p.l * w4) * qd(4);
+    Jdot_qd(1) = ((w47 * w4 + w50 * w2) * qd(5) * c.p.l + w48 * w2 * c.p.l * qd(3) + w11 * w46 * c.p.l * w4 * qd(2) - w51 * w39 + w52 * c.p.l * qd(4) * w4 + w53 * w40 - w6 * w7 * w39 - w17 * w49 + w8 * w22 * w39 + w14 * w47) * qd(0) - (w38 * w39 - (w42 * w3 * w2 - w43 * w4) * qd(5) * c.p.l + w14 * w43 - w23 * w44 - w42 * w11 * c.p.l * qd(4) * w4 - w42 * w2 * c.p.l * qd(3) - w45 * w40 - w7 * w26 * w40 - w8 * w40 * w27) * qd(3) + (w8 * w36 * w40 - w17 * w41 + w54 * w39 + w1 * w2 * c.p.l * qd(3) * w44 + w11 * c.p.l * w4 * w44 * qd(2) + w14 * w0 * w44 + qd(5) * c.p.l * ((w11 * w41 + w1 * w3 * w44) * w2 + w0 * w4 * w44) - w40 * w55 - (w3 * w41 - w11 * w1 * w44) * c.p.l * qd(4) * w4) * qd(2) + (w56 * qd(5) * w2 * c.p.l + qd(0) * c.p.l * w40 * w57 * w4 - w58 * c.p.l * qd(4) * w4 + qd(0) * c.p.l * w13 * w4 * w39 + w11 * w1 * c.p.l * w4 * w44 * qd(2) - w3 * c.p.l * w41 * w4 * qd(2) + w11 * qd(1) * w7 * c.p.l * w40 * w0 * w4 + w42 * w11 * c.p.l * qd(3) * w4 + qd(1) * w8 * w37 * c.p.l * w40 * w4) * qd(4) + qd(1) * (w2 * w59 * c.p.l * qd(3) + w8 * w17 * w12 * w40 + w6 * w8 * w40 + w7 * w40 * w22 - (w60 * w4 + (w11 * w8 * w12 * w40 - w3 * w59) * w2) * qd(5) * c.p.l + w11 * w8 * c.p.l * w40 * w4 * w9 * qd(2) - w14 * w60 - w61 * w39 + (w11 * w59 + w8 * w3 * w12 * w40) * c.p.l * qd(4) * w4) - (c.p.l * w43 * qd(3) * w4 - w42 * w3 * w2 * c.p.l * qd(3) - w31 * qd(1) * w7 * c.p.l * w40 - w11 * w2 * c.p.l * w41 * qd(2) - w56 * w2 * c.p.l * qd(4) - qd(0) * c.p.l * w19 * w39 - qd(1) * w8 * c.p.l * w40 * w33 - w62 * qd(0) * c.p.l * w40 - w30 * c.p.l * w44 * qd(2) - (w42 * w2 - w58 * w4) * qd(5) * c.p.l) * qd(5);
+    Jdot_qd(2) = -((w8 * w36 * w39 - qd(5) * c.p.l * (w2 * (w11 * w46 - w1 * w3 * w49) - w49 * w0 * w4) + (w3 * w46 + w11 * w1 * w49) * c.p.l * qd(4) * w4 - w54 * w40 + w1 * w49 * w2 * c.p.l * qd(3) + w14 * w49 * w0 + w17 * w46 + w11 * w49 * c.p.l * w4 * qd(2) - w55 * w39) * qd(2) + (w23 * w49 - qd(5) * (w3 * w2 * w47 - w48 * w4) * c.p.l + w45 * w39 + w48 * w14 - w2 * w47 * c.p.l * qd(3) + w7 * w26 * w39 + w38 * w40 - w11 * w47 * c.p.l * qd(4) * w4 + w8 * w27 * w39) * qd(3) + qd(0) * ((w58 * w2 + w42 * w4) * qd(5) * c.p.l + w51 * w40 + w6 * w7 * w40 + w2 * c.p.l * w43 * qd(3) + w56 * c.p.l * qd(4) * w4 - w8 * w40 * w22 + w53 * w39 + w17 * w44 + w14 * w42 + w11 * c.p.l * w41 * w4 * qd(2)) + qd(1) * (w40 * w61 + w7 * w22 * w39 + (w8 * w3 * w12 * w39 + w11 * w63) * c.p.l * qd(4) * w4 + w6 * w8 * w39 + w8 * w17 * w12 * w39 + qd(5) * c.p.l * (w64 * w4 - (w11 * w8 * w12 * w39 - w63 * w3) * w2) + w63 * w2 * c.p.l * qd(3) + w11 * w8 * c.p.l * w4 * w39 * w9 * qd(2) + w14 * w64) + qd(5) * (w30 * w49 * c.p.l * qd(2) - w11 * w46 * w2 * c.p.l * qd(2) + w48 * c.p.l * qd(3) * w4 + qd(5) * c.p.l * (w50 * w4 - w2 * w47) + w31 * qd(1) * w7 * c.p.l * w39 + qd(1) * w8 * c.p.l * w33 * w39 - qd(0) * c.p.l * w40 * w19 + w62 * qd(0) * c.p.l * w39 - w3 * w2 * w47 * c.p.l * qd(3) - w52 * w2 * c.p.l * qd(4)) + (qd(1) * w8 * w37 * c.p.l * w4 * w39 - qd(5) * w52 * w2 * c.p.l + w50 * c.p.l * qd(4) * w4 - w11 * w47 * c.p.l * qd(3) * w4 + w11 * w1 * w49 * c.p.l * w4 * qd(2) + w11 * qd(1) * w7 * c.p.l * w0 * w4 * w39 + qd(0) * c.p.l * w57 * w4 * w39 + w3 * w46 * c.p.l * w4 * qd(2) - qd(0) * c.p.l * w40 * w13 * w4) * qd(4));
+  }
+
+  /// Jdot qd of the output tip_velocity: its rate at qdd = 0
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_tip_velocity(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Parameters<typename DerivedQ::Scalar>& p, Out0&& Jdot_qd) noexcept {
+    output_bias_tip_velocity(t, q, qd, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(Jdot_qd));
+  }
+
+  /// J = dy/dq of the output first_link_axis
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_first_link_axis([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& J) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, nq), "J: expected 3 x nq");
+    eigen_assert(q.size() == nq && J.rows() == 3 && J.cols() == nq);
+    using std::sin; using std::cos;
+    const Scalar w0 = cos(q(1));
+    const Scalar w1 = cos(q(0));
+    const Scalar w2 = sin(q(1));
+    const Scalar w3 = sin(q(0));
+    J(0, 1) = -w0;
+    J(1, 0) = w0 * w1;
+    J(1, 1) = -(w2 * w3);
+    J(2, 0) = w0 * w3;
+    J(2, 1) = w2 * w1;
+    J(0, 0) = Scalar(0);
+    J(0, 2) = Scalar(0);
+    J(0, 3) = Scalar(0);
+    J(0, 4) = Scalar(0);
+    J(0, 5) = Scalar(0);
+    J(1, 2) = Scalar(0);
+    J(1, 3) = Scalar(0);
+    J(1, 4) = Scalar(0);
+    J(1, 5) = Scalar(0);
+    J(2, 2) = Scalar(0);
+    J(2, 3) = Scalar(0);
+    J(2, 4) = Scalar(0);
+    J(2, 5) = Scalar(0);
+  }
+
+  /// J = dy/dq of the output first_link_axis
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_first_link_axis(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& J) noexcept {
+    output_jacobian_first_link_axis(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(J));
+  }
+
+  /// Jdot qd of the output first_link_axis: its acceleration at qdd = 0
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_first_link_axis([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& Jdot_qd) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, 1), "Jdot_qd: expected 3 x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && Jdot_qd.rows() == 3 && Jdot_qd.cols() == 1);
+    using std::sin; using std::cos;
+    const Scalar w0 = sin(q(1));
+    const Scalar w1 = cos(q(0));
+    const Scalar w2 = cos(q(1));
+    const Scalar w3 = sin(q(0));
+    Jdot_qd(0) = w0 * qd(1) * qd(1);
+    Jdot_qd(1) = -((qd(1) * w0 * w1 + w2 * qd(0) * w3) * qd(0) + (qd(1) * w2 * w3 + w0 * qd(0) * w1) * qd(1));
+    Jdot_qd(2) = qd(1) * (qd(1) * w2 * w1 - w0 * qd(0) * w3) - (qd(1) * w0 * w3 - w2 * qd(0) * w1) * qd(0);
+  }
+
+  /// Jdot qd of the output first_link_axis: its acceleration at qdd = 0
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_first_link_axis(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Parameters<typename DerivedQ::Scalar>& p, Out0&& Jdot_qd) noexcept {
+    output_bias_first_link_axis(t, q, qd, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(Jdot_qd));
+  }
+
+  /// Y with M qdd - F = Y pi + (the loads other than gravity, negated), pi the inertial parameters (inertial_parameter_names)
+  template <class DerivedQ, class DerivedQd, class DerivedQdd, class Out0>
+  static void regressor([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedQdd>& qdd, const Constants<typename DerivedQ::Scalar>& c, Out0&& Y) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<DerivedQdd>(nq, 1), "qdd: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(nq, npi), "Y: expected nq x npi");
+    eigen_assert(q.size() == nq && qd.size() == nq && qdd.size() == nq && Y.rows() == nq && Y.cols() == npi);
+    using std::sin; using std::cos;
+    const Scalar w0 = sin(q(1));
+    const Scalar w1 = c.p.g * sin(q(0));
+    const Scalar w2 = cos(q(1));
+    const Scalar w3 = cos(q(0));
+    const Scalar w4 = c.p.g * w2 * w3;
+    const Scalar w5 = c.p.g * w0 * w3;
+    const Scalar w6 = w2 * qd(0);
+    const Scalar w7 = qd(1) * w6;
+    const Scalar w8 = w7 * w0;
+    const Scalar w9 = qdd(0) * w2 - qd(1) * w0 * qd(0);
+    const Scalar w10 = w0 * qd(0);
+    const Scalar w11 = w6 * w10;
+    const Scalar w12 = -w11;
+    const Scalar w13 = w6 * w6;
+    const Scalar w14 = -(qd(1) * qd(1));
+    const Scalar w15 = qd(1) * w10;
+    const Scalar w16 = w15 * w2;
+    const Scalar w17 = qd(1) * w2 * qd(0) + qdd(0) * w0;
+    const Scalar w18 = w10 * w10;
+    const Scalar w19 = cos(q(3));
+    const Scalar w20 = sin(q(2));
+    const Scalar w21 = w19 * w20;
+    const Scalar w22 = cos(q(2));
+    const Scalar w23 = w19 * w22;
+    const Scalar w24 = qd(1) * c.p.l;
+    const Scalar w25 = w10 * w24;
+    const Scalar w26 = w6 * c.p.l;
+    const Scalar w27 = qd(1) * w24 + w26 * w6;
+    const Scalar w28 = w26 * w10;
+    const Scalar w29 = sin(q(3));
+    const Scalar w30 = c.p.l * w9 + w1;
+    const Scalar w31 = qdd(1) * c.p.l + w5;
+    const Scalar w32 = w4 * w23 + w21 * w25 + w27 * w23 - w28 * w29 - w21 * w30 - w31 * w29;
+    const Scalar w33 = w20 * w29;
+    const Scalar w34 = w29 * w22;
+    const Scalar w35 = w33 * w30 - w31 * w19 - w4 * w34 - (w27 * w34 + w19 * w28 + w33 * w25);
+    const Scalar w36 = w20 * w4 - (w25 * w22 - w27 * w20) + w30 * w22;
+    const Scalar w37 = w10 * w20 + qd(1) * w22;
+    const Scalar w38 = w37 + qd(3);
+    const Scalar w39 = w38 * w38;
+    const Scalar w40 = w29 * qd(2);
+    const Scalar w41 = w10 * w23 - qd(1) * w21 + w6 * w29;
+    const Scalar w42 = w40 + w41;
+    const Scalar w43 = w42 * w42;
+    const Scalar w44 = w39 + w43;
+    const Scalar w45 = w19 * qd(2);
+    const Scalar w46 = w10 * w34 - w19 * w6 - w33 * qd(1);
+    const Scalar w47 = w45 - w46;
+    const Scalar w48 = w47 * w42;
+    const Scalar w49 = -w48;
+    const Scalar w50 = qdd(3) + w40 * w46 + w45 * w41 + w17 * w20 + qdd(1) * w22;
+    const Scalar w51 = w49 + w50;
+    const Scalar w52 = w29 * qdd(2) + w17 * w23 - qdd(1) * w21 + w9 * w29 + w19 * qd(3) * qd(2) - w46 * qd(3) - w37 * w45;
+    const Scalar w53 = w47 * w38;
+    const Scalar w54 = w52 + w53;
+    const Scalar w55 = w36 * w29;
+    const Scalar w56 = w19 * w32;
+    const Scalar w57 = -(w29 * w35);
+    const Scalar w58 = w42 * w38;
+    const Scalar w59 = w29 * qd(3) * qd(2) - w37 * w40 + qd(3) * w41 + w17 * w34 - w19 * w9 - w33 * qdd(1) - w19 * qdd(2);
+    const Scalar w60 = w58 - w59;
+    const Scalar w61 = w52 - w53;
+    const Scalar w62 = w47 * w47;
+    const Scalar w63 = -(w19 * w36);
+    const Scalar w64 = w50 + w48;
+    const Scalar w65 = w58 + w59;
+    const Scalar w66 = w39 + w62;
+    const Scalar w67 = w53 * w23;
+    const Scalar w68 = w20 * w48;
+    const Scalar w69 = w53 * w29;
+    const Scalar w70 = w19 * w59 + w69;
+    const Scalar w71 = w39 - w62;
+    const Scalar w72 = w19 * w51 - w71 * w29;
+    const Scalar w73 = w58 * w19;
+    const Scalar w74 = w73 - w69;
+    const Scalar w75 = w58 * w34;
+    const Scalar w76 = -w43;
+    const Scalar w77 = w62 + w76;
+    const Scalar w78 = w19 * w54 - w29 * w65;
+    const Scalar w79 = w39 + w76;
+    const Scalar w80 = w19 * w79 + w64 * w29;
+    const Scalar w81 = w52 * w29 + w73;
+    const Scalar w82 = w36 - w59 * c.p.l;
+    const Scalar w83 = sin(q(4));
+    const Scalar w84 = sin(q(5));
+    const Scalar w85 = w83 * w84;
+    const Scalar w86 = w47 * c.p.l;
+    const Scalar w87 = w86 * w42;
+    const Scalar w88 = cos(q(5));
+    const Scalar w89 = c.p.l * w38;
+    const Scalar w90 = w89 * w42;
+    const Scalar w91 = cos(q(4));
+    const Scalar w92 = w91 * w84;
+    const Scalar w93 = w89 * w38 + w86 * w47;
+    const Scalar w94 = c.p.l * w50 - w35;
+    const Scalar w95 = w87 * w88 + w85 * w90 + w92 * w93 - w82 * w85 + w92 * w32 + w94 * w88;
+    const Scalar w96 = w91 * w82 + w83 * w32 + w83 * w93 - w91 * w90;
+    const Scalar w97 = w83 * w88;
+    const Scalar w98 = w91 * w88;
+    const Scalar w99 = w98 * w32 - w97 * w82 - w94 * w84 + w97 * w90 + w98 * w93 - w87 * w84;
+    const Scalar w100 = w95 * w85 - w96 * w91 + w97 * w99;
+    const Scalar w101 = w83 * w96 + w98 * w99 + w92 * w95;
+    const Scalar w102 = w84 * w99 - w95 * w88;
+    const Scalar w103 = w100 * c.p.l;
+    const Scalar w104 = w19 * w103;
+    const Scalar w105 = w102 * c.p.l;
+    const Scalar w106 = w83 * w99 - w96 * w98;
+    const Scalar w107 = w83 * w42 + w91 * w38;
+    const Scalar w108 = w107 + qd(5);
+    const Scalar w109 = w108 * w108;
+    const Scalar w110 = w97 * w38 - w47 * w84 - w98 * w42;
+    const Scalar w111 = w84 * qd(4);
+    const Scalar w112 = w110 - w111;
+    const Scalar w113 = w112 * w112;
+    const Scalar w114 = w109 + w113;
+    const Scalar w115 = qd(4) * w88;
+    const Scalar w116 = w38 * w85 - w92 * w42 + w47 * w88;
+    const Scalar w117 = w115 + w116;
+    const Scalar w118 = w117 * w112;
+    const Scalar w119 = -w118;
+    const Scalar w120 = w110 * w115 + w111 * w116 - qdd(5) - (w83 * w52 + w91 * w50);
+    const Scalar w121 = w119 + w120;
+    const Scalar w122 = w114 * w88 - w84 * w121;
+    const Scalar w123 = w122 * c.p.l - w97 * w96 - w91 * w99;
+    const Scalar w124 = w84 * qdd(4) - (w97 * w50 - w52 * w98 + w59 * w84) + qd(5) * w116 + qd(5) * qd(4) * w88 - w107 * w115;
+    const Scalar w125 = w117 * w108;
+    const Scalar w126 = w124 + w125;
+    const Scalar w127 = w114 * w85 - w91 * w126 + w97 * w121;
+    const Scalar w128 = w96 * w84;
+    const Scalar w129 = c.p.l * w127 - w128;
+    const Scalar w130 = w98 * w121 + w92 * w114 + w83 * w126;
+    const Scalar w131 = w29 * w106;
+    const Scalar w132 = w19 * w129;
+    const Scalar w133 = w112 * w108;
+    const Scalar w134 = w107 * w111 + w110 * qd(5) - qd(5) * w84 * qd(4) + w50 * w85 - w92 * w52 - w59 * w88 + w88 * qdd(4);
+    const Scalar w135 = w134 - w133;
+    const Scalar w136 = w124 - w125;
+    const Scalar w137 = w136 * w88 - w84 * w135;
+    const Scalar w138 = w137 * c.p.l - w97 * w95 + w99 * w85;
+    const Scalar w139 = w117 * w117;
+    const Scalar w140 = w139 + w113;
+    const Scalar w141 = w97 * w135 + w91 * w140 + w136 * w85;
+    const Scalar w142 = w99 * w88;
+    const Scalar w143 = w95 * w84;
+    const Scalar w144 = w142 - c.p.l * w141 + w143;
+    const Scalar w145 = w92 * w99 - w98 * w95;
+    const Scalar w146 = w98 * w135 - w83 * w140 + w92 * w136;
+    const Scalar w147 = w19 * w144;
+    const Scalar w148 = w145 * w29;
+    const Scalar w149 = w96 * w88;
+    const Scalar w150 = w120 + w118;
+    const Scalar w151 = w139 + w109;
+    const Scalar w152 = w134 + w133;
+    const Scalar w153 = w150 * w85 - w97 * w151 + w91 * w152;
+    const Scalar w154 = w149 + w153 * c.p.l;
+    const Scalar w155 = w83 * w95 - w92 * w96;
+    const Scalar w156 = w150 * w88 + w84 * w151;
+    const Scalar w157 = w96 * w85 - w156 * c.p.l + w91 * w95;
+    const Scalar w158 = w19 * w154;
+    const Scalar w159 = w83 * w152 + w98 * w151 - w92 * w150;
+    const Scalar w160 = w29 * w155;
+    const Scalar w161 = w97 * w125;
+    const Scalar w162 = w91 * w118;
+    const Scalar w163 = w162 - w161 - w134 * w85;
+    const Scalar w164 = w125 * w98;
+    const Scalar w165 = w83 * w118;
+    const Scalar w166 = w92 * w134 + w164 + w165;
+    const Scalar w167 = w125 * w84;
+    const Scalar w168 = w167 - w134 * w88;
+    const Scalar w169 = w166 * w29 + w19 * w168;
+    const Scalar w170 = w139 - w109;
+    const Scalar w171 = w121 * w88 - w84 * w170;
+    const Scalar w172 = w98 * w170 + w83 * w135 + w92 * w121;
+    const Scalar w173 = w19 * w171 - w172 * w29;
+    const Scalar w174 = w121 * w85 - w91 * w135 + w97 * w170;
+    const Scalar w175 = w133 * w88;
+    const Scalar w176 = w167 + w175;
+    const Scalar w177 = w92 * w133;
+    const Scalar w178 = w164 - w83 * w120 - w177;
+    const Scalar w179 = w176 * w19 + w178 * w29;
+    const Scalar w180 = w133 * w85;
+    const Scalar w181 = w120 * w91 - w180 + w161;
+    const Scalar w182 = w84 * w152 + w126 * w88;
+    const Scalar w183 = -w113;
+    const Scalar w184 = w183 + w139;
+    const Scalar w185 = w98 * w152 - w184 * w83 - w92 * w126;
+    const Scalar w186 = w19 * w182 + w185 * w29;
+    const Scalar w187 = w126 * w85 - w97 * w152 - w184 * w91;
+    const Scalar w188 = w183 + w109;
+    const Scalar w189 = w150 * w84 - w188 * w88;
+    const Scalar w190 = w83 * w136 - w188 * w92 - w150 * w98;
+    const Scalar w191 = w189 * w19 - w29 * w190;
+    const Scalar w192 = w97 * w150 + w91 * w136 + w188 * w85;
+    const Scalar w193 = w124 * w98 + w165 + w177;
+    const Scalar w194 = w124 * w84 - w175;
+    const Scalar w195 = w193 * w29 + w19 * w194;
+    const Scalar w196 = w180 + w97 * w124 - w162;
+    const Scalar w197 = w48 * w22;
+    const Scalar w198 = -(w21 * w53);
+    const Scalar w199 = -(w33 * w58);
+    Y(0, 1) = w0 * w1;
+    Y(0, 2) = w2 * w4 + w5 * w0;
+    Y(0, 3) = -(w2 * w1);
+    Y(0, 4) = -(w8 - w2 * w9);
+    Y(0, 5) = w2 * (qdd(1) + w12) + (w13 + w14) * w0;
+    Y(0, 6) = w8 - w16;
+    Y(0, 7) = -(w0 * (w15 - w9) - (w7 + w17) * w2);
+    Y(0, 8) = -((w18 + w14) * w2 - w0 * (qdd(1) + w11));
+    Y(0, 9) = w17 * w0 + w16;
+    Y(0, 10) = w2 * (w33 * w35 - w21 * w32 + w36 * w22) * c.p.l;
+    Y(0, 11) = w2 * ((w21 * w51 - w33 * w44 + w54 * w22) * c.p.l + w55) - w0 * (w20 * w32 - w36 * w23);
+    Y(0, 12) = -((w23 * w35 + w32 * w34) * w0 - w2 * (w56 + w57 - (w21 * w60 + w33 * w61 + (w62 + w43) * w22) * c.p.l));
+    Y(0, 13) = w0 * (w20 * w35 + w36 * w34) + w2 * (w63 + c.p.l * (w33 * w64 + w65 * w22 + w66 * w21));
+    Y(0, 14) = -(w0 * (w67 - w59 * w34 - w68) + w70 * w2);
+    Y(0, 15) = -((w71 * w23 - w20 * w60 + w51 * w34) * w0 - w72 * w2);
+    Y(0, 16) = w0 * (w67 + w75 + w20 * w50) - w74 * w2;
+    Y(0, 17) = -((w54 * w34 + w20 * w77 + w65 * w23) * w0 - w2 * w78);
+    Y(0, 18) = w0 * (w64 * w23 + w61 * w20 - w79 * w34) + w80 * w2;
+    Y(0, 19) = w2 * w81 - w0 * (w75 - w52 * w23 + w68);
+    Y(0, 20) = -(w2 * ((w100 * w22 + w21 * w101 - w33 * w102) * c.p.l + w104) + (w20 * w105 - w103 * w34) * w0);
+    Y(0, 21) = -((c.p.l * (w21 * w130 + w33 * w122 + w127 * w22) + w131 + w132) * w2 - w0 * (w123 * w20 - w23 * w106 + w129 * w34));
+    Y(0, 22) = -(w2 * ((w141 * w22 + w33 * w137 + w21 * w146) * c.p.l - w147 + w148) - w0 * (w138 * w20 - w34 * w144 - w145 * w23));
+    Y(0, 23) = w0 * (w34 * w154 - w155 * w23 - w20 * w157) - (w158 - (w21 * w159 - w33 * w156 - w153 * w22) * c.p.l + w160) * w2;
+    Y(0, 24) = -(w0 * (w20 * w163 + w166 * w23 - w168 * w34) + w2 * w169);
+    Y(0, 25) = (w172 * w23 + w171 * w34 - w174 * w20) * w0 - w2 * w173;
+    Y(0, 26) = w2 * w179 - w0 * (w176 * w34 - w178 * w23 + w181 * w20);
+    Y(0, 27) = w2 * w186 + w0 * (w187 * w20 + w185 * w23 - w182 * w34);
+    Y(0, 28) = -(w2 * w191 - (w190 * w23 + w189 * w34 + w192 * w20) * w0);
+    Y(0, 29) = w195 * w2 - w0 * (w20 * w196 - w193 * w23 + w194 * w34);
+    Y(1, 1) = -w4;
+    Y(1, 3) = -w5;
+    Y(1, 4) = w11;
+    Y(1, 5) = w15 + w9;
+    Y(1, 6) = qdd(1);
+    Y(1, 7) = w18 - w13;
+    Y(1, 8) = -(w7 - w17);
+    Y(1, 9) = w12;
+    Y(1, 10) = -((w29 * w32 + w19 * w35) * c.p.l);
+    Y(1, 11) = -(w32 * w22 + w21 * w36 - (w29 * w51 + w19 * w44) * c.p.l);
+    Y(1, 12) = -((w60 * w29 - w19 * w61) * c.p.l - w21 * w35 - w33 * w32);
+    Y(1, 13) = -(c.p.l * (w19 * w64 - w66 * w29) - w22 * w35 + w33 * w36);
+    Y(1, 14) = -(w33 * w59 - w197 + w198);
+    Y(1, 15) = w71 * w21 + w33 * w51 + w60 * w22;
+    Y(1, 16) = w50 * w22 + w199 + w198;
+    Y(1, 17) = w33 * w54 - w77 * w22 + w21 * w65;
+    Y(1, 18) = w33 * w79 - w21 * w64 + w61 * w22;
+    Y(1, 19) = -(w52 * w21 + w199 + w197);
+    Y(1, 20) = -(c.p.l * (w19 * w102 + w101 * w29) + w33 * w103 + w105 * w22);
+    Y(1, 21) = w21 * w106 - w33 * w129 + w123 * w22 - (w130 * w29 - w19 * w122) * c.p.l;
+    Y(1, 22) = w33 * w144 - (w29 * w146 - w19 * w137) * c.p.l + w138 * w22 + w21 * w145;
+    Y(1, 23) = -(w33 * w154 + w157 * w22 - w21 * w155 - (w29 * w159 + w19 * w156) * c.p.l);
+    Y(1, 24) = w21 * w166 - w163 * w22 - w33 * w168;
+    Y(1, 25) = -(w174 * w22 + w172 * w21 + w33 * w171);
+    Y(1, 26) = -(w181 * w22 + w21 * w178 - w33 * w176);
+    Y(1, 27) = w187 * w22 - w185 * w21 + w33 * w182;
+    Y(1, 28) = -(w21 * w190 - w192 * w22 + w189 * w33);
+    Y(1, 29) = -(w193 * w21 + w196 * w22 - w33 * w194);
+    Y(2, 11) = w55;
+    Y(2, 12) = w56 + w57;
+    Y(2, 13) = w63;
+    Y(2, 14) = -w70;
+    Y(2, 15) = w72;
+    Y(2, 16) = -w74;
+    Y(2, 17) = w78;
+    Y(2, 18) = w80;
+    Y(2, 19) = w81;
+    Y(2, 20) = -w104;
+    Y(2, 21) = -(w131 + w132);
+    Y(2, 22) = w147 - w148;
+    Y(2, 23) = -(w158 + w160);
+    Y(2, 24) = -w169;
+    Y(2, 25) = -w173;
+    Y(2, 26) = w179;
+    Y(2, 27) = w186;
+    Y(2, 28) = -w191;
+    Y(2, 29) = w195;
+    Y(3, 11) = -w32;
+    Y(3, 13) = w35;
+    Y(3, 14) = w48;
+    Y(3, 15) = w60;
+    Y(3, 16) = w50;
+    Y(3, 17) = -w77;
+    Y(3, 18) = w61;
+    Y(3, 19) = w49;
+    Y(3, 20) = -w105;
+    Y(3, 21) = w123;
+    Y(3, 22) = w138;
+    Y(3, 23) = -w157;
+    Y(3, 24) = -w163;
+    Y(3, 25) = -w174;
+    Y(3, 26) = -w181;
+    Y(3, 27) = w187;
+    Y(3, 28) = w192;
+    Y(3, 29) = -w196;
+    Y(4, 21) = w128;
+    Y(4, 22) = w142 + w143;
+    Y(4, 23) = -w149;
+    Y(4, 24) = -w168;
+    Y(4, 25) = -w171;
+    Y(4, 26) = w176;
+    Y(4, 27) = w182;
+    Y(4, 28) = -w189;
+    Y(4, 29) = w194;
+    Y(5, 21) = -w99;
+    Y(5, 23) = -w95;
+    Y(5, 24) = w119;
+    Y(5, 25) = w135;
+    Y(5, 26) = -w120;
+    Y(5, 27) = -w184;
+    Y(5, 28) = w136;
+    Y(5, 29) = w118;
+    Y(0, 0) = Scalar(0);
+    Y(1, 0) = Scalar(0);
+    Y(1, 2) = Scalar(0);
+    Y(2, 0) = Scalar(0);
+    Y(2, 1) = Scalar(0);
+    Y(2, 2) = Scalar(0);
+    Y(2, 3) = Scalar(0);
+    Y(2, 4) = Scalar(0);
+    Y(2, 5) = Scalar(0);
+    Y(2, 6) = Scalar(0);
+    Y(2, 7) = Scalar(0);
+    Y(2, 8) = Scalar(0);
+    Y(2, 9) = Scalar(0);
+    Y(2, 10) = Scalar(0);
+    Y(3, 0) = Scalar(0);
+    Y(3, 1) = Scalar(0);
+    Y(3, 2) = Scalar(0);
+    Y(3, 3) = Scalar(0);
+    Y(3, 4) = Scalar(0);
+    Y(3, 5) = Scalar(0);
+    Y(3, 6) = Scalar(0);
+    Y(3, 7) = Scalar(0);
+    Y(3, 8) = Scalar(0);
+    Y(3, 9) = Scalar(0);
+    Y(3, 10) = Scalar(0);
+    Y(3, 12) = Scalar(0);
+    Y(4, 0) = Scalar(0);
+    Y(4, 1) = Scalar(0);
+    Y(4, 2) = Scalar(0);
+    Y(4, 3) = Scalar(0);
+    Y(4, 4) = Scalar(0);
+    Y(4, 5) = Scalar(0);
+    Y(4, 6) = Scalar(0);
+    Y(4, 7) = Scalar(0);
+    Y(4, 8) = Scalar(0);
+    Y(4, 9) = Scalar(0);
+    Y(4, 10) = Scalar(0);
+    Y(4, 11) = Scalar(0);
+    Y(4, 12) = Scalar(0);
+    Y(4, 13) = Scalar(0);
+    Y(4, 14) = Scalar(0);
+    Y(4, 15) = Scalar(0);
+    Y(4, 16) = Scalar(0);
+    Y(4, 17) = Scalar(0);
+    Y(4, 18) = Scalar(0);
+    Y(4, 19) = Scalar(0);
+    Y(4, 20) = Scalar(0);
+    Y(5, 0) = Scalar(0);
+    Y(5, 1) = Scalar(0);
+    Y(5, 2) = Scalar(0);
+    Y(5, 3) = Scalar(0);
+    Y(5, 4) = Scalar(0);
+    Y(5, 5) = Scalar(0);
+    Y(5, 6) = Scalar(0);
+    Y(5, 7) = Scalar(0);
+    Y(5, 8) = Scalar(0);
+    Y(5, 9) = Scalar(0);
+    Y(5, 10) = Scalar(0);
+    Y(5, 11) = Scalar(0);
+    Y(5, 12) = Scalar(0);
+    Y(5, 13) = Scalar(0);
+    Y(5, 14) = Scalar(0);
+    Y(5, 15) = Scalar(0);
+    Y(5, 16) = Scalar(0);
+    Y(5, 17) = Scalar(0);
+    Y(5, 18) = Scalar(0);
+    Y(5, 19) = Scalar(0);
+    Y(5, 20) = Scalar(0);
+    Y(5, 22) = Scalar(0);
+  }
+
+  /// Y with M qdd - F = Y pi + (the loads other than gravity, negated), pi the inertial parameters (inertial_parameter_names)
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class DerivedQd, class DerivedQdd, class Out0>
+  static void regressor(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedQdd>& qdd, const Parameters<typename DerivedQ::Scalar>& p, Out0&& Y) noexcept {
+    regressor(t, q, qd, qdd, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(Y));
+  }
+
+  /// pi of the model's parameters: every body's m, m c and inertia about its origin, in its frame
+  template <class Scalar, class Out0>
+  static void inertial_parameters(const Constants<Scalar>& c, Out0&& pi) noexcept {
+    static_assert(fits<std::decay_t<Out0>>(npi, 1), "pi: expected npi x 1");
+    eigen_assert(pi.rows() == npi && pi.cols() == 1);
+    pi(0) = c.p.m;
+    pi(3) = c.k14;
+    pi(4) = c.k3;
+    pi(6) = c.k3;
+    pi(9) = c.k2;
+    pi(10) = c.p.m;
+    pi(13) = c.k14;
+    pi(14) = c.k3;
+    pi(16) = c.k3;
+    pi(19) = c.k2;
+    pi(20) = c.p.m;
+    pi(23) = c.k14;
+    pi(24) = c.k3;
+    pi(26) = c.k3;
+    pi(29) = c.k2;
+    pi(1) = Scalar(0);
+    pi(2) = Scalar(0);
+    pi(5) = Scalar(0);
+    pi(7) = Scalar(0);
+    pi(8) = Scalar(0);
+    pi(11) = Scalar(0);
+    pi(12) = Scalar(0);
+    pi(15) = Scalar(0);
+    pi(17) = Scalar(0);
+    pi(18) = Scalar(0);
+    pi(21) = Scalar(0);
+    pi(22) = Scalar(0);
+    pi(25) = Scalar(0);
+    pi(27) = Scalar(0);
+    pi(28) = Scalar(0);
+  }
+
+  /// pi of the model's parameters: every body's m, m c and inertia about its origin, in its frame
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar, class Out0>
+  static void inertial_parameters(const Parameters<Scalar>& p, Out0&& pi) noexcept {
+    inertial_parameters(Constants<Scalar>(p), std::forward<Out0>(pi));
   }
 };
 

@@ -3,10 +3,13 @@
 // does not throw: safe to call from a real-time loop.
 #pragma once
 
+#include <Eigen/Cholesky>
 #include <Eigen/Core>
 
 #include <array>
 #include <cmath>
+#include <type_traits>
+#include <utility>
 
 namespace eomgen_models {
 namespace whipple_bicycle {
@@ -22,7 +25,7 @@ struct Model {
   static constexpr const char* name = "whipple_bicycle";
   static constexpr const char* description = "Whipple bicycle, benchmark of Meijaard et al. (2007)";
   static constexpr const char* generator_version = "0.1.0";
-  static constexpr const char* model_hash = "26355e399ddba8db";
+  static constexpr const char* model_hash = "b75386d92250bf57";
   static constexpr std::array<const char*, nq> coordinate_names{{"x", "y", "psi", "phi", "theta", "theta_r", "delta", "theta_f"}};
   static constexpr std::array<const char*, nu> input_names{{"T_phi", "T_delta"}};
   static constexpr std::array<const char*, np> parameter_names{{"wheelbase", "trail", "lam", "g", "rR", "mR", "IRxx", "IRyy", "xB", "zB", "mB", "IBxx", "IByy", "IBzz", "IBxz", "xH", "zH", "mH", "IHxx", "IHyy", "IHzz", "IHxz", "rF", "mF", "IFxx", "IFyy"}};
@@ -31,6 +34,8 @@ struct Model {
   static constexpr std::array<int, nh> holonomic_rows{{4}};  // row of Xi of each entry of phi
   static constexpr std::array<int, ni> independent_speeds{{3, 6, 5}};  // their coordinate indices
   static constexpr std::array<const char*, ny> output_names{{"rear_contact_position_1", "rear_contact_position_2", "rear_contact_position_3", "front_contact_position_1", "front_contact_position_2", "front_contact_position_3"}};
+  static constexpr int npi = 40;  // inertial parameters: 10 per body (regressor)
+  static constexpr std::array<const char*, npi> inertial_parameter_names{{"rear_frame.m", "rear_frame.mx", "rear_frame.my", "rear_frame.mz", "rear_frame.Ixx", "rear_frame.Ixy", "rear_frame.Iyy", "rear_frame.Ixz", "rear_frame.Iyz", "rear_frame.Izz", "rear_wheel.m", "rear_wheel.mx", "rear_wheel.my", "rear_wheel.mz", "rear_wheel.Ixx", "rear_wheel.Ixy", "rear_wheel.Iyy", "rear_wheel.Ixz", "rear_wheel.Iyz", "rear_wheel.Izz", "front_frame.m", "front_frame.mx", "front_frame.my", "front_frame.mz", "front_frame.Ixx", "front_frame.Ixy", "front_frame.Iyy", "front_frame.Ixz", "front_frame.Iyz", "front_frame.Izz", "front_wheel.m", "front_wheel.mx", "front_wheel.my", "front_wheel.mz", "front_wheel.Ixx", "front_wheel.Ixy", "front_wheel.Iyy", "front_wheel.Ixz", "front_wheel.Iyz", "front_wheel.Izz"}};
   static constexpr bool has_forward_dynamics = false;  // forward_dynamics(), without M
   static constexpr bool prefers_forward_dynamics = false;  // fewer operations than M, F and their Cholesky solve
 
@@ -41,6 +46,14 @@ struct Model {
   template <class Scalar> using ConstraintVector = Eigen::Matrix<Scalar, nc, 1>;
   template <class Scalar> using HolonomicVector = Eigen::Matrix<Scalar, nh, 1>;
   template <class Scalar> using OutputVector = Eigen::Matrix<Scalar, ny, 1>;
+
+  /// Whether an Eigen expression of type Derived can be rows x cols: its sizes fixed to those,
+  /// or dynamic (then eigen_assert tests them).
+  template <class Derived>
+  static constexpr bool fits(int rows, int cols) noexcept {
+    return (int(Derived::RowsAtCompileTime) == Eigen::Dynamic || int(Derived::RowsAtCompileTime) == rows) &&
+           (int(Derived::ColsAtCompileTime) == Eigen::Dynamic || int(Derived::ColsAtCompileTime) == cols);
+  }
 
   /// Parameters, defaulted to the model's values.
   template <class Scalar>
@@ -82,9 +95,7 @@ struct Model {
    public:
     /// Computes every constant from a copy of the parameters.
     explicit Constants(const Parameters<Scalar>& parameters) noexcept : p(parameters) {
-      using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-      using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-      using std::log; using std::abs; using std::pow;
+      using std::sin; using std::cos; using std::tan;
       const Scalar w0 = p.mF + p.mH;
       const Scalar w1 = p.mR + w0 + p.mB;
       const Scalar w2 = cos(p.lam);
@@ -141,32 +152,28 @@ struct Model {
       const Scalar w53 = p.zH * w2 * w3 * p.wheelbase * Scalar(2) * p.mH;
       const Scalar w54 = p.rF * p.rF;
       const Scalar w55 = w54 * p.mH * w20;
-      const Scalar w56 = w2 * w3 * p.wheelbase * Scalar(2) * p.mH * p.rF;
-      const Scalar w57 = -w56;
-      const Scalar w58 = w2 * w3 * Scalar(2) * p.IHxz;
-      const Scalar w59 = p.zH * p.zH;
-      const Scalar w60 = p.mH * w20 * w59;
-      const Scalar w61 = p.wheelbase * p.wheelbase;
-      const Scalar w62 = p.mH * w48 * w61;
-      const Scalar w63 = w2 * w3 * p.xH * Scalar(2) * p.mH * p.rF;
-      const Scalar w64 = w2 * w3 * w54 * p.mH;
-      const Scalar w65 = -(w3 * w3 * w54 * Scalar(2) * p.mH);
-      const Scalar w66 = w54 * p.mH * w48;
-      const Scalar w67 = w2 * w2 * p.trail * p.wheelbase * Scalar(2) * p.mH;
-      const Scalar w68 = p.zH * Scalar(2) * p.mH * w48 * p.rF;
-      const Scalar w69 = p.zH * w2 * w3 * p.trail * Scalar(2) * p.mH;
-      const Scalar w70 = -(w2 * w2 * p.xH * p.trail * Scalar(2) * p.mH);
-      const Scalar w71 = w2 * w3 * p.trail * Scalar(2) * p.mH * p.rF;
-      const Scalar w72 = -w71;
-      const Scalar w73 = -(p.zH * w3 * w3 * Scalar(2) * p.mH * p.rF);
-      const Scalar w74 = -(p.xH * p.wheelbase * Scalar(2) * p.mH * w20);
-      const Scalar w75 = p.mH * w20 * w61;
-      const Scalar w76 = p.mH * w48 * w59;
-      const Scalar w77 = p.mH * w49 * w20;
-      const Scalar w78 = p.mH * p.trail * p.trail * w20;
-      const Scalar w79 = p.zB * p.zB * p.mB;
-      const Scalar w80 = p.rR * Scalar(2) * p.zB * p.mB;
-      const Scalar w81 = p.rR * p.rR * p.mB;
+      const Scalar w56 = -(w2 * w3 * p.wheelbase * Scalar(2) * p.mH * p.rF);
+      const Scalar w57 = w2 * w3 * Scalar(2) * p.IHxz;
+      const Scalar w58 = p.zH * p.zH;
+      const Scalar w59 = p.mH * w20 * w58;
+      const Scalar w60 = p.wheelbase * p.wheelbase;
+      const Scalar w61 = p.mH * w48 * w60;
+      const Scalar w62 = w2 * w3 * p.xH * Scalar(2) * p.mH * p.rF;
+      const Scalar w63 = p.zB * p.zB * p.mB;
+      const Scalar w64 = p.rR * Scalar(2) * p.zB * p.mB;
+      const Scalar w65 = p.rR * p.rR * p.mB;
+      const Scalar w66 = -(w3 * w3 * w54 * Scalar(2) * p.mH);
+      const Scalar w67 = w54 * p.mH * w48;
+      const Scalar w68 = w2 * w2 * p.trail * p.wheelbase * Scalar(2) * p.mH;
+      const Scalar w69 = p.zH * Scalar(2) * p.mH * w48 * p.rF;
+      const Scalar w70 = p.zH * w2 * w3 * p.trail * Scalar(2) * p.mH;
+      const Scalar w71 = -(w2 * w2 * p.xH * p.trail * Scalar(2) * p.mH);
+      const Scalar w72 = -(p.zH * w3 * w3 * Scalar(2) * p.mH * p.rF);
+      const Scalar w73 = -(p.xH * p.wheelbase * Scalar(2) * p.mH * w20);
+      const Scalar w74 = p.mH * w20 * w60;
+      const Scalar w75 = p.mH * w48 * w58;
+      const Scalar w76 = p.mH * w49 * w20;
+      const Scalar w77 = p.mH * p.trail * p.trail * w20;
       k0 = w1;
       k1 = w3;
       k2 = w16 + w18;
@@ -200,20 +207,20 @@ struct Model {
       k30 = w18;
       k31 = w22;
       k32 = w19;
-      k33 = p.IHxx * w20 + w47 + w50 + w51 + w52 - w53 + p.IHzz * w48 + w55 + w57 - w58 + w60 + w62 + w63;
+      k33 = p.IHxx * w20 + w47 + w50 + w51 + w52 - w53 + p.IHzz * w48 + w55 + w56 - w57 + w59 + w61 + w62;
       k34 = w41 + p.IHyy;
       k35 = w35 + w37 + w39;
       k36 = w3 * w34 - w27 - w36 * w2;
-      k37 = w3 * w3 * p.xH * p.mH * p.rF - p.zH * w2 * w3 * Scalar(2) * p.mH * p.rF + p.zH * p.xH * p.mH * w20 - p.zH * p.wheelbase * p.mH * w20 - w2 * w3 * p.xH * p.trail * p.mH + w2 * w3 * p.trail * p.wheelbase * p.mH - p.IHxz * w20 - w2 * w2 * p.trail * p.mH * p.rF - p.zH * w2 * w2 * p.trail * p.mH + p.wheelbase * p.mH * w48 * p.rF + w2 * w3 * p.mH * w61 - p.xH * p.mH * w48 * p.rF - p.zH * p.xH * p.mH * w48 - w2 * w3 * p.mH * w59 + p.zH * w2 * w3 * p.mH * p.rF + w64 - w2 * w3 * p.IHxx + p.zH * p.wheelbase * p.mH * w48 + w48 * p.IHxz - w3 * w3 * p.wheelbase * p.mH * p.rF + p.xH * p.mH * p.rF * w20 - w2 * w3 * p.xH * p.wheelbase * Scalar(2) * p.mH + w2 * w3 * p.mH * w49 + w2 * w3 * p.IHzz - w64 - p.wheelbase * p.mH * p.rF * w20;
+      k37 = w3 * w3 * p.xH * p.mH * p.rF - p.zH * w2 * w3 * Scalar(2) * p.mH * p.rF + p.zH * p.xH * p.mH * w20 - p.zH * p.wheelbase * p.mH * w20 - w2 * w3 * p.xH * p.trail * p.mH + w2 * w3 * p.trail * p.wheelbase * p.mH - p.IHxz * w20 - w2 * w2 * p.trail * p.mH * p.rF - p.zH * w2 * w2 * p.trail * p.mH + p.wheelbase * p.mH * w48 * p.rF + w2 * w3 * p.mH * w60 - p.xH * p.mH * w48 * p.rF - p.zH * p.xH * p.mH * w48 - w2 * w3 * p.mH * w58 + p.zH * w2 * w3 * p.mH * p.rF - w2 * w3 * p.IHxx + p.zH * p.wheelbase * p.mH * w48 + w48 * p.IHxz - w3 * w3 * p.wheelbase * p.mH * p.rF + p.xH * p.mH * p.rF * w20 - w2 * w3 * p.xH * p.wheelbase * Scalar(2) * p.mH + w2 * w3 * p.mH * w49 + w2 * w3 * p.IHzz - p.wheelbase * p.mH * p.rF * w20;
       k38 = w43 + p.IBzz;
-      k39 = w65 + w58 - w47 + w66 + w66 + w56 + w67 + w53 + p.IHxx * w48 + w68 + w69 + w70 + w72 + w57 + w71 + w73 + w74 + w75 + w76 + p.IHzz * w20 - w63 + w77 + w78 + w63;
-      k40 = w29 + w31 + w32;
-      k41 = w46 + p.IBxx;
-      k42 = p.zB * p.xB * p.mB - p.IBxz + p.rR * p.xB * p.mB;
-      k43 = p.IByy + w45;
-      k44 = w65 + w50 + w51 + w66 + w66 + w52 + w67 + w68 + w69 + w70 + w72 + p.IHyy + w55 + w57 + w71 + w73 + w74 + w75 + w60 + w76 + w62 + w77 + w78 + w63;
-      k45 = w79 + p.IByy + w43 + w80 + w81;
-      k46 = w79 + w80 + w81 + p.IBxx;
+      k39 = w63 + p.IByy + w43 + w64 + w65;
+      k40 = w46 + p.IBxx;
+      k41 = w66 + w50 + w51 + w67 + w67 + w52 + w68 + w69 + w70 + w71 + p.IHyy + w55 + w56 + w72 + w73 + w74 + w59 + w75 + w61 + w76 + w77 + w62;
+      k42 = w29 + w31 + w32;
+      k43 = w66 + w57 - w47 + w67 + w67 + w68 + w53 + p.IHxx * w48 + w69 + w70 + w71 + w72 + w73 + w74 + w75 + p.IHzz * w20 + w76 + w77;
+      k44 = p.zB * p.xB * p.mB - p.IBxz + p.rR * p.xB * p.mB;
+      k45 = w63 + w64 + w65 + p.IBxx;
+      k46 = p.IByy + w45;
       k47 = w2 * w6;
       k48 = w4;
       k49 = w13;
@@ -233,6 +240,10 @@ struct Model {
       k63 = p.g * p.mF;
       k64 = p.g * p.mR;
       k65 = p.g * p.mH;
+      k66 = Scalar(0.5) * Scalar(0);
+      k67 = Scalar(2) * w21;
+      k68 = Scalar(2) * w7;
+      k69 = -w18;
     }
     /// The parameters these constants were computed from.
     const Parameters<Scalar>& parameters() const noexcept { return p; }
@@ -246,15 +257,17 @@ struct Model {
     Scalar k30, k31, k32, k33, k34, k35, k36, k37, k38, k39;
     Scalar k40, k41, k42, k43, k44, k45, k46, k47, k48, k49;
     Scalar k50, k51, k52, k53, k54, k55, k56, k57, k58, k59;
-    Scalar k60, k61, k62, k63, k64, k65;
+    Scalar k60, k61, k62, k63, k64, k65, k66, k67, k68, k69;
   };
 
   /// M(q, t), symmetric positive (semi)definite
-  template <class Scalar>
-  static void mass_matrix([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] MassMatrix<Scalar>& M) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class Out0>
+  static void mass_matrix([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Constants<typename DerivedQ::Scalar>& c, Out0&& M) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(nq, nq), "M: expected nq x nq");
+    eigen_assert(q.size() == nq && M.rows() == nq && M.cols() == nq);
+    using std::sin; using std::cos;
     const Scalar w0 = cos(q(3));
     const Scalar w1 = sin(q(2));
     const Scalar w2 = w0 * w1;
@@ -393,17 +406,21 @@ struct Model {
   /// M(q, t), symmetric positive (semi)definite
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static void mass_matrix([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] MassMatrix<Scalar>& M) noexcept {
-    mass_matrix(t, q, Constants<Scalar>(p), M);
+  template <class DerivedQ, class Out0>
+  static void mass_matrix(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& M) noexcept {
+    mass_matrix(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(M));
   }
 
   /// F(q, qd, t, u): everything of Lagrange's equations except M qdd
-  template <class Scalar>
-  static void forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] Vector<Scalar>& F) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class DerivedQd, class DerivedU, class Out0>
+  static void forcing([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedU>& u, const Constants<typename DerivedQ::Scalar>& c, Out0&& F) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<DerivedU>(nu, 1), "u: expected a column of nu entries");
+    static_assert(fits<std::decay_t<Out0>>(nq, 1), "F: expected nq x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && u.size() == nu && F.rows() == nq && F.cols() == 1);
+    using std::sin; using std::cos;
     const Scalar w0 = cos(q(6));
     const Scalar w1 = c.k1 * w0;
     const Scalar w2 = cos(q(3));
@@ -488,50 +505,55 @@ struct Model {
     const Scalar w81 = (qd(7) * w79 - (w33 * w54 - w32 * w52)) * c.p.IFxx + w77 * w79 - w80 * w76;
     const Scalar w82 = c.k34 * w42;
     const Scalar w83 = c.k35 * w40 - c.k36 * w36;
-    const Scalar w84 = c.k33 * w52 - w33 * w78 + w32 * w81 - w40 * w82 + w83 * w42 - w53 * c.k29 + c.k37 * w54;
-    const Scalar w85 = w40 * c.k13 + c.k40 * w36;
-    const Scalar w86 = w82 * w36 - c.k37 * w52 - w54 * c.k39 - w85 * w42 + w32 * w78 + w55 * c.k26 + w33 * w81 - w53 * c.k30;
-    const Scalar w87 = qd(5) + w14;
+    const Scalar w84 = c.k33 * w52 - w33 * w78 + w32 * w81 - w40 * w82 + w83 * w42 - w53 * c.k29 + w54 * c.k37;
+    const Scalar w85 = w16 * c.k18 - c.k38 * w17;
+    const Scalar w86 = w16 * w60 - w17 * w61;
+    const Scalar w87 = c.p.IRxx * w86;
     const Scalar w88 = w16 * w61 + w60 * w17;
     const Scalar w89 = w88 * c.p.IRxx;
-    const Scalar w90 = c.p.IRyy * w87;
-    const Scalar w91 = w87 * w89 - w88 * w90 - (w24 * w61 + w60 * w26 + qd(5) * w88) * c.p.IRxx;
-    const Scalar w92 = w16 * c.k41 - c.k18 * w17;
-    const Scalar w93 = w16 * w60 - w17 * w61;
-    const Scalar w94 = c.p.IRxx * w93;
-    const Scalar w95 = w94 * w87 - w90 * w93 - (qd(5) * w93 + w60 * w24 - w26 * w61) * c.p.IRxx;
-    const Scalar w96 = c.k43 * w14;
-    const Scalar w97 = w75 * w79 - w80 * w74 - w37 * c.p.IFyy;
-    const Scalar w98 = w97 - w40 * w85 - c.k44 * w37 - c.k30 * w38 + c.k26 * w57 + c.k29 * w31 + w83 * w36;
-    const Scalar w99 = c.k6 * w86 - w1 * w84 - c.k38 * w24 + w91 * w61 + w92 * w14 + w60 * w95 + c.k42 * w26 - w16 * w96 - w25 * c.k31 - w72 * c.k17 - w98 * w35;
-    const Scalar w100 = w16 * c.k18 - c.k38 * w17;
-    const Scalar w101 = w94 * w88 - c.p.IRyy * w3 - w89 * w93;
-    const Scalar w102 = w98 * w0 - w3 * c.k45 - c.k17 * w59 - c.k5 * w11 - w22 * w84 + w92 * w17 - w29 * c.k31 + w70 * c.k16 + w16 * w100 + w101;
-    const Scalar w103 = w72 * c.k16 + w95 * w61 - w98 * w34 + w14 * w100 - c.k42 * w24 - w13 * w84 - w91 * w60 + c.k46 * w26 - w25 * c.k5 + w17 * w96 - c.k1 * w86;
+    const Scalar w90 = w87 * w88 - c.p.IRyy * w3 - w89 * w86;
+    const Scalar w91 = w16 * c.k40 - c.k18 * w17;
+    const Scalar w92 = w40 * c.k13 + c.k42 * w36;
+    const Scalar w93 = w75 * w79 - w80 * w74 - w37 * c.p.IFyy;
+    const Scalar w94 = w93 - c.k41 * w37 - w40 * w92 - c.k30 * w38 + c.k26 * w57 + c.k29 * w31 + w83 * w36;
+    const Scalar w95 = w29 * c.k31 - w70 * c.k16 + w22 * w84 - w16 * w85 - w90 + w3 * c.k39 - w91 * w17 + c.k17 * w59 + c.k5 * w11 - w94 * w0;
+    const Scalar w96 = qd(5) + w14;
+    const Scalar w97 = c.p.IRyy * w96;
+    const Scalar w98 = w87 * w96 - w97 * w86 - (qd(5) * w86 + w60 * w24 - w26 * w61) * c.p.IRxx;
+    const Scalar w99 = c.k37 * w52 - w32 * w78 + w53 * c.k30 + w54 * c.k43 + w92 * w42 - w55 * c.k26 - w33 * w81 - w82 * w36;
+    const Scalar w100 = w96 * w89 - w88 * w97 - (w24 * w61 + w60 * w26 + qd(5) * w88) * c.p.IRxx;
+    const Scalar w101 = c.k46 * w14;
+    const Scalar w102 = w72 * c.k16 + w98 * w61 - w94 * w34 + w14 * w85 + c.k1 * w99 - c.k44 * w24 - w13 * w84 - w100 * w60 + c.k45 * w26 - w25 * c.k5 + w17 * w101;
+    const Scalar w103 = w94 * w35 + c.k6 * w99 + w16 * w101 + w72 * c.k17 - w100 * w61 + w1 * w84 - w91 * w14 - w60 * w98 + c.k38 * w24 - c.k44 * w26 + w25 * c.k31;
     F(0) = w66 * (w10 * w67 * w7 + w4 * w68) + w71 * (w10 * w68 - w4 * w67 * w7) - w2 * w67 * w73;
     F(1) = -((w10 * w7 * w68 - w4 * w67) * w66 - w73 * w2 * w68 - w71 * (w4 * w7 * w68 + w10 * w67));
-    F(2) = -(w99 * w28 + w66 * w4 * c.p.rR * w7 - w102 * w7 + w71 * c.p.rR * w10 * w7 + w103 * w5);
-    F(3) = w10 * w103 + c.p.rR * w73 - w4 * w99 + u(0);
-    F(4) = w102;
-    F(5) = w101;
-    F(6) = u(1) - w86;
-    F(7) = w97;
+    F(2) = -(w95 * w7 + w102 * w5 + w66 * w4 * c.p.rR * w7 + w71 * c.p.rR * w10 * w7 - w28 * w103);
+    F(3) = c.p.rR * w73 + w4 * w103 + w102 * w10 + u(0);
+    F(4) = -w95;
+    F(5) = w90;
+    F(6) = w99 + u(1);
+    F(7) = w93;
   }
 
   /// F(q, qd, t, u): everything of Lagrange's equations except M qdd
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static void forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] Vector<Scalar>& F) noexcept {
-    forcing(t, q, qd, u, Constants<Scalar>(p), F);
+  template <class DerivedQ, class DerivedQd, class DerivedU, class Out0>
+  static void forcing(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedU>& u, const Parameters<typename DerivedQ::Scalar>& p, Out0&& F) noexcept {
+    forcing(t, q, qd, u, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(F));
   }
 
   /// M and F together, sharing their common subexpressions
-  template <class Scalar>
-  static void mass_matrix_and_forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] MassMatrix<Scalar>& M, [[maybe_unused]] Vector<Scalar>& F) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class DerivedQd, class DerivedU, class Out0, class Out1>
+  static void mass_matrix_and_forcing([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedU>& u, const Constants<typename DerivedQ::Scalar>& c, Out0&& M, Out1&& F) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<DerivedU>(nu, 1), "u: expected a column of nu entries");
+    static_assert(fits<std::decay_t<Out0>>(nq, nq), "M: expected nq x nq");
+    static_assert(fits<std::decay_t<Out1>>(nq, 1), "F: expected nq x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && u.size() == nu && M.rows() == nq && M.cols() == nq && F.rows() == nq && F.cols() == 1);
+    using std::sin; using std::cos;
     const Scalar w0 = cos(q(3));
     const Scalar w1 = sin(q(2));
     const Scalar w2 = w0 * w1;
@@ -671,26 +693,26 @@ struct Model {
     const Scalar w136 = (qd(7) * w134 - (w92 * w111 - w91 * w109)) * c.p.IFxx + w132 * w134 - w135 * w131;
     const Scalar w137 = c.k34 * w99;
     const Scalar w138 = c.k35 * w97 - c.k36 * w93;
-    const Scalar w139 = c.k33 * w109 - w92 * w133 + w91 * w136 - w97 * w137 + w138 * w99 - w110 * c.k29 + c.k37 * w111;
-    const Scalar w140 = w97 * c.k13 + c.k40 * w93;
-    const Scalar w141 = w137 * w93 - c.k37 * w109 - w111 * c.k39 - w140 * w99 + w91 * w133 + w112 * c.k26 + w92 * w136 - w110 * c.k30;
-    const Scalar w142 = qd(5) + w75;
+    const Scalar w139 = c.k33 * w109 - w92 * w133 + w91 * w136 - w97 * w137 + w138 * w99 - w110 * c.k29 + w111 * c.k37;
+    const Scalar w140 = w77 * c.k18 - c.k38 * w78;
+    const Scalar w141 = w77 * w117 - w78 * w118;
+    const Scalar w142 = c.p.IRxx * w141;
     const Scalar w143 = w77 * w118 + w117 * w78;
     const Scalar w144 = w143 * c.p.IRxx;
-    const Scalar w145 = c.p.IRyy * w142;
-    const Scalar w146 = w142 * w144 - w143 * w145 - (w84 * w118 + w117 * w86 + qd(5) * w143) * c.p.IRxx;
-    const Scalar w147 = w77 * c.k41 - c.k18 * w78;
-    const Scalar w148 = w77 * w117 - w78 * w118;
-    const Scalar w149 = c.p.IRxx * w148;
-    const Scalar w150 = w149 * w142 - w145 * w148 - (qd(5) * w148 + w117 * w84 - w86 * w118) * c.p.IRxx;
-    const Scalar w151 = c.k43 * w75;
-    const Scalar w152 = w130 * w134 - w135 * w129 - w94 * c.p.IFyy;
-    const Scalar w153 = w152 - w97 * w140 - c.k44 * w94 - c.k30 * w95 + c.k26 * w114 + c.k29 * w90 + w138 * w93;
-    const Scalar w154 = c.k6 * w141 - w17 * w139 - c.k38 * w84 + w146 * w118 + w147 * w75 + w117 * w150 + c.k42 * w86 - w77 * w151 - w85 * c.k31 - w127 * c.k17 - w153 * w39;
-    const Scalar w155 = w77 * c.k18 - c.k38 * w78;
-    const Scalar w156 = w149 * w143 - c.p.IRyy * w69 - w144 * w148;
-    const Scalar w157 = w153 * w16 - w69 * c.k45 - c.k17 * w116 - c.k5 * w73 - w28 * w139 + w147 * w78 - w88 * c.k31 + w125 * c.k16 + w77 * w155 + w156;
-    const Scalar w158 = w127 * c.k16 + w150 * w118 - w153 * w36 + w75 * w155 - c.k42 * w84 - w22 * w139 - w146 * w117 + c.k46 * w86 - w85 * c.k5 + w78 * w151 - c.k1 * w141;
+    const Scalar w145 = w142 * w143 - c.p.IRyy * w69 - w144 * w141;
+    const Scalar w146 = w77 * c.k40 - c.k18 * w78;
+    const Scalar w147 = w97 * c.k13 + c.k42 * w93;
+    const Scalar w148 = w130 * w134 - w135 * w129 - w94 * c.p.IFyy;
+    const Scalar w149 = w148 - c.k41 * w94 - w97 * w147 - c.k30 * w95 + c.k26 * w114 + c.k29 * w90 + w138 * w93;
+    const Scalar w150 = w88 * c.k31 - w125 * c.k16 + w28 * w139 - w77 * w140 - w145 + w69 * c.k39 - w146 * w78 + c.k17 * w116 + c.k5 * w73 - w149 * w16;
+    const Scalar w151 = qd(5) + w75;
+    const Scalar w152 = c.p.IRyy * w151;
+    const Scalar w153 = w142 * w151 - w152 * w141 - (qd(5) * w141 + w117 * w84 - w86 * w118) * c.p.IRxx;
+    const Scalar w154 = c.k37 * w109 - w91 * w133 + w110 * c.k30 + w111 * c.k43 + w147 * w99 - w112 * c.k26 - w92 * w136 - w137 * w93;
+    const Scalar w155 = w151 * w144 - w143 * w152 - (w84 * w118 + w117 * w86 + qd(5) * w143) * c.p.IRxx;
+    const Scalar w156 = c.k46 * w75;
+    const Scalar w157 = w127 * c.k16 + w153 * w118 - w149 * w36 + w75 * w140 + c.k1 * w154 - c.k44 * w84 - w22 * w139 - w155 * w117 + c.k45 * w86 - w85 * c.k5 + w78 * w156;
+    const Scalar w158 = w149 * w39 + c.k6 * w154 + w77 * w156 + w127 * c.k17 - w155 * w118 + w17 * w139 - w146 * w75 - w117 * w153 + c.k38 * w84 - c.k44 * w86 + w85 * c.k31;
     M(0, 0) = w2 * w2 * c.k0 + w7 * w7 * c.k0 + w8 * c.k0 * w8;
     M(0, 1) = -(w7 * w10 + w2 * w12 - w14 * w8);
     M(0, 2) = w2 * w26 - w7 * w30 - w32 * w8;
@@ -721,12 +743,12 @@ struct Model {
     M(7, 7) = c.p.IFyy;
     F(0) = w123 * w7 + w126 * w8 - w2 * w128;
     F(1) = -(w9 * w123 - w128 * w11 - w126 * w13);
-    F(2) = -(w154 * w21 + w123 * w27 - w157 * w4 + w126 * w31 + w158 * w15);
-    F(3) = w3 * w158 + c.p.rR * w128 - w5 * w154 + u(0);
-    F(4) = w157;
-    F(5) = w156;
-    F(6) = u(1) - w141;
-    F(7) = w152;
+    F(2) = -(w150 * w4 + w157 * w15 + w123 * w27 + w126 * w31 - w21 * w158);
+    F(3) = c.p.rR * w128 + w5 * w158 + w157 * w3 + u(0);
+    F(4) = -w150;
+    F(5) = w145;
+    F(6) = w154 + u(1);
+    F(7) = w148;
     M(0, 5) = Scalar(0);
     M(0, 7) = Scalar(0);
     M(1, 5) = Scalar(0);
@@ -768,17 +790,19 @@ struct Model {
   /// M and F together, sharing their common subexpressions
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static void mass_matrix_and_forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] MassMatrix<Scalar>& M, [[maybe_unused]] Vector<Scalar>& F) noexcept {
-    mass_matrix_and_forcing(t, q, qd, u, Constants<Scalar>(p), M, F);
+  template <class DerivedQ, class DerivedQd, class DerivedU, class Out0, class Out1>
+  static void mass_matrix_and_forcing(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedU>& u, const Parameters<typename DerivedQ::Scalar>& p, Out0&& M, Out1&& F) noexcept {
+    mass_matrix_and_forcing(t, q, qd, u, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(M), std::forward<Out1>(F));
   }
 
   /// Xi(q, t) of the Pfaffian constraints Xi qd + Xi_t = 0
-  template <class Scalar>
-  static void constraint_jacobian([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] ConstraintJacobian<Scalar>& Xi) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class Out0>
+  static void constraint_jacobian([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Constants<typename DerivedQ::Scalar>& c, Out0&& Xi) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(nc, nq), "Xi: expected nc x nq");
+    eigen_assert(q.size() == nq && Xi.rows() == nc && Xi.cols() == nq);
+    using std::sin; using std::cos; using std::sqrt;
     const Scalar w0 = sin(q(4));
     const Scalar w1 = sin(q(2));
     const Scalar w2 = cos(q(4));
@@ -872,17 +896,18 @@ struct Model {
   /// Xi(q, t) of the Pfaffian constraints Xi qd + Xi_t = 0
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static void constraint_jacobian([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintJacobian<Scalar>& Xi) noexcept {
-    constraint_jacobian(t, q, Constants<Scalar>(p), Xi);
+  template <class DerivedQ, class Out0>
+  static void constraint_jacobian(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& Xi) noexcept {
+    constraint_jacobian(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(Xi));
   }
 
   /// Xi_t(q, t)
-  template <class Scalar>
-  static void constraint_rate_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] ConstraintVector<Scalar>& Xi_t) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class Out0>
+  static void constraint_rate_term([[maybe_unused]] const typename DerivedQ::Scalar& t, [[maybe_unused]] const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& Xi_t) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(nc, 1), "Xi_t: expected nc x 1");
+    eigen_assert(q.size() == nq && Xi_t.rows() == nc && Xi_t.cols() == 1);
     Xi_t(0) = Scalar(0);
     Xi_t(1) = Scalar(0);
     Xi_t(2) = Scalar(0);
@@ -893,17 +918,20 @@ struct Model {
   /// Xi_t(q, t)
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static void constraint_rate_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintVector<Scalar>& Xi_t) noexcept {
-    constraint_rate_term(t, q, Constants<Scalar>(p), Xi_t);
+  template <class DerivedQ, class Out0>
+  static void constraint_rate_term(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& Xi_t) noexcept {
+    constraint_rate_term(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(Xi_t));
   }
 
   /// dXi/dt qd + dXi_t/dt, so that Xi qdd + b = 0
-  template <class Scalar>
-  static void constraint_acceleration_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] ConstraintVector<Scalar>& b) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void constraint_acceleration_term([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Constants<typename DerivedQ::Scalar>& c, Out0&& b) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(nc, 1), "b: expected nc x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && b.rows() == nc && b.cols() == 1);
+    using std::sin; using std::cos; using std::sqrt;
     const Scalar w0 = sin(q(4));
     const Scalar w1 = cos(q(4));
     const Scalar w2 = sin(q(2));
@@ -1020,17 +1048,19 @@ struct Model {
   /// dXi/dt qd + dXi_t/dt, so that Xi qdd + b = 0
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static void constraint_acceleration_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintVector<Scalar>& b) noexcept {
-    constraint_acceleration_term(t, q, qd, Constants<Scalar>(p), b);
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void constraint_acceleration_term(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Parameters<typename DerivedQ::Scalar>& p, Out0&& b) noexcept {
+    constraint_acceleration_term(t, q, qd, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(b));
   }
 
   /// phi(q, t) of the holonomic constraints
-  template <class Scalar>
-  static void holonomic_residuals([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] HolonomicVector<Scalar>& phi) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class Out0>
+  static void holonomic_residuals([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Constants<typename DerivedQ::Scalar>& c, Out0&& phi) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(nh, 1), "phi: expected nh x 1");
+    eigen_assert(q.size() == nq && phi.rows() == nh && phi.cols() == 1);
+    using std::sin; using std::cos; using std::sqrt;
     const Scalar w0 = cos(q(3));
     const Scalar w1 = c.p.lam + q(4);
     const Scalar w2 = sin(w1);
@@ -1046,17 +1076,19 @@ struct Model {
   /// phi(q, t) of the holonomic constraints
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static void holonomic_residuals([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] HolonomicVector<Scalar>& phi) noexcept {
-    holonomic_residuals(t, q, Constants<Scalar>(p), phi);
+  template <class DerivedQ, class Out0>
+  static void holonomic_residuals(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& phi) noexcept {
+    holonomic_residuals(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(phi));
   }
 
   /// T(q, qd, t)
-  template <class Scalar>
-  static Scalar kinetic_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Constants<Scalar>& c) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class DerivedQd>
+  static typename DerivedQ::Scalar kinetic_energy([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Constants<typename DerivedQ::Scalar>& c) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    eigen_assert(q.size() == nq && qd.size() == nq);
+    using std::sin; using std::cos;
     Scalar T = Scalar(0);
     const Scalar w0 = sin(q(3));
     const Scalar w1 = w0 * qd(2);
@@ -1133,17 +1165,18 @@ struct Model {
   /// T(q, qd, t)
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static Scalar kinetic_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Parameters<Scalar>& p) noexcept {
-    return kinetic_energy(t, q, qd, Constants<Scalar>(p));
+  template <class DerivedQ, class DerivedQd>
+  static typename DerivedQ::Scalar kinetic_energy(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Parameters<typename DerivedQ::Scalar>& p) noexcept {
+    return kinetic_energy(t, q, qd, Constants<typename DerivedQ::Scalar>(p));
   }
 
   /// V(q, t)
-  template <class Scalar>
-  static Scalar potential_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ>
+  static typename DerivedQ::Scalar potential_energy([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Constants<typename DerivedQ::Scalar>& c) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    eigen_assert(q.size() == nq);
+    using std::sin; using std::cos;
     Scalar V = Scalar(0);
     const Scalar w0 = cos(q(3));
     const Scalar w1 = sin(q(4)) * w0;
@@ -1160,17 +1193,21 @@ struct Model {
   /// V(q, t)
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static Scalar potential_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p) noexcept {
-    return potential_energy(t, q, Constants<Scalar>(p));
+  template <class DerivedQ>
+  static typename DerivedQ::Scalar potential_energy(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p) noexcept {
+    return potential_energy(t, q, Constants<typename DerivedQ::Scalar>(p));
   }
 
   /// the model's named outputs, in the order of output_names
-  template <class Scalar>
-  static void outputs([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] OutputVector<Scalar>& y) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class DerivedQd, class DerivedU, class Out0>
+  static void outputs([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Eigen::MatrixBase<DerivedQd>& qd, [[maybe_unused]] const Eigen::MatrixBase<DerivedU>& u, const Constants<typename DerivedQ::Scalar>& c, Out0&& y) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<DerivedU>(nu, 1), "u: expected a column of nu entries");
+    static_assert(fits<std::decay_t<Out0>>(ny, 1), "y: expected ny x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && u.size() == nu && y.rows() == ny && y.cols() == 1);
+    using std::sin; using std::cos; using std::sqrt;
     const Scalar w0 = sin(q(3));
     const Scalar w1 = cos(q(6));
     const Scalar w2 = sin(q(6));
@@ -1196,9 +1233,1622 @@ struct Model {
   /// the model's named outputs, in the order of output_names
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static void outputs([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] OutputVector<Scalar>& y) noexcept {
-    outputs(t, q, qd, u, Constants<Scalar>(p), y);
+  template <class DerivedQ, class DerivedQd, class DerivedU, class Out0>
+  static void outputs(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedU>& u, const Parameters<typename DerivedQ::Scalar>& p, Out0&& y) noexcept {
+    outputs(t, q, qd, u, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(y));
+  }
+
+  /// tau and lambda with M qdd = F + Xi^T lambda + tau for a qdd that satisfies the constraints, tau the least (orthogonal to every row of Xi); M qdd - F by the Newton-Euler recursion
+  template <class DerivedQ, class DerivedQd, class DerivedQdd, class DerivedU, class Out0, class Out1>
+  static void inverse_dynamics([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedQdd>& qdd, const Eigen::MatrixBase<DerivedU>& u, const Constants<typename DerivedQ::Scalar>& c, Out0&& tau, Out1&& lambda) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<DerivedQdd>(nq, 1), "qdd: expected a column of nq entries");
+    static_assert(fits<DerivedU>(nu, 1), "u: expected a column of nu entries");
+    static_assert(fits<std::decay_t<Out0>>(nq, 1), "tau: expected nq x 1");
+    static_assert(fits<std::decay_t<Out1>>(nc, 1), "lambda: expected nc x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && qdd.size() == nq && u.size() == nu && tau.rows() == nq && tau.cols() == 1 && lambda.rows() == nc && lambda.cols() == 1);
+    using std::sin; using std::cos; using std::sqrt;
+    Eigen::Matrix<Scalar, nc, nq> Xi;
+    const Scalar w0 = cos(q(4));
+    const Scalar w1 = cos(q(2));
+    const Scalar w2 = sin(q(4));
+    const Scalar w3 = sin(q(2));
+    const Scalar w4 = sin(q(3));
+    const Scalar w5 = w0 * w1 - w2 * w3 * w4;
+    const Scalar w6 = cos(q(3));
+    const Scalar w7 = w4 * qdd(2) + w6 * qd(3) * qd(2) + qdd(4);
+    const Scalar w8 = w4 * qd(2) + qd(4);
+    const Scalar w9 = c.p.xB * w8;
+    const Scalar w10 = w6 * w0 * qd(2) + w2 * qd(3);
+    const Scalar w11 = w2 * w6 * qd(2) - w0 * qd(3);
+    const Scalar w12 = w11 * c.k32 + w10 * c.p.xB;
+    const Scalar w13 = sin(q(6));
+    const Scalar w14 = c.k6 * w13;
+    const Scalar w15 = c.k1 * w13;
+    const Scalar w16 = cos(q(6));
+    const Scalar w17 = w11 * w14 + w10 * w15 + w16 * w8;
+    const Scalar w18 = c.k27 * w17;
+    const Scalar w19 = c.k6 * w16;
+    const Scalar w20 = c.k1 * w16;
+    const Scalar w21 = w13 * w8 - w11 * w19 - w20 * w10;
+    const Scalar w22 = c.k6 * w10 - w11 * c.k1 + qd(6);
+    const Scalar w23 = c.k27 * w21 + w22 * c.k28;
+    const Scalar w24 = cos(q(7));
+    const Scalar w25 = w2 * w6;
+    const Scalar w26 = w25 * qdd(2) - qdd(3) * w0 + w10 * qd(4) - w2 * w4 * qd(3) * qd(2);
+    const Scalar w27 = w6 * w0;
+    const Scalar w28 = qdd(3) * w2 - (w11 * qd(4) + w0 * w4 * qd(3) * qd(2)) + w27 * qdd(2);
+    const Scalar w29 = w26 * w14 + w16 * w7 + w28 * w15 - qd(6) * w21;
+    const Scalar w30 = qd(3) * qd(3);
+    const Scalar w31 = w4 * w4;
+    const Scalar w32 = qd(2) * qd(2);
+    const Scalar w33 = w2 * w4 * w1 + w0 * w3;
+    const Scalar w34 = c.p.rR * w0 * w4;
+    const Scalar w35 = qdd(0) * w5 + c.p.g * w25 - (w2 * w30 * c.p.rR + w2 * c.p.rR * w31 * w32 + w6 * c.k25 * w0 * qd(3) * qd(2)) + qdd(1) * w33 - w34 * qdd(2);
+    const Scalar w36 = c.k16 * w7 + w35;
+    const Scalar w37 = c.k16 * w8;
+    const Scalar w38 = w10 * c.k17 - w11 * c.k16;
+    const Scalar w39 = w37 * w8 - w11 * w38;
+    const Scalar w40 = c.k17 * w8;
+    const Scalar w41 = w40 * w8 + w38 * w10;
+    const Scalar w42 = w0 * w3 * w4 + w2 * w1;
+    const Scalar w43 = w0 * w4 * w1 - w2 * w3;
+    const Scalar w44 = w2 * c.p.rR * w4;
+    const Scalar w45 = qdd(0) * w42 - (w2 * w6 * c.k25 * qd(3) * qd(2) - c.p.rR * w0 * w31 * w32 - w30 * c.p.rR * w0) - w43 * qdd(1) - qdd(2) * w44 - c.p.g * w27;
+    const Scalar w46 = c.k17 * w7 + w45;
+    const Scalar w47 = c.k6 * w39 - w41 * c.k1 - c.k1 * w36 - c.k6 * w46;
+    const Scalar w48 = w47 - w29 * c.k26;
+    const Scalar w49 = sin(q(7));
+    const Scalar w50 = w6 * w1;
+    const Scalar w51 = w6 * w3;
+    const Scalar w52 = qdd(3) * c.p.rR + qdd(1) * w50 - w6 * c.p.rR * w4 * w32 - qdd(0) * w51 - c.p.g * w4;
+    const Scalar w53 = w52 + c.k16 * w26 - w28 * c.k17;
+    const Scalar w54 = w37 * w10 + w11 * w40;
+    const Scalar w55 = w19 * w36 - w46 * w20 + w13 * w53 + w20 * w39 + w41 * w19 + w13 * w54;
+    const Scalar w56 = w22 * c.k26;
+    const Scalar w57 = c.k26 * w17;
+    const Scalar w58 = w22 * w56 + w57 * w17;
+    const Scalar w59 = w21 * w56;
+    const Scalar w60 = c.p.mF * (w49 * w55 - w24 * w48 + w58 * w49 - w24 * w59);
+    const Scalar w61 = c.p.mF * (w49 * w59 + w58 * w24 + w24 * w55 + w49 * w48);
+    const Scalar w62 = w49 * w61 - w24 * w60;
+    const Scalar w63 = c.p.mH * (w18 * w17 + w23 * w21) + w62 - w29 * c.k30 + c.p.mH * w47;
+    const Scalar w64 = c.k28 * w17;
+    const Scalar w65 = c.p.mH * w55 + w24 * w61 + w60 * w49 + w29 * c.k29 + c.p.mH * (w23 * w22 + w64 * w17);
+    const Scalar w66 = qdd(6) - (c.k1 * w26 - c.k6 * w28);
+    const Scalar w67 = w46 * w15 - w36 * w14 + w54 * w16 - w39 * w15 - w41 * w14 + w53 * w16;
+    const Scalar w68 = (w67 - c.k26 * w66 - w57 * w21) * c.p.mF;
+    const Scalar w69 = qd(6) * w17 - (w20 * w28 - w13 * w7 + w19 * w26);
+    const Scalar w70 = (w22 * w18 - w64 * w21) * c.p.mH + w68 - c.k30 * w66 + w67 * c.p.mH - c.k29 * w69;
+    const Scalar w71 = c.k1 * w63 - w19 * w65 + w70 * w14;
+    const Scalar w72 = sin(q(5));
+    const Scalar w73 = cos(q(5));
+    const Scalar w74 = (w35 * w72 + w45 * w73) * c.p.mR;
+    const Scalar w75 = c.p.mR * (w45 * w72 - w35 * w73);
+    const Scalar w76 = c.k5 * w7 - (w9 * w8 + w10 * w12) * c.p.mB - w71 + w74 * w72 - w75 * w73 + w35 * c.p.mB;
+    const Scalar w77 = c.k32 * w8;
+    const Scalar w78 = w70 * w16 + w13 * w65;
+    const Scalar w79 = (w11 * w9 - w10 * w77) * c.p.mB - w26 * c.k5 - w52 * c.p.mB - w28 * c.k31 - c.p.mR * w52 - w78;
+    const Scalar w80 = w20 * w65 + c.k6 * w63 - w70 * w15;
+    const Scalar w81 = c.k31 * w7 - w75 * w72 - w74 * w73 - w45 * c.p.mB + (w77 * w8 + w11 * w12) * c.p.mB + w80;
+    const Scalar w82 = qd(5) + w8;
+    const Scalar w83 = w11 * w73 + w72 * w10;
+    const Scalar w84 = w83 * c.p.IRxx;
+    const Scalar w85 = c.p.IRyy * w82;
+    const Scalar w86 = w82 * w84 - w83 * w85 + c.p.IRxx * (w28 * w73 - w72 * w26 - qd(5) * w83);
+    const Scalar w87 = w24 * w21 - w22 * w49;
+    const Scalar w88 = c.p.IFxx * w87;
+    const Scalar w89 = w24 * w22 + w49 * w21;
+    const Scalar w90 = w89 * c.p.IFxx;
+    const Scalar w91 = w90 * w87 - w88 * w89 - (w29 + qdd(7)) * c.p.IFyy;
+    const Scalar w92 = w22 * c.k13 + c.k42 * w21;
+    const Scalar w93 = c.k35 * w22 - c.k36 * w21;
+    const Scalar w94 = w62 * c.k26 + w91 - w22 * w92 - w29 * c.k41 + c.k30 * w47 - c.k29 * w55 + w93 * w21;
+    const Scalar w95 = w11 * w72 - w10 * w73;
+    const Scalar w96 = c.p.IRxx * w95;
+    const Scalar w97 = w96 * w82 - (qd(5) * w95 - (w26 * w73 + w28 * w72)) * c.p.IRxx - w85 * w95;
+    const Scalar w98 = c.k34 * w17;
+    const Scalar w99 = qd(7) + w17;
+    const Scalar w100 = w99 * c.p.IFyy;
+    const Scalar w101 = w100 * w87 + c.p.IFxx * (w24 * w66 + w69 * w49 + qd(7) * w87) - w88 * w99;
+    const Scalar w102 = w90 * w99 - c.p.IFxx * (w49 * w66 - w24 * w69 + w89 * qd(7)) - w89 * w100;
+    const Scalar w103 = c.k33 * w69 - w22 * w98 + w93 * w17 - c.k29 * w67 + w101 * w49 + w102 * w24 - c.k37 * w66;
+    const Scalar w104 = w11 * c.k18 - c.k38 * w10;
+    const Scalar w105 = w98 * w21 - w92 * w17 - w67 * c.k30 + c.k43 * w66 - w102 * w49 + w24 * w101 - w69 * c.k37 - w68 * c.k26;
+    const Scalar w106 = c.k46 * w8;
+    const Scalar w107 = w97 * w73 - w86 * w72 - w94 * w14 + c.k44 * w28 - w103 * w19 + c.k45 * w26 + w8 * w104 + w78 * c.k16 - w105 * c.k1 + w52 * c.k5 + w10 * w106;
+    const Scalar w108 = w11 * c.k40 - c.k18 * w10;
+    const Scalar w109 = w52 * c.k31 - w94 * w15 - w20 * w103 + w108 * w8 + w105 * c.k6 + w72 * w97 - w78 * c.k17 + c.k38 * w28 + w86 * w73 + c.k44 * w26 - w11 * w106;
+    const Scalar w110 = -(w96 * w83 - c.p.IRyy * (w7 + qdd(5)) - w84 * w95);
+    const Scalar w111 = w13 * w103 + w7 * c.k39 - w45 * c.k31 - w11 * w104 - w71 * c.k16 - w108 * w10 - c.k17 * w80 + w35 * c.k5 - w94 * w16 + w110;
+    const Scalar w112 = q(4) + q(5);
+    const Scalar w113 = cos(w112);
+    const Scalar w114 = sin(w112);
+    const Scalar w115 = c.p.lam + q(4);
+    const Scalar w116 = cos(w115);
+    const Scalar w117 = sin(w115);
+    const Scalar w118 = w4 * w16 + w13 * w6 * w117;
+    const Scalar w119 = w118 * w118;
+    const Scalar w120 = sqrt(Scalar(1) - w119);
+    const Scalar w121 = Scalar(1) / w120;
+    const Scalar w122 = c.k26 * w116 * w16 - w13 * w118 * w116 * w121 * c.p.rF + c.k47 * w116 - w117 * c.k48;
+    const Scalar w123 = w116 * w4 * c.k48;
+    const Scalar w124 = -(c.p.rR * w4);
+    const Scalar w125 = (w117 * w4 * w16 + w13 * w6) * c.k26;
+    const Scalar w126 = w6 * w16 - w13 * w117 * w4;
+    const Scalar w127 = c.k47 * w117 * w4;
+    const Scalar w128 = w123 + w124 + w125 + w118 * w126 * w121 * c.p.rF + w127;
+    const Scalar w129 = w4 * w121 * c.p.rF - w13 * c.k26 - w118 * w121 * c.p.rF * w16;
+    const Scalar w130 = c.k47 * w117 - w13 * w117 * w118 * w121 * c.p.rF + w116 * c.k48 - c.p.rR + w117 * c.k26 * w16 + w6 * w121 * c.p.rF;
+    const Scalar w131 = c.k16 - c.k49 * w13 * w118 * w121 + w6 * w0 * w121 * c.p.rF + c.k50 * w16;
+    const Scalar w132 = w2 * w6 * w121 * c.p.rF + c.k17 + c.k51 * w16 - c.k52 * w13 * w118 * w121;
+    const Scalar w133 = w13 * w4 - w6 * w117 * w16;
+    const Scalar w134 = c.k26 - w121 * c.p.rF * w133;
+    const Scalar w135 = w3 * w116 + w117 * w4 * w1;
+    const Scalar w136 = w117 * w3 - w116 * w4 * w1;
+    const Scalar w137 = w13 * w6 * w1 + w135 * w16;
+    const Scalar w138 = w13 * w24 * w4 - w6 * (w24 * w117 * w16 + w49 * w116);
+    const Scalar w139 = w13 * w49 * w4 - w6 * (w117 * w49 * w16 - w24 * w116);
+    const Scalar w140 = w116 * w1 - w117 * w3 * w4;
+    const Scalar w141 = w140 * w16 - w13 * w6 * w3;
+    const Scalar w142 = w117 * w1 + w3 * w116 * w4;
+    const Scalar w143 = Scalar(1) / (w120 * w120 * w120);
+    const Scalar w144 = w118 * w119;
+    const Scalar w145 = -Scalar(1);
+    tau(0) = w5 * w76 + w51 * w79 - w42 * w81;
+    tau(1) = w43 * w81 - w79 * w50 + w76 * w33;
+    tau(2) = w107 * w25 + w27 * w109 + w81 * w44 - w34 * w76 + w4 * w111;
+    tau(3) = -(c.p.rR * w79 - w2 * w109 + w107 * w0 + u(0));
+    tau(4) = w111;
+    tau(5) = w110;
+    tau(6) = w105 - u(1);
+    tau(7) = -w91;
+    Xi(0, 1) = w145;
+    Xi(0, 4) = w43 * w2 * c.p.rR - c.p.rR * w0 * w33;
+    Xi(0, 5) = -(w113 * c.p.rR * (w113 * w3 + w114 * w4 * w1) + c.p.rR * w114 * (w114 * w3 - w113 * w4 * w1));
+    Xi(1, 0) = w145;
+    Xi(1, 4) = -(c.p.rR * w0 * w5 + w2 * c.p.rR * w42);
+    Xi(1, 5) = -((w113 * w1 - w114 * w3 * w4) * w113 * c.p.rR + c.p.rR * w114 * (w113 * w3 * w4 + w114 * w1));
+    Xi(2, 1) = w145;
+    Xi(2, 2) = -(w128 * w3 - w122 * w1);
+    Xi(2, 3) = w129 * w4 * w1 + w6 * w1 * w130;
+    Xi(2, 4) = -(w131 * w33 - w43 * w132);
+    Xi(2, 6) = -(w134 * (w13 * w135 - w6 * w16 * w1));
+    Xi(2, 7) = (w24 * w136 + w137 * w49) * w121 * c.p.rF * w138 + w139 * (w49 * w136 - w24 * w137) * w121 * c.p.rF;
+    Xi(3, 0) = w145;
+    Xi(3, 2) = -(w128 * w1 + w3 * w122);
+    Xi(3, 3) = -(w129 * w3 * w4 + w6 * w3 * w130);
+    Xi(3, 4) = -(w42 * w132 + w5 * w131);
+    Xi(3, 6) = -(w134 * (w6 * w3 * w16 + w13 * w140));
+    Xi(3, 7) = (w141 * w49 + w142 * w24) * w121 * c.p.rF * w138 + w139 * (w142 * w49 - w24 * w141) * w121 * c.p.rF;
+    Xi(4, 3) = w123 + w124 - w143 * w118 * w126 * c.p.rF + c.k53 * w118 * w126 * w121 + w125 + w143 * w126 * w144 * c.p.rF + w127;
+    Xi(4, 4) = -(c.k47 * w6 * w116 - w13 * w143 * w6 * w116 * w144 * c.p.rF - w13 * w6 * c.k53 * w118 * w116 * w121 + w6 * c.k26 * w116 * w16 - w6 * w117 * c.k48 + w13 * w143 * w6 * w118 * w116 * c.p.rF);
+    Xi(4, 6) = -(c.k53 * w118 * w121 * w133 - w143 * w118 * c.p.rF * w133 + w143 * w144 * c.p.rF * w133 - w118 * c.k26);
+    Xi(0, 0) = Scalar(0);
+    Xi(0, 2) = Scalar(0);
+    Xi(0, 3) = Scalar(0);
+    Xi(0, 6) = Scalar(0);
+    Xi(0, 7) = Scalar(0);
+    Xi(1, 1) = Scalar(0);
+    Xi(1, 2) = Scalar(0);
+    Xi(1, 3) = Scalar(0);
+    Xi(1, 6) = Scalar(0);
+    Xi(1, 7) = Scalar(0);
+    Xi(2, 0) = Scalar(0);
+    Xi(2, 5) = Scalar(0);
+    Xi(3, 1) = Scalar(0);
+    Xi(3, 5) = Scalar(0);
+    Xi(4, 0) = Scalar(0);
+    Xi(4, 1) = Scalar(0);
+    Xi(4, 2) = Scalar(0);
+    Xi(4, 5) = Scalar(0);
+    Xi(4, 7) = Scalar(0);
+    const Eigen::Matrix<Scalar, nq, 1> total = tau;
+    lambda = (Xi * Xi.transpose()).ldlt().solve(Xi * total);
+    tau = total - Xi.transpose() * lambda;
+  }
+
+  /// tau and lambda with M qdd = F + Xi^T lambda + tau for a qdd that satisfies the constraints, tau the least (orthogonal to every row of Xi); M qdd - F by the Newton-Euler recursion
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class DerivedQd, class DerivedQdd, class DerivedU, class Out0, class Out1>
+  static void inverse_dynamics(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedQdd>& qdd, const Eigen::MatrixBase<DerivedU>& u, const Parameters<typename DerivedQ::Scalar>& p, Out0&& tau, Out1&& lambda) noexcept {
+    inverse_dynamics(t, q, qd, qdd, u, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(tau), std::forward<Out1>(lambda));
+  }
+
+  /// G(q) = dV/dq: the generalized forces of gravity and springs, with C qd + G = -F at zero input and no other loads
+  template <class DerivedQ, class Out0>
+  static void gravity_forces(const Eigen::MatrixBase<DerivedQ>& q, const Constants<typename DerivedQ::Scalar>& c, Out0&& G) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(nq, 1), "G: expected nq x 1");
+    eigen_assert(q.size() == nq && G.rows() == nq && G.cols() == 1);
+    using std::sin; using std::cos;
+    const Scalar w0 = sin(q(3));
+    const Scalar w1 = c.p.rR * w0;
+    const Scalar w2 = -w1;
+    const Scalar w3 = cos(q(4));
+    const Scalar w4 = w3 * w0;
+    const Scalar w5 = sin(q(4));
+    const Scalar w6 = w5 * w0;
+    const Scalar w7 = c.k1 * w4 + c.k6 * w6;
+    const Scalar w8 = c.k1 * w6 - c.k6 * w4;
+    const Scalar w9 = sin(q(6));
+    const Scalar w10 = cos(q(3));
+    const Scalar w11 = cos(q(6));
+    const Scalar w12 = w9 * w10 + w11 * w7;
+    const Scalar w13 = w2 + c.k47 * w7 - c.k48 * w8 + c.k26 * w12;
+    const Scalar w14 = w5 * w10;
+    const Scalar w15 = w10 * w3;
+    const Scalar w16 = c.k1 * w14 - c.k6 * w15;
+    const Scalar w17 = w16 * w11;
+    const Scalar w18 = c.k6 * w14 + c.k1 * w15;
+    const Scalar w19 = c.k26 * w17 + w18 * c.k48 + c.k47 * w16;
+    const Scalar w20 = w0 * w11 + w9 * w18;
+    const Scalar w21 = w20 * c.k26;
+    G(3) = c.k63 * w13 - c.k64 * w1 + c.k62 * (w2 + w4 * c.k32 - c.p.xB * w6) + c.k65 * (w13 - (c.k1 * w8 + c.k6 * w12) * c.k58 + (c.k1 * w12 - c.k6 * w8) * c.k59);
+    G(4) = c.k63 * w19 + c.k62 * (w15 * c.p.xB + c.k32 * w14) + c.k65 * ((c.k6 * w18 + c.k1 * w17) * c.k59 + c.k58 * (c.k1 * w18 - c.k6 * w17) + w19);
+    G(6) = -(c.k65 * (c.k6 * w20 * c.k58 - w21 - c.k1 * w20 * c.k59) - c.k63 * w21);
+    G(0) = Scalar(0);
+    G(1) = Scalar(0);
+    G(2) = Scalar(0);
+    G(5) = Scalar(0);
+    G(7) = Scalar(0);
+  }
+
+  /// G(q) = dV/dq: the generalized forces of gravity and springs, with C qd + G = -F at zero input and no other loads
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class Out0>
+  static void gravity_forces(const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& G) noexcept {
+    gravity_forces(q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(G));
+  }
+
+  /// C(q, qd) from the Christoffel symbols of M: dM/dt - 2 C is skew-symmetric
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void coriolis_matrix(const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Constants<typename DerivedQ::Scalar>& c, Out0&& C) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(nq, nq), "C: expected nq x nq");
+    eigen_assert(q.size() == nq && qd.size() == nq && C.rows() == nq && C.cols() == nq);
+    using std::sin; using std::cos;
+    const Scalar w0 = c.k66 * qd(4);
+    const Scalar w1 = cos(q(4));
+    const Scalar w2 = sin(q(2));
+    const Scalar w3 = sin(q(3));
+    const Scalar w4 = sin(q(4));
+    const Scalar w5 = cos(q(2));
+    const Scalar w6 = w1 * w2 * w3 + w4 * w5;
+    const Scalar w7 = w1 * w3 * w5 - w4 * w2;
+    const Scalar w8 = w7 * c.k0;
+    const Scalar w9 = w6 * c.k0;
+    const Scalar w10 = cos(q(3));
+    const Scalar w11 = w10 * w2;
+    const Scalar w12 = w10 * w5;
+    const Scalar w13 = c.k0 * w12;
+    const Scalar w14 = w1 * w5 - w4 * w2 * w3;
+    const Scalar w15 = w14 * c.k0;
+    const Scalar w16 = w4 * w3 * w5 + w1 * w2;
+    const Scalar w17 = c.k0 * w16;
+    const Scalar w18 = w11 * c.k0;
+    const Scalar w19 = w6 * w8 + w7 * w9 + w11 * w13 - w15 * w16 - w17 * w14 + w18 * w12;
+    const Scalar w20 = w19 * Scalar(0.5) * qd(2);
+    const Scalar w21 = w10 * w1 * w2;
+    const Scalar w22 = w2 * w3;
+    const Scalar w23 = w4 * w10 * w2;
+    const Scalar w24 = w21 * w9 - w22 * w18 + w6 * w21 * c.k0 - w23 * w15 - w23 * c.k0 * w14 - w22 * c.k0 * w11;
+    const Scalar w25 = w3 * w5;
+    const Scalar w26 = w25 * c.k0;
+    const Scalar w27 = w4 * w10 * w5;
+    const Scalar w28 = w27 * c.k0;
+    const Scalar w29 = w10 * w1 * w5;
+    const Scalar w30 = w29 * c.k0;
+    const Scalar w31 = w26 * w11 + w22 * w13 + w28 * w14 - w21 * w8 - w23 * w17 - w6 * w30;
+    const Scalar w32 = w11 * w18 + w6 * w9 - w13 * w12 - w7 * w8 + w15 * w14 - w17 * w16;
+    const Scalar w33 = w31 * Scalar(0.5) * qd(3) + w0 + w32 * Scalar(0.5) * qd(2);
+    const Scalar w34 = w10 * w1;
+    const Scalar w35 = cos(q(6));
+    const Scalar w36 = c.k2 * w35;
+    const Scalar w37 = sin(q(6));
+    const Scalar w38 = c.k1 * w37;
+    const Scalar w39 = c.k2 * w38;
+    const Scalar w40 = w34 * w36 - w39 * w3;
+    const Scalar w41 = c.k6 * w37;
+    const Scalar w42 = c.k2 * w41;
+    const Scalar w43 = w4 * w10;
+    const Scalar w44 = w42 * w3 - w36 * w43;
+    const Scalar w45 = w39 * w43 - w34 * w42;
+    const Scalar w46 = w40 * w14 - w6 * w44 + w11 * w45;
+    const Scalar w47 = Scalar(0.5) * qd(6) * w46;
+    const Scalar w48 = qd(1) * w32 * Scalar(0.5);
+    const Scalar w49 = w19 * Scalar(0.5) * qd(0);
+    const Scalar w50 = w1 * w3;
+    const Scalar w51 = c.k6 * w35;
+    const Scalar w52 = c.k2 * w51;
+    const Scalar w53 = c.k7 + w52;
+    const Scalar w54 = c.k8 + w53;
+    const Scalar w55 = w54 + c.k9;
+    const Scalar w56 = c.k1 * w35;
+    const Scalar w57 = w56 * c.k2;
+    const Scalar w58 = c.k3 + w57;
+    const Scalar w59 = c.k4 + w58;
+    const Scalar w60 = w59 + c.k5;
+    const Scalar w61 = w4 * w3;
+    const Scalar w62 = w60 * w61 - w50 * w55;
+    const Scalar w63 = w34 * w55 - w43 * w60;
+    const Scalar w64 = w4 * w10 * c.p.rR;
+    const Scalar w65 = w37 * c.k2;
+    const Scalar w66 = w64 * c.k0 + w65 * w61 - w10 * w55;
+    const Scalar w67 = -(w65 * w34);
+    const Scalar w68 = c.p.rR * w1 * w3;
+    const Scalar w69 = w68 * c.k0;
+    const Scalar w70 = w67 + w69 - w3 * w60;
+    const Scalar w71 = w10 * c.p.rR * w1;
+    const Scalar w72 = w10 * w60 - w71 * c.k0 - w50 * w65;
+    const Scalar w73 = w4 * c.p.rR * w3;
+    const Scalar w74 = c.k0 * w73;
+    const Scalar w75 = -(w65 * w43);
+    const Scalar w76 = w74 - w3 * w55 + w75;
+    const Scalar w77 = w11 * w62 - w22 * w63 - w6 * w66 + w23 * w70 + w72 * w14 - w21 * w76;
+    const Scalar w78 = w77 * Scalar(0.5) * qd(3);
+    const Scalar w79 = w42 * w16 - w36 * w12 + w7 * w39;
+    const Scalar w80 = Scalar(0.5) * qd(6) * w79;
+    const Scalar w81 = w7 * w55 - w60 * w16;
+    const Scalar w82 = w81 * Scalar(0.5) * qd(4);
+    const Scalar w83 = w67 + w69;
+    const Scalar w84 = w74 + w75;
+    const Scalar w85 = w34 * w60 + w43 * w55;
+    const Scalar w86 = w83 * w6 - w6 * w70 - w84 * w14 + w76 * w14 + w11 * w85;
+    const Scalar w87 = -(Scalar(0.5) * qd(4) * w86);
+    const Scalar w88 = w4 * w65;
+    const Scalar w89 = w4 * w55 + w1 * w60 + c.k10;
+    const Scalar w90 = w65 * w1;
+    const Scalar w91 = w89 * w12 - w88 * w16 - w7 * w90;
+    const Scalar w92 = Scalar(0.5) * w91 * qd(3);
+    const Scalar w93 = Scalar(0.5) * w91 * qd(2);
+    const Scalar w94 = w21 * w39 + w22 * w36 + w23 * w42;
+    const Scalar w95 = Scalar(0.5) * qd(6) * w94;
+    const Scalar w96 = w77 * Scalar(0.5) * qd(2);
+    const Scalar w97 = w24 * Scalar(0.5) * qd(0);
+    const Scalar w98 = qd(1) * w31 * Scalar(0.5);
+    const Scalar w99 = w1 * w36;
+    const Scalar w100 = w4 * w42 + w1 * w39;
+    const Scalar w101 = w4 * w36;
+    const Scalar w102 = w99 * w6 + w11 * w100 - w101 * w14;
+    const Scalar w103 = -(Scalar(0.5) * qd(6) * w102);
+    const Scalar w104 = w23 * w60 - w21 * w55;
+    const Scalar w105 = w104 * Scalar(0.5) * qd(4);
+    const Scalar w106 = w4 * w60 - w1 * w55;
+    const Scalar w107 = w11 * w106;
+    const Scalar w108 = -(w107 * Scalar(0.5) * qd(4));
+    const Scalar w109 = c.k66 * qd(0);
+    const Scalar w110 = -(Scalar(0.5) * qd(2) * w86);
+    const Scalar w111 = w81 * Scalar(0.5) * qd(2);
+    const Scalar w112 = w104 * Scalar(0.5) * qd(3);
+    const Scalar w113 = w39 * w14 + w6 * w42;
+    const Scalar w114 = -(Scalar(0.5) * qd(6) * w113);
+    const Scalar w115 = qd(1) * c.k66;
+    const Scalar w116 = -(w107 * Scalar(0.5) * qd(3));
+    const Scalar w117 = Scalar(0.5) * w79 * qd(2);
+    const Scalar w118 = -(Scalar(0.5) * qd(3) * w102);
+    const Scalar w119 = -(Scalar(0.5) * w113 * qd(4));
+    const Scalar w120 = Scalar(0.5) * w46 * qd(2);
+    const Scalar w121 = Scalar(0.5) * qd(3) * w94;
+    const Scalar w122 = w7 * w30 + w17 * w27 - w13 * w25 - w26 * w12 + w29 * w8 + w28 * w16;
+    const Scalar w123 = w84 * w16 - w7 * w70 - w76 * w16 + w85 * w12 + w7 * w83;
+    const Scalar w124 = Scalar(0.5) * w123 * qd(4);
+    const Scalar w125 = w7 * w44 - w12 * w45 + w40 * w16;
+    const Scalar w126 = w125 * Scalar(0.5) * qd(6);
+    const Scalar w127 = w19 * qd(1) * Scalar(0.5);
+    const Scalar w128 = w32 * Scalar(0.5) * qd(0);
+    const Scalar w129 = w6 * w55 + w14 * w60;
+    const Scalar w130 = Scalar(0.5) * w129 * qd(4);
+    const Scalar w131 = w63 * w25 + w7 * w66 - w62 * w12 - w27 * w70 + w72 * w16 + w29 * w76;
+    const Scalar w132 = w131 * Scalar(0.5) * qd(3);
+    const Scalar w133 = w11 * w89 - w90 * w6 + w88 * w14;
+    const Scalar w134 = Scalar(0.5) * w133 * qd(3);
+    const Scalar w135 = w42 * w14 + w11 * w36 - w6 * w39;
+    const Scalar w136 = w135 * Scalar(0.5) * qd(6);
+    const Scalar w137 = qd(1) * Scalar(0.5) * w122;
+    const Scalar w138 = Scalar(0.5) * w133 * qd(2);
+    const Scalar w139 = w27 * w42 + w36 * w25 + w39 * w29;
+    const Scalar w140 = Scalar(0.5) * qd(6) * w139;
+    const Scalar w141 = w131 * Scalar(0.5) * qd(2);
+    const Scalar w142 = w101 * w16 + w100 * w12 + w7 * w99;
+    const Scalar w143 = w142 * Scalar(0.5) * qd(6);
+    const Scalar w144 = w31 * Scalar(0.5) * qd(0);
+    const Scalar w145 = w12 * w106;
+    const Scalar w146 = Scalar(0.5) * qd(4) * w145;
+    const Scalar w147 = w27 * w60 - w29 * w55;
+    const Scalar w148 = Scalar(0.5) * qd(4) * w147;
+    const Scalar w149 = Scalar(0.5) * qd(3) * w147;
+    const Scalar w150 = Scalar(0.5) * w129 * qd(2);
+    const Scalar w151 = Scalar(0.5) * qd(3) * w145;
+    const Scalar w152 = Scalar(0.5) * w123 * qd(2);
+    const Scalar w153 = w39 * w16 - w7 * w42;
+    const Scalar w154 = -(Scalar(0.5) * qd(6) * w153);
+    const Scalar w155 = -(Scalar(0.5) * qd(4) * w153);
+    const Scalar w156 = w125 * Scalar(0.5) * qd(2);
+    const Scalar w157 = w142 * Scalar(0.5) * qd(3);
+    const Scalar w158 = Scalar(0.5) * qd(3) * w139;
+    const Scalar w159 = w135 * Scalar(0.5) * qd(2);
+    const Scalar w160 = c.k12 - w56 * c.k11;
+    const Scalar w161 = -(w56 * c.k13);
+    const Scalar w162 = w161 + c.k14;
+    const Scalar w163 = c.k15 * w38;
+    const Scalar w164 = c.k18 + w51 * w160 + c.k1 * w162 - w163 * w41 + w54 * c.k16 + w58 * c.k17;
+    const Scalar w165 = w65 * c.k16;
+    const Scalar w166 = w165 + w37 * w160 + w35 * w163;
+    const Scalar w167 = c.k17 * w53;
+    const Scalar w168 = w54 * c.k17;
+    const Scalar w169 = c.k19 + w163 * w38 + c.k6 * w162 - w56 * w160 + w167 + w168;
+    const Scalar w170 = w37 * c.k13;
+    const Scalar w171 = w37 * c.k11;
+    const Scalar w172 = c.k15 * w35;
+    const Scalar w173 = w65 * c.k17;
+    const Scalar w174 = w173 - (c.k1 * w170 + w51 * w171 - w172 * w41);
+    const Scalar w175 = c.k16 * w58;
+    const Scalar w176 = w59 * c.k16;
+    const Scalar w177 = c.k20 + w172 * w35 + w37 * w171 + w175 + w176 + w167 + w168;
+    const Scalar w178 = c.k13 * w51;
+    const Scalar w179 = c.k22 + c.k11 * w51;
+    const Scalar w180 = c.k15 * w41;
+    const Scalar w181 = c.k1 * (w178 + c.k21) + w51 * w179 + w180 * w41 + w175 + w176 + c.k23;
+    const Scalar w182 = w50 * w166 + w64 * w55 + w174 * w61 + w71 * w60 - w177 * w10;
+    const Scalar w183 = w164 * w43;
+    const Scalar w184 = -(w65 * w68);
+    const Scalar w185 = w34 * w169 - w183 + w184 + w166 * w3;
+    const Scalar w186 = w34 * w164;
+    const Scalar w187 = w65 * w73;
+    const Scalar w188 = w186 + w187 - w3 * w174 - w181 * w43;
+    const Scalar w189 = w34 * (w164 * w61 - w65 * w71 + w10 * w166 - w50 * w169) - w72 * w68 + w10 * (w174 * w43 + w34 * w166 - w68 * w60 - w55 * w73 + w177 * w3) + w64 * w76 + w70 * w71 + w73 * w66 + (w50 * w164 + w10 * w174 - w64 * w65 - w181 * w61) * w43 - w182 * w3 - w185 * w50 + w188 * w61;
+    const Scalar w190 = w56 * c.k15;
+    const Scalar w191 = c.k13 * w38;
+    const Scalar w192 = c.k11 * w38;
+    const Scalar w193 = w39 * c.k17;
+    const Scalar w194 = w42 * c.k16;
+    const Scalar w195 = w51 * w163 + w190 * w41 - c.k1 * w191 + w160 * w41 - w51 * w192 + w193 + w194;
+    const Scalar w196 = c.k16 * w36;
+    const Scalar w197 = w37 * w192 - w37 * w163 + w190 * w35 + w160 * w35 + w196;
+    const Scalar w198 = c.k67 * w42;
+    const Scalar w199 = w198 - (w160 * w38 - w56 * w192 + w56 * w163 + w190 * w38 + c.k6 * w191);
+    const Scalar w200 = w42 * w73;
+    const Scalar w201 = c.k11 * w35;
+    const Scalar w202 = w37 * c.k15;
+    const Scalar w203 = w37 * w201 - w202 * w35 + w35 * w171 - w37 * w172;
+    const Scalar w204 = c.k68 * w39;
+    const Scalar w205 = w39 * w68;
+    const Scalar w206 = w36 * c.k17;
+    const Scalar w207 = c.k13 * w35;
+    const Scalar w208 = w206 - (c.k1 * w207 + w202 * w41 + w51 * w201 - w172 * w51 - w41 * w171);
+    const Scalar w209 = w200 - (w204 - w203 + w198) * w3 + w205 + w34 * w197 + w208 * w43;
+    const Scalar w210 = c.k13 * w41;
+    const Scalar w211 = c.k11 * w41 * w51 + c.k1 * w210 - w180 * w51 + w179 * w41 - w51 * c.k15 * w41 + w204;
+    const Scalar w212 = w34 * (w195 * w43 + w197 * w3 - w34 * w199 - w36 * w68) + w3 * w209 + w44 * w73 - (w43 * w211 + w36 * w73 - w208 * w3 - w34 * w195) * w43 - w40 * w68;
+    const Scalar w213 = w68 * w55 + w166 * w43 - w73 * w60 - w34 * w174;
+    const Scalar w214 = (w34 * w181 + w183 + w184) * w43 + w83 * w73 - w3 * w213 - w84 * w68 - w185 * w43 - (w169 * w43 + w186 - w187) * w34 - w34 * w188 + w68 * w76 - w70 * w73;
+    const Scalar w215 = w206 + w161 + c.k14;
+    const Scalar w216 = w178 + w196 + c.k21;
+    const Scalar w217 = w50 * w215 - w216 * w61 - w64 * w39 + w42 * w71 + w10 * (w193 - w170 - w194);
+    const Scalar w218 = w217 * Scalar(0.5) * qd(6);
+    const Scalar w219 = qd(1) * Scalar(0.5) * w133;
+    const Scalar w220 = c.p.IRyy * w10;
+    const Scalar w221 = -(qd(5) * Scalar(0.5) * w220);
+    const Scalar w222 = c.p.IFyy * w41;
+    const Scalar w223 = w38 * c.p.IFyy;
+    const Scalar w224 = w222 * w61 + w50 * w223 - w10 * w35 * c.p.IFyy;
+    const Scalar w225 = w224 * Scalar(0.5) * qd(7);
+    const Scalar w226 = c.p.rR * w39 - w4 * w195 - w1 * w211;
+    const Scalar w227 = w4 * w197 - w208 * w1;
+    const Scalar w228 = c.p.rR * w42 - w4 * w199 - w1 * w195;
+    const Scalar w229 = w99 * w73 - w43 * w226 - w101 * w68 + w3 * w227 + w228 * w34;
+    const Scalar w230 = Scalar(0.5) * qd(6) * w229;
+    const Scalar w231 = -(w4 * w164);
+    const Scalar w232 = c.p.rR * w60 - w1 * w181 + w231;
+    const Scalar w233 = w1 * w164;
+    const Scalar w234 = w4 * w169 - c.p.rR * w55 + w233;
+    const Scalar w235 = -(w77 * Scalar(0.5) * qd(0));
+    const Scalar w236 = Scalar(0.5) * qd(0) * w91;
+    const Scalar w237 = -(w189 * Scalar(0.5) * qd(2));
+    const Scalar w238 = w1 * w169 + w231;
+    const Scalar w239 = w4 * w181 - w233;
+    const Scalar w240 = w1 * w166 + w4 * w174;
+    const Scalar w241 = w34 * w232 + w34 * w238 + w239 * w43 + w240 * w3 - w234 * w43;
+    const Scalar w242 = w241 * Scalar(0.5) * qd(4);
+    const Scalar w243 = -(qd(1) * w131 * Scalar(0.5));
+    const Scalar w244 = w182 * Scalar(0.5) * qd(4);
+    const Scalar w245 = Scalar(0.5) * qd(0) * w86;
+    const Scalar w246 = w81 * Scalar(0.5) * qd(0);
+    const Scalar w247 = Scalar(0.5) * qd(6) * w209;
+    const Scalar w248 = -(w214 * Scalar(0.5) * qd(2));
+    const Scalar w249 = w223 * w43 - w34 * w222;
+    const Scalar w250 = w249 * Scalar(0.5) * qd(7);
+    const Scalar w251 = w215 * w43 - w205 - w200 + w216 * w34;
+    const Scalar w252 = Scalar(0.5) * qd(6) * w251;
+    const Scalar w253 = -(w241 * Scalar(0.5) * qd(3));
+    const Scalar w254 = -(qd(1) * Scalar(0.5) * w123);
+    const Scalar w255 = qd(1) * Scalar(0.5) * w129;
+    const Scalar w256 = w182 * Scalar(0.5) * qd(3);
+    const Scalar w257 = Scalar(0.5) * w220 * qd(3);
+    const Scalar w258 = Scalar(0.5) * qd(0) * w79;
+    const Scalar w259 = Scalar(0.5) * w212 * qd(2);
+    const Scalar w260 = -(qd(1) * w135 * Scalar(0.5));
+    const Scalar w261 = w56 * c.p.IFyy;
+    const Scalar w262 = w37 * c.p.IFyy;
+    const Scalar w263 = w51 * c.p.IFyy;
+    const Scalar w264 = w262 * w3 - w34 * w261 - w263 * w43;
+    const Scalar w265 = -(w264 * Scalar(0.5) * qd(7));
+    const Scalar w266 = Scalar(0.5) * qd(4) * w209;
+    const Scalar w267 = Scalar(0.5) * w251 * qd(4);
+    const Scalar w268 = w173 - w191;
+    const Scalar w269 = w165 + w210;
+    const Scalar w270 = c.k16 * w52 - c.k17 * w57 + w207;
+    const Scalar w271 = Scalar(0.5) * qd(0) * w46;
+    const Scalar w272 = w217 * Scalar(0.5) * qd(3);
+    const Scalar w273 = qd(1) * w125 * Scalar(0.5);
+    const Scalar w274 = Scalar(0.5) * qd(3) * w229;
+    const Scalar w275 = -(w224 * Scalar(0.5) * qd(3) + w264 * Scalar(0.5) * qd(6) + w249 * Scalar(0.5) * qd(4));
+    const Scalar w276 = w239 * w1 - w1 * w234 - w4 * w238 - c.p.rR * w106 - w4 * w232;
+    const Scalar w277 = c.p.rR * w100 + w4 * w228 + w1 * w226;
+    const Scalar w278 = w4 * w216 - w215 * w1;
+    const Scalar w279 = w278 * Scalar(0.5) * qd(6);
+    const Scalar w280 = w4 * w222 + w1 * w223;
+    const Scalar w281 = -(w280 * Scalar(0.5) * qd(7));
+    const Scalar w282 = w107 * Scalar(0.5) * qd(0);
+    const Scalar w283 = -(w241 * Scalar(0.5) * qd(2));
+    const Scalar w284 = -(qd(1) * Scalar(0.5) * w145);
+    const Scalar w285 = qd(1) * Scalar(0.5) * w147;
+    const Scalar w286 = Scalar(0.5) * qd(6) * w227;
+    const Scalar w287 = -(w104 * Scalar(0.5) * qd(0));
+    const Scalar w288 = -(w182 * Scalar(0.5) * qd(2));
+    const Scalar w289 = Scalar(0.5) * w276 * qd(3);
+    const Scalar w290 = Scalar(0.5) * w220 * qd(2);
+    const Scalar w291 = w278 * Scalar(0.5) * qd(4);
+    const Scalar w292 = Scalar(0.5) * qd(0) * w94;
+    const Scalar w293 = Scalar(0.5) * qd(4) * w227;
+    const Scalar w294 = qd(1) * w142 * Scalar(0.5);
+    const Scalar w295 = -(Scalar(0.5) * qd(0) * w102);
+    const Scalar w296 = Scalar(0.5) * w229 * qd(2);
+    const Scalar w297 = Scalar(0.5) * w277 * qd(3);
+    const Scalar w298 = w217 * Scalar(0.5) * qd(2);
+    const Scalar w299 = w4 * w261 - w1 * w263;
+    const Scalar w300 = Scalar(0.5) * qd(7) * w299;
+    const Scalar w301 = -(qd(1) * Scalar(0.5) * w139);
+    const Scalar w302 = w224 * Scalar(0.5) * qd(2);
+    const Scalar w303 = w280 * Scalar(0.5) * qd(4);
+    const Scalar w304 = Scalar(0.5) * qd(6) * w299;
+    const Scalar w305 = Scalar(0.5) * w203 - w39 * c.k16 - w42 * c.k17;
+    const Scalar w306 = -(Scalar(0.5) * qd(7) * w262);
+    const Scalar w307 = w278 * Scalar(0.5) * qd(3);
+    const Scalar w308 = Scalar(0.5) * qd(3) * w227;
+    const Scalar w309 = w305 * qd(4);
+    const Scalar w310 = Scalar(0.5) * w251 * qd(2);
+    const Scalar w311 = Scalar(0.5) * w209 * qd(2);
+    const Scalar w312 = w249 * Scalar(0.5) * qd(2);
+    const Scalar w313 = Scalar(0.5) * qd(6) * w262;
+    const Scalar w314 = -(w280 * Scalar(0.5) * qd(3));
+    const Scalar w315 = w264 * Scalar(0.5) * qd(2) - Scalar(0.5) * w299 * qd(3) + Scalar(0.5) * w262 * qd(4);
+    C(0, 0) = w0 + w20 + w24 * Scalar(0.5) * qd(3);
+    C(0, 1) = w33;
+    C(0, 2) = w47 + w48 + w49 + w78 - w80 + (w70 * w16 - w7 * w76 + w63 * w12) * qd(2) + w82 + w87 + w92;
+    C(0, 3) = w93 - w95 + w96 + w97 - (w23 * w88 + w21 * w90 + w22 * w89) * qd(3) + w98 + w103 - w105 + w108;
+    C(0, 4) = w109 + (w55 * w14 - w6 * w60) * qd(4) + w110 + w111 - w112 + w114 + w114 + w115 + w116;
+    C(0, 6) = qd(6) * (w14 * w52 - w6 * w57 - w11 * w65) - w117 + w118 + w119 + w119 + w120 - w121;
+    C(1, 0) = w33;
+    C(1, 1) = w0 - w20 + Scalar(0.5) * qd(3) * w122;
+    C(1, 2) = w124 + w126 - w127 + w128 + w130 + w132 + w134 + (w11 * w63 - w6 * w76 - w70 * w14) * qd(2) + w136;
+    C(1, 3) = w137 + w138 + qd(3) * (w89 * w25 + w90 * w29 + w27 * w88) + w140 + w141 + w143 + w144 + w146 + w148;
+    C(1, 4) = w109 + w149 + w150 + w151 + w152 + w154 + w154 + (w55 * w16 + w7 * w60) * qd(4) + w115;
+    C(1, 6) = w155 + w155 + (w52 * w16 + w65 * w12 + w7 * w57) * qd(6) + w156 + w157 + w158 + w159;
+    C(2, 0) = w47 - w48 - w92 + w78 - w49 - w82 + w87 + w80;
+    C(2, 1) = w124 - w128 + w126 - w130 + w132 - w134 + w127 - w136;
+    C(2, 2) = w189 * Scalar(0.5) * qd(3) + Scalar(0.5) * qd(6) * w212 + w214 * Scalar(0.5) * qd(4);
+    C(2, 3) = -(w218 + w219 + w221 + w225 - w230 + (w232 * w61 + w10 * (w1 * w174 - w4 * w166) + w88 * w71 + w50 * w234 - w64 * w90) * qd(3) + w235 + w236 + w237 - w242 + w243 + w244);
+    C(2, 4) = -(w245 + w246 - w247 + w248 + w250 + w252 + w253 + w254 + w255 + qd(4) * w213 + w256);
+    C(2, 5) = w257;
+    C(2, 6) = w258 + w259 + w260 + w265 + w266 - w267 - (w34 * w268 - w43 * w269 - w270 * w3 - w73 * w57 + w68 * w52) * qd(6) + w271 - w272 + w273 + w274;
+    C(2, 7) = w275;
+    C(3, 0) = w93 + w105 - w97 - w96 + w103 + w95 - w98 + w108;
+    C(3, 1) = -(w137 - w138 - w146 - w143 + w140 + w141 + w144 + w148);
+    C(3, 2) = w218 + w219 + w221 + w225 + w230 + w235 + w242 + w236 + w237 + w243 + w244;
+    C(3, 3) = Scalar(0.5) * w277 * qd(6) - Scalar(0.5) * w276 * qd(4);
+    C(3, 4) = -(w279 + w281 - w240 * qd(4) + w282 + w283 + w284 + w285 - w286 + w287 + w288 + w289);
+    C(3, 5) = -w290;
+    C(3, 6) = (c.p.rR * w65 - w4 * w268 - w1 * w269) * qd(6) - w291 + w292 + w293 + w294 + w295 + w296 + w297 + w298 + w300 + w301;
+    C(3, 7) = w302 + w303 + w304;
+    C(4, 0) = -(w109 - w111 + w110 + w112 + w115 + w116);
+    C(4, 1) = -(w109 - w150 + w151 + w152 - w149 + w115);
+    C(4, 2) = w245 + w246 + w247 + w248 + w250 - w256 + w252 + w253 + w254 + w255;
+    C(4, 3) = w279 + w281 + w282 + w283 + w284 + w285 + w287 + w288 + w289 + w286;
+    C(4, 4) = w305 * qd(6);
+    C(4, 6) = w306 + w307 + w270 * qd(6) + w308 + w309 + w310 + w311;
+    C(4, 7) = w312 - w313 + w314;
+    C(5, 2) = w257;
+    C(5, 3) = w290;
+    C(6, 0) = -(w117 + w118 + w121 + w120);
+    C(6, 1) = -(w156 - w158 - w159 + w157);
+    C(6, 2) = -(w258 + w259 + w267 + w260 + w265 + w266 + w272 + w271 + w273 + w274);
+    C(6, 3) = -(w292 + w293 + w294 + w295 + w296 + w297 + w298 + w300 + w291 + w301);
+    C(6, 4) = -(w306 + w307 + w308 + w309 + w310 + w311);
+    C(6, 7) = w315;
+    C(7, 2) = w275;
+    C(7, 3) = -(w302 - w303 - w304);
+    C(7, 4) = -(w312 + w314 + w313);
+    C(7, 6) = -w315;
+    C(0, 5) = Scalar(0);
+    C(0, 7) = Scalar(0);
+    C(1, 5) = Scalar(0);
+    C(1, 7) = Scalar(0);
+    C(4, 5) = Scalar(0);
+    C(5, 0) = Scalar(0);
+    C(5, 1) = Scalar(0);
+    C(5, 4) = Scalar(0);
+    C(5, 5) = Scalar(0);
+    C(5, 6) = Scalar(0);
+    C(5, 7) = Scalar(0);
+    C(6, 5) = Scalar(0);
+    C(6, 6) = Scalar(0);
+    C(7, 0) = Scalar(0);
+    C(7, 1) = Scalar(0);
+    C(7, 5) = Scalar(0);
+    C(7, 7) = Scalar(0);
+  }
+
+  /// C(q, qd) from the Christoffel symbols of M: dM/dt - 2 C is skew-symmetric
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void coriolis_matrix(const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Parameters<typename DerivedQ::Scalar>& p, Out0&& C) noexcept {
+    coriolis_matrix(q, qd, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(C));
+  }
+
+  /// J = dy/dq of the output rear_contact_position
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_rear_contact_position([[maybe_unused]] const typename DerivedQ::Scalar& t, [[maybe_unused]] const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& J) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, nq), "J: expected 3 x nq");
+    eigen_assert(q.size() == nq && J.rows() == 3 && J.cols() == nq);
+    J(0, 0) = Scalar(1);
+    J(1, 1) = Scalar(1);
+    J(0, 1) = Scalar(0);
+    J(0, 2) = Scalar(0);
+    J(0, 3) = Scalar(0);
+    J(0, 4) = Scalar(0);
+    J(0, 5) = Scalar(0);
+    J(0, 6) = Scalar(0);
+    J(0, 7) = Scalar(0);
+    J(1, 0) = Scalar(0);
+    J(1, 2) = Scalar(0);
+    J(1, 3) = Scalar(0);
+    J(1, 4) = Scalar(0);
+    J(1, 5) = Scalar(0);
+    J(1, 6) = Scalar(0);
+    J(1, 7) = Scalar(0);
+    J(2, 0) = Scalar(0);
+    J(2, 1) = Scalar(0);
+    J(2, 2) = Scalar(0);
+    J(2, 3) = Scalar(0);
+    J(2, 4) = Scalar(0);
+    J(2, 5) = Scalar(0);
+    J(2, 6) = Scalar(0);
+    J(2, 7) = Scalar(0);
+  }
+
+  /// J = dy/dq of the output rear_contact_position
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_rear_contact_position(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& J) noexcept {
+    output_jacobian_rear_contact_position(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(J));
+  }
+
+  /// Jdot qd of the output rear_contact_position: its acceleration at qdd = 0
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_rear_contact_position([[maybe_unused]] const typename DerivedQ::Scalar& t, [[maybe_unused]] const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Eigen::MatrixBase<DerivedQd>& qd, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& Jdot_qd) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, 1), "Jdot_qd: expected 3 x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && Jdot_qd.rows() == 3 && Jdot_qd.cols() == 1);
+    Jdot_qd(0) = Scalar(0);
+    Jdot_qd(1) = Scalar(0);
+    Jdot_qd(2) = Scalar(0);
+  }
+
+  /// Jdot qd of the output rear_contact_position: its acceleration at qdd = 0
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_rear_contact_position(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Parameters<typename DerivedQ::Scalar>& p, Out0&& Jdot_qd) noexcept {
+    output_bias_rear_contact_position(t, q, qd, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(Jdot_qd));
+  }
+
+  /// J = dy/dq of the output front_contact_position
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_front_contact_position([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Constants<typename DerivedQ::Scalar>& c, Out0&& J) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, nq), "J: expected 3 x nq");
+    eigen_assert(q.size() == nq && J.rows() == 3 && J.cols() == nq);
+    using std::sin; using std::cos; using std::sqrt;
+    const Scalar w0 = sin(q(3));
+    const Scalar w1 = cos(q(2));
+    const Scalar w2 = sin(q(2));
+    const Scalar w3 = c.p.lam + q(4);
+    const Scalar w4 = cos(w3);
+    const Scalar w5 = sin(w3);
+    const Scalar w6 = w2 * w4 + w5 * w0 * w1;
+    const Scalar w7 = sin(q(6));
+    const Scalar w8 = cos(q(3));
+    const Scalar w9 = cos(q(6));
+    const Scalar w10 = w7 * w8 * w1 + w6 * w9;
+    const Scalar w11 = w5 * w2 - w4 * w0 * w1;
+    const Scalar w12 = w0 * w9 + w7 * w8 * w5;
+    const Scalar w13 = w7 * w6 - w8 * w9 * w1;
+    const Scalar w14 = w12 * w12;
+    const Scalar w15 = sqrt(Scalar(1) - w14);
+    const Scalar w16 = w4 * w1 - w5 * w2 * w0;
+    const Scalar w17 = w8 * w2 * w9 + w7 * w16;
+    const Scalar w18 = w8 * w9 - w7 * w5 * w0;
+    const Scalar w19 = w15 * w15 * w15;
+    const Scalar w20 = w5 * w1 + w2 * w4 * w0;
+    const Scalar w21 = w16 * w9 - w7 * w8 * w2;
+    const Scalar w22 = w7 * w0 - w8 * w5 * w9;
+    const Scalar w23 = w12 * w14;
+    J(0, 0) = Scalar(1);
+    J(0, 2) = -(c.p.rR * w0 * w1 - c.k47 * w6 - c.k26 * w10 + w11 * c.k48 + w12 * c.p.rF * w13 / w15);
+    J(0, 3) = c.k47 * w8 * w5 * w2 - w12 * (w7 * w8 * w5 * w2 + w2 * w0 * w9) * c.p.rF / w15 + (w8 * w5 * w2 * w9 - w7 * w2 * w0) * c.k26 - w8 * c.p.rR * w2 + w17 * w18 * c.p.rF / w15 + w17 * w18 * c.p.rF * w14 / w19 + w8 * w2 * w4 * c.k48;
+    J(0, 4) = w7 * w8 * w17 * w4 * c.p.rF * w14 / w19 + w20 * c.k26 * w9 - w20 * w7 * w12 * c.p.rF / w15 + c.k47 * w20 + w16 * c.k48 + w7 * w8 * w17 * w4 * c.p.rF / w15;
+    J(0, 6) = -(w17 * c.p.rF * w22 / w15 - w12 * w21 * c.p.rF / w15 + w17 * c.p.rF * w22 * w14 / w19 - w17 * c.k26);
+    J(1, 1) = Scalar(1);
+    J(1, 2) = w12 * w17 * c.p.rF / w15 - c.k47 * w16 - c.p.rR * w2 * w0 + w20 * c.k48 - w21 * c.k26;
+    J(1, 3) = -(c.k47 * w8 * w5 * w1 - w8 * c.p.rR * w1 - c.k26 * (w7 * w0 * w1 - w8 * w5 * w9 * w1) - w18 * c.p.rF * w14 * w13 / w19 - w18 * c.p.rF * w13 / w15 - w12 * (w0 * w9 * w1 + w7 * w8 * w5 * w1) * c.p.rF / w15 + w8 * w4 * c.k48 * w1);
+    J(1, 4) = -(w7 * w12 * c.p.rF * w11 / w15 - w7 * w8 * w4 * c.p.rF * w14 * w13 / w19 - c.k47 * w11 - w7 * w8 * w4 * c.p.rF * w13 / w15 - c.k26 * w9 * w11 - w6 * c.k48);
+    J(1, 6) = c.k26 * w13 - c.p.rF * w22 * w13 / w15 - c.p.rF * w22 * w14 * w13 / w19 + w12 * w10 * c.p.rF / w15;
+    J(2, 3) = -(w4 * w0 * c.k48 - c.p.rR * w0 + w18 * w23 * c.p.rF / w19 + (w5 * w0 * w9 + w7 * w8) * c.k26 + c.k53 * w12 * w18 / w15 + c.k47 * w5 * w0 - w12 * w18 * c.p.rF / w19);
+    J(2, 4) = w7 * w8 * w12 * w4 * c.p.rF / w19 + c.k47 * w8 * w4 + w8 * c.k26 * w4 * w9 - w7 * w8 * c.k53 * w12 * w4 / w15 - w8 * w5 * c.k48 - w7 * w8 * w4 * w23 * c.p.rF / w19;
+    J(2, 6) = w23 * c.p.rF * w22 / w19 - w12 * c.p.rF * w22 / w19 - w12 * c.k26 + c.k53 * w12 * w22 / w15;
+    J(0, 1) = Scalar(0);
+    J(0, 5) = Scalar(0);
+    J(0, 7) = Scalar(0);
+    J(1, 0) = Scalar(0);
+    J(1, 5) = Scalar(0);
+    J(1, 7) = Scalar(0);
+    J(2, 0) = Scalar(0);
+    J(2, 1) = Scalar(0);
+    J(2, 2) = Scalar(0);
+    J(2, 5) = Scalar(0);
+    J(2, 7) = Scalar(0);
+  }
+
+  /// J = dy/dq of the output front_contact_position
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_front_contact_position(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& J) noexcept {
+    output_jacobian_front_contact_position(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(J));
+  }
+
+  /// Jdot qd of the output front_contact_position: its acceleration at qdd = 0
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_front_contact_position([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Constants<typename DerivedQ::Scalar>& c, Out0&& Jdot_qd) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, 1), "Jdot_qd: expected 3 x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && Jdot_qd.rows() == 3 && Jdot_qd.cols() == 1);
+    using std::sin; using std::cos; using std::sqrt;
+    const Scalar w0 = sin(q(6));
+    const Scalar w1 = sin(q(2));
+    const Scalar w2 = c.p.lam + q(4);
+    const Scalar w3 = cos(w2);
+    const Scalar w4 = sin(w2);
+    const Scalar w5 = sin(q(3));
+    const Scalar w6 = cos(q(2));
+    const Scalar w7 = w1 * w3 + w4 * w5 * w6;
+    const Scalar w8 = cos(q(3));
+    const Scalar w9 = cos(q(6));
+    const Scalar w10 = -(w8 * w9 * w6);
+    const Scalar w11 = w0 * w7 + w10;
+    const Scalar w12 = w5 * w9 + w0 * w8 * w4;
+    const Scalar w13 = w0 * w8 * w6;
+    const Scalar w14 = w13 + w7 * w9;
+    const Scalar w15 = w12 * w12;
+    const Scalar w16 = sqrt(Scalar(1) - w15);
+    const Scalar w17 = Scalar(1) / w16;
+    const Scalar w18 = w16 * w16;
+    const Scalar w19 = w18 * w16;
+    const Scalar w20 = Scalar(1) / w19;
+    const Scalar w21 = w0 * w5 - w8 * w4 * w9;
+    const Scalar w22 = c.p.rR * w1 * w5;
+    const Scalar w23 = w0 * w8 * w1;
+    const Scalar w24 = w3 * w6 - w4 * w1 * w5;
+    const Scalar w25 = w24 * w9 - w23;
+    const Scalar w26 = w25 * c.k26;
+    const Scalar w27 = c.k47 * w24;
+    const Scalar w28 = w4 * w6 + w1 * w3 * w5;
+    const Scalar w29 = -(w28 * c.k48);
+    const Scalar w30 = w8 * w1 * w9;
+    const Scalar w31 = w30 + w0 * w24;
+    const Scalar w32 = -(w12 * w31 * w17 * c.p.rF);
+    const Scalar w33 = qd(2) * qd(2);
+    const Scalar w34 = w4 * w1 - w3 * w5 * w6;
+    const Scalar w35 = w8 * w9 - w0 * w4 * w5;
+    const Scalar w36 = w4 * w5 * w9 + w0 * w8;
+    const Scalar w37 = w0 * w8 * w4 * w1 + w1 * w5 * w9;
+    const Scalar w38 = w18 * w18 * w16;
+    const Scalar w39 = Scalar(1) / w38;
+    const Scalar w40 = w12 * w15;
+    const Scalar w41 = w8 * w4 * w1 * w9 - w0 * w1 * w5;
+    const Scalar w42 = qd(3) * qd(3);
+    const Scalar w43 = -(w20 * w31 * w40 * c.p.rF);
+    const Scalar w44 = w35 * w35;
+    const Scalar w45 = qd(6) * qd(6);
+    const Scalar w46 = w21 * w21;
+    const Scalar w47 = w5 * w9 * w6 + w0 * w8 * w4 * w6;
+    const Scalar w48 = w0 * w5 * w6 - w8 * w4 * w9 * w6;
+    const Scalar w49 = qd(4) * qd(4);
+    const Scalar w50 = w0 * w0;
+    const Scalar w51 = w3 * w3;
+    const Scalar w52 = w8 * w8;
+    const Scalar w53 = w34 * c.k48;
+    const Scalar w54 = c.k47 * w7;
+    const Scalar w55 = w20 * w40 * c.p.rF * w11;
+    const Scalar w56 = c.k26 * w14;
+    const Scalar w57 = c.p.rR * w5 * w6;
+    const Scalar w58 = w12 * w17 * c.p.rF * w11;
+    const Scalar w59 = w15 * w15;
+    const Scalar w60 = w35 * w59 * c.k54 * w21 / w38 - w35 * c.p.rF * w21 / w19 + w36 * w40 * c.p.rF / w19 + w36 * c.k53 * w12 / w16 + c.k53 * w35 * w21 / w16 - w36 * w12 * c.p.rF / w19 + c.k55 * w35 * w21 * w15 / w19 - w35 * c.k54 * w21 * w15 / w38 - c.k26 * w35;
+    const Scalar w61 = -(w59 * c.p.rF / w19);
+    const Scalar w62 = -(c.k53 * w15 / w16);
+    const Scalar w63 = -(c.k26 * w21);
+    const Scalar w64 = c.p.rF * w15 / w19;
+    const Scalar w65 = w0 * w8 * w59 * w3 * c.k54 * w21 / w38 - w0 * w8 * w3 * c.k54 * w21 * w15 / w38 - w0 * w8 * c.k26 * w3 + w8 * w12 * w3 * c.p.rF * w9 / w19 + w0 * w8 * c.k53 * w3 * w21 / w16 - w8 * w3 * w40 * c.p.rF * w9 / w19 - w0 * w8 * w3 * c.p.rF * w21 / w19 + w0 * w8 * c.k55 * w3 * w21 * w15 / w19 - w8 * c.k53 * w12 * w3 * w9 / w16;
+    const Scalar w66 = c.k47 * w8 * w4;
+    const Scalar w67 = w8 * w3 * c.k48;
+    const Scalar w68 = w0 * w8 * c.k55 * w35 * w3 * w15 / w19 + w0 * w12 * w3 * w5 * c.p.rF / w19 - w0 * w8 * w35 * w3 * c.k54 * w15 / w38 - w4 * w5 * c.k48 + c.k26 * w3 * w5 * w9 - w0 * c.k53 * w12 * w3 * w5 / w16 - w0 * w8 * w35 * w3 * c.p.rF / w19 + w0 * w8 * c.k53 * w35 * w3 / w16 - w0 * w3 * w5 * w40 * c.p.rF / w19 + w0 * w8 * w35 * w59 * w3 * c.k54 / w38 + c.k47 * w3 * w5;
+    Jdot_qd(0) = (w22 + w26 + w27 + w29 + w32) * w33 - (c.k26 * w11 + w12 * w14 * w17 * c.p.rF - w20 * c.p.rF * w21 * w15 * w11 - w17 * c.p.rF * w21 * w11) * Scalar(2) * qd(6) * qd(2) - Scalar(2) * qd(4) * (w7 * c.k48 - w0 * w12 * w17 * c.p.rF * w34 + w0 * w8 * w3 * w17 * c.p.rF * w11 + c.k26 * w9 * w34 + w0 * w20 * w8 * w3 * c.p.rF * w15 * w11 + c.k47 * w34) * qd(2) - (w36 * w31 * w17 * c.p.rF - w20 * w25 * w35 * c.p.rF * w15 + w37 * c.k26 - w20 * w37 * c.p.rF * w21 * w15 + w31 * w35 * w39 * w40 * c.k54 * w21 - w37 * w17 * c.p.rF * w21 + w36 * w20 * w31 * c.p.rF * w15 + w12 * w41 * w17 * c.p.rF - w25 * w35 * w17 * c.p.rF + w20 * w12 * w31 * w35 * c.k54 * w21) * Scalar(2) * qd(6) * qd(3) - (w28 * w0 * w20 * w35 * c.p.rF * w15 + w0 * w31 * w3 * w5 * w17 * c.p.rF + w0 * w20 * w31 * w3 * w5 * c.p.rF * w15 + w8 * w4 * w1 * c.k48 + w0 * w20 * w8 * w37 * w3 * c.p.rF * w15 - w0 * w20 * w8 * w12 * w31 * w35 * w3 * c.k54 + w0 * w8 * w37 * w3 * w17 * c.p.rF + w0 * w8 * w12 * w1 * w3 * w17 * c.p.rF - w0 * w8 * w31 * w35 * w39 * w3 * w40 * c.k54 - w8 * c.k26 * w1 * w3 * w9 - c.k47 * w8 * w1 * w3 + w28 * w0 * w35 * w17 * c.p.rF) * Scalar(2) * qd(4) * qd(3) + w42 * (w43 + w22 - c.k53 * w37 * w35 * w17 - c.k47 * w4 * w1 * w5 + w20 * w12 * w31 * w44 * c.k54 - w20 * c.k53 * w37 * w35 * w15 + w31 * w44 * w39 * w40 * c.k54 - c.k26 * (w4 * w1 * w5 * w9 + w23) - w1 * w3 * w5 * c.k48 + w32 - w12 * w17 * c.p.rF * (w30 - w0 * w4 * w1 * w5)) + w45 * (w43 + w20 * w12 * w31 * c.k54 * w46 - c.k53 * w12 * w31 * w17 - c.k53 * w25 * w17 * w21 + w26 - w20 * c.k53 * w25 * w21 * w15 + w31 * w39 * w40 * c.k54 * w46) - (w28 * w12 * w17 * c.p.rF * w9 - w8 * w31 * w3 * w17 * c.p.rF * w9 - w28 * w0 * w20 * c.p.rF * w21 * w15 + w0 * w20 * w8 * w12 * w31 * w3 * c.k54 * w21 - w0 * w20 * w8 * w25 * w3 * c.p.rF * w15 - w20 * w8 * w31 * w3 * c.p.rF * w15 * w9 - w28 * w0 * w17 * c.p.rF * w21 + w28 * w0 * c.k26 - w0 * w8 * w25 * w3 * w17 * c.p.rF + w0 * w8 * w31 * w39 * w3 * w40 * c.k54 * w21) * Scalar(2) * qd(6) * qd(4) + Scalar(2) * (c.k47 * w8 * w4 * w6 - w8 * c.p.rR * w6 - w12 * w47 * w17 * c.p.rF - w35 * w17 * c.p.rF * w11 - c.k26 * w48 - w20 * w35 * c.p.rF * w15 * w11 + w8 * w3 * c.k48 * w6) * qd(3) * qd(2) + w49 * (c.k26 * w24 * w9 - w0 * w12 * w24 * w17 * c.p.rF + w20 * w12 * w31 * w50 * w51 * w52 * c.k54 - w28 * w20 * w8 * c.k53 * w50 * w3 * w15 - w0 * w20 * w8 * w4 * w31 * c.p.rF * w15 + w31 * w50 * w51 * w52 * w39 * w40 * c.k54 - w28 * w8 * c.k53 * w50 * w3 * w17 - w0 * w8 * w4 * w31 * w17 * c.p.rF + w27 + w29);
+    Jdot_qd(1) = (w50 * w51 * w52 * w39 * w40 * c.k54 * w11 - w53 + w20 * w12 * w50 * w51 * w52 * c.k54 * w11 + w54 - w8 * c.k53 * w50 * w3 * w17 * w34 - w0 * w20 * w8 * w4 * c.p.rF * w15 * w11 - w0 * w8 * w4 * w17 * c.p.rF * w11 - w0 * w12 * w7 * w17 * c.p.rF - w20 * w8 * c.k53 * w50 * w3 * w15 * w34 + c.k26 * w7 * w9) * w49 - (w20 * w47 * c.p.rF * w21 * w15 + w12 * w17 * c.p.rF * w48 + w20 * w12 * w35 * c.k54 * w21 * w11 + w35 * w39 * w40 * c.k54 * w21 * w11 + w36 * w20 * c.p.rF * w15 * w11 + w36 * w17 * c.p.rF * w11 + w47 * w17 * c.p.rF * w21 - w35 * w14 * w17 * c.p.rF - c.k26 * w47 - w20 * w35 * w14 * c.p.rF * w15) * Scalar(2) * qd(6) * qd(3) - Scalar(2) * qd(6) * (w0 * c.k26 * w34 + w12 * w17 * c.p.rF * w9 * w34 - w0 * w20 * c.p.rF * w21 * w15 * w34 - w20 * w8 * w3 * c.p.rF * w15 * w9 * w11 - w0 * w8 * w14 * w3 * w17 * c.p.rF - w0 * w20 * w8 * w14 * w3 * c.p.rF * w15 - w0 * w17 * c.p.rF * w21 * w34 + w0 * w8 * w39 * w3 * w40 * c.k54 * w21 * w11 + w0 * w20 * w8 * w12 * w3 * c.k54 * w21 * w11 - w8 * w3 * w17 * c.p.rF * w9 * w11) * qd(4) + (w39 * w40 * c.k54 * w46 * w11 - c.k53 * w12 * w17 * w11 - c.k53 * w14 * w17 * w21 + w20 * w12 * c.k54 * w46 * w11 - w55 + w56 - w20 * c.k53 * w14 * w21 * w15) * w45 + Scalar(2) * qd(4) * (w0 * w20 * w8 * w31 * w3 * c.p.rF * w15 + w0 * w8 * w31 * w3 * w17 * c.p.rF + w28 * c.k26 * w9 - w28 * w0 * w12 * w17 * c.p.rF + c.k47 * w28 + w24 * c.k48) * qd(2) + Scalar(2) * (c.k47 * w8 * w4 * w1 + w31 * w35 * w17 * c.p.rF + w41 * c.k26 + w20 * w31 * w35 * c.p.rF * w15 - w8 * c.p.rR * w1 - w12 * w37 * w17 * c.p.rF + w8 * w1 * w3 * c.k48) * qd(3) * qd(2) + Scalar(2) * qd(6) * (w12 * w25 * w17 * c.p.rF + w31 * c.k26 - w20 * w31 * c.p.rF * w21 * w15 - w31 * w17 * c.p.rF * w21) * qd(2) - w42 * ((w10 + w0 * w4 * w5 * w6) * w12 * w17 * c.p.rF - c.k26 * (w13 + w4 * w5 * w9 * w6) - w20 * c.k53 * w35 * w47 * w15 + w57 + w58 - c.k53 * w35 * w47 * w17 + w55 - w3 * w5 * c.k48 * w6 - w44 * w39 * w40 * c.k54 * w11 - w20 * w12 * w44 * c.k54 * w11 - c.k47 * w4 * w5 * w6) - Scalar(2) * (w0 * w35 * w17 * c.p.rF * w34 - w8 * w4 * c.k48 * w6 - w0 * w8 * w35 * w39 * w3 * w40 * c.k54 * w11 - w0 * w20 * w8 * w47 * w3 * c.p.rF * w15 + w8 * c.k26 * w3 * w9 * w6 + c.k47 * w8 * w3 * w6 + w0 * w20 * w3 * w5 * c.p.rF * w15 * w11 + w0 * w3 * w5 * w17 * c.p.rF * w11 - w0 * w8 * w12 * w3 * w17 * c.p.rF * w6 + w0 * w20 * w35 * c.p.rF * w15 * w34 - w0 * w20 * w8 * w12 * w35 * w3 * c.k54 * w11 - w0 * w8 * w47 * w3 * w17 * c.p.rF) * qd(4) * qd(3) - (w57 + w58 - w54 - w56 + w53) * w33;
+    Jdot_qd(2) = (w60 * qd(3) - (c.k53 * w46 / w16 + w59 * c.k54 * w46 / w38 + w61 + w62 + c.k55 * w15 * w46 / w19 + w63 - c.p.rF * w46 / w19 + w64 - c.k54 * w15 * w46 / w38) * qd(6) + w65 * qd(4)) * qd(6) - qd(4) * (qd(4) * (w66 - w0 * w8 * w4 * w40 * c.p.rF / w19 + w67 + w50 * w59 * w51 * w52 * c.k54 / w38 + c.k55 * w50 * w51 * w52 * w15 / w19 - w0 * w8 * w4 * c.k53 * w12 / w16 - w50 * w51 * w52 * c.k54 * w15 / w38 - w50 * w51 * w52 * c.p.rF / w19 + c.k53 * w50 * w51 * w52 / w16 + w0 * w8 * w4 * w12 * c.p.rF / w19 + w8 * w4 * c.k26 * w9) - w65 * qd(6) + w68 * qd(3)) + (qd(6) * w60 - w68 * qd(4) - (w66 + w61 + w67 + w62 + w63 - w44 * c.k54 * w15 / w38 + w44 * w59 * c.k54 / w38 + c.k53 * w44 / w16 + c.k55 * w44 * w15 / w19 - w8 * c.p.rR - w44 * c.p.rF / w19 + w64) * qd(3)) * qd(3);
+  }
+
+  /// Jdot qd of the output front_contact_position: its acceleration at qdd = 0
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_front_contact_position(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Parameters<typename DerivedQ::Scalar>& p, Out0&& Jdot_qd) noexcept {
+    output_bias_front_contact_position(t, q, qd, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(Jdot_qd));
+  }
+
+  /// Y with M qdd - F = Y pi + (the loads other than gravity, negated), pi the inertial parameters (inertial_parameter_names)
+  template <class DerivedQ, class DerivedQd, class DerivedQdd, class Out0>
+  static void regressor([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedQdd>& qdd, const Constants<typename DerivedQ::Scalar>& c, Out0&& Y) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<DerivedQdd>(nq, 1), "qdd: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(nq, npi), "Y: expected nq x npi");
+    eigen_assert(q.size() == nq && qd.size() == nq && qdd.size() == nq && Y.rows() == nq && Y.cols() == npi);
+    using std::sin; using std::cos;
+    const Scalar w0 = cos(q(3));
+    const Scalar w1 = cos(q(2));
+    const Scalar w2 = w0 * w1;
+    const Scalar w3 = sin(q(3));
+    const Scalar w4 = qd(2) * qd(2);
+    const Scalar w5 = sin(q(2));
+    const Scalar w6 = w0 * w5;
+    const Scalar w7 = qdd(3) * c.p.rR + qdd(1) * w2 - w0 * c.p.rR * w3 * w4 - qdd(0) * w6 - c.p.g * w3;
+    const Scalar w8 = w7 * w6;
+    const Scalar w9 = cos(q(4));
+    const Scalar w10 = sin(q(4));
+    const Scalar w11 = w9 * w1 - w10 * w5 * w3;
+    const Scalar w12 = w10 * w0;
+    const Scalar w13 = qd(3) * qd(3);
+    const Scalar w14 = w3 * w3;
+    const Scalar w15 = w10 * w3 * w1 + w9 * w5;
+    const Scalar w16 = c.p.rR * w9 * w3;
+    const Scalar w17 = qdd(0) * w11 + c.p.g * w12 - (w10 * w13 * c.p.rR + w10 * c.p.rR * w14 * w4 + w0 * c.k25 * w9 * qd(3) * qd(2)) + qdd(1) * w15 - w16 * qdd(2);
+    const Scalar w18 = w9 * w5 * w3 + w10 * w1;
+    const Scalar w19 = w9 * w3 * w1 - w10 * w5;
+    const Scalar w20 = w10 * c.p.rR * w3;
+    const Scalar w21 = w0 * w9;
+    const Scalar w22 = qdd(0) * w18 - (w10 * w0 * c.k25 * qd(3) * qd(2) - c.p.rR * w9 * w14 * w4 - w13 * c.p.rR * w9) - w19 * qdd(1) - qdd(2) * w20 - c.p.g * w21;
+    const Scalar w23 = w10 * w0 * qd(2) - w9 * qd(3);
+    const Scalar w24 = w3 * qd(2) + qd(4);
+    const Scalar w25 = w23 * w24;
+    const Scalar w26 = qdd(3) * w10 - (w23 * qd(4) + w9 * w3 * qd(3) * qd(2)) + w21 * qdd(2);
+    const Scalar w27 = w25 - w26;
+    const Scalar w28 = w0 * w9 * qd(2) + w10 * qd(3);
+    const Scalar w29 = w28 * w28;
+    const Scalar w30 = w24 * w24;
+    const Scalar w31 = w29 + w30;
+    const Scalar w32 = w23 * w28;
+    const Scalar w33 = w3 * qdd(2) + w0 * qd(3) * qd(2) + qdd(4);
+    const Scalar w34 = w32 + w33;
+    const Scalar w35 = w23 * w23;
+    const Scalar w36 = w29 + w35;
+    const Scalar w37 = w25 + w26;
+    const Scalar w38 = w28 * w24;
+    const Scalar w39 = w12 * qdd(2) - qdd(3) * w9 + w28 * qd(4) - w10 * w3 * qd(3) * qd(2);
+    const Scalar w40 = w39 - w38;
+    const Scalar w41 = w35 + w30;
+    const Scalar w42 = w39 + w38;
+    const Scalar w43 = w32 - w33;
+    const Scalar w44 = sin(q(5));
+    const Scalar w45 = cos(q(5));
+    const Scalar w46 = w17 * w44 + w22 * w45;
+    const Scalar w47 = w22 * w44 - w17 * w45;
+    const Scalar w48 = w46 * w45 + w44 * w47;
+    const Scalar w49 = w46 * w44 - w47 * w45;
+    const Scalar w50 = w23 * w45 + w44 * w28;
+    const Scalar w51 = w23 * w44 - w28 * w45;
+    const Scalar w52 = w50 * w51;
+    const Scalar w53 = w33 + qdd(5);
+    const Scalar w54 = w52 - w53;
+    const Scalar w55 = w54 * w45;
+    const Scalar w56 = w51 * w51;
+    const Scalar w57 = qd(5) + w24;
+    const Scalar w58 = w57 * w57;
+    const Scalar w59 = w56 + w58;
+    const Scalar w60 = w55 + w59 * w44;
+    const Scalar w61 = w50 * w57;
+    const Scalar w62 = w26 * w45 - w44 * w39 - qd(5) * w50;
+    const Scalar w63 = w61 - w62;
+    const Scalar w64 = w54 * w44;
+    const Scalar w65 = w59 * w45 - w64;
+    const Scalar w66 = w50 * w50;
+    const Scalar w67 = w56 + w66;
+    const Scalar w68 = w61 + w62;
+    const Scalar w69 = w57 * w51;
+    const Scalar w70 = qd(5) * w51 - (w39 * w45 + w26 * w44);
+    const Scalar w71 = w69 - w70;
+    const Scalar w72 = w68 * w44 - w71 * w45;
+    const Scalar w73 = w71 * w44 + w68 * w45;
+    const Scalar w74 = w66 + w58;
+    const Scalar w75 = w52 + w53;
+    const Scalar w76 = w44 * w75;
+    const Scalar w77 = w74 * w45 + w76;
+    const Scalar w78 = w69 + w70;
+    const Scalar w79 = w75 * w45;
+    const Scalar w80 = w74 * w44 - w79;
+    const Scalar w81 = cos(q(6));
+    const Scalar w82 = c.k1 * w81;
+    const Scalar w83 = c.k6 * w81;
+    const Scalar w84 = c.k16 * w33 + w17;
+    const Scalar w85 = c.k17 * w33 + w22;
+    const Scalar w86 = sin(q(6));
+    const Scalar w87 = w7 + c.k16 * w39 - w26 * c.k17;
+    const Scalar w88 = c.k16 * w24;
+    const Scalar w89 = w28 * c.k17 - w23 * c.k16;
+    const Scalar w90 = w88 * w24 - w23 * w89;
+    const Scalar w91 = c.k17 * w24;
+    const Scalar w92 = w91 * w24 + w89 * w28;
+    const Scalar w93 = w88 * w28 + w23 * w91;
+    const Scalar w94 = w83 * w84 - w85 * w82 + w86 * w87 + w82 * w90 + w92 * w83 + w86 * w93;
+    const Scalar w95 = c.k6 * w86;
+    const Scalar w96 = c.k1 * w86;
+    const Scalar w97 = w85 * w96 - w84 * w95 + w93 * w81 - w90 * w96 - w92 * w95 + w87 * w81;
+    const Scalar w98 = c.k6 * w90 - w92 * c.k1 - c.k1 * w84 - c.k6 * w85;
+    const Scalar w99 = w82 * w94 - w97 * w96 + c.k6 * w98;
+    const Scalar w100 = w86 * w94 + w97 * w81;
+    const Scalar w101 = c.k1 * w98 - w83 * w94 + w97 * w95;
+    const Scalar w102 = w86 * w24 - w23 * w83 - w82 * w28;
+    const Scalar w103 = w39 * w95 + w81 * w33 + w26 * w96 - qd(6) * w102;
+    const Scalar w104 = c.k6 * w28 - w23 * c.k1 + qd(6);
+    const Scalar w105 = w104 * w102;
+    const Scalar w106 = w103 - w105;
+    const Scalar w107 = w23 * w95 + w28 * w96 + w81 * w24;
+    const Scalar w108 = w107 * w102;
+    const Scalar w109 = qdd(6) - (c.k1 * w39 - c.k6 * w26);
+    const Scalar w110 = w108 + w109;
+    const Scalar w111 = w107 * w107;
+    const Scalar w112 = w104 * w104;
+    const Scalar w113 = w111 + w112;
+    const Scalar w114 = w110 * w96 - c.k6 * w106 + w82 * w113;
+    const Scalar w115 = w110 * w81 - w86 * w113;
+    const Scalar w116 = w83 * w113 + c.k1 * w106 + w110 * w95;
+    const Scalar w117 = w108 - w109;
+    const Scalar w118 = w102 * w102;
+    const Scalar w119 = w118 + w112;
+    const Scalar w120 = w104 * w107;
+    const Scalar w121 = qd(6) * w107 - (w82 * w26 - w86 * w33 + w83 * w39);
+    const Scalar w122 = w120 + w121;
+    const Scalar w123 = w117 * w83 + w119 * w95 + c.k1 * w122;
+    const Scalar w124 = w86 * w117 - w119 * w81;
+    const Scalar w125 = c.k6 * w122 - w82 * w117 - w119 * w96;
+    const Scalar w126 = w120 - w121;
+    const Scalar w127 = w103 + w105;
+    const Scalar w128 = w126 * w81 + w86 * w127;
+    const Scalar w129 = w111 + w118;
+    const Scalar w130 = w126 * w95 + c.k1 * w129 - w127 * w83;
+    const Scalar w131 = w126 * w96 - w82 * w127 - c.k6 * w129;
+    const Scalar w132 = cos(q(7));
+    const Scalar w133 = w98 - w103 * c.k26;
+    const Scalar w134 = sin(q(7));
+    const Scalar w135 = w104 * c.k26;
+    const Scalar w136 = c.k26 * w107;
+    const Scalar w137 = w104 * w135 + w136 * w107;
+    const Scalar w138 = w102 * w135;
+    const Scalar w139 = w134 * w94 - w132 * w133 + w137 * w134 - w132 * w138;
+    const Scalar w140 = w134 * w138 + w137 * w132 + w132 * w94 + w134 * w133;
+    const Scalar w141 = w134 * w140 - w132 * w139;
+    const Scalar w142 = w97 - c.k26 * w109 - w136 * w102;
+    const Scalar w143 = w134 * w139;
+    const Scalar w144 = w132 * w140;
+    const Scalar w145 = w143 + w144;
+    const Scalar w146 = w145 * w83 - c.k1 * w141 - w142 * w95;
+    const Scalar w147 = w82 * w145 - w142 * w96 + c.k6 * w141;
+    const Scalar w148 = w142 * w81 + w86 * w145;
+    const Scalar w149 = w103 + qdd(7);
+    const Scalar w150 = w132 * w104 + w134 * w102;
+    const Scalar w151 = w132 * w102 - w104 * w134;
+    const Scalar w152 = w150 * w151;
+    const Scalar w153 = w152 - w149;
+    const Scalar w154 = -(w153 * w134);
+    const Scalar w155 = qd(7) + w107;
+    const Scalar w156 = w155 * w155;
+    const Scalar w157 = w150 * w150;
+    const Scalar w158 = w156 + w157;
+    const Scalar w159 = w154 + w132 * w158;
+    const Scalar w160 = w155 * w151;
+    const Scalar w161 = w132 * w109 + w121 * w134 + qd(7) * w151;
+    const Scalar w162 = w160 + w161;
+    const Scalar w163 = w153 * w132;
+    const Scalar w164 = w158 * w134 + w163;
+    const Scalar w165 = w159 * w82 + w162 * w96 + c.k6 * w164;
+    const Scalar w166 = w86 * w159 - w162 * w81;
+    const Scalar w167 = w162 * w95 + w159 * w83 - c.k1 * w164;
+    const Scalar w168 = w160 - w161;
+    const Scalar w169 = w150 * w155;
+    const Scalar w170 = w134 * w109 - w132 * w121 + w150 * qd(7);
+    const Scalar w171 = w169 - w170;
+    const Scalar w172 = w134 * w168 - w132 * w171;
+    const Scalar w173 = w132 * w168 + w134 * w171;
+    const Scalar w174 = w151 * w151;
+    const Scalar w175 = w157 + w174;
+    const Scalar w176 = w173 * w83 - c.k1 * w172 + w175 * w95;
+    const Scalar w177 = w86 * w173 - w175 * w81;
+    const Scalar w178 = c.k6 * w172 + w175 * w96 + w82 * w173;
+    const Scalar w179 = w156 + w174;
+    const Scalar w180 = w152 + w149;
+    const Scalar w181 = w180 * w132;
+    const Scalar w182 = w181 - w134 * w179;
+    const Scalar w183 = w169 + w170;
+    const Scalar w184 = w86 * w182 + w183 * w81;
+    const Scalar w185 = w180 * w134;
+    const Scalar w186 = w132 * w179 + w185;
+    const Scalar w187 = w183 * w96 - c.k6 * w186 - w82 * w182;
+    const Scalar w188 = c.k1 * w186 - w182 * w83 + w183 * w95;
+    const Scalar w189 = -(w7 * w2);
+    const Scalar w190 = w25 * w21;
+    const Scalar w191 = w32 * w3;
+    const Scalar w192 = -w30;
+    const Scalar w193 = w35 + w192;
+    const Scalar w194 = -(w12 * w38);
+    const Scalar w195 = w29 - w35;
+    const Scalar w196 = w29 + w192;
+    const Scalar w197 = w7 * w45;
+    const Scalar w198 = w7 * w44;
+    const Scalar w199 = w61 * w45;
+    const Scalar w200 = w44 * w70 - w199;
+    const Scalar w201 = w52 * w3;
+    const Scalar w202 = w44 * w61;
+    const Scalar w203 = w202 + w70 * w45;
+    const Scalar w204 = -w58;
+    const Scalar w205 = w66 + w204;
+    const Scalar w206 = w55 - w205 * w44;
+    const Scalar w207 = w64 + w205 * w45;
+    const Scalar w208 = w69 * w44;
+    const Scalar w209 = w208 + w199;
+    const Scalar w210 = w69 * w45;
+    const Scalar w211 = w210 - w202;
+    const Scalar w212 = w56 - w66;
+    const Scalar w213 = w78 * w45 + w44 * w63;
+    const Scalar w214 = w78 * w44 - w63 * w45;
+    const Scalar w215 = w56 + w204;
+    const Scalar w216 = w215 * w45 - w76;
+    const Scalar w217 = w79 + w215 * w44;
+    const Scalar w218 = w210 - w44 * w62;
+    const Scalar w219 = w208 + w45 * w62;
+    const Scalar w220 = w100 * c.k16;
+    const Scalar w221 = w100 * c.k17;
+    const Scalar w222 = w99 * c.k17 + c.k16 * w101;
+    const Scalar w223 = w114 * c.k17 + w98 * w81 - w116 * c.k16;
+    const Scalar w224 = c.k1 * w97 - w98 * w95 - w115 * c.k16;
+    const Scalar w225 = w98 * w96 - w115 * c.k17 + c.k6 * w97;
+    const Scalar w226 = c.k16 * w124 + w98 * w83 + c.k1 * w94;
+    const Scalar w227 = w82 * w98 - c.k6 * w94 - w124 * c.k17;
+    const Scalar w228 = w123 * c.k16 + w125 * c.k17 - w86 * w98;
+    const Scalar w229 = w86 * w97 + c.k16 * w130 - c.k17 * w131 - w94 * w81;
+    const Scalar w230 = c.k17 * w128 - w82 * w97 - w94 * w96;
+    const Scalar w231 = w97 * w83 + w94 * w95 + c.k16 * w128;
+    const Scalar w232 = w105 * w81;
+    const Scalar w233 = w86 * w121 + w232;
+    const Scalar w234 = -(c.k1 * w108);
+    const Scalar w235 = w105 * w95;
+    const Scalar w236 = w121 * w83 + w234 - w235;
+    const Scalar w237 = w105 * w96;
+    const Scalar w238 = c.k6 * w108;
+    const Scalar w239 = w82 * w121 - w237 + w238;
+    const Scalar w240 = w111 - w118;
+    const Scalar w241 = w122 * w96 - c.k6 * w240 - w82 * w106;
+    const Scalar w242 = w122 * w81 + w86 * w106;
+    const Scalar w243 = w83 * w106 - c.k1 * w240 - w122 * w95;
+    const Scalar w244 = w86 * w120;
+    const Scalar w245 = w244 - w103 * w81;
+    const Scalar w246 = w120 * w82;
+    const Scalar w247 = w103 * w96 + w246 + w238;
+    const Scalar w248 = w120 * w83;
+    const Scalar w249 = w248 + w103 * w95 + w234;
+    const Scalar w250 = -w112;
+    const Scalar w251 = w118 + w250;
+    const Scalar w252 = w110 * w83 - c.k1 * w126 + w251 * w95;
+    const Scalar w253 = c.k6 * w126 + w251 * w96 + w110 * w82;
+    const Scalar w254 = w81 * w251 - w86 * w110;
+    const Scalar w255 = w111 + w250;
+    const Scalar w256 = w117 * w95 + c.k1 * w127 + w255 * w83;
+    const Scalar w257 = w82 * w255 - c.k6 * w127 + w117 * w96;
+    const Scalar w258 = w117 * w81 - w86 * w255;
+    const Scalar w259 = w232 - w244;
+    const Scalar w260 = w237 - c.k6 * w109 + w246;
+    const Scalar w261 = w248 + w235 + c.k1 * w109;
+    const Scalar w262 = w142 * c.k26;
+    const Scalar w263 = c.k26 * w141;
+    const Scalar w264 = w148 * c.k17 + c.k6 * w262 + w263 * w96;
+    const Scalar w265 = c.k16 * w146 - w263 * w81 - w147 * c.k17;
+    const Scalar w266 = c.k1 * w262 + c.k16 * w148 - w263 * w95;
+    const Scalar w267 = w139 - c.k26 * w164;
+    const Scalar w268 = w142 * w132;
+    const Scalar w269 = w268 - c.k26 * w162;
+    const Scalar w270 = w142 * w134;
+    const Scalar w271 = w267 * w95 + c.k1 * w269 + w166 * c.k16 + w270 * w83;
+    const Scalar w272 = w165 * c.k17 - w167 * c.k16 + w86 * w270 - w267 * w81;
+    const Scalar w273 = c.k6 * w269 - w82 * w270 - w267 * w96 + w166 * c.k17;
+    const Scalar w274 = w172 * c.k26;
+    const Scalar w275 = c.k26 * w175 - w144 - w143;
+    const Scalar w276 = w274 * w96 - w82 * w141 - w275 * c.k6 + w177 * c.k17;
+    const Scalar w277 = w275 * c.k1 - w83 * w141 - c.k16 * w177 + w274 * w95;
+    const Scalar w278 = c.k16 * w176 - w81 * w274 - w178 * c.k17 - w86 * w141;
+    const Scalar w279 = c.k26 * w186 - w140;
+    const Scalar w280 = w279 * w81 + c.k16 * w188 - w187 * c.k17 + w268 * w86;
+    const Scalar w281 = w270 - c.k26 * w183;
+    const Scalar w282 = w268 * w83 - c.k1 * w281 + c.k16 * w184 - w279 * w95;
+    const Scalar w283 = c.k6 * w281 - w184 * c.k17 - w279 * w96 + w268 * w82;
+    const Scalar w284 = w134 * w160;
+    const Scalar w285 = w284 + w132 * w170;
+    const Scalar w286 = -(w152 * w81);
+    const Scalar w287 = w86 * w285 + w286;
+    const Scalar w288 = w132 * w160;
+    const Scalar w289 = w134 * w170 - w288;
+    const Scalar w290 = w152 * w95;
+    const Scalar w291 = w290 - c.k1 * w289 + w83 * w285;
+    const Scalar w292 = w152 * w96;
+    const Scalar w293 = c.k6 * w289 + w82 * w285 + w292;
+    const Scalar w294 = -w174;
+    const Scalar w295 = w156 + w294;
+    const Scalar w296 = w134 * w295 + w163;
+    const Scalar w297 = w154 + w132 * w295;
+    const Scalar w298 = c.k6 * w297 - w82 * w296 - w96 * w171;
+    const Scalar w299 = w83 * w296 + c.k1 * w297 + w95 * w171;
+    const Scalar w300 = w86 * w296 - w81 * w171;
+    const Scalar w301 = w169 * w134;
+    const Scalar w302 = w301 + w288;
+    const Scalar w303 = w169 * w132;
+    const Scalar w304 = w284 - w303;
+    const Scalar w305 = c.k1 * w302 - w149 * w95 + w304 * w83;
+    const Scalar w306 = w86 * w304 + w81 * w149;
+    const Scalar w307 = w149 * w96 - w304 * w82 + c.k6 * w302;
+    const Scalar w308 = w157 + w294;
+    const Scalar w309 = w134 * w183 - w132 * w162;
+    const Scalar w310 = w86 * w309 - w308 * w81;
+    const Scalar w311 = w132 * w183 + w134 * w162;
+    const Scalar w312 = c.k6 * w311 - w82 * w309 - w308 * w96;
+    const Scalar w313 = w308 * w95 + w83 * w309 + c.k1 * w311;
+    const Scalar w314 = w156 - w157;
+    const Scalar w315 = w132 * w314 + w185;
+    const Scalar w316 = w181 - w134 * w314;
+    const Scalar w317 = w82 * w315 - c.k6 * w316 + w96 * w168;
+    const Scalar w318 = w81 * w168 - w86 * w315;
+    const Scalar w319 = w83 * w315 + w168 * w95 + c.k1 * w316;
+    const Scalar w320 = w132 * w161 - w301;
+    const Scalar w321 = w134 * w161 + w303;
+    const Scalar w322 = c.k1 * w320 + w290 + w83 * w321;
+    const Scalar w323 = w86 * w321 + w286;
+    const Scalar w324 = w82 * w321 - c.k6 * w320 + w292;
+    const Scalar w325 = w7 * c.p.rR;
+    const Scalar w326 = w10 * w25;
+    const Scalar w327 = w9 * w38;
+    const Scalar w328 = -w46;
+    const Scalar w329 = -w47;
+    const Scalar w330 = -w71;
+    const Scalar w331 = -w52;
+    Y(0, 0) = -(w8 - w17 * w11 - w22 * w18);
+    Y(0, 1) = -(w31 * w11 - w6 * w27 + w18 * w34);
+    Y(0, 2) = -(w37 * w11 - w36 * w6 + w40 * w18);
+    Y(0, 3) = -(w18 * w41 + w6 * w42 + w11 * w43);
+    Y(0, 10) = -(w8 - w48 * w18 - w11 * w49);
+    Y(0, 11) = -(w65 * w11 - w18 * w60 - w6 * w63);
+    Y(0, 12) = w6 * w67 + w72 * w18 - w73 * w11;
+    Y(0, 13) = -(w18 * w77 - w6 * w78 + w80 * w11);
+    Y(0, 20) = -(w18 * w99 + w6 * w100 + w101 * w11);
+    Y(0, 21) = w18 * w114 - w115 * w6 - w116 * w11;
+    Y(0, 22) = w123 * w11 - w6 * w124 + w18 * w125;
+    Y(0, 23) = -(w6 * w128 + w130 * w11 - w18 * w131);
+    Y(0, 30) = w146 * w11 - w18 * w147 - w6 * w148;
+    Y(0, 31) = w165 * w18 + w6 * w166 - w167 * w11;
+    Y(0, 32) = -(w6 * w177 - w11 * w176 + w178 * w18);
+    Y(0, 33) = w187 * w18 - w6 * w184 - w11 * w188;
+    Y(1, 0) = -(w19 * w22 - w17 * w15 + w189);
+    Y(1, 1) = w19 * w34 - w31 * w15 - w27 * w2;
+    Y(1, 2) = -(w37 * w15 + w36 * w2 - w19 * w40);
+    Y(1, 3) = -(w15 * w43 - w19 * w41 - w42 * w2);
+    Y(1, 10) = -(w19 * w48 + w189 - w49 * w15);
+    Y(1, 11) = -(w19 * w60 + w65 * w15 + w63 * w2);
+    Y(1, 12) = -(w67 * w2 + w73 * w15 + w19 * w72);
+    Y(1, 13) = w19 * w77 - w80 * w15 - w78 * w2;
+    Y(1, 20) = w100 * w2 + w19 * w99 - w101 * w15;
+    Y(1, 21) = -(w116 * w15 - w115 * w2 + w19 * w114);
+    Y(1, 22) = w123 * w15 - w19 * w125 + w124 * w2;
+    Y(1, 23) = -(w130 * w15 - w128 * w2 + w19 * w131);
+    Y(1, 30) = w148 * w2 + w146 * w15 + w19 * w147;
+    Y(1, 31) = -(w166 * w2 + w19 * w165 + w167 * w15);
+    Y(1, 32) = w19 * w178 + w177 * w2 + w176 * w15;
+    Y(1, 33) = w184 * w2 - w188 * w15 - w19 * w187;
+    Y(2, 0) = -(w22 * w20 + w17 * w16);
+    Y(2, 1) = w34 * w20 + w31 * w16 - w22 * w3 + w7 * w21;
+    Y(2, 2) = -(w22 * w12 - w37 * w16 - w40 * w20 + w21 * w17);
+    Y(2, 3) = w41 * w20 + w16 * w43 + w17 * w3 + w7 * w12;
+    Y(2, 4) = w190 - w191 + w39 * w12;
+    Y(2, 5) = -(w34 * w12 + w40 * w3 - w21 * w193);
+    Y(2, 6) = -(w190 - w3 * w33 + w194);
+    Y(2, 7) = w195 * w3 + w27 * w12 - w21 * w42;
+    Y(2, 8) = -(w21 * w43 - w196 * w12 - w37 * w3);
+    Y(2, 9) = w194 + w21 * w26 + w191;
+    Y(2, 10) = -(w16 * w49 + w48 * w20);
+    Y(2, 11) = -(w20 * w60 - w197 * w21 + w12 * w198 - w16 * w65 + w46 * w3);
+    Y(2, 12) = -(w48 * w12 - w73 * w16 + w72 * w20 + w21 * w49);
+    Y(2, 13) = w197 * w12 - w47 * w3 + w21 * w198 + w20 * w77 + w80 * w16;
+    Y(2, 14) = w201 - w21 * w200 - w203 * w12;
+    Y(2, 15) = w206 * w12 - w71 * w3 + w207 * w21;
+    Y(2, 16) = -(w21 * w209 - w53 * w3 + w211 * w12);
+    Y(2, 17) = w212 * w3 + w21 * w213 - w214 * w12;
+    Y(2, 18) = w68 * w3 + w12 * w216 + w217 * w21;
+    Y(2, 19) = w12 * w218 + w21 * w219 - w201;
+    Y(2, 20) = w220 * w12 - w221 * w21 + w101 * w16 - w222 * w3 + w99 * w20;
+    Y(2, 21) = -(w114 * w20 - w116 * w16 - w223 * w3 + w224 * w12 - w225 * w21);
+    Y(2, 22) = -(w125 * w20 + w123 * w16 - w226 * w12 - w227 * w21 - w228 * w3);
+    Y(2, 23) = -(w20 * w131 + w3 * w229 + w230 * w21 - w16 * w130 - w231 * w12);
+    Y(2, 24) = w233 * w3 - w12 * w236 - w239 * w21;
+    Y(2, 25) = w241 * w21 + w242 * w3 - w243 * w12;
+    Y(2, 26) = -(w245 * w3 - w21 * w247 - w249 * w12);
+    Y(2, 27) = -(w12 * w252 + w21 * w253 + w3 * w254);
+    Y(2, 28) = -(w12 * w256 + w21 * w257 + w258 * w3);
+    Y(2, 29) = -(w3 * w259 + w21 * w260 + w261 * w12);
+    Y(2, 30) = w265 * w3 - w264 * w21 + w266 * w12 - w16 * w146 + w147 * w20;
+    Y(2, 31) = -(w271 * w12 + w165 * w20 - w167 * w16 - w3 * w272 - w273 * w21);
+    Y(2, 32) = -(w21 * w276 - w178 * w20 + w16 * w176 + w277 * w12 - w3 * w278);
+    Y(2, 33) = -(w3 * w280 + w187 * w20 - w12 * w282 - w16 * w188 - w21 * w283);
+    Y(2, 34) = w291 * w12 - w287 * w3 + w21 * w293;
+    Y(2, 35) = -(w21 * w298 - w299 * w12 + w300 * w3);
+    Y(2, 36) = -(w305 * w12 - w306 * w3 - w21 * w307);
+    Y(2, 37) = -(w3 * w310 + w21 * w312 - w313 * w12);
+    Y(2, 38) = -(w21 * w317 + w318 * w3 + w319 * w12);
+    Y(2, 39) = -(w12 * w322 - w323 * w3 + w21 * w324);
+    Y(3, 0) = w325;
+    Y(3, 1) = -(c.p.rR * w27 - w10 * w7);
+    Y(3, 2) = -(w10 * w17 - w22 * w9 + w36 * c.p.rR);
+    Y(3, 3) = -(w7 * w9 - c.p.rR * w42);
+    Y(3, 4) = w326 - w9 * w39;
+    Y(3, 5) = w34 * w9 + w10 * w193;
+    Y(3, 6) = -(w326 + w327);
+    Y(3, 7) = -(w27 * w9 + w10 * w42);
+    Y(3, 8) = -(w196 * w9 + w10 * w43);
+    Y(3, 9) = w10 * w26 + w327;
+    Y(3, 10) = w325;
+    Y(3, 11) = -(c.p.rR * w63 - w197 * w10 - w9 * w198);
+    Y(3, 12) = -(c.p.rR * w67 - w48 * w9 + w10 * w49);
+    Y(3, 13) = -(c.p.rR * w78 + w197 * w9 - w10 * w198);
+    Y(3, 14) = -(w10 * w200 - w203 * w9);
+    Y(3, 15) = w10 * w207 - w206 * w9;
+    Y(3, 16) = -(w10 * w209 - w211 * w9);
+    Y(3, 17) = w10 * w213 + w9 * w214;
+    Y(3, 18) = -(w9 * w216 - w10 * w217);
+    Y(3, 19) = -(w9 * w218 - w10 * w219);
+    Y(3, 20) = -(w220 * w9 - c.p.rR * w100 + w10 * w221);
+    Y(3, 21) = w225 * w10 + w9 * w224 + w115 * c.p.rR;
+    Y(3, 22) = -(w9 * w226 - w10 * w227 - c.p.rR * w124);
+    Y(3, 23) = -(w10 * w230 - c.p.rR * w128 + w9 * w231);
+    Y(3, 24) = w9 * w236 - w10 * w239;
+    Y(3, 25) = w10 * w241 + w9 * w243;
+    Y(3, 26) = w10 * w247 - w9 * w249;
+    Y(3, 27) = w9 * w252 - w10 * w253;
+    Y(3, 28) = -(w10 * w257 - w9 * w256);
+    Y(3, 29) = w9 * w261 - w10 * w260;
+    Y(3, 30) = -(w266 * w9 + w10 * w264 - c.p.rR * w148);
+    Y(3, 31) = -(c.p.rR * w166 - w271 * w9 - w273 * w10);
+    Y(3, 32) = w277 * w9 - w10 * w276 + c.p.rR * w177;
+    Y(3, 33) = c.p.rR * w184 - w9 * w282 + w10 * w283;
+    Y(3, 34) = w10 * w293 - w9 * w291;
+    Y(3, 35) = -(w10 * w298 + w9 * w299);
+    Y(3, 36) = w10 * w307 + w305 * w9;
+    Y(3, 37) = -(w9 * w313 + w10 * w312);
+    Y(3, 38) = -(w10 * w317 - w319 * w9);
+    Y(3, 39) = -(w10 * w324 - w9 * w322);
+    Y(4, 1) = -w22;
+    Y(4, 3) = w17;
+    Y(4, 4) = -w32;
+    Y(4, 5) = -w40;
+    Y(4, 6) = w33;
+    Y(4, 7) = w195;
+    Y(4, 8) = w37;
+    Y(4, 9) = w32;
+    Y(4, 11) = w328;
+    Y(4, 13) = w329;
+    Y(4, 14) = w52;
+    Y(4, 15) = w330;
+    Y(4, 16) = w53;
+    Y(4, 17) = w212;
+    Y(4, 18) = w68;
+    Y(4, 19) = w331;
+    Y(4, 20) = -w222;
+    Y(4, 21) = w223;
+    Y(4, 22) = w228;
+    Y(4, 23) = -w229;
+    Y(4, 24) = w233;
+    Y(4, 25) = w242;
+    Y(4, 26) = -w245;
+    Y(4, 27) = -w254;
+    Y(4, 28) = -w258;
+    Y(4, 29) = -w259;
+    Y(4, 30) = w265;
+    Y(4, 31) = w272;
+    Y(4, 32) = w278;
+    Y(4, 33) = -w280;
+    Y(4, 34) = -w287;
+    Y(4, 35) = -w300;
+    Y(4, 36) = w306;
+    Y(4, 37) = -w310;
+    Y(4, 38) = -w318;
+    Y(4, 39) = w323;
+    Y(5, 11) = w328;
+    Y(5, 13) = w329;
+    Y(5, 14) = w52;
+    Y(5, 15) = w330;
+    Y(5, 16) = w53;
+    Y(5, 17) = w212;
+    Y(5, 18) = w68;
+    Y(5, 19) = w331;
+    Y(6, 21) = w97;
+    Y(6, 22) = -w94;
+    Y(6, 24) = -w108;
+    Y(6, 25) = -w240;
+    Y(6, 26) = w108;
+    Y(6, 27) = -w126;
+    Y(6, 28) = w127;
+    Y(6, 29) = w109;
+    Y(6, 30) = -w262;
+    Y(6, 31) = w269;
+    Y(6, 32) = w275;
+    Y(6, 33) = w281;
+    Y(6, 34) = w289;
+    Y(6, 35) = -w297;
+    Y(6, 36) = w302;
+    Y(6, 37) = -w311;
+    Y(6, 38) = w316;
+    Y(6, 39) = w320;
+    Y(7, 31) = -w139;
+    Y(7, 33) = w140;
+    Y(7, 34) = w152;
+    Y(7, 35) = w171;
+    Y(7, 36) = w149;
+    Y(7, 37) = w308;
+    Y(7, 38) = -w168;
+    Y(7, 39) = -w152;
+    Y(0, 4) = Scalar(0);
+    Y(0, 5) = Scalar(0);
+    Y(0, 6) = Scalar(0);
+    Y(0, 7) = Scalar(0);
+    Y(0, 8) = Scalar(0);
+    Y(0, 9) = Scalar(0);
+    Y(0, 14) = Scalar(0);
+    Y(0, 15) = Scalar(0);
+    Y(0, 16) = Scalar(0);
+    Y(0, 17) = Scalar(0);
+    Y(0, 18) = Scalar(0);
+    Y(0, 19) = Scalar(0);
+    Y(0, 24) = Scalar(0);
+    Y(0, 25) = Scalar(0);
+    Y(0, 26) = Scalar(0);
+    Y(0, 27) = Scalar(0);
+    Y(0, 28) = Scalar(0);
+    Y(0, 29) = Scalar(0);
+    Y(0, 34) = Scalar(0);
+    Y(0, 35) = Scalar(0);
+    Y(0, 36) = Scalar(0);
+    Y(0, 37) = Scalar(0);
+    Y(0, 38) = Scalar(0);
+    Y(0, 39) = Scalar(0);
+    Y(1, 4) = Scalar(0);
+    Y(1, 5) = Scalar(0);
+    Y(1, 6) = Scalar(0);
+    Y(1, 7) = Scalar(0);
+    Y(1, 8) = Scalar(0);
+    Y(1, 9) = Scalar(0);
+    Y(1, 14) = Scalar(0);
+    Y(1, 15) = Scalar(0);
+    Y(1, 16) = Scalar(0);
+    Y(1, 17) = Scalar(0);
+    Y(1, 18) = Scalar(0);
+    Y(1, 19) = Scalar(0);
+    Y(1, 24) = Scalar(0);
+    Y(1, 25) = Scalar(0);
+    Y(1, 26) = Scalar(0);
+    Y(1, 27) = Scalar(0);
+    Y(1, 28) = Scalar(0);
+    Y(1, 29) = Scalar(0);
+    Y(1, 34) = Scalar(0);
+    Y(1, 35) = Scalar(0);
+    Y(1, 36) = Scalar(0);
+    Y(1, 37) = Scalar(0);
+    Y(1, 38) = Scalar(0);
+    Y(1, 39) = Scalar(0);
+    Y(4, 0) = Scalar(0);
+    Y(4, 2) = Scalar(0);
+    Y(4, 10) = Scalar(0);
+    Y(4, 12) = Scalar(0);
+    Y(5, 0) = Scalar(0);
+    Y(5, 1) = Scalar(0);
+    Y(5, 2) = Scalar(0);
+    Y(5, 3) = Scalar(0);
+    Y(5, 4) = Scalar(0);
+    Y(5, 5) = Scalar(0);
+    Y(5, 6) = Scalar(0);
+    Y(5, 7) = Scalar(0);
+    Y(5, 8) = Scalar(0);
+    Y(5, 9) = Scalar(0);
+    Y(5, 10) = Scalar(0);
+    Y(5, 12) = Scalar(0);
+    Y(5, 20) = Scalar(0);
+    Y(5, 21) = Scalar(0);
+    Y(5, 22) = Scalar(0);
+    Y(5, 23) = Scalar(0);
+    Y(5, 24) = Scalar(0);
+    Y(5, 25) = Scalar(0);
+    Y(5, 26) = Scalar(0);
+    Y(5, 27) = Scalar(0);
+    Y(5, 28) = Scalar(0);
+    Y(5, 29) = Scalar(0);
+    Y(5, 30) = Scalar(0);
+    Y(5, 31) = Scalar(0);
+    Y(5, 32) = Scalar(0);
+    Y(5, 33) = Scalar(0);
+    Y(5, 34) = Scalar(0);
+    Y(5, 35) = Scalar(0);
+    Y(5, 36) = Scalar(0);
+    Y(5, 37) = Scalar(0);
+    Y(5, 38) = Scalar(0);
+    Y(5, 39) = Scalar(0);
+    Y(6, 0) = Scalar(0);
+    Y(6, 1) = Scalar(0);
+    Y(6, 2) = Scalar(0);
+    Y(6, 3) = Scalar(0);
+    Y(6, 4) = Scalar(0);
+    Y(6, 5) = Scalar(0);
+    Y(6, 6) = Scalar(0);
+    Y(6, 7) = Scalar(0);
+    Y(6, 8) = Scalar(0);
+    Y(6, 9) = Scalar(0);
+    Y(6, 10) = Scalar(0);
+    Y(6, 11) = Scalar(0);
+    Y(6, 12) = Scalar(0);
+    Y(6, 13) = Scalar(0);
+    Y(6, 14) = Scalar(0);
+    Y(6, 15) = Scalar(0);
+    Y(6, 16) = Scalar(0);
+    Y(6, 17) = Scalar(0);
+    Y(6, 18) = Scalar(0);
+    Y(6, 19) = Scalar(0);
+    Y(6, 20) = Scalar(0);
+    Y(6, 23) = Scalar(0);
+    Y(7, 0) = Scalar(0);
+    Y(7, 1) = Scalar(0);
+    Y(7, 2) = Scalar(0);
+    Y(7, 3) = Scalar(0);
+    Y(7, 4) = Scalar(0);
+    Y(7, 5) = Scalar(0);
+    Y(7, 6) = Scalar(0);
+    Y(7, 7) = Scalar(0);
+    Y(7, 8) = Scalar(0);
+    Y(7, 9) = Scalar(0);
+    Y(7, 10) = Scalar(0);
+    Y(7, 11) = Scalar(0);
+    Y(7, 12) = Scalar(0);
+    Y(7, 13) = Scalar(0);
+    Y(7, 14) = Scalar(0);
+    Y(7, 15) = Scalar(0);
+    Y(7, 16) = Scalar(0);
+    Y(7, 17) = Scalar(0);
+    Y(7, 18) = Scalar(0);
+    Y(7, 19) = Scalar(0);
+    Y(7, 20) = Scalar(0);
+    Y(7, 21) = Scalar(0);
+    Y(7, 22) = Scalar(0);
+    Y(7, 23) = Scalar(0);
+    Y(7, 24) = Scalar(0);
+    Y(7, 25) = Scalar(0);
+    Y(7, 26) = Scalar(0);
+    Y(7, 27) = Scalar(0);
+    Y(7, 28) = Scalar(0);
+    Y(7, 29) = Scalar(0);
+    Y(7, 30) = Scalar(0);
+    Y(7, 32) = Scalar(0);
+  }
+
+  /// Y with M qdd - F = Y pi + (the loads other than gravity, negated), pi the inertial parameters (inertial_parameter_names)
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class DerivedQd, class DerivedQdd, class Out0>
+  static void regressor(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedQdd>& qdd, const Parameters<typename DerivedQ::Scalar>& p, Out0&& Y) noexcept {
+    regressor(t, q, qd, qdd, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(Y));
+  }
+
+  /// pi of the model's parameters: every body's m, m c and inertia about its origin, in its frame
+  template <class Scalar, class Out0>
+  static void inertial_parameters(const Constants<Scalar>& c, Out0&& pi) noexcept {
+    static_assert(fits<std::decay_t<Out0>>(npi, 1), "pi: expected npi x 1");
+    eigen_assert(pi.rows() == npi && pi.cols() == 1);
+    pi(0) = c.p.mB;
+    pi(1) = c.k31;
+    pi(3) = c.k5;
+    pi(4) = c.k40;
+    pi(6) = c.k46;
+    pi(7) = c.k18;
+    pi(9) = c.k38;
+    pi(10) = c.p.mR;
+    pi(14) = c.p.IRxx;
+    pi(16) = c.p.IRyy;
+    pi(19) = c.p.IRxx;
+    pi(20) = c.p.mH;
+    pi(21) = c.k69;
+    pi(23) = c.k29;
+    pi(24) = c.k42;
+    pi(26) = c.k34;
+    pi(27) = c.k13;
+    pi(29) = c.k35;
+    pi(30) = c.p.mF;
+    pi(34) = c.p.IFxx;
+    pi(36) = c.p.IFyy;
+    pi(39) = c.p.IFxx;
+    pi(2) = Scalar(0);
+    pi(5) = Scalar(0);
+    pi(8) = Scalar(0);
+    pi(11) = Scalar(0);
+    pi(12) = Scalar(0);
+    pi(13) = Scalar(0);
+    pi(15) = Scalar(0);
+    pi(17) = Scalar(0);
+    pi(18) = Scalar(0);
+    pi(22) = Scalar(0);
+    pi(25) = Scalar(0);
+    pi(28) = Scalar(0);
+    pi(31) = Scalar(0);
+    pi(32) = Scalar(0);
+    pi(33) = Scalar(0);
+    pi(35) = Scalar(0);
+    pi(37) = Scalar(0);
+    pi(38) = Scalar(0);
+  }
+
+  /// pi of the model's parameters: every body's m, m c and inertia about its origin, in its frame
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar, class Out0>
+  static void inertial_parameters(const Parameters<Scalar>& p, Out0&& pi) noexcept {
+    inertial_parameters(Constants<Scalar>(p), std::forward<Out0>(pi));
   }
 };
 

@@ -4,9 +4,11 @@
 // inertias on exact principal axes) and with its joints mapped to our coordinates by name.
 //
 // Build (mujoco_robots.sh does this for every robot), on one line:
-//   g++ -std=c++17 -O2 -DEOM_HEADER='"ur5.hpp"' -DEOM_NS=ur5 -I<dir of header>
+//   g++ -std=c++17 -O2 -DEOM_HEADER='"ur5.hpp"' -DEOM_NS=ur5 -DEOM_TOOL=tool0 -I<dir of header>
 //       -I<repo>/runtime/include -I<repo>/tests -I/usr/include/eigen3
 //       mujoco_robots.cpp -lmujoco -ltinyxml2 -o bench_ur5
+// EOM_TOOL names the leaf link whose output_jacobian_<EOM_TOOL>_position is timed (the MuJoCo
+// body of the same name: the preparation keeps fixed-joint links apart).
 // Run:  bench_ur5 ROBOT.urdf [rounds]
 //
 // 1. cross-check at 8 random states (fixed seed; q inside the joint limits, continuous joints in
@@ -18,7 +20,16 @@
 //    minima): our M and F, and for a robot without constraints our forward dynamics, against
 //    MuJoCo's stages for M and the bias forces, its hand-assembled forward dynamics and
 //    mj_forward. A robot with constraints (the Panda's mimic) is timed for M and F only: MuJoCo
-//    ignores <mimic>, so its accelerations are those of another system.
+//    ignores <mimic>, so its accelerations are those of another system;
+// 3. the functions a controller calls, cross-checked at 8 states and timed as in 2 (the pool's
+//    states with accelerations up to 5 rad/s^2 or 0.5 m/s^2, drawn from a second seed): our
+//    inverse_dynamics (with the Panda's lambda) against mj_inverse, which runs its position and
+//    velocity stages itself (qfrc_inverse = M qacc + qfrc_bias - qfrc_passive = our M qdd - F at
+//    zero input, for the Panda tau + Xi^T lambda: MuJoCo's tree has no mimic), and against
+//    mj_inverseSkip(mjSTAGE_POS) after a position stage done once, untimed (its velocity and
+//    acceleration stages alone: what is left when mj_forward ran at that q already); our
+//    output_jacobian_<EOM_TOOL>_position against mj_kinematics + mj_comPos + mj_jac (jacp only,
+//    at the body's origin), the stages mj_jac needs at a new q (it reads cdof and subtree_com).
 // Machine-readable lines start with "RESULT key value".
 #include EOM_HEADER
 
@@ -41,6 +52,14 @@
 
 #include "interleaved_timing.hpp"
 #include "support/mujoco_robot.hpp"
+
+#ifndef EOM_TOOL
+#error "EOM_TOOL: the leaf link whose position Jacobian is timed (-DEOM_TOOL=tool0)"
+#endif
+#define EOM_PASTE(a, b, c) a##b##c
+#define EOM_NAME(a, b, c) EOM_PASTE(a, b, c)
+#define EOM_STRING2(x) #x
+#define EOM_STRING(x) EOM_STRING2(x)
 
 namespace {
 
@@ -99,6 +118,7 @@ std::vector<int> coordinates_of_inputs() {
 struct State {
   Vec q, qd;
   Inputs u;
+  Vec qdd = Vec::Zero();  ///< for the inverse dynamics (random_accelerations)
 };
 
 /// A random state: the sampling of tests/robots/mujoco_cross_check_test.cpp.
@@ -121,6 +141,40 @@ State random_state(const std::vector<UrdfJointSummary>& joints, std::mt19937_64&
     s.qd[k] = j.mimic_multiplier * s.qd[leader - joints.begin()];
   }
   return s;
+}
+
+/// Accelerations up to 5 rad/s^2 or 0.5 m/s^2 for the states, from a generator of their own (the
+/// states of the earlier timings stay as they were); a mimic joint follows its leader.
+void random_accelerations(const std::vector<UrdfJointSummary>& joints, std::vector<State>& states, std::mt19937_64& rng) {
+  for (State& s : states) {
+    for (int k = 0; k < nq; ++k)
+      s.qdd[k] = (joints[k].type == "prismatic" ? 0.1 : 1) * std::uniform_real_distribution<double>(-5, 5)(rng);
+    for (int k = 0; k < nq; ++k) {
+      const UrdfJointSummary& j = joints[k];
+      if (!j.mimicked) continue;
+      const auto leader = std::find_if(joints.begin(), joints.end(),
+                                       [&](const UrdfJointSummary& other) { return other.name == *j.mimicked; });
+      s.qdd[k] = j.mimic_multiplier * s.qdd[leader - joints.begin()];
+    }
+  }
+}
+
+/// Our inverse dynamics at zero input into tau; with constraints, tau + Xi^T lambda (= M qdd - F)
+/// into `total` when asked (a template, so that `if constexpr` picks the overload the header has).
+template <class M, class C>
+void our_inverse_dynamics(const C& c, const State& s, const Inputs& u, Vec& tau,
+                          Eigen::Matrix<double, M::nc, 1>& lambda, Vec* total = nullptr) {
+  if constexpr (M::nc == 0) {
+    M::inverse_dynamics(0.0, s.q, s.qd, s.qdd, u, c, tau);
+    if (total) *total = tau;
+  } else {
+    M::inverse_dynamics(0.0, s.q, s.qd, s.qdd, u, c, tau, lambda);
+    if (total) {
+      Eigen::Matrix<double, M::nc, nq> xi;
+      M::constraint_jacobian(0.0, s.q, c, xi);
+      *total = tau + xi.transpose() * lambda;
+    }
+  }
 }
 
 /// The generalized forces of the inputs, per coordinate.
@@ -180,12 +234,16 @@ void time_calls(const mjModel* m, const std::vector<UrdfJointSummary>& joints, c
   const int pool = static_cast<int>(states.size());
   const std::unique_ptr<mjData, void (*)(mjData*)> data(mj_makeData(m), mj_deleteData);
   mjData* d = data.get();
-  std::vector<Eigen::VectorXd> qpos(pool, Eigen::VectorXd(m->nq)), qvel(pool, Eigen::VectorXd(m->nv));
+  std::vector<Eigen::VectorXd> qpos(pool, Eigen::VectorXd(m->nq)), qvel(pool, Eigen::VectorXd(m->nv)),
+      qacc(pool, Eigen::VectorXd(m->nv));
+  std::vector<int> dof(nq);  // MuJoCo's degree of freedom of each of our coordinates
   for (int i = 0; i < nq; ++i) {
     const int id = mj_name2id(m, mjOBJ_JOINT, joints[i].name.c_str());
+    dof[i] = m->jnt_dofadr[id];
     for (int k = 0; k < pool; ++k) {
       qpos[k][m->jnt_qposadr[id]] = states[k].q[i];
       qvel[k][m->jnt_dofadr[id]] = states[k].qd[i];
+      qacc[k][m->jnt_dofadr[id]] = states[k].qdd[i];
     }
   }
   const auto set_state = [&](int k) {
@@ -252,6 +310,72 @@ void time_calls(const mjModel* m, const std::vector<UrdfJointSummary>& joints, c
     std::printf("  mj_fd pipeline vs mj_forward qacc: %.3g (nefc %d)\n",
                 peers::relative_error(a.data(), d->qacc, m->nv), d->nefc);
   }
+
+  // 3. the controller functions: inverse dynamics and the tool's position Jacobian
+  const int tool = mj_name2id(m, mjOBJ_BODY, EOM_STRING(EOM_TOOL));
+  if (tool < 0) throw std::runtime_error("MuJoCo has no body " EOM_STRING(EOM_TOOL));
+  Vec tau, total;
+  Eigen::Matrix<double, Model::nc, 1> lambda;
+  Eigen::Matrix<double, 3, nq> J;
+  std::vector<double> jacp(3 * m->nv);
+  {  // cross-check at the first 8 states (max-abs error / max-abs value)
+    double e_id = 0, e_jac = 0;
+    for (int k = 0; k < 8; ++k) {
+      set_state(k);
+      mju_copy(d->qacc, qacc[k].data(), m->nv);
+      mj_inverse(m, d);
+      if (d->nefc != 0) throw std::runtime_error("mj_inverse: MuJoCo has constraint rows");
+      our_inverse_dynamics<Model>(c, states[k], u, tau, lambda, &total);
+      Vec theirs;
+      for (int i = 0; i < nq; ++i) theirs[i] = d->qfrc_inverse[dof[i]];
+      e_id = std::max(e_id, peers::relative_error(total.data(), theirs.data(), nq));
+      // mj_inverse ran mj_kinematics and mj_comPos at this q
+      mj_jac(m, d, jacp.data(), nullptr, d->xpos + 3 * tool, tool);
+      Model::EOM_NAME(output_jacobian_, EOM_TOOL, _position)(0.0, states[k].q, c, J);
+      Eigen::Matrix<double, 3, nq> theirs_J;  // jacp is row-major, nv columns in MuJoCo's order
+      for (int r = 0; r < 3; ++r)
+        for (int i = 0; i < nq; ++i) theirs_J(r, i) = jacp[r * m->nv + dof[i]];
+      e_jac = std::max(e_jac, peers::relative_error(J.data(), theirs_J.data(), 3 * nq));
+    }
+    std::printf("controller functions (8 random states with accelerations):\n");
+    std::printf("  inverse dynamics vs qfrc_inverse: %.3g   %s position Jacobian vs mj_jac jacp: %.3g\n", e_id,
+                EOM_STRING(EOM_TOOL), e_jac);
+    std::printf("RESULT err_id %.3g\nRESULT err_jac %.3g\n", e_id, e_jac);
+  }
+  // a second mjData whose position stage is done once (at state 0) before the timing
+  const std::unique_ptr<mjData, void (*)(mjData*)> positioned(mj_makeData(m), mj_deleteData);
+  mjData* dp = positioned.get();
+  mju_copy(dp->qpos, qpos[0].data(), m->nq);
+  mj_invPosition(m, dp);
+  ops.push_back({"ours_id", Model::nc == 0 ? "ours: inverse_dynamics (tau)" : "ours: inverse_dynamics (tau, lambda)",
+                 [&](int k) {
+                   our_inverse_dynamics<Model>(c, states[k], u, tau, lambda);
+                   g_sink = g_sink + tau(0);
+                 }});
+  ops.push_back({"mj_inverse", "MuJoCo: mj_inverse (its position, velocity and acceleration stages)", [&](int k) {
+                   set_state(k);
+                   mju_copy(d->qacc, qacc[k].data(), m->nv);
+                   mj_inverse(m, d);
+                   g_sink = g_sink + d->qfrc_inverse[0];
+                 }});
+  ops.push_back({"mj_inv_vel", "MuJoCo: mj_inverseSkip(mjSTAGE_POS), the position stage done beforehand (untimed)",
+                 [&](int k) {
+                   mju_copy(dp->qvel, qvel[k].data(), m->nv);
+                   mju_copy(dp->qacc, qacc[k].data(), m->nv);
+                   mj_inverseSkip(m, dp, mjSTAGE_POS, 1);
+                   g_sink = g_sink + dp->qfrc_inverse[0];
+                 }});
+  ops.push_back({"ours_jac", "ours: output_jacobian_" EOM_STRING(EOM_TOOL) "_position", [&](int k) {
+                   Model::EOM_NAME(output_jacobian_, EOM_TOOL, _position)(0.0, states[k].q, c, J);
+                   g_sink = g_sink + J(0, 0);
+                 }});
+  ops.push_back({"mj_jac", "MuJoCo: kinematics + comPos + jac (jacp of " EOM_STRING(EOM_TOOL) "'s origin)", [&](int k) {
+                   mju_copy(d->qpos, qpos[k].data(), m->nq);
+                   mj_kinematics(m, d);
+                   mj_comPos(m, d);
+                   mj_jac(m, d, jacp.data(), nullptr, d->xpos + 3 * tool, tool);
+                   g_sink = g_sink + jacp[0];
+                 }});
   peers::print_timings(ops, peers::time_interleaved(ops, rounds, pool), rounds);
 }
 
@@ -265,9 +389,12 @@ int run(const char* urdf_path, int rounds) {
   std::printf("MuJoCo %s, robot %s: nq = %d, nu = %d, nc = %d; MuJoCo nv = %d, nbody = %d, nM = %d\n",
               mj_versionString(), Model::name, nq, Model::nu, Model::nc, m.nv, m.nbody, m.nM);
   std::printf("RESULT nq %d\nRESULT nc %d\n", nq, Model::nc);
+  std::printf("tool: %s\n", EOM_STRING(EOM_TOOL));
   std::mt19937_64 rng(20261205);
   std::vector<State> states;
   for (int k = 0; k < 64; ++k) states.push_back(random_state(joints, rng));
+  std::mt19937_64 rng_accelerations(20261206);
+  random_accelerations(joints, states, rng_accelerations);
   cross_check(robot, states, coordinates_of_inputs());
   time_calls(&m, joints, states, rounds);
   return 0;

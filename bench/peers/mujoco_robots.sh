@@ -8,7 +8,10 @@
 # mujoco_robots.cpp against each header with g++ -std=c++17 -O2, runs it (cross-check, then ns
 # per call in interleaved rounds) and prints markdown tables; ratios are ours / MuJoCo, and the
 # targets of issue 29 are forward dynamics and M + F at most 0.1 of MuJoCo's, generation at
-# most 0.5 s per robot. The Panda (a mimic constraint) is timed for M and F only.
+# most 0.5 s per robot. The Panda (a mimic constraint) is timed for M and F only, and for the
+# controller functions: inverse dynamics against mj_inverse (target at most 0.1) and the tool's
+# position Jacobian against mj_kinematics + mj_comPos + mj_jac (target at most 0.3), the tool
+# being the leaf link tool_of names below (its output_jacobian_<tool>_position).
 # Environment:
 #   WORK=/tmp/mujoco-robots        scratch directory (copies eomgen there and works there)
 #   ROBOTS="ur5 iiwa14 two_arm_torso panda"
@@ -51,9 +54,20 @@ for ((run = 1; run <= GENERATE_RUNS; ++run)); do
   done
 done
 
+tool_of() {  # robot: the leaf link whose position Jacobian is timed
+  case $1 in
+    ur5) echo tool0 ;;
+    iiwa14) echo iiwa_link_ee ;;
+    two_arm_torso) echo left_ee ;;
+    panda) echo panda_hand_tcp ;;
+    *)  # another robot: the first position output of its header
+      grep -o -m1 'output_jacobian_[A-Za-z0-9_]*_position(' "$1.hpp" | sed 's/^output_jacobian_//; s/_position($//' ;;
+  esac
+}
+
 build_one() {  # robot
   local r=$1 t0=$SECONDS
-  $CXX -std=c++17 $CXXFLAGS -DEOM_HEADER="\"$r.hpp\"" -DEOM_NS="$r" \
+  $CXX -std=c++17 $CXXFLAGS -DEOM_HEADER="\"$r.hpp\"" -DEOM_NS="$r" -DEOM_TOOL="$(tool_of "$r")" \
     -I"$WORK" -I"$repo/runtime/include" -I"$repo/tests" -I/usr/include/eigen3 \
     "$here/mujoco_robots.cpp" -lmujoco -ltinyxml2 -o "bench_$r"
   echo "compiled bench_$r in $((SECONDS - t0)) s" >&2
@@ -89,6 +103,8 @@ for robot in robots:
         if line.startswith("RESULT "):
             _, k, v = line.split()
             r[k] = float(v)
+        elif line.startswith("tool: "):
+            r["tool"] = line.split()[1]
     seconds = [int(x) / 1e6 for x in open(f"{work}/generate_{robot}.txt").read().split()]
     r["gen"], r["genmin"] = statistics.median(seconds), min(seconds)
     r["compile"] = float(open(f"{work}/compile_{robot}.txt").read())
@@ -120,6 +136,21 @@ for kind, prefix in (("medians", "ns_"), ("minima", "nsmin_")):
               f"{ns(g, 'ours_fd')} | {ns(g, 'ours_fd_chol')} | {ns(g, 'mj_fd')} | {ns(g, 'mj_forward')} | "
               f"{ratio(g, 'ours_fd', 'mj_forward')} | {ratio(g, 'ours_fd', 'mj_fd')} |")
 
+print("\n### Controller functions: cross-check (max-abs error / max-abs value, worst of 8 random states with accelerations up to 5 rad/s^2)\n")
+print("| robot | tool | inverse dynamics vs qfrc_inverse | tool position Jacobian vs mj_jac jacp |")
+print("|---|---|---:|---:|")
+for robot, r in rows:
+    print(f"| {robot} | {r.get('tool', '–')} | {err(r, 'err_id')} | {err(r, 'err_jac')} |")
+for kind, prefix in (("medians", "ns_"), ("minima", "nsmin_")):
+    print(f"\n### Controller functions, ns per call ({kind} of {rounds} interleaved rounds); ratio = ours / MuJoCo, targets at most 0.10 (inverse dynamics) and 0.30 (Jacobian)\n")
+    print("| robot | dof | ours inverse_dynamics | mj_inverse | ratio ID | mj_inverseSkip(POS) (position stage done) | ratio ID / skip | ours tool Jacobian | MJ kinematics+comPos+jac | ratio Jacobian |")
+    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+    for robot, r in rows:
+        g = {k[len(prefix):]: v for k, v in r.items() if k.startswith(prefix)}
+        print(f"| {robot} | {int(r['nq'])} | {ns(g, 'ours_id')} | {ns(g, 'mj_inverse')} | {ratio(g, 'ours_id', 'mj_inverse')} | "
+              f"{ns(g, 'mj_inv_vel')} | {ratio(g, 'ours_id', 'mj_inv_vel')} | {ns(g, 'ours_jac')} | {ns(g, 'mj_jac')} | "
+              f"{ratio(g, 'ours_jac', 'mj_jac')} |")
+
 print(f"\n### Generation: `eomgen generate ROBOT.urdf` wall time [s], median (min) of {generate_runs} runs, target at most 0.5 s\n")
 print("| robot | generate [s] | header lines | bench compile [s] |")
 print("|---|---:|---:|---:|")
@@ -134,4 +165,12 @@ for robot, r in rows:
     fdv = verdict(r["ns_ours_fd"] / r["ns_mj_forward"], r["nsmin_ours_fd"] / r["nsmin_mj_forward"], 0.1) if fd(r) else "– (mimic: M+F only)"
     mfv = verdict(r["ns_ours_MF"] / r["ns_mj_MF"], r["nsmin_ours_MF"] / r["nsmin_mj_MF"], 0.1)
     print(f"| {robot} | {fdv} | {mfv} | {verdict(r['gen'], r['genmin'], 0.5)} s |")
+
+print("\n### Targets for the controller functions (medians; minima in parentheses)\n")
+print("| robot | inverse_dynamics / mj_inverse <= 0.1 | tool Jacobian / (kinematics + comPos + jac) <= 0.3 |")
+print("|---|---|---|")
+for robot, r in rows:
+    idv = verdict(r["ns_ours_id"] / r["ns_mj_inverse"], r["nsmin_ours_id"] / r["nsmin_mj_inverse"], 0.1)
+    jv = verdict(r["ns_ours_jac"] / r["ns_mj_jac"], r["nsmin_ours_jac"] / r["nsmin_mj_jac"], 0.3)
+    print(f"| {robot} | {idv} | {jv} |")
 EOF

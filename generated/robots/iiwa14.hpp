@@ -7,6 +7,8 @@
 
 #include <array>
 #include <cmath>
+#include <type_traits>
+#include <utility>
 
 namespace eomgen_models {
 namespace iiwa14 {
@@ -17,12 +19,12 @@ struct Model {
   static constexpr int nc = 0;  // constraints (rows of Xi)
   static constexpr int nh = 0;  // holonomic constraints (rows of phi)
   static constexpr int np = 51;  // parameters
-  static constexpr int ny = 24;  // output components
+  static constexpr int ny = 30;  // output components
   static constexpr int ni = 0;  // independent speeds declared in the model (0: none, null space from QR of Xi)
   static constexpr const char* name = "iiwa14";
   static constexpr const char* description = "iiwa14 (imported from iiwa14.urdf)";
   static constexpr const char* generator_version = "0.1.0";
-  static constexpr const char* model_hash = "d4fa9a6e0ceb3c71";
+  static constexpr const char* model_hash = "34c84f458b2588f3";
   static constexpr std::array<const char*, nq> coordinate_names{{"iiwa_joint_1", "iiwa_joint_2", "iiwa_joint_3", "iiwa_joint_4", "iiwa_joint_5", "iiwa_joint_6", "iiwa_joint_7"}};
   static constexpr std::array<const char*, nu> input_names{{"iiwa_joint_1_torque", "iiwa_joint_2_torque", "iiwa_joint_3_torque", "iiwa_joint_4_torque", "iiwa_joint_5_torque", "iiwa_joint_6_torque", "iiwa_joint_7_torque"}};
   static constexpr std::array<const char*, np> parameter_names{{"g", "iiwa_joint_1_damping", "iiwa_link_1_mass", "iiwa_link_1_com_y", "iiwa_link_1_com_z", "iiwa_link_1_ixx", "iiwa_link_1_iyy", "iiwa_link_1_izz", "iiwa_joint_2_damping", "iiwa_link_2_mass", "iiwa_link_2_com_x", "iiwa_link_2_com_y", "iiwa_link_2_com_z", "iiwa_link_2_ixx", "iiwa_link_2_iyy", "iiwa_link_2_izz", "iiwa_joint_3_damping", "iiwa_link_3_mass", "iiwa_link_3_com_y", "iiwa_link_3_com_z", "iiwa_link_3_ixx", "iiwa_link_3_iyy", "iiwa_link_3_izz", "iiwa_joint_4_damping", "iiwa_link_4_mass", "iiwa_link_4_com_y", "iiwa_link_4_com_z", "iiwa_link_4_ixx", "iiwa_link_4_iyy", "iiwa_link_4_izz", "iiwa_joint_5_damping", "iiwa_link_5_mass", "iiwa_link_5_com_x", "iiwa_link_5_com_y", "iiwa_link_5_com_z", "iiwa_link_5_ixx", "iiwa_link_5_iyy", "iiwa_link_5_izz", "iiwa_joint_6_damping", "iiwa_link_6_mass", "iiwa_link_6_com_y", "iiwa_link_6_com_z", "iiwa_link_6_ixx", "iiwa_link_6_iyy", "iiwa_link_6_izz", "iiwa_joint_7_damping", "iiwa_link_7_mass", "iiwa_link_7_com_z", "iiwa_link_7_ixx", "iiwa_link_7_iyy", "iiwa_link_7_izz"}};
@@ -30,7 +32,9 @@ struct Model {
   static constexpr std::array<const char*, nc> constraint_names{{}};
   static constexpr std::array<int, nh> holonomic_rows{{}};  // row of Xi of each entry of phi
   static constexpr std::array<int, ni> independent_speeds{{}};  // their coordinate indices
-  static constexpr std::array<const char*, ny> output_names{{"iiwa_link_ee_kuka_position_1", "iiwa_link_ee_kuka_position_2", "iiwa_link_ee_kuka_position_3", "iiwa_link_ee_kuka_axis_1_1", "iiwa_link_ee_kuka_axis_1_2", "iiwa_link_ee_kuka_axis_1_3", "iiwa_link_ee_kuka_axis_2_1", "iiwa_link_ee_kuka_axis_2_2", "iiwa_link_ee_kuka_axis_2_3", "iiwa_link_ee_kuka_axis_3_1", "iiwa_link_ee_kuka_axis_3_2", "iiwa_link_ee_kuka_axis_3_3", "iiwa_link_ee_position_1", "iiwa_link_ee_position_2", "iiwa_link_ee_position_3", "iiwa_link_ee_axis_1_1", "iiwa_link_ee_axis_1_2", "iiwa_link_ee_axis_1_3", "iiwa_link_ee_axis_2_1", "iiwa_link_ee_axis_2_2", "iiwa_link_ee_axis_2_3", "iiwa_link_ee_axis_3_1", "iiwa_link_ee_axis_3_2", "iiwa_link_ee_axis_3_3"}};
+  static constexpr std::array<const char*, ny> output_names{{"iiwa_link_ee_kuka_position_1", "iiwa_link_ee_kuka_position_2", "iiwa_link_ee_kuka_position_3", "iiwa_link_ee_kuka_axis_1_1", "iiwa_link_ee_kuka_axis_1_2", "iiwa_link_ee_kuka_axis_1_3", "iiwa_link_ee_kuka_axis_2_1", "iiwa_link_ee_kuka_axis_2_2", "iiwa_link_ee_kuka_axis_2_3", "iiwa_link_ee_kuka_axis_3_1", "iiwa_link_ee_kuka_axis_3_2", "iiwa_link_ee_kuka_axis_3_3", "iiwa_link_ee_kuka_angular_velocity_1", "iiwa_link_ee_kuka_angular_velocity_2", "iiwa_link_ee_kuka_angular_velocity_3", "iiwa_link_ee_position_1", "iiwa_link_ee_position_2", "iiwa_link_ee_position_3", "iiwa_link_ee_axis_1_1", "iiwa_link_ee_axis_1_2", "iiwa_link_ee_axis_1_3", "iiwa_link_ee_axis_2_1", "iiwa_link_ee_axis_2_2", "iiwa_link_ee_axis_2_3", "iiwa_link_ee_axis_3_1", "iiwa_link_ee_axis_3_2", "iiwa_link_ee_axis_3_3", "iiwa_link_ee_angular_velocity_1", "iiwa_link_ee_angular_velocity_2", "iiwa_link_ee_angular_velocity_3"}};
+  static constexpr int npi = 70;  // inertial parameters: 10 per body (regressor)
+  static constexpr std::array<const char*, npi> inertial_parameter_names{{"iiwa_link_1_body.m", "iiwa_link_1_body.mx", "iiwa_link_1_body.my", "iiwa_link_1_body.mz", "iiwa_link_1_body.Ixx", "iiwa_link_1_body.Ixy", "iiwa_link_1_body.Iyy", "iiwa_link_1_body.Ixz", "iiwa_link_1_body.Iyz", "iiwa_link_1_body.Izz", "iiwa_link_2_body.m", "iiwa_link_2_body.mx", "iiwa_link_2_body.my", "iiwa_link_2_body.mz", "iiwa_link_2_body.Ixx", "iiwa_link_2_body.Ixy", "iiwa_link_2_body.Iyy", "iiwa_link_2_body.Ixz", "iiwa_link_2_body.Iyz", "iiwa_link_2_body.Izz", "iiwa_link_3_body.m", "iiwa_link_3_body.mx", "iiwa_link_3_body.my", "iiwa_link_3_body.mz", "iiwa_link_3_body.Ixx", "iiwa_link_3_body.Ixy", "iiwa_link_3_body.Iyy", "iiwa_link_3_body.Ixz", "iiwa_link_3_body.Iyz", "iiwa_link_3_body.Izz", "iiwa_link_4_body.m", "iiwa_link_4_body.mx", "iiwa_link_4_body.my", "iiwa_link_4_body.mz", "iiwa_link_4_body.Ixx", "iiwa_link_4_body.Ixy", "iiwa_link_4_body.Iyy", "iiwa_link_4_body.Ixz", "iiwa_link_4_body.Iyz", "iiwa_link_4_body.Izz", "iiwa_link_5_body.m", "iiwa_link_5_body.mx", "iiwa_link_5_body.my", "iiwa_link_5_body.mz", "iiwa_link_5_body.Ixx", "iiwa_link_5_body.Ixy", "iiwa_link_5_body.Iyy", "iiwa_link_5_body.Ixz", "iiwa_link_5_body.Iyz", "iiwa_link_5_body.Izz", "iiwa_link_6_body.m", "iiwa_link_6_body.mx", "iiwa_link_6_body.my", "iiwa_link_6_body.mz", "iiwa_link_6_body.Ixx", "iiwa_link_6_body.Ixy", "iiwa_link_6_body.Iyy", "iiwa_link_6_body.Ixz", "iiwa_link_6_body.Iyz", "iiwa_link_6_body.Izz", "iiwa_link_7_body.m", "iiwa_link_7_body.mx", "iiwa_link_7_body.my", "iiwa_link_7_body.mz", "iiwa_link_7_body.Ixx", "iiwa_link_7_body.Ixy", "iiwa_link_7_body.Iyy", "iiwa_link_7_body.Ixz", "iiwa_link_7_body.Iyz", "iiwa_link_7_body.Izz"}};
   static constexpr bool has_forward_dynamics = true;  // forward_dynamics(), without M
   static constexpr bool prefers_forward_dynamics = true;  // fewer operations than M, F and their Cholesky solve
 
@@ -41,6 +45,14 @@ struct Model {
   template <class Scalar> using ConstraintVector = Eigen::Matrix<Scalar, nc, 1>;
   template <class Scalar> using HolonomicVector = Eigen::Matrix<Scalar, nh, 1>;
   template <class Scalar> using OutputVector = Eigen::Matrix<Scalar, ny, 1>;
+
+  /// Whether an Eigen expression of type Derived can be rows x cols: its sizes fixed to those,
+  /// or dynamic (then eigen_assert tests them).
+  template <class Derived>
+  static constexpr bool fits(int rows, int cols) noexcept {
+    return (int(Derived::RowsAtCompileTime) == Eigen::Dynamic || int(Derived::RowsAtCompileTime) == rows) &&
+           (int(Derived::ColsAtCompileTime) == Eigen::Dynamic || int(Derived::ColsAtCompileTime) == cols);
+  }
 
   /// Parameters, defaulted to the model's values.
   template <class Scalar>
@@ -107,113 +119,121 @@ struct Model {
    public:
     /// Computes every constant from a copy of the parameters.
     explicit Constants(const Parameters<Scalar>& parameters) noexcept : p(parameters) {
-      using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-      using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-      using std::log; using std::abs; using std::pow;
       const Scalar w0 = p.iiwa_link_4_mass * p.iiwa_link_4_com_y * p.iiwa_link_4_com_z;
       const Scalar w1 = p.iiwa_link_5_com_x * p.iiwa_link_5_mass;
       const Scalar w2 = p.iiwa_link_7_com_z * p.iiwa_link_7_mass;
       const Scalar w3 = w2 + Scalar(0.081) * p.iiwa_link_7_mass;
       const Scalar w4 = p.iiwa_link_6_com_y * p.iiwa_link_6_mass;
-      const Scalar w5 = p.iiwa_link_6_com_z * p.iiwa_link_6_com_z;
-      const Scalar w6 = p.iiwa_link_6_com_y * p.iiwa_link_6_com_y;
-      const Scalar w7 = p.iiwa_link_7_com_z * p.iiwa_link_7_com_z * p.iiwa_link_7_mass;
-      const Scalar w8 = p.iiwa_link_7_ixx + w7;
-      const Scalar w9 = Scalar(0.081) * w3;
-      const Scalar w10 = Scalar(0.081) * w2;
-      const Scalar w11 = w8 + w9 + w10;
-      const Scalar w12 = p.iiwa_link_7_iyy + w7;
-      const Scalar w13 = w12 + w9 + w10;
-      const Scalar w14 = p.iiwa_link_6_mass * w5;
-      const Scalar w15 = p.iiwa_link_7_izz + p.iiwa_link_6_iyy + w14;
-      const Scalar w16 = p.iiwa_link_5_com_y * p.iiwa_link_5_mass;
-      const Scalar w17 = p.iiwa_link_6_com_z * p.iiwa_link_6_mass;
-      const Scalar w18 = w17 - w16;
-      const Scalar w19 = p.iiwa_link_5_com_y * p.iiwa_link_5_mass * p.iiwa_link_5_com_z;
-      const Scalar w20 = p.iiwa_link_6_mass * w6;
-      const Scalar w21 = p.iiwa_link_6_mass + p.iiwa_link_7_mass;
-      const Scalar w22 = p.iiwa_link_5_com_z * p.iiwa_link_5_com_z;
-      const Scalar w23 = p.iiwa_link_5_com_x * p.iiwa_link_5_com_x;
-      const Scalar w24 = w21 + p.iiwa_link_5_mass;
-      const Scalar w25 = p.iiwa_link_5_com_y * p.iiwa_link_5_com_y;
-      const Scalar w26 = p.iiwa_link_4_com_z * p.iiwa_link_4_com_z;
-      const Scalar w27 = p.iiwa_link_4_mass * w26;
-      const Scalar w28 = p.iiwa_link_4_com_y * p.iiwa_link_4_com_y;
-      const Scalar w29 = p.iiwa_link_4_mass + w24;
-      const Scalar w30 = p.iiwa_link_4_mass * w28;
-      const Scalar w31 = p.iiwa_link_3_com_z * p.iiwa_link_3_com_z;
-      const Scalar w32 = p.iiwa_link_3_mass * w31;
-      const Scalar w33 = p.iiwa_link_3_com_y * p.iiwa_link_3_com_y;
-      const Scalar w34 = p.iiwa_link_2_com_y * p.iiwa_link_2_com_y;
-      const Scalar w35 = p.iiwa_link_2_com_z * p.iiwa_link_2_com_z;
-      const Scalar w36 = p.iiwa_link_2_com_x * p.iiwa_link_2_com_x;
-      const Scalar w37 = w33 * p.iiwa_link_3_mass;
-      const Scalar w38 = w35 * p.iiwa_link_2_mass;
-      const Scalar w39 = w25 * p.iiwa_link_5_mass;
-      const Scalar w40 = w22 * p.iiwa_link_5_mass;
-      const Scalar w41 = w23 * p.iiwa_link_5_mass;
+      const Scalar w5 = p.iiwa_link_5_com_x * p.iiwa_link_5_mass * p.iiwa_link_5_com_z;
+      const Scalar w6 = p.iiwa_link_6_com_z * p.iiwa_link_6_com_z;
+      const Scalar w7 = p.iiwa_link_6_com_y * p.iiwa_link_6_com_y;
+      const Scalar w8 = p.iiwa_link_7_com_z * p.iiwa_link_7_com_z * p.iiwa_link_7_mass;
+      const Scalar w9 = p.iiwa_link_7_ixx + w8;
+      const Scalar w10 = Scalar(0.081) * w3;
+      const Scalar w11 = Scalar(0.081) * w2;
+      const Scalar w12 = w9 + w10 + w11;
+      const Scalar w13 = p.iiwa_link_7_iyy + w8;
+      const Scalar w14 = w13 + w10 + w11;
+      const Scalar w15 = p.iiwa_link_6_mass * w6;
+      const Scalar w16 = p.iiwa_link_7_izz + p.iiwa_link_6_iyy + w15;
+      const Scalar w17 = p.iiwa_link_5_com_y * p.iiwa_link_5_mass;
+      const Scalar w18 = p.iiwa_link_6_com_z * p.iiwa_link_6_mass;
+      const Scalar w19 = w18 - w17;
+      const Scalar w20 = p.iiwa_link_6_com_y * p.iiwa_link_6_com_z * p.iiwa_link_6_mass;
+      const Scalar w21 = p.iiwa_link_5_com_y * p.iiwa_link_5_mass * p.iiwa_link_5_com_z;
+      const Scalar w22 = p.iiwa_link_5_com_y * p.iiwa_link_5_com_x * p.iiwa_link_5_mass;
+      const Scalar w23 = p.iiwa_link_6_mass * w7;
+      const Scalar w24 = p.iiwa_link_6_mass + p.iiwa_link_7_mass;
+      const Scalar w25 = p.iiwa_link_5_com_z * p.iiwa_link_5_com_z;
+      const Scalar w26 = p.iiwa_link_5_com_x * p.iiwa_link_5_com_x;
+      const Scalar w27 = w24 + p.iiwa_link_5_mass;
+      const Scalar w28 = p.iiwa_link_5_com_y * p.iiwa_link_5_com_y;
+      const Scalar w29 = p.iiwa_link_3_com_y * p.iiwa_link_3_com_z * p.iiwa_link_3_mass;
+      const Scalar w30 = p.iiwa_link_4_com_z * p.iiwa_link_4_com_z;
+      const Scalar w31 = p.iiwa_link_4_mass * w30;
+      const Scalar w32 = p.iiwa_link_4_com_y * p.iiwa_link_4_com_y;
+      const Scalar w33 = p.iiwa_link_2_mass * p.iiwa_link_2_com_x * p.iiwa_link_2_com_y;
+      const Scalar w34 = p.iiwa_link_4_mass + w27;
+      const Scalar w35 = p.iiwa_link_4_mass * w32;
+      const Scalar w36 = p.iiwa_link_3_com_z * p.iiwa_link_3_com_z;
+      const Scalar w37 = p.iiwa_link_3_mass * w36;
+      const Scalar w38 = p.iiwa_link_3_com_y * p.iiwa_link_3_com_y;
+      const Scalar w39 = p.iiwa_link_2_com_y * p.iiwa_link_2_com_y;
+      const Scalar w40 = p.iiwa_link_2_com_z * p.iiwa_link_2_com_z;
+      const Scalar w41 = p.iiwa_link_2_com_x * p.iiwa_link_2_com_x;
+      const Scalar w42 = w38 * p.iiwa_link_3_mass;
+      const Scalar w43 = p.iiwa_link_1_com_y * p.iiwa_link_1_com_y;
+      const Scalar w44 = p.iiwa_link_2_mass * p.iiwa_link_2_com_x * p.iiwa_link_2_com_z;
+      const Scalar w45 = p.iiwa_link_2_mass * p.iiwa_link_2_com_y * p.iiwa_link_2_com_z;
+      const Scalar w46 = w40 * p.iiwa_link_2_mass;
+      const Scalar w47 = w41 * p.iiwa_link_2_mass;
+      const Scalar w48 = w28 * p.iiwa_link_5_mass;
+      const Scalar w49 = w25 * p.iiwa_link_5_mass;
+      const Scalar w50 = w26 * p.iiwa_link_5_mass;
+      const Scalar w51 = w39 * p.iiwa_link_2_mass;
+      const Scalar w52 = p.iiwa_link_1_com_z * p.iiwa_link_1_com_z;
       k0 = w3 + w4;
       k1 = -w1;
-      k2 = w11 - w13;
-      k3 = w11;
-      k4 = p.iiwa_link_6_ixx + p.iiwa_link_6_mass * (w5 + w6);
-      k5 = -w15;
-      k6 = p.iiwa_link_5_com_x * p.iiwa_link_5_mass * p.iiwa_link_5_com_z;
-      k7 = p.iiwa_link_6_com_y * p.iiwa_link_6_com_z * p.iiwa_link_6_mass;
-      k8 = Scalar(0.2155) * w17;
-      k9 = -w19;
-      k10 = w18 * Scalar(0.1845);
+      k2 = w12 - w14;
+      k3 = w12;
+      k4 = p.iiwa_link_6_ixx + p.iiwa_link_6_mass * (w6 + w7);
+      k5 = -w16;
+      k6 = w5;
+      k7 = w20;
+      k8 = Scalar(0.2155) * w18;
+      k9 = -w21;
+      k10 = w19 * Scalar(0.1845);
       k11 = -w0;
-      k12 = p.iiwa_link_5_com_y * p.iiwa_link_5_com_x * p.iiwa_link_5_mass;
-      k13 = w13;
-      k14 = p.iiwa_link_6_izz + w20;
-      k15 = Scalar(0.2155) * w21;
-      k16 = (w22 + w23) * p.iiwa_link_5_mass + p.iiwa_link_5_iyy;
+      k12 = w22;
+      k13 = w14;
+      k14 = p.iiwa_link_6_izz + w23;
+      k15 = Scalar(0.2155) * w24;
+      k16 = (w25 + w26) * p.iiwa_link_5_mass + p.iiwa_link_5_iyy;
       k17 = p.iiwa_link_5_mass * p.iiwa_link_5_com_z;
-      k18 = w24 * Scalar(0.1845);
-      k19 = (w22 + w25) * p.iiwa_link_5_mass + p.iiwa_link_5_ixx;
-      k20 = w18;
+      k18 = w27 * Scalar(0.1845);
+      k19 = (w25 + w28) * p.iiwa_link_5_mass + p.iiwa_link_5_ixx;
+      k20 = w19;
       k21 = p.iiwa_link_4_mass * p.iiwa_link_4_com_z;
-      k22 = p.iiwa_link_3_com_y * p.iiwa_link_3_com_z * p.iiwa_link_3_mass;
+      k22 = w29;
       k23 = p.iiwa_link_3_com_y * p.iiwa_link_3_mass;
       k24 = p.iiwa_link_4_mass * p.iiwa_link_4_com_y;
-      k25 = w15;
-      k26 = (w23 + w25) * p.iiwa_link_5_mass + p.iiwa_link_5_izz;
-      k27 = p.iiwa_link_4_iyy + w27;
-      k28 = p.iiwa_link_4_mass * (w28 + w26) + p.iiwa_link_4_ixx;
-      k29 = p.iiwa_link_2_mass * p.iiwa_link_2_com_x * p.iiwa_link_2_com_y;
-      k30 = Scalar(0.2155) * w29;
+      k25 = w16;
+      k26 = (w26 + w28) * p.iiwa_link_5_mass + p.iiwa_link_5_izz;
+      k27 = p.iiwa_link_4_iyy + w31;
+      k28 = p.iiwa_link_4_mass * (w32 + w30) + p.iiwa_link_4_ixx;
+      k29 = w33;
+      k30 = Scalar(0.2155) * w34;
       k31 = p.iiwa_link_3_com_z * p.iiwa_link_3_mass;
-      k32 = (p.iiwa_link_3_mass + w29) * Scalar(0.2045);
-      k33 = p.iiwa_link_4_izz + w30;
-      k34 = p.iiwa_link_3_iyy + w32;
-      k35 = p.iiwa_link_3_mass * (w33 + w31) + p.iiwa_link_3_ixx;
-      k36 = p.iiwa_link_2_ixx + p.iiwa_link_2_mass * (w34 + w35);
-      k37 = w37 + p.iiwa_link_3_izz;
-      k38 = p.iiwa_link_2_iyy + (w36 + w35) * p.iiwa_link_2_mass;
-      k39 = p.iiwa_link_1_izz + p.iiwa_link_1_mass * p.iiwa_link_1_com_y * p.iiwa_link_1_com_y;
-      k40 = p.iiwa_link_2_mass * p.iiwa_link_2_com_x * p.iiwa_link_2_com_z;
-      k41 = p.iiwa_link_2_mass * p.iiwa_link_2_com_y * p.iiwa_link_2_com_z;
-      k42 = p.iiwa_link_2_mass * (w36 + w34) + p.iiwa_link_2_izz;
-      k43 = p.iiwa_link_2_iyy + w38 + w36 * p.iiwa_link_2_mass;
+      k32 = (p.iiwa_link_3_mass + w34) * Scalar(0.2045);
+      k33 = p.iiwa_link_4_izz + w35;
+      k34 = p.iiwa_link_3_iyy + w37;
+      k35 = p.iiwa_link_3_mass * (w38 + w36) + p.iiwa_link_3_ixx;
+      k36 = p.iiwa_link_2_ixx + p.iiwa_link_2_mass * (w39 + w40);
+      k37 = w42 + p.iiwa_link_3_izz;
+      k38 = p.iiwa_link_2_iyy + (w41 + w40) * p.iiwa_link_2_mass;
+      k39 = p.iiwa_link_1_izz + p.iiwa_link_1_mass * w43;
+      k40 = w44;
+      k41 = w45;
+      k42 = p.iiwa_link_2_mass * (w41 + w39) + p.iiwa_link_2_izz;
+      k43 = p.iiwa_link_2_iyy + w46 + w47;
       k44 = p.iiwa_link_2_mass * p.iiwa_link_2_com_z;
-      k45 = w19;
-      k46 = w39 + w40 + p.iiwa_link_5_ixx;
-      k47 = w8;
-      k48 = w12;
-      k49 = p.iiwa_link_6_iyy + w14;
-      k50 = w17;
-      k51 = w16;
+      k45 = w21;
+      k46 = w48 + w49 + p.iiwa_link_5_ixx;
+      k47 = w9;
+      k48 = w13;
+      k49 = p.iiwa_link_6_iyy + w15;
+      k50 = w18;
+      k51 = w17;
       k52 = w4;
       k53 = w2;
-      k54 = w20 + p.iiwa_link_6_ixx + w14;
+      k54 = w23 + p.iiwa_link_6_ixx + w15;
       k55 = w1;
-      k56 = p.iiwa_link_4_ixx + w27 + w30;
+      k56 = p.iiwa_link_4_ixx + w31 + w35;
       k57 = w0;
-      k58 = w40 + w41 + p.iiwa_link_5_iyy;
-      k59 = w39 + w41 + p.iiwa_link_5_izz;
-      k60 = w37 + w32 + p.iiwa_link_3_ixx;
-      k61 = w38 + w34 * p.iiwa_link_2_mass + p.iiwa_link_2_ixx;
+      k58 = w49 + w50 + p.iiwa_link_5_iyy;
+      k59 = w48 + w50 + p.iiwa_link_5_izz;
+      k60 = w42 + w37 + p.iiwa_link_3_ixx;
+      k61 = w46 + w51 + p.iiwa_link_2_ixx;
       k62 = p.iiwa_link_2_mass * p.iiwa_link_2_com_x;
       k63 = p.iiwa_link_2_mass * p.iiwa_link_2_com_y;
       k64 = Scalar(0.5) * p.iiwa_link_2_mass;
@@ -231,6 +251,19 @@ struct Model {
       k76 = p.g * p.iiwa_link_3_mass;
       k77 = p.g * (p.iiwa_link_1_com_z + Scalar(0.1575)) * p.iiwa_link_1_mass;
       k78 = Scalar(1) / p.iiwa_link_7_izz;
+      k79 = w51 + w47 + p.iiwa_link_2_izz;
+      k80 = p.iiwa_link_1_mass * p.iiwa_link_1_com_y;
+      k81 = p.iiwa_link_1_com_z * p.iiwa_link_1_mass;
+      k82 = p.iiwa_link_1_mass * (w52 + w43) + p.iiwa_link_1_ixx;
+      k83 = p.iiwa_link_1_iyy + w52 * p.iiwa_link_1_mass;
+      k84 = -(p.iiwa_link_1_com_z * p.iiwa_link_1_mass * p.iiwa_link_1_com_y);
+      k85 = -w33;
+      k86 = -w44;
+      k87 = -w45;
+      k88 = -w29;
+      k89 = -w22;
+      k90 = -w5;
+      k91 = -w20;
     }
     /// The parameters these constants were computed from.
     const Parameters<Scalar>& parameters() const noexcept { return p; }
@@ -245,15 +278,19 @@ struct Model {
     Scalar k40, k41, k42, k43, k44, k45, k46, k47, k48, k49;
     Scalar k50, k51, k52, k53, k54, k55, k56, k57, k58, k59;
     Scalar k60, k61, k62, k63, k64, k65, k66, k67, k68, k69;
-    Scalar k70, k71, k72, k73, k74, k75, k76, k77, k78;
+    Scalar k70, k71, k72, k73, k74, k75, k76, k77, k78, k79;
+    Scalar k80, k81, k82, k83, k84, k85, k86, k87, k88, k89;
+    Scalar k90, k91;
   };
 
   /// M(q, t), symmetric positive (semi)definite
-  template <class Scalar>
-  static void mass_matrix([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] MassMatrix<Scalar>& M) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class Out0>
+  static void mass_matrix([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Constants<typename DerivedQ::Scalar>& c, Out0&& M) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(nq, nq), "M: expected nq x nq");
+    eigen_assert(q.size() == nq && M.rows() == nq && M.cols() == nq);
+    using std::sin; using std::cos;
     const Scalar w0 = cos(q(3));
     const Scalar w1 = sin(q(4));
     const Scalar w2 = sin(q(5));
@@ -403,17 +440,21 @@ struct Model {
   /// M(q, t), symmetric positive (semi)definite
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static void mass_matrix([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] MassMatrix<Scalar>& M) noexcept {
-    mass_matrix(t, q, Constants<Scalar>(p), M);
+  template <class DerivedQ, class Out0>
+  static void mass_matrix(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& M) noexcept {
+    mass_matrix(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(M));
   }
 
   /// F(q, qd, t, u): everything of Lagrange's equations except M qdd
-  template <class Scalar>
-  static void forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] Vector<Scalar>& F) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class DerivedQd, class DerivedU, class Out0>
+  static void forcing([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedU>& u, const Constants<typename DerivedQ::Scalar>& c, Out0&& F) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<DerivedU>(nu, 1), "u: expected a column of nu entries");
+    static_assert(fits<std::decay_t<Out0>>(nq, 1), "F: expected nq x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && u.size() == nu && F.rows() == nq && F.cols() == 1);
+    using std::sin; using std::cos;
     const Scalar w0 = cos(q(1));
     const Scalar w1 = sin(q(1));
     const Scalar w2 = w1 * qd(0);
@@ -554,17 +595,22 @@ struct Model {
   /// F(q, qd, t, u): everything of Lagrange's equations except M qdd
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static void forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] Vector<Scalar>& F) noexcept {
-    forcing(t, q, qd, u, Constants<Scalar>(p), F);
+  template <class DerivedQ, class DerivedQd, class DerivedU, class Out0>
+  static void forcing(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedU>& u, const Parameters<typename DerivedQ::Scalar>& p, Out0&& F) noexcept {
+    forcing(t, q, qd, u, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(F));
   }
 
   /// M and F together, sharing their common subexpressions
-  template <class Scalar>
-  static void mass_matrix_and_forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] MassMatrix<Scalar>& M, [[maybe_unused]] Vector<Scalar>& F) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class DerivedQd, class DerivedU, class Out0, class Out1>
+  static void mass_matrix_and_forcing([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedU>& u, const Constants<typename DerivedQ::Scalar>& c, Out0&& M, Out1&& F) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<DerivedU>(nu, 1), "u: expected a column of nu entries");
+    static_assert(fits<std::decay_t<Out0>>(nq, nq), "M: expected nq x nq");
+    static_assert(fits<std::decay_t<Out1>>(nq, 1), "F: expected nq x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && u.size() == nu && M.rows() == nq && M.cols() == nq && F.rows() == nq && F.cols() == 1);
+    using std::sin; using std::cos;
     const Scalar w0 = cos(q(3));
     const Scalar w1 = sin(q(4));
     const Scalar w2 = sin(q(5));
@@ -838,81 +884,84 @@ struct Model {
   /// M and F together, sharing their common subexpressions
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static void mass_matrix_and_forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] MassMatrix<Scalar>& M, [[maybe_unused]] Vector<Scalar>& F) noexcept {
-    mass_matrix_and_forcing(t, q, qd, u, Constants<Scalar>(p), M, F);
+  template <class DerivedQ, class DerivedQd, class DerivedU, class Out0, class Out1>
+  static void mass_matrix_and_forcing(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedU>& u, const Parameters<typename DerivedQ::Scalar>& p, Out0&& M, Out1&& F) noexcept {
+    mass_matrix_and_forcing(t, q, qd, u, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(M), std::forward<Out1>(F));
   }
 
   /// Xi(q, t) of the Pfaffian constraints Xi qd + Xi_t = 0
-  template <class Scalar>
-  static void constraint_jacobian([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] ConstraintJacobian<Scalar>& Xi) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class Out0>
+  static void constraint_jacobian([[maybe_unused]] const typename DerivedQ::Scalar& t, [[maybe_unused]] const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, [[maybe_unused]] Out0&& Xi) noexcept {
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(nc, nq), "Xi: expected nc x nq");
+    eigen_assert(q.size() == nq && Xi.rows() == nc && Xi.cols() == nq);
   }
 
   /// Xi(q, t) of the Pfaffian constraints Xi qd + Xi_t = 0
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static void constraint_jacobian([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintJacobian<Scalar>& Xi) noexcept {
-    constraint_jacobian(t, q, Constants<Scalar>(p), Xi);
+  template <class DerivedQ, class Out0>
+  static void constraint_jacobian(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& Xi) noexcept {
+    constraint_jacobian(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(Xi));
   }
 
   /// Xi_t(q, t)
-  template <class Scalar>
-  static void constraint_rate_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] ConstraintVector<Scalar>& Xi_t) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class Out0>
+  static void constraint_rate_term([[maybe_unused]] const typename DerivedQ::Scalar& t, [[maybe_unused]] const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, [[maybe_unused]] Out0&& Xi_t) noexcept {
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(nc, 1), "Xi_t: expected nc x 1");
+    eigen_assert(q.size() == nq && Xi_t.rows() == nc && Xi_t.cols() == 1);
   }
 
   /// Xi_t(q, t)
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static void constraint_rate_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintVector<Scalar>& Xi_t) noexcept {
-    constraint_rate_term(t, q, Constants<Scalar>(p), Xi_t);
+  template <class DerivedQ, class Out0>
+  static void constraint_rate_term(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& Xi_t) noexcept {
+    constraint_rate_term(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(Xi_t));
   }
 
   /// dXi/dt qd + dXi_t/dt, so that Xi qdd + b = 0
-  template <class Scalar>
-  static void constraint_acceleration_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] ConstraintVector<Scalar>& b) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void constraint_acceleration_term([[maybe_unused]] const typename DerivedQ::Scalar& t, [[maybe_unused]] const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Eigen::MatrixBase<DerivedQd>& qd, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, [[maybe_unused]] Out0&& b) noexcept {
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(nc, 1), "b: expected nc x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && b.rows() == nc && b.cols() == 1);
   }
 
   /// dXi/dt qd + dXi_t/dt, so that Xi qdd + b = 0
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static void constraint_acceleration_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintVector<Scalar>& b) noexcept {
-    constraint_acceleration_term(t, q, qd, Constants<Scalar>(p), b);
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void constraint_acceleration_term(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Parameters<typename DerivedQ::Scalar>& p, Out0&& b) noexcept {
+    constraint_acceleration_term(t, q, qd, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(b));
   }
 
   /// phi(q, t) of the holonomic constraints
-  template <class Scalar>
-  static void holonomic_residuals([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] HolonomicVector<Scalar>& phi) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class Out0>
+  static void holonomic_residuals([[maybe_unused]] const typename DerivedQ::Scalar& t, [[maybe_unused]] const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, [[maybe_unused]] Out0&& phi) noexcept {
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(nh, 1), "phi: expected nh x 1");
+    eigen_assert(q.size() == nq && phi.rows() == nh && phi.cols() == 1);
   }
 
   /// phi(q, t) of the holonomic constraints
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static void holonomic_residuals([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] HolonomicVector<Scalar>& phi) noexcept {
-    holonomic_residuals(t, q, Constants<Scalar>(p), phi);
+  template <class DerivedQ, class Out0>
+  static void holonomic_residuals(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& phi) noexcept {
+    holonomic_residuals(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(phi));
   }
 
   /// T(q, qd, t)
-  template <class Scalar>
-  static Scalar kinetic_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Constants<Scalar>& c) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class DerivedQd>
+  static typename DerivedQ::Scalar kinetic_energy([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Constants<typename DerivedQ::Scalar>& c) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    eigen_assert(q.size() == nq && qd.size() == nq);
+    using std::sin; using std::cos;
     Scalar T = Scalar(0);
     const Scalar w0 = cos(q(3));
     const Scalar w1 = cos(q(1));
@@ -1018,17 +1067,18 @@ struct Model {
   /// T(q, qd, t)
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static Scalar kinetic_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Parameters<Scalar>& p) noexcept {
-    return kinetic_energy(t, q, qd, Constants<Scalar>(p));
+  template <class DerivedQ, class DerivedQd>
+  static typename DerivedQ::Scalar kinetic_energy(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Parameters<typename DerivedQ::Scalar>& p) noexcept {
+    return kinetic_energy(t, q, qd, Constants<typename DerivedQ::Scalar>(p));
   }
 
   /// V(q, t)
-  template <class Scalar>
-  static Scalar potential_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ>
+  static typename DerivedQ::Scalar potential_energy([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Constants<typename DerivedQ::Scalar>& c) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    eigen_assert(q.size() == nq);
+    using std::sin; using std::cos;
     Scalar V = Scalar(0);
     const Scalar w0 = cos(q(3));
     const Scalar w1 = cos(q(1));
@@ -1054,17 +1104,21 @@ struct Model {
   /// V(q, t)
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static Scalar potential_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p) noexcept {
-    return potential_energy(t, q, Constants<Scalar>(p));
+  template <class DerivedQ>
+  static typename DerivedQ::Scalar potential_energy(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p) noexcept {
+    return potential_energy(t, q, Constants<typename DerivedQ::Scalar>(p));
   }
 
   /// the model's named outputs, in the order of output_names
-  template <class Scalar>
-  static void outputs([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] OutputVector<Scalar>& y) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class DerivedQd, class DerivedU, class Out0>
+  static void outputs([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, [[maybe_unused]] const Eigen::MatrixBase<DerivedU>& u, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& y) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<DerivedU>(nu, 1), "u: expected a column of nu entries");
+    static_assert(fits<std::decay_t<Out0>>(ny, 1), "y: expected ny x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && u.size() == nu && y.rows() == ny && y.cols() == 1);
+    using std::sin; using std::cos;
     const Scalar w0 = sin(q(5));
     const Scalar w1 = cos(q(3));
     const Scalar w2 = cos(q(1));
@@ -1107,9 +1161,14 @@ struct Model {
     const Scalar w39 = w31 * w29 + w30 * w28;
     const Scalar w40 = -(w33 * w29 + w34 * w30);
     const Scalar w41 = w30 * w36 + w37 * w29;
-    const Scalar w42 = -(w0 * w14 - w15 * w16);
-    const Scalar w43 = -(w22 * w16 - w0 * w21);
-    const Scalar w44 = w26 * w16 - w25 * w0;
+    const Scalar w42 = w0 * w14 - w15 * w16;
+    const Scalar w43 = -w42;
+    const Scalar w44 = w22 * w16 - w0 * w21;
+    const Scalar w45 = -w44;
+    const Scalar w46 = w26 * w16 - w25 * w0;
+    const Scalar w47 = -(qd(1) * w6 - w13 * qd(3) - w8 * w3 * qd(2) - qd(5) * w31 + w42 * qd(6) - w15 * qd(4));
+    const Scalar w48 = qd(1) * w3 + qd(3) * w20 + w8 * w6 * qd(2) - w22 * qd(4) - qd(5) * w33 - w44 * qd(6);
+    const Scalar w49 = -(w8 * w5 * qd(3) - qd(6) * w46 - w2 * qd(2) - qd(0) - qd(5) * w37 - w26 * qd(4));
     y(0) = w17;
     y(1) = w23;
     y(2) = w27;
@@ -1119,37 +1178,47 @@ struct Model {
     y(6) = w39;
     y(7) = w40;
     y(8) = w41;
-    y(9) = w42;
-    y(10) = w43;
-    y(11) = w44;
-    y(12) = w17;
-    y(13) = w23;
-    y(14) = w27;
-    y(15) = w42;
-    y(16) = w43;
-    y(17) = w44;
-    y(18) = w39;
-    y(19) = w40;
-    y(20) = w41;
-    y(21) = -w32;
-    y(22) = w35;
-    y(23) = -w38;
+    y(9) = w43;
+    y(10) = w45;
+    y(11) = w46;
+    y(12) = w47;
+    y(13) = w48;
+    y(14) = w49;
+    y(15) = w17;
+    y(16) = w23;
+    y(17) = w27;
+    y(18) = w43;
+    y(19) = w45;
+    y(20) = w46;
+    y(21) = w39;
+    y(22) = w40;
+    y(23) = w41;
+    y(24) = -w32;
+    y(25) = w35;
+    y(26) = -w38;
+    y(27) = w47;
+    y(28) = w48;
+    y(29) = w49;
   }
 
   /// the model's named outputs, in the order of output_names
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static void outputs([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] OutputVector<Scalar>& y) noexcept {
-    outputs(t, q, qd, u, Constants<Scalar>(p), y);
+  template <class DerivedQ, class DerivedQd, class DerivedU, class Out0>
+  static void outputs(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedU>& u, const Parameters<typename DerivedQ::Scalar>& p, Out0&& y) noexcept {
+    outputs(t, q, qd, u, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(y));
   }
 
   /// qdd of M qdd = F by the composite-body M and F and M's LDL^T factors; false if M is not positive definite (a pivot is not positive) or qdd is not finite
-  template <class Scalar>
-  static bool forward_dynamics([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] Vector<Scalar>& qdd) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class DerivedQd, class DerivedU, class Out0>
+  static bool forward_dynamics([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedU>& u, const Constants<typename DerivedQ::Scalar>& c, Out0&& qdd) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<DerivedU>(nu, 1), "u: expected a column of nu entries");
+    static_assert(fits<std::decay_t<Out0>>(nq, 1), "qdd: expected nq x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && u.size() == nu && qdd.rows() == nq && qdd.cols() == 1);
+    using std::sin; using std::cos;
     Eigen::Matrix<Scalar, 7, 1> pivot;
     const Scalar w0 = sin(q(6));
     const Scalar w1 = c.k2 * w0 * w0;
@@ -1442,9 +1511,3478 @@ struct Model {
   /// qdd of M qdd = F by the composite-body M and F and M's LDL^T factors; false if M is not positive definite (a pivot is not positive) or qdd is not finite
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static bool forward_dynamics([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] Vector<Scalar>& qdd) noexcept {
-    return forward_dynamics(t, q, qd, u, Constants<Scalar>(p), qdd);
+  template <class DerivedQ, class DerivedQd, class DerivedU, class Out0>
+  static bool forward_dynamics(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedU>& u, const Parameters<typename DerivedQ::Scalar>& p, Out0&& qdd) noexcept {
+    return forward_dynamics(t, q, qd, u, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(qdd));
+  }
+
+  /// tau = M qdd - F: the generalized forces to add to produce qdd, by the Newton-Euler recursion
+  template <class DerivedQ, class DerivedQd, class DerivedQdd, class DerivedU, class Out0>
+  static void inverse_dynamics([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedQdd>& qdd, const Eigen::MatrixBase<DerivedU>& u, const Constants<typename DerivedQ::Scalar>& c, Out0&& tau) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<DerivedQdd>(nq, 1), "qdd: expected a column of nq entries");
+    static_assert(fits<DerivedU>(nu, 1), "u: expected a column of nu entries");
+    static_assert(fits<std::decay_t<Out0>>(nq, 1), "tau: expected nq x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && qdd.size() == nq && u.size() == nu && tau.rows() == nq && tau.cols() == 1);
+    using std::sin; using std::cos;
+    const Scalar w0 = sin(q(1));
+    const Scalar w1 = w0 * qd(0);
+    const Scalar w2 = cos(q(1));
+    const Scalar w3 = w2 * qd(0);
+    const Scalar w4 = w1 * c.k40 + w3 * c.k41 - qd(1) * c.k42;
+    const Scalar w5 = sin(q(3));
+    const Scalar w6 = cos(q(3));
+    const Scalar w7 = sin(q(2));
+    const Scalar w8 = cos(q(2));
+    const Scalar w9 = qd(1) * w7 - w1 * w8;
+    const Scalar w10 = w3 + qd(2);
+    const Scalar w11 = w6 * w9 + w10 * w5;
+    const Scalar w12 = w11 * c.p.iiwa_link_4_com_y;
+    const Scalar w13 = w1 * w7 + qd(1) * w8;
+    const Scalar w14 = w13 - qd(3);
+    const Scalar w15 = w6 * w10 - w5 * w9;
+    const Scalar w16 = c.p.iiwa_link_4_com_y * w14 + w15 * c.p.iiwa_link_4_com_z;
+    const Scalar w17 = qd(1) * w3 + qdd(0) * w0;
+    const Scalar w18 = w17 * w8 - qdd(1) * w7;
+    const Scalar w19 = w13 * qd(2) - w18;
+    const Scalar w20 = qd(1) * w1 - qdd(0) * w2;
+    const Scalar w21 = qdd(2) - w20;
+    const Scalar w22 = w15 * qd(3) + w6 * w19 + w21 * w5;
+    const Scalar w23 = c.p.g * w2;
+    const Scalar w24 = w13 * w13;
+    const Scalar w25 = w9 * w9;
+    const Scalar w26 = w24 * Scalar(0.2045) + w25 * Scalar(0.2045) - w23;
+    const Scalar w27 = Scalar(0.2155) * w25 + w24 * Scalar(0.2155);
+    const Scalar w28 = Scalar(0.2155) * w10 * w9;
+    const Scalar w29 = c.p.g * w0;
+    const Scalar w30 = w17 * w7 + qdd(1) * w8;
+    const Scalar w31 = w29 * w8 - w30 * Scalar(0.2045) - w3 * Scalar(0.2045) * w9;
+    const Scalar w32 = w30 - w9 * qd(2);
+    const Scalar w33 = w31 - Scalar(0.2155) * w32;
+    const Scalar w34 = w6 * w26 + w6 * w27 + w28 * w5 - w33 * w5;
+    const Scalar w35 = sin(q(4));
+    const Scalar w36 = cos(q(4));
+    const Scalar w37 = w36 * w14 - w11 * w35;
+    const Scalar w38 = w37 * w37;
+    const Scalar w39 = w11 * w36 + w35 * w14;
+    const Scalar w40 = w39 * w39;
+    const Scalar w41 = w34 + w38 * Scalar(0.1845) + w40 * Scalar(0.1845);
+    const Scalar w42 = sin(q(5));
+    const Scalar w43 = w15 + qd(4);
+    const Scalar w44 = cos(q(5));
+    const Scalar w45 = w42 * w43 - w39 * w44;
+    const Scalar w46 = c.p.iiwa_link_6_com_y * w45;
+    const Scalar w47 = qd(5) + w37;
+    const Scalar w48 = w43 * w44 + w39 * w42;
+    const Scalar w49 = c.p.iiwa_link_6_com_z * w48 - c.p.iiwa_link_6_com_y * w47;
+    const Scalar w50 = qdd(3) - w32;
+    const Scalar w51 = w36 * w50 + w35 * w22;
+    const Scalar w52 = w51 + w39 * qd(4);
+    const Scalar w53 = w26 * w5 + w5 * w27 - w6 * w28 + w6 * w33;
+    const Scalar w54 = w18 * Scalar(0.2045) + w13 * w3 * Scalar(0.2045) + w29 * w7;
+    const Scalar w55 = Scalar(0.2155) * w19 - w54 - Scalar(0.2155) * w13 * w10;
+    const Scalar w56 = w51 * Scalar(0.1845) + w36 * w53 + w35 * w55 - w15 * w39 * Scalar(0.1845);
+    const Scalar w57 = Scalar(0.2155) * w52 + w56;
+    const Scalar w58 = Scalar(0.2155) * w39 * w43;
+    const Scalar w59 = w40 * Scalar(0.2155) + Scalar(0.2155) * w38;
+    const Scalar w60 = w41 * w44 + w42 * w57 + w59 * w44 - w58 * w42;
+    const Scalar w61 = cos(q(6));
+    const Scalar w62 = sin(q(6));
+    const Scalar w63 = w47 * w61 + w62 * w45;
+    const Scalar w64 = w45 * w61 - w62 * w47;
+    const Scalar w65 = c.p.iiwa_link_7_com_z * w64;
+    const Scalar w66 = c.p.iiwa_link_7_com_z * w63;
+    const Scalar w67 = w36 * w22 - w35 * w50;
+    const Scalar w68 = w37 * qd(4) + w67;
+    const Scalar w69 = w11 * qd(3) + w5 * w19 - w6 * w21;
+    const Scalar w70 = w69 - qdd(4);
+    const Scalar w71 = qd(5) * w48 - (w68 * w44 + w42 * w70);
+    const Scalar w72 = c.p.iiwa_link_6_mass * (w49 * w47 - w45 * w46) - c.p.iiwa_link_6_mass * w60 - ((w63 * w63 * Scalar(0.081) + Scalar(0.081) * w64 * w64 + w60) * c.p.iiwa_link_7_mass + (w65 * w64 + w66 * w63) * c.p.iiwa_link_7_mass) - w71 * c.k50;
+    const Scalar w73 = w70 * w44 - w68 * w42 + qd(5) * w45;
+    const Scalar w74 = c.p.iiwa_link_6_com_z * w45;
+    const Scalar w75 = qd(6) + w48;
+    const Scalar w76 = w52 - qdd(5);
+    const Scalar w77 = w71 * w62 - w76 * w61;
+    const Scalar w78 = w57 * w44 - (w59 * w42 + w58 * w44) - w42 * w41;
+    const Scalar w79 = w36 * w55 + w67 * Scalar(0.1845) - w15 * w37 * Scalar(0.1845) - w35 * w53;
+    const Scalar w80 = Scalar(0.2155) * w37 * w43 - (w79 + w68 * Scalar(0.2155));
+    const Scalar w81 = w77 * Scalar(0.081) - w78 * w61 - Scalar(0.081) * w48 * w64 + w62 * w80;
+    const Scalar w82 = w77 + qd(6) * w64;
+    const Scalar w83 = w81 * c.p.iiwa_link_7_mass - w75 * w65 * c.p.iiwa_link_7_mass + c.k53 * w82;
+    const Scalar w84 = w62 * w76 + w71 * w61;
+    const Scalar w85 = w63 * qd(6) - w84;
+    const Scalar w86 = w62 * w78 + w84 * Scalar(0.081) + Scalar(0.081) * w63 * w48 + w80 * w61;
+    const Scalar w87 = w86 * c.p.iiwa_link_7_mass - w85 * c.k53 + w75 * w66 * c.p.iiwa_link_7_mass;
+    const Scalar w88 = c.k50 * w73 - c.p.iiwa_link_6_mass * (w48 * w46 + w74 * w47) + w61 * w83 - c.k52 * w76 - c.p.iiwa_link_6_mass * w78 - w62 * w87;
+    const Scalar w89 = w39 * c.p.iiwa_link_5_com_z + c.p.iiwa_link_5_com_x * w43;
+    const Scalar w90 = c.p.iiwa_link_5_com_y * w43 + w37 * c.p.iiwa_link_5_com_z;
+    const Scalar w91 = w72 * w42 + w88 * w44;
+    const Scalar w92 = c.p.iiwa_link_5_com_x * w37 - c.p.iiwa_link_5_com_y * w39;
+    const Scalar w93 = c.p.iiwa_link_5_mass * w56 - w91 - (w92 * w37 + w89 * w43) * c.p.iiwa_link_5_mass + c.k17 * w52 + c.k51 * w70;
+    const Scalar w94 = w11 * c.p.iiwa_link_4_com_z;
+    const Scalar w95 = w87 * w61 + w71 * c.k52 + w62 * w83 + c.p.iiwa_link_6_mass * w80 - c.p.iiwa_link_6_mass * (w49 * w48 + w74 * w45);
+    const Scalar w96 = c.k55 * w70 - (w39 * w92 - w90 * w43) * c.p.iiwa_link_5_mass - w68 * c.k17 + w95 - w79 * c.p.iiwa_link_5_mass;
+    const Scalar w97 = w6 * (w36 * w93 + c.k21 * w69 + c.k24 * w50 + c.p.iiwa_link_4_mass * w53 - c.p.iiwa_link_4_mass * (w15 * w12 - w94 * w14) + w35 * w96) - w5 * (c.p.iiwa_link_4_mass * (w11 * w12 + w14 * w16) + c.k21 * w22 + c.p.iiwa_link_4_mass * w34 - (w72 * w44 - w42 * w88 - c.p.iiwa_link_5_mass * w41 - c.k55 * w52 - w68 * c.k51 - c.p.iiwa_link_5_mass * (w39 * w89 + w37 * w90)));
+    const Scalar w98 = w11 * c.k28;
+    const Scalar w99 = c.k27 * w15 + c.k57 * w14;
+    const Scalar w100 = c.k19 * w39 + c.k6 * w43 - c.k12 * w37;
+    const Scalar w101 = c.k48 * w63;
+    const Scalar w102 = w75 * c.p.iiwa_link_7_izz;
+    const Scalar w103 = Scalar(0.081) * w87 + w75 * w101 + c.k53 * w86 - w85 * c.k47 - w63 * w102;
+    const Scalar w104 = c.k47 * w64;
+    const Scalar w105 = Scalar(0.081) * w83 + c.k48 * w82 - w75 * w104 + w102 * w64 + w81 * c.k53;
+    const Scalar w106 = c.k49 * w48 - c.k7 * w47;
+    const Scalar w107 = w45 * c.k4;
+    const Scalar w108 = c.k14 * w76 - c.k7 * w73 + w62 * w103 - w61 * w105 - w106 * w45 + c.k52 * w78 + w48 * w107;
+    const Scalar w109 = w43 * c.k26 + c.k6 * w39 + c.k45 * w37;
+    const Scalar w110 = Scalar(0.1845) * w93 + c.k45 * w70 - w91 * Scalar(0.2155) - w100 * w43 + w108 + w52 * c.k58 + w39 * w109 + w68 * c.k12 + c.k55 * w41 + c.k17 * w56;
+    const Scalar w111 = c.k7 * w48 - c.k14 * w47;
+    const Scalar w112 = w71 * c.k54 - w106 * w47 - w111 * w48 + c.k50 * w60 + w103 * w61 + c.k52 * w80 + w62 * w105;
+    const Scalar w113 = c.k45 * w43 - c.k12 * w39 + c.k16 * w37;
+    const Scalar w114 = (qdd(6) - w73) * c.p.iiwa_link_7_izz + w104 * w63 - w101 * w64;
+    const Scalar w115 = c.k7 * w76 + w107 * w47 + w114 + w111 * w45 - c.k49 * w73 + c.k50 * w78;
+    const Scalar w116 = w112 * w44 - c.k12 * w52 + w113 * w43 - w79 * c.k17 + Scalar(0.2155) * w95 - w37 * w109 - w68 * c.k46 - w42 * w115 + c.k6 * w70 - c.k51 * w41 + w96 * Scalar(0.1845);
+    const Scalar w117 = w15 * w98 - c.k24 * w53 - c.k33 * w50 - w11 * w99 - w36 * w110 - c.k57 * w69 - w35 * w116;
+    const Scalar w118 = c.k35 * w9;
+    const Scalar w119 = c.k22 * w13 - c.k37 * w10;
+    const Scalar w120 = c.p.iiwa_link_3_com_y * w9;
+    const Scalar w121 = Scalar(0.2155) * w97 + c.k22 * w21 + w31 * c.k31 - w117 - c.k34 * w32 - w118 * w10 - w119 * w9 + (c.k23 * w21 + w31 * c.p.iiwa_link_3_mass - c.p.iiwa_link_3_mass * (c.p.iiwa_link_3_com_z * w9 * w10 + w13 * w120) - c.k31 * w32 + w97) * Scalar(0.2045);
+    const Scalar w122 = w1 * c.k29 + qd(1) * c.k41 - w3 * c.k38;
+    const Scalar w123 = c.k34 * w13 - c.k22 * w10;
+    const Scalar w124 = w96 * w36 - c.k24 * w22 - c.p.iiwa_link_4_mass * w55 + c.p.iiwa_link_4_mass * (w11 * w94 + w15 * w16) - w35 * w93;
+    const Scalar w125 = c.k57 * w15 + w14 * c.k33;
+    const Scalar w126 = c.k56 * w22 + w35 * w110 + w99 * w14 + c.k24 * w55 - w15 * w125 + c.k21 * w34 - w36 * w116;
+    const Scalar w127 = w112 * w42 + w44 * w115 - c.k51 * w56 - c.k59 * w70 + w79 * c.k55 - w100 * w37 - c.k45 * w52 + w39 * w113 + w68 * c.k6;
+    const Scalar w128 = c.k57 * w50 - w11 * w125 + c.k27 * w69 - w127 + c.k21 * w53 + w14 * w98;
+    const Scalar w129 = c.k31 * w54 + w123 * w10 + w13 * w119 + Scalar(0.2155) * w124 - w6 * w126 - w128 * w5 - c.k60 * w19 + c.k23 * w26 - Scalar(0.2045) * (c.k31 * w19 + c.p.iiwa_link_3_mass * (w120 * w9 - w10 * (w13 * c.p.iiwa_link_3_com_z - c.p.iiwa_link_3_com_y * w10)) - c.p.iiwa_link_3_mass * w54 - w124);
+    const Scalar w130 = w123 * w9 - w118 * w13 - c.k22 * w32 + c.k23 * w31 - w6 * w128 + w126 * w5 + c.k37 * w21;
+    const Scalar w131 = w3 * c.k29 - w1 * c.k36 + qd(1) * c.k40;
+    tau(0) = -(w0 * (w4 * w3 + w121 * w7 + qdd(1) * c.k40 - c.k29 * w20 - qd(1) * w122 - w129 * w8 + c.k44 * w23 - c.k61 * w17) - qdd(0) * c.k39 + w2 * (c.k43 * w20 - w4 * w1 - w29 * c.k44 - w130 + w17 * c.k29 + qdd(1) * c.k41 + qd(1) * w131) - (qd(0) * c.p.iiwa_joint_1_damping - u(0)));
+    tau(1) = -(w121 * w8 - c.k62 * w23 + w7 * w129 + w17 * c.k40 - c.k41 * w20 + w1 * w122 + w29 * c.k63 - w3 * w131 - qdd(1) * c.k79 - (qd(1) * c.p.iiwa_joint_2_damping - u(1)));
+    tau(2) = w130 - (u(2) - c.p.iiwa_joint_3_damping * qd(2));
+    tau(3) = -(u(3) - qd(3) * c.p.iiwa_joint_4_damping + w117);
+    tau(4) = c.p.iiwa_joint_5_damping * qd(4) - u(4) + w127;
+    tau(5) = -(w108 + u(5) - qd(5) * c.p.iiwa_joint_6_damping);
+    tau(6) = -(u(6) - c.p.iiwa_joint_7_damping * qd(6) - w114);
+  }
+
+  /// tau = M qdd - F: the generalized forces to add to produce qdd, by the Newton-Euler recursion
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class DerivedQd, class DerivedQdd, class DerivedU, class Out0>
+  static void inverse_dynamics(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedQdd>& qdd, const Eigen::MatrixBase<DerivedU>& u, const Parameters<typename DerivedQ::Scalar>& p, Out0&& tau) noexcept {
+    inverse_dynamics(t, q, qd, qdd, u, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(tau));
+  }
+
+  /// G(q) = dV/dq: the generalized forces of gravity and springs, with C qd + G = -F at zero input and no other loads
+  template <class DerivedQ, class Out0>
+  static void gravity_forces(const Eigen::MatrixBase<DerivedQ>& q, const Constants<typename DerivedQ::Scalar>& c, Out0&& G) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(nq, 1), "G: expected nq x 1");
+    eigen_assert(q.size() == nq && G.rows() == nq && G.cols() == 1);
+    using std::sin; using std::cos;
+    const Scalar w0 = sin(q(1));
+    const Scalar w1 = w0 * Scalar(0.2045);
+    const Scalar w2 = cos(q(1));
+    const Scalar w3 = sin(q(2));
+    const Scalar w4 = w2 * w3;
+    const Scalar w5 = cos(q(2));
+    const Scalar w6 = w2 * w5;
+    const Scalar w7 = sin(q(3));
+    const Scalar w8 = cos(q(3));
+    const Scalar w9 = w8 * w0 - w6 * w7;
+    const Scalar w10 = cos(q(5));
+    const Scalar w11 = sin(q(5));
+    const Scalar w12 = w0 * w7 + w8 * w6;
+    const Scalar w13 = cos(q(4));
+    const Scalar w14 = sin(q(4));
+    const Scalar w15 = w14 * w4 - w12 * w13;
+    const Scalar w16 = w9 * w10 - w11 * w15;
+    const Scalar w17 = Scalar(0.2155) * w0 + w1;
+    const Scalar w18 = w17 + w9 * Scalar(0.1845);
+    const Scalar w19 = w18 + Scalar(0.2155) * w9;
+    const Scalar w20 = w14 * w12 + w13 * w4;
+    const Scalar w21 = w0 * w3;
+    const Scalar w22 = w21 * w7;
+    const Scalar w23 = w22 * Scalar(0.4);
+    const Scalar w24 = w0 * w5;
+    const Scalar w25 = w8 * w21;
+    const Scalar w26 = w24 * w13 - w14 * w25;
+    const Scalar w27 = w24 * w14 + w13 * w25;
+    const Scalar w28 = w11 * w27 - w22 * w10;
+    const Scalar w29 = w2 * w7 - w24 * w8;
+    const Scalar w30 = w29 * Scalar(0.4);
+    const Scalar w31 = w8 * w2 + w24 * w7;
+    const Scalar w32 = w14 * w31;
+    const Scalar w33 = w13 * w31;
+    const Scalar w34 = w11 * w33 - w29 * w10;
+    const Scalar w35 = w14 * w29 - w21 * w13;
+    const Scalar w36 = w11 * w35;
+    const Scalar w37 = w14 * w21 + w13 * w29;
+    const Scalar w38 = w37 * w10 - w11 * w31;
+    G(1) = -(c.k72 * (w0 * c.p.iiwa_link_2_com_y - w2 * c.p.iiwa_link_2_com_x) - c.k76 * (c.p.iiwa_link_3_com_y * w4 - w1 - w0 * c.p.iiwa_link_3_com_z) + c.k71 * (c.p.iiwa_link_7_com_z * w16 + w19 + Scalar(0.081) * w16) + c.k75 * (w17 + w4 * c.p.iiwa_link_4_com_z + c.p.iiwa_link_4_com_y * w9) + c.k73 * (w9 * c.p.iiwa_link_5_com_z + c.p.iiwa_link_5_com_x * w15 + w18 + c.p.iiwa_link_5_com_y * w20) + c.k74 * (c.p.iiwa_link_6_com_y * w16 + w19 - c.p.iiwa_link_6_com_z * w20));
+    G(2) = -(c.k74 * (w23 - w26 * c.p.iiwa_link_6_com_z - c.p.iiwa_link_6_com_y * w28) + c.k75 * (w24 * c.p.iiwa_link_4_com_z + c.p.iiwa_link_4_com_y * w22) - c.k71 * (c.p.iiwa_link_7_com_z * w28 - (w23 - Scalar(0.081) * w28)) - c.p.iiwa_link_3_com_y * w24 * c.k76 + c.k73 * (w22 * c.p.iiwa_link_5_com_z + c.p.iiwa_link_5_com_x * w27 + w26 * c.p.iiwa_link_5_com_y + w22 * Scalar(0.1845)));
+    G(3) = -(c.k74 * (w30 + c.p.iiwa_link_6_com_z * w32 - c.p.iiwa_link_6_com_y * w34) + c.k75 * c.p.iiwa_link_4_com_y * w29 - c.k73 * (c.p.iiwa_link_5_com_y * w32 - w29 * Scalar(0.1845) - w29 * c.p.iiwa_link_5_com_z - c.p.iiwa_link_5_com_x * w33) - c.k71 * (c.p.iiwa_link_7_com_z * w34 - (w30 - Scalar(0.081) * w34)));
+    G(4) = -(c.k74 * (c.p.iiwa_link_6_com_y * w36 + c.p.iiwa_link_6_com_z * w37) - c.k73 * (c.p.iiwa_link_5_com_x * w35 + c.p.iiwa_link_5_com_y * w37) + c.k71 * (Scalar(0.081) * w36 + c.p.iiwa_link_7_com_z * w36));
+    G(5) = c.p.iiwa_link_6_com_y * w38 * c.k74 + c.k71 * (Scalar(0.081) * w38 + w38 * c.p.iiwa_link_7_com_z);
+    G(0) = Scalar(0);
+    G(6) = Scalar(0);
+  }
+
+  /// G(q) = dV/dq: the generalized forces of gravity and springs, with C qd + G = -F at zero input and no other loads
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class Out0>
+  static void gravity_forces(const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& G) noexcept {
+    gravity_forces(q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(G));
+  }
+
+  /// C(q, qd) from the Christoffel symbols of M: dM/dt - 2 C is skew-symmetric
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void coriolis_matrix(const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Constants<typename DerivedQ::Scalar>& c, Out0&& C) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(nq, nq), "C: expected nq x nq");
+    eigen_assert(q.size() == nq && qd.size() == nq && C.rows() == nq && C.cols() == nq);
+    using std::sin; using std::cos;
+    const Scalar w0 = sin(q(5));
+    const Scalar w1 = w0 * c.k0;
+    const Scalar w2 = sin(q(6));
+    const Scalar w3 = w2 * w2;
+    const Scalar w4 = c.k2 * w3;
+    const Scalar w5 = c.k4 + c.k3 - w4;
+    const Scalar w6 = w5 + c.k5;
+    const Scalar w7 = cos(q(5));
+    const Scalar w8 = w6 * Scalar(2) * w0 * w7;
+    const Scalar w9 = Scalar(0.431) * w1 + w8 + w1 * Scalar(0.369);
+    const Scalar w10 = w1 * Scalar(0.8);
+    const Scalar w11 = w9 - w10;
+    const Scalar w12 = sin(q(4));
+    const Scalar w13 = w12 * w12;
+    const Scalar w14 = cos(q(4));
+    const Scalar w15 = w12 * w14;
+    const Scalar w16 = cos(q(6));
+    const Scalar w17 = c.k2 * w2 * w16;
+    const Scalar w18 = w0 * w17 + c.k7 * w7;
+    const Scalar w19 = w11 * w13 + Scalar(2) * w15 * w18;
+    const Scalar w20 = w9 - w19;
+    const Scalar w21 = w20 + w8;
+    const Scalar w22 = sin(q(3));
+    const Scalar w23 = w22 * w22;
+    const Scalar w24 = cos(q(3));
+    const Scalar w25 = w24 * w22;
+    const Scalar w26 = w17 * w7 - c.k7 * w0;
+    const Scalar w27 = w12 * w26;
+    const Scalar w28 = w0 * w0;
+    const Scalar w29 = w7 * c.k0;
+    const Scalar w30 = w29 * Scalar(0.2155);
+    const Scalar w31 = w6 * (w28 - w7 * w7) - w30;
+    const Scalar w32 = w29 * Scalar(0.1845);
+    const Scalar w33 = w31 - w32;
+    const Scalar w34 = w27 + w33 * w14;
+    const Scalar w35 = Scalar(2) * w25 * w34 - w21 * w23;
+    const Scalar w36 = w35 + w8;
+    const Scalar w37 = w29 * w14;
+    const Scalar w38 = w24 * w37 + w1 * w22;
+    const Scalar w39 = w38 * Scalar(0.2045);
+    const Scalar w40 = Scalar(0.2155) * w38;
+    const Scalar w41 = w21 * w25 + Scalar(2) * w23 * w34 - w34 + w40;
+    const Scalar w42 = w39 + w41;
+    const Scalar w43 = cos(q(2));
+    const Scalar w44 = w29 * w12;
+    const Scalar w45 = Scalar(0.2155) * w44;
+    const Scalar w46 = w14 * w26;
+    const Scalar w47 = -w46;
+    const Scalar w48 = w47 + w12 * w33;
+    const Scalar w49 = w18 - (w13 * Scalar(2) * w18 - w11 * w15);
+    const Scalar w50 = w24 * w48 - w22 * w49;
+    const Scalar w51 = w45 - w50;
+    const Scalar w52 = w44 * Scalar(0.2045);
+    const Scalar w53 = w51 + w52;
+    const Scalar w54 = sin(q(2));
+    const Scalar w55 = sin(q(1));
+    const Scalar w56 = cos(q(1));
+    const Scalar w57 = w55 * w56;
+    const Scalar w58 = w55 * w55;
+    const Scalar w59 = w24 * w49 + w48 * w22;
+    const Scalar w60 = w54 * w43;
+    const Scalar w61 = w24 * w1 - w37 * w22;
+    const Scalar w62 = w61 * Scalar(0.409);
+    const Scalar w63 = w61 * Scalar(0.431);
+    const Scalar w64 = w62 + w63 + w35 + w20;
+    const Scalar w65 = w10 + w19;
+    const Scalar w66 = w62 + w65 + w63;
+    const Scalar w67 = w66 - w64;
+    const Scalar w68 = w54 * w54;
+    const Scalar w69 = w67 * w68 - Scalar(2) * w59 * w60;
+    const Scalar w70 = w36 - (Scalar(2) * (w53 * w54 - w42 * w43) * w57 + w58 * (w69 + w64 + w36));
+    const Scalar w71 = c.k1 + w1;
+    const Scalar w72 = w0 * w7;
+    const Scalar w73 = w71 * Scalar(0.1845) - (c.k6 - (Scalar(0.2155) * w1 + w6 * w72));
+    const Scalar w74 = c.k10 + c.k8 + w18 + c.k9;
+    const Scalar w75 = w12 * w73 + w74 * w14;
+    const Scalar w76 = c.k11 + w75;
+    const Scalar w77 = c.k12 - w26;
+    const Scalar w78 = c.k14 + w4 + c.k13;
+    const Scalar w79 = w29 + c.k15;
+    const Scalar w80 = w79 * Scalar(0.2155);
+    const Scalar w81 = w79 + c.k17;
+    const Scalar w82 = c.k18 + w81;
+    const Scalar w83 = Scalar(0.1845) * w82;
+    const Scalar w84 = Scalar(0.1845) * w81;
+    const Scalar w85 = w78 + w30 + w80 + c.k16 + w83 + w84;
+    const Scalar w86 = w6 * w28;
+    const Scalar w87 = w83 + w5 - w86 + w30 + w80 + c.k19 + w84;
+    const Scalar w88 = w85 - w87;
+    const Scalar w89 = w77 - (w77 * w13 * Scalar(2) - w15 * w88);
+    const Scalar w90 = w24 * w89 - w22 * w76;
+    const Scalar w91 = w71 * w14 - c.k20 * w12;
+    const Scalar w92 = c.k24 + w82;
+    const Scalar w93 = w91 * w22 + w24 * w92;
+    const Scalar w94 = c.k30 + w93;
+    const Scalar w95 = c.k31 + w94;
+    const Scalar w96 = Scalar(0.2045) * (w95 + c.k32);
+    const Scalar w97 = Scalar(0.2155) * w94;
+    const Scalar w98 = w77 * Scalar(2) * w15 + w13 * w88;
+    const Scalar w99 = w85 - w98 + c.k33;
+    const Scalar w100 = Scalar(0.2155) * w93;
+    const Scalar w101 = w95 * Scalar(0.2045);
+    const Scalar w102 = w14 * w73 - w12 * w74;
+    const Scalar w103 = c.k26 + c.k25 + w86;
+    const Scalar w104 = w103 + c.k27;
+    const Scalar w105 = c.k28 + w87 + w98;
+    const Scalar w106 = w105 - w104;
+    const Scalar w107 = w106 * w23 - Scalar(2) * w25 * w102;
+    const Scalar w108 = w96 + c.k35 + w105 - w107 + w97 + w100 + w101;
+    const Scalar w109 = w108 - (w96 + c.k34 + w97 + w99 + w100 + w101);
+    const Scalar w110 = w107 + w104 + c.k37;
+    const Scalar w111 = w24 * w76 + w89 * w22;
+    const Scalar w112 = w71 * w12 + c.k20 * w14;
+    const Scalar w113 = c.k21 - w112;
+    const Scalar w114 = w111 - Scalar(0.2155) * w113 + c.k22 + (c.k23 - w113) * Scalar(0.2045);
+    const Scalar w115 = w24 * w91;
+    const Scalar w116 = w115 - w92 * w22;
+    const Scalar w117 = w106 * w25 + Scalar(2) * w23 * w102 - w102 - Scalar(0.2155) * w116 - w116 * Scalar(0.2045);
+    const Scalar w118 = w114 * w54 + w117 * w43;
+    const Scalar w119 = (Scalar(2) * w90 * w60 - w68 * w109 + w108 + c.k36 - (c.k38 + w110)) * Scalar(0.5) * w55 * w56 * Scalar(2) + (w58 - w56 * w56) * (w118 + c.k29);
+    const Scalar w120 = w24 * Scalar(2) * w22;
+    const Scalar w121 = w23 - w24 * w24;
+    const Scalar w122 = w120 * w106 + w121 * Scalar(2) * w102;
+    const Scalar w123 = w121 * w106 - w120 * Scalar(2) * w102 - w100;
+    const Scalar w124 = Scalar(0.2045) * w93;
+    const Scalar w125 = w124 - w123;
+    const Scalar w126 = w54 * w90;
+    const Scalar w127 = w122 - Scalar(0.431) * w116 - w116 * Scalar(0.409);
+    const Scalar w128 = Scalar(0.84) * w116;
+    const Scalar w129 = w128 + w127;
+    const Scalar w130 = -(w68 * w129 - Scalar(2) * w111 * w60);
+    const Scalar w131 = w122 - ((w125 * w43 + w126) * Scalar(2) * w57 + (w122 + w127 + w130) * w58);
+    const Scalar w132 = w13 - w14 * w14;
+    const Scalar w133 = w12 * Scalar(2) * w14;
+    const Scalar w134 = w77 * Scalar(2) * w132 - w133 * w88;
+    const Scalar w135 = Scalar(2) * w25 * w75 - w23 * w134;
+    const Scalar w136 = w24 * w112;
+    const Scalar w137 = Scalar(0.2155) * w136;
+    const Scalar w138 = w137 + w75 - (w25 * w134 + Scalar(2) * w23 * w75);
+    const Scalar w139 = Scalar(0.2045) * w136;
+    const Scalar w140 = w138 + w139;
+    const Scalar w141 = w91 * Scalar(0.2045);
+    const Scalar w142 = Scalar(0.2155) * w91;
+    const Scalar w143 = w24 * w102;
+    const Scalar w144 = w132 * w88 + w77 * Scalar(2) * w133;
+    const Scalar w145 = w144 * w22 - w143;
+    const Scalar w146 = w145 - w142;
+    const Scalar w147 = w141 - w146;
+    const Scalar w148 = w22 * w112;
+    const Scalar w149 = Scalar(0.431) * w148;
+    const Scalar w150 = Scalar(0.409) * w148;
+    const Scalar w151 = w149 - w134 + w150;
+    const Scalar w152 = w135 + w134 + w149 + w150;
+    const Scalar w153 = w151 - w152;
+    const Scalar w154 = w22 * w102;
+    const Scalar w155 = w154 + w24 * w144;
+    const Scalar w156 = w153 * w68 + w155 * Scalar(2) * w60;
+    const Scalar w157 = w135 - (Scalar(2) * (w140 * w43 + w147 * w54) * w57 + w58 * (w156 + w152 + w135));
+    const Scalar w158 = w114 * w43 - w54 * w117;
+    const Scalar w159 = Scalar(2) * w54 * w43;
+    const Scalar w160 = w68 - w43 * w43;
+    const Scalar w161 = Scalar(0.5) * w109 * w159 + w160 * w90;
+    const Scalar w162 = w158 * w57 + w58 * w161;
+    const Scalar w163 = w2 * Scalar(2) * w16 * c.k2;
+    const Scalar w164 = w163 * w28;
+    const Scalar w165 = w164 - w163;
+    const Scalar w166 = w163 - w165;
+    const Scalar w167 = (w16 * w16 - w3) * c.k2;
+    const Scalar w168 = w167 * w7;
+    const Scalar w169 = w15 * w166 + w13 * Scalar(2) * w168 - w168;
+    const Scalar w170 = w167 * w0;
+    const Scalar w171 = w163 * w72;
+    const Scalar w172 = w12 * w171 - w14 * w170;
+    const Scalar w173 = w169 * w22 - w24 * w172;
+    const Scalar w174 = w171 * w14 + w12 * w170;
+    const Scalar w175 = w13 * w166 - Scalar(2) * w15 * w168;
+    const Scalar w176 = w175 + w165;
+    const Scalar w177 = w164 + w176;
+    const Scalar w178 = w174 - (w174 * Scalar(2) * w23 - w177 * w25);
+    const Scalar w179 = w54 * w173 + w178 * w43;
+    const Scalar w180 = w163 - w175;
+    const Scalar w181 = -(w23 * w177 + w174 * Scalar(2) * w25);
+    const Scalar w182 = w176 + w181;
+    const Scalar w183 = w180 - w182;
+    const Scalar w184 = w24 * w169 + w172 * w22;
+    const Scalar w185 = w68 * w183 + Scalar(2) * w184 * w60;
+    const Scalar w186 = w164 + w181;
+    const Scalar w187 = w186 - (w58 * (w185 + w182 + w186) - Scalar(2) * w179 * w57);
+    const Scalar w188 = w137 + w75;
+    const Scalar w189 = w188 + w139;
+    const Scalar w190 = w103 * w22;
+    const Scalar w191 = w142 + w190 + w143;
+    const Scalar w192 = w141 + w191;
+    const Scalar w193 = w103 * w24 - w154;
+    const Scalar w194 = (w189 * w54 - w192 * w43) * w56 + w55 * w193;
+    const Scalar w195 = -(Scalar(0.5) * qd(4) * w194);
+    const Scalar w196 = w55 * (w155 - (w155 * w68 * Scalar(2) - w153 * w60)) - w56 * (w54 * w140 - w147 * w43);
+    const Scalar w197 = Scalar(0.5) * w196 * qd(4);
+    const Scalar w198 = w0 * c.p.iiwa_link_7_izz;
+    const Scalar w199 = w14 * w198;
+    const Scalar w200 = c.p.iiwa_link_7_izz * w7;
+    const Scalar w201 = w200 * w22 - w24 * w199;
+    const Scalar w202 = w12 * w198;
+    const Scalar w203 = w201 * w43 + w202 * w54;
+    const Scalar w204 = w200 * w24 + w22 * w199;
+    const Scalar w205 = w203 * w56 - w55 * w204;
+    const Scalar w206 = w205 * Scalar(0.5) * qd(6);
+    const Scalar w207 = w90 * w43;
+    const Scalar w208 = -w207;
+    const Scalar w209 = (w125 * w54 + w208) * w56 + w55 * (w68 * Scalar(2) * w111 + w129 * w60 - w111);
+    const Scalar w210 = w209 * Scalar(0.5) * qd(3);
+    const Scalar w211 = w56 * w118;
+    const Scalar w212 = w211 - (Scalar(2) * w90 * w159 - w160 * w109) * w55;
+    const Scalar w213 = w212 * Scalar(0.5) * qd(2);
+    const Scalar w214 = w211 + w55 * w110;
+    const Scalar w215 = -(Scalar(0.5) * w214 * qd(2));
+    const Scalar w216 = w173 * w43 - w54 * w178;
+    const Scalar w217 = w55 * (w183 * w60 - w68 * Scalar(2) * w184 + w184) - w56 * w216;
+    const Scalar w218 = w217 * Scalar(0.5) * qd(6);
+    const Scalar w219 = w78 + w30 + w32;
+    const Scalar w220 = w27 + w219 * w14;
+    const Scalar w221 = w220 + w40;
+    const Scalar w222 = w39 + w221;
+    const Scalar w223 = -(w22 * w18);
+    const Scalar w224 = w12 * w219 + w47;
+    const Scalar w225 = w24 * w224;
+    const Scalar w226 = w223 + w45 + w225;
+    const Scalar w227 = w52 + w226;
+    const Scalar w228 = w224 * w22 + w24 * w18;
+    const Scalar w229 = (w222 * w54 + w227 * w43) * w56 + w55 * w228;
+    const Scalar w230 = w229 * qd(5) * Scalar(0.5);
+    const Scalar w231 = w55 * (w68 * Scalar(2) * w59 + w67 * w60 - w59) + w56 * (w54 * w42 + w53 * w43);
+    const Scalar w232 = qd(5) * Scalar(0.5) * w231;
+    const Scalar w233 = qd(0) * w119;
+    const Scalar w234 = w99 + w100 + w124;
+    const Scalar w235 = w207 + w234 * w54;
+    const Scalar w236 = w56 * w235 + w55 * w111;
+    const Scalar w237 = -(w236 * Scalar(0.5) * qd(3));
+    const Scalar w238 = (w189 * w43 + w192 * w54) * w55;
+    const Scalar w239 = -(w238 * Scalar(0.5) * qd(4));
+    const Scalar w240 = w55 * (w202 * w43 - w54 * w201);
+    const Scalar w241 = Scalar(0.5) * w240 * qd(6);
+    const Scalar w242 = w55 * (w234 * w43 - w126);
+    const Scalar w243 = -(Scalar(0.5) * w242 * qd(3));
+    const Scalar w244 = qd(1) * w212 * Scalar(0.5);
+    const Scalar w245 = w122 * w56 - (Scalar(0.2045) * w93 * w43 - w123 * w43 + w126) * w55;
+    const Scalar w246 = Scalar(0.5) * w245 * qd(3);
+    const Scalar w247 = w55 * (w222 * w43 - w54 * w227);
+    const Scalar w248 = qd(5) * Scalar(0.5) * w247;
+    const Scalar w249 = qd(1) * Scalar(0.5) * w214;
+    const Scalar w250 = -(w162 * qd(0));
+    const Scalar w251 = w56 * w186 + w55 * w179;
+    const Scalar w252 = Scalar(0.5) * qd(6) * w251;
+    const Scalar w253 = w55 * (w51 * w54 + w44 * w54 * Scalar(0.2045) - w41 * w43 - w38 * Scalar(0.2045) * w43) - w56 * w36;
+    const Scalar w254 = w253 * qd(5) * Scalar(0.5);
+    const Scalar w255 = w55 * (w91 * w54 * Scalar(0.2045) - w54 * w146 + Scalar(0.2045) * w136 * w43 + w138 * w43) - w135 * w56;
+    const Scalar w256 = w255 * Scalar(0.5) * qd(4);
+    const Scalar w257 = w56 * w173 - w55 * (w180 * w54 + w184 * w43);
+    const Scalar w258 = Scalar(0.5) * qd(6) * w257;
+    const Scalar w259 = -(Scalar(0.5) * w242 * qd(2));
+    const Scalar w260 = -(w236 * qd(1) * Scalar(0.5));
+    const Scalar w261 = w190 + w143;
+    const Scalar w262 = (w193 * w43 + Scalar(0.42) * w54 * w148) * w55 - w56 * w261;
+    const Scalar w263 = Scalar(0.5) * qd(4) * w262;
+    const Scalar w264 = Scalar(0.5) * qd(0) * w131;
+    const Scalar w265 = w56 * w201 - w55 * w204 * w43;
+    const Scalar w266 = w265 * Scalar(0.5) * qd(6);
+    const Scalar w267 = w65 + w61 * Scalar(0.2155);
+    const Scalar w268 = w55 * (w61 * w54 * Scalar(0.2045) + w54 * w267 - w59 * w43) - w56 * w50;
+    const Scalar w269 = qd(5) * w268 * Scalar(0.5);
+    const Scalar w270 = w134 - Scalar(0.2155) * w148;
+    const Scalar w271 = w55 * (w54 * Scalar(0.2045) * w148 - w270 * w54 + w155 * w43) - w145 * w56;
+    const Scalar w272 = w271 * Scalar(0.5) * qd(4);
+    const Scalar w273 = qd(1) * w209 * Scalar(0.5);
+    const Scalar w274 = Scalar(0.5) * w245 * qd(2);
+    const Scalar w275 = w223 + w225;
+    const Scalar w276 = w56 * w275 + w55 * (w228 * w43 - w61 * Scalar(0.42) * w54);
+    const Scalar w277 = qd(5) * Scalar(0.5) * w276;
+    const Scalar w278 = qd(1) * Scalar(0.5) * w196;
+    const Scalar w279 = Scalar(0.5) * qd(3) * w262;
+    const Scalar w280 = w22 * w75;
+    const Scalar w281 = w24 * w75 + Scalar(0.2155) * w112;
+    const Scalar w282 = w102 + Scalar(0.2155) * w115;
+    const Scalar w283 = -(qd(1) * Scalar(0.5) * w194);
+    const Scalar w284 = w255 * Scalar(0.5) * qd(2);
+    const Scalar w285 = w164 * w24 - w174 * w22;
+    const Scalar w286 = w164 * w22 + w174 * w24;
+    const Scalar w287 = w56 * w285 + w55 * (w286 * w43 - w172 * w54);
+    const Scalar w288 = -(w287 * Scalar(0.5) * qd(6));
+    const Scalar w289 = -(w238 * Scalar(0.5) * qd(2));
+    const Scalar w290 = w271 * Scalar(0.5) * qd(3);
+    const Scalar w291 = w157 * Scalar(0.5) * qd(0);
+    const Scalar w292 = w24 * w44;
+    const Scalar w293 = Scalar(0.2155) * w292;
+    const Scalar w294 = w29 * w12 * Scalar(0.1845) - w12 * w31 + w46;
+    const Scalar w295 = w293 + w294;
+    const Scalar w296 = -(w37 * Scalar(0.2045) * w43);
+    const Scalar w297 = w292 * w54 * Scalar(0.2045);
+    const Scalar w298 = w27 + w14 * w31 - w29 * w14 * Scalar(0.1845);
+    const Scalar w299 = Scalar(0.2155) * w37;
+    const Scalar w300 = w24 * w298 - w8 * w22 - w299;
+    const Scalar w301 = w24 * w8 + w298 * w22;
+    const Scalar w302 = w301 * w56 - w55 * (w295 * w54 + w296 + w297 + w300 * w43);
+    const Scalar w303 = w302 * qd(5) * Scalar(0.5);
+    const Scalar w304 = w24 * w202;
+    const Scalar w305 = w202 * w22;
+    const Scalar w306 = w305 * w56 - w55 * (w54 * w199 + w304 * w43);
+    const Scalar w307 = w306 * Scalar(0.5) * qd(6);
+    const Scalar w308 = w220 * w22;
+    const Scalar w309 = w299 + w24 * w220;
+    const Scalar w310 = w293 + w224;
+    const Scalar w311 = w56 * w308 + w55 * (w296 - w309 * w43 + w297 + w54 * w310);
+    const Scalar w312 = qd(5) * w311 * Scalar(0.5);
+    const Scalar w313 = w70 * Scalar(0.5) * qd(0);
+    const Scalar w314 = w14 * w18 - w12 * w1 * Scalar(0.4);
+    const Scalar w315 = w314 * w22 + w24 * w26;
+    const Scalar w316 = w12 * w1;
+    const Scalar w317 = w29 * w22 - w24 * w14 * w1;
+    const Scalar w318 = w316 * Scalar(0.2155) - w24 * w314 + w26 * w22;
+    const Scalar w319 = w14 * w1 * Scalar(0.4) + w12 * w18;
+    const Scalar w320 = w319 - w317 * Scalar(0.2155);
+    const Scalar w321 = w253 * Scalar(0.5) * qd(2);
+    const Scalar w322 = -(Scalar(0.5) * w247 * qd(2));
+    const Scalar w323 = w268 * Scalar(0.5) * qd(3);
+    const Scalar w324 = -(qd(1) * w229 * Scalar(0.5));
+    const Scalar w325 = w14 * w168 - w12 * w163;
+    const Scalar w326 = w325 * w22 - w24 * w170;
+    const Scalar w327 = w163 * w14 + w12 * w168;
+    const Scalar w328 = w22 * w170 + w24 * w325;
+    const Scalar w329 = w56 * w326 + w55 * (w327 * w54 - w328 * w43);
+    const Scalar w330 = -(Scalar(0.5) * qd(6) * w329);
+    const Scalar w331 = qd(1) * Scalar(0.5) * w231;
+    const Scalar w332 = w302 * Scalar(0.5) * qd(4);
+    const Scalar w333 = w200 * w14;
+    const Scalar w334 = w24 * w198 - w333 * w22;
+    const Scalar w335 = w24 * w333 + w198 * w22;
+    const Scalar w336 = w12 * w200;
+    const Scalar w337 = w56 * w334 + w55 * (w335 * w43 - w336 * w54);
+    const Scalar w338 = Scalar(0.5) * qd(6) * w337;
+    const Scalar w339 = w311 * Scalar(0.5) * qd(4);
+    const Scalar w340 = Scalar(0.5) * w276 * qd(3);
+    const Scalar w341 = w265 * Scalar(0.5) * qd(3);
+    const Scalar w342 = qd(5) * Scalar(0.5) * w337;
+    const Scalar w343 = -(Scalar(0.5) * w240 * qd(2));
+    const Scalar w344 = w287 * Scalar(0.5) * qd(4);
+    const Scalar w345 = qd(5) * Scalar(0.5) * w329;
+    const Scalar w346 = Scalar(0.5) * w257 * qd(3);
+    const Scalar w347 = w187 * Scalar(0.5) * qd(0);
+    const Scalar w348 = -(qd(1) * w205 * Scalar(0.5));
+    const Scalar w349 = w306 * Scalar(0.5) * qd(4);
+    const Scalar w350 = qd(1) * w217 * Scalar(0.5);
+    const Scalar w351 = Scalar(0.5) * w251 * qd(2);
+    const Scalar w352 = w69 - w66;
+    const Scalar w353 = w185 - w180;
+    const Scalar w354 = w128 + w130;
+    const Scalar w355 = w156 - w151;
+    const Scalar w356 = Scalar(0.5) * w216 * qd(6);
+    const Scalar w357 = w203 * Scalar(0.5) * qd(6);
+    const Scalar w358 = w54 * w138 - w91 * Scalar(0.2045) * w43 + w43 * w146 + w54 * Scalar(0.2045) * w136;
+    const Scalar w359 = -(w358 * Scalar(0.5) * qd(4));
+    const Scalar w360 = Scalar(0.5) * w235 * qd(3);
+    const Scalar w361 = (w38 * Scalar(0.10225) + Scalar(0.5) * w221) * w54 + (Scalar(0.5) * w226 + w44 * Scalar(0.10225)) * w43;
+    const Scalar w362 = qd(5) * w361;
+    const Scalar w363 = w212 * Scalar(0.5) * qd(0);
+    const Scalar w364 = Scalar(0.5) * qd(0) * w214;
+    const Scalar w365 = qd(1) * w161;
+    const Scalar w366 = w51 * w43 + w54 * w38 * Scalar(0.2045) + w44 * Scalar(0.2045) * w43 + w54 * w41;
+    const Scalar w367 = qd(5) * Scalar(0.5) * w366;
+    const Scalar w368 = w54 * Scalar(0.2045) * w93 - w54 * w123 + w208;
+    const Scalar w369 = -(Scalar(0.5) * qd(3) * w368);
+    const Scalar w370 = w54 * (w136 * Scalar(0.10225) + w188 * Scalar(0.5)) - (w91 * Scalar(0.10225) + w191 * Scalar(0.5)) * w43;
+    const Scalar w371 = w370 * qd(4);
+    const Scalar w372 = qd(1) * w354 * Scalar(0.5);
+    const Scalar w373 = w155 * w54 + w270 * w43 - Scalar(0.2045) * w148 * w43;
+    const Scalar w374 = Scalar(0.5) * w373 * qd(4);
+    const Scalar w375 = Scalar(0.5) * w368 * qd(2);
+    const Scalar w376 = w204 * w54;
+    const Scalar w377 = -(Scalar(0.5) * qd(6) * w376);
+    const Scalar w378 = Scalar(0.5) * w235 * qd(2);
+    const Scalar w379 = w59 * w54 + w267 * w43 + w61 * Scalar(0.2045) * w43;
+    const Scalar w380 = qd(5) * w379 * Scalar(0.5);
+    const Scalar w381 = w61 * Scalar(0.42) * w43 + w54 * w228;
+    const Scalar w382 = qd(5) * Scalar(0.5) * w381;
+    const Scalar w383 = w180 * w43 - w54 * w184;
+    const Scalar w384 = Scalar(0.5) * qd(6) * w383;
+    const Scalar w385 = w209 * Scalar(0.5) * qd(0);
+    const Scalar w386 = w236 * Scalar(0.5) * qd(0);
+    const Scalar w387 = w54 * w193 - Scalar(0.42) * w148 * w43;
+    const Scalar w388 = -(Scalar(0.5) * qd(4) * w387);
+    const Scalar w389 = Scalar(0.5) * qd(0) * w194;
+    const Scalar w390 = -(Scalar(0.5) * qd(0) * w196);
+    const Scalar w391 = w54 * w37 * Scalar(0.2045);
+    const Scalar w392 = w292 * Scalar(0.2045) * w43;
+    const Scalar w393 = w309 * w54 + w310 * w43 + w391 + w392;
+    const Scalar w394 = -(qd(5) * Scalar(0.5) * w393);
+    const Scalar w395 = -(Scalar(0.5) * w373 * qd(3));
+    const Scalar w396 = Scalar(0.5) * qd(3) * w387;
+    const Scalar w397 = w199 * w43 - w54 * w304;
+    const Scalar w398 = w397 * Scalar(0.5) * qd(6);
+    const Scalar w399 = w358 * Scalar(0.5) * qd(2);
+    const Scalar w400 = w286 * w54 + w172 * w43;
+    const Scalar w401 = Scalar(0.5) * qd(6) * w400;
+    const Scalar w402 = w370 * qd(2);
+    const Scalar w403 = w300 * w54 - w295 * w43 - w392 - w391;
+    const Scalar w404 = qd(5) * w403 * Scalar(0.5);
+    const Scalar w405 = qd(1) * Scalar(0.5) * w355;
+    const Scalar w406 = w229 * Scalar(0.5) * qd(0);
+    const Scalar w407 = -(w352 * qd(1) * Scalar(0.5));
+    const Scalar w408 = Scalar(0.5) * qd(3) * w381;
+    const Scalar w409 = Scalar(0.5) * qd(4) * w393;
+    const Scalar w410 = Scalar(0.5) * qd(0) * w231;
+    const Scalar w411 = Scalar(0.5) * w366 * qd(2);
+    const Scalar w412 = w336 * w43 + w54 * w335;
+    const Scalar w413 = -(Scalar(0.5) * qd(6) * w412);
+    const Scalar w414 = -(w379 * Scalar(0.5) * qd(3));
+    const Scalar w415 = -(w403 * Scalar(0.5) * qd(4));
+    const Scalar w416 = w54 * w328 + w327 * w43;
+    const Scalar w417 = Scalar(0.5) * qd(6) * w416;
+    const Scalar w418 = w361 * qd(2);
+    const Scalar w419 = -(w205 * Scalar(0.5) * qd(0));
+    const Scalar w420 = Scalar(0.5) * qd(4) * w400;
+    const Scalar w421 = -(w353 * qd(1) * Scalar(0.5));
+    const Scalar w422 = -(Scalar(0.5) * w216 * qd(2));
+    const Scalar w423 = qd(5) * Scalar(0.5) * w412;
+    const Scalar w424 = w203 * Scalar(0.5) * qd(2);
+    const Scalar w425 = qd(5) * Scalar(0.5) * w416;
+    const Scalar w426 = -(Scalar(0.5) * w383 * qd(3));
+    const Scalar w427 = w217 * Scalar(0.5) * qd(0);
+    const Scalar w428 = w397 * Scalar(0.5) * qd(4);
+    const Scalar w429 = Scalar(0.5) * w376 * qd(3);
+    const Scalar w430 = w121 * w102 + w120 * w106 * Scalar(0.5);
+    const Scalar w431 = Scalar(0.5) * w133 * w88 - w77 * w132;
+    const Scalar w432 = w23 * w431 + w25 * w75;
+    const Scalar w433 = -(qd(1) * Scalar(0.5) * w235);
+    const Scalar w434 = w145 * Scalar(0.5) * qd(4);
+    const Scalar w435 = -(Scalar(0.5) * qd(6) * w201);
+    const Scalar w436 = qd(1) * Scalar(0.5) * w368;
+    const Scalar w437 = -(w261 * Scalar(0.5) * qd(4));
+    const Scalar w438 = -(qd(5) * Scalar(0.5) * w275);
+    const Scalar w439 = Scalar(0.5) * qd(0) * w242;
+    const Scalar w440 = Scalar(0.5) * qd(0) * w245;
+    const Scalar w441 = Scalar(0.5) * qd(6) * w173;
+    const Scalar w442 = w430 * qd(2);
+    const Scalar w443 = qd(5) * Scalar(0.5) * w50;
+    const Scalar w444 = -(qd(5) * w308 * Scalar(0.5));
+    const Scalar w445 = w261 * Scalar(0.5) * qd(3);
+    const Scalar w446 = Scalar(0.5) * qd(6) * w285;
+    const Scalar w447 = -(qd(1) * w370);
+    const Scalar w448 = -(w305 * Scalar(0.5) * qd(6));
+    const Scalar w449 = w358 * qd(1) * Scalar(0.5);
+    const Scalar w450 = w301 * qd(5) * Scalar(0.5);
+    const Scalar w451 = -(w255 * Scalar(0.5) * qd(0));
+    const Scalar w452 = w432 * qd(2);
+    const Scalar w453 = w238 * Scalar(0.5) * qd(0);
+    const Scalar w454 = -(w145 * Scalar(0.5) * qd(3));
+    const Scalar w455 = Scalar(0.5) * qd(6) * w334;
+    const Scalar w456 = w308 * Scalar(0.5) * qd(4);
+    const Scalar w457 = Scalar(0.5) * qd(0) * w247;
+    const Scalar w458 = Scalar(0.5) * w275 * qd(3);
+    const Scalar w459 = -(Scalar(0.5) * w36 * qd(2));
+    const Scalar w460 = qd(1) * Scalar(0.5) * w366;
+    const Scalar w461 = -(qd(1) * w361);
+    const Scalar w462 = Scalar(0.5) * w326 * qd(6);
+    const Scalar w463 = w253 * Scalar(0.5) * qd(0);
+    const Scalar w464 = -(w301 * Scalar(0.5) * qd(4));
+    const Scalar w465 = Scalar(0.5) * w50 * qd(3);
+    const Scalar w466 = Scalar(0.5) * qd(4) * w285;
+    const Scalar w467 = Scalar(0.5) * w201 * qd(3);
+    const Scalar w468 = -(qd(5) * Scalar(0.5) * w326);
+    const Scalar w469 = w305 * Scalar(0.5) * qd(4);
+    const Scalar w470 = -(qd(1) * w203 * Scalar(0.5));
+    const Scalar w471 = qd(1) * Scalar(0.5) * w216;
+    const Scalar w472 = Scalar(0.5) * qd(0) * w240;
+    const Scalar w473 = qd(5) * Scalar(0.5) * w334;
+    const Scalar w474 = Scalar(0.5) * qd(0) * w251;
+    const Scalar w475 = -(Scalar(0.5) * qd(3) * w173);
+    const Scalar w476 = Scalar(0.5) * w186 * qd(2);
+    const Scalar w477 = -(qd(3) * w431);
+    const Scalar w478 = w261 * Scalar(0.5) * qd(2);
+    const Scalar w479 = qd(5) * Scalar(0.5) * w224;
+    const Scalar w480 = qd(1) * Scalar(0.5) * w387;
+    const Scalar w481 = -(qd(1) * Scalar(0.5) * w373);
+    const Scalar w482 = w294 * qd(5) * Scalar(0.5);
+    const Scalar w483 = -(Scalar(0.5) * qd(0) * w262);
+    const Scalar w484 = w271 * Scalar(0.5) * qd(0);
+    const Scalar w485 = -(Scalar(0.5) * qd(6) * w199);
+    const Scalar w486 = -(w145 * Scalar(0.5) * qd(2));
+    const Scalar w487 = w172 * Scalar(0.5) * qd(6);
+    const Scalar w488 = Scalar(0.5) * w50 * qd(2);
+    const Scalar w489 = Scalar(0.5) * w224 * qd(4);
+    const Scalar w490 = -(Scalar(0.5) * w275 * qd(2));
+    const Scalar w491 = w336 * Scalar(0.5) * qd(6);
+    const Scalar w492 = w65 * Scalar(0.5) * qd(3);
+    const Scalar w493 = w327 * Scalar(0.5) * qd(6);
+    const Scalar w494 = -(w294 * Scalar(0.5) * qd(4));
+    const Scalar w495 = -(w268 * Scalar(0.5) * qd(0));
+    const Scalar w496 = qd(1) * Scalar(0.5) * w381;
+    const Scalar w497 = -(Scalar(0.5) * qd(0) * w276);
+    const Scalar w498 = -(qd(1) * w379 * Scalar(0.5));
+    const Scalar w499 = -(Scalar(0.5) * w201 * qd(2));
+    const Scalar w500 = -(Scalar(0.5) * w173 * qd(2));
+    const Scalar w501 = qd(5) * w327 * Scalar(0.5);
+    const Scalar w502 = qd(1) * Scalar(0.5) * w383;
+    const Scalar w503 = qd(5) * w336 * Scalar(0.5);
+    const Scalar w504 = -(qd(1) * Scalar(0.5) * w376);
+    const Scalar w505 = Scalar(0.5) * w199 * qd(4);
+    const Scalar w506 = -(Scalar(0.5) * qd(0) * w257);
+    const Scalar w507 = -(w265 * Scalar(0.5) * qd(0));
+    const Scalar w508 = w172 * Scalar(0.5) * qd(4);
+    const Scalar w509 = -(w180 * Scalar(0.5) * qd(3));
+    const Scalar w510 = w302 * Scalar(0.5) * qd(0);
+    const Scalar w511 = qd(1) * Scalar(0.5) * w393;
+    const Scalar w512 = w294 * Scalar(0.5) * qd(3);
+    const Scalar w513 = w311 * Scalar(0.5) * qd(0);
+    const Scalar w514 = w308 * Scalar(0.5) * qd(2);
+    const Scalar w515 = Scalar(0.5) * qd(6) * w170;
+    const Scalar w516 = Scalar(0.5) * w8 * qd(4);
+    const Scalar w517 = qd(1) * w403 * Scalar(0.5);
+    const Scalar w518 = -(Scalar(0.5) * w224 * qd(3));
+    const Scalar w519 = w301 * Scalar(0.5) * qd(2);
+    const Scalar w520 = -(w198 * Scalar(0.5) * qd(6));
+    const Scalar w521 = qd(1) * Scalar(0.5) * w400;
+    const Scalar w522 = qd(5) * w198 * Scalar(0.5);
+    const Scalar w523 = qd(5) * Scalar(0.5) * w170;
+    const Scalar w524 = qd(1) * w397 * Scalar(0.5);
+    const Scalar w525 = w306 * Scalar(0.5) * qd(0);
+    const Scalar w526 = w305 * Scalar(0.5) * qd(2);
+    const Scalar w527 = Scalar(0.5) * w199 * qd(3);
+    const Scalar w528 = w172 * Scalar(0.5) * qd(3);
+    const Scalar w529 = Scalar(0.5) * w285 * qd(2);
+    const Scalar w530 = w287 * Scalar(0.5) * qd(0);
+    const Scalar w531 = w164 * Scalar(0.5) * qd(4);
+    const Scalar w532 = w163 * qd(5) * Scalar(0.5) - w327 * Scalar(0.5) * qd(3) - qd(1) * Scalar(0.5) * w412 - Scalar(0.5) * qd(4) * w170 + Scalar(0.5) * qd(0) * w337 + w336 * Scalar(0.5) * qd(3) + w198 * Scalar(0.5) * qd(4) + qd(1) * Scalar(0.5) * w416 + Scalar(0.5) * qd(0) * w329 + Scalar(0.5) * w326 * qd(2) + Scalar(0.5) * w334 * qd(2);
+    C(0, 0) = w70 * qd(5) * Scalar(0.5) + qd(1) * w119 + Scalar(0.5) * qd(3) * w131 + w157 * Scalar(0.5) * qd(4) - w162 * qd(2) - w187 * Scalar(0.5) * qd(6);
+    C(0, 1) = w195 - w197 + w206 + w210 + w213 + w215 + w218 + w230 - qd(1) * ((c.k40 + w68 * Scalar(2) * w90 + w109 * w60 - w90) * w56 - w55 * (c.k41 + w158)) - w232 + w233 + w237;
+    C(0, 2) = w239 + w241 + w243 - w55 * w158 * qd(2) + w244 + w246 + w248 - w249 + w250 - w252 - w254 - w256;
+    C(0, 3) = w258 + w259 + w260 + w263 + w264 - w266 + (w56 * w90 + w55 * (w111 * w43 - w116 * Scalar(0.42) * w54)) * qd(3) + w269 + w272 + w273 + w274 - w277;
+    C(0, 4) = w279 - w278 + qd(4) * (w56 * w280 - w55 * (w281 * w43 + Scalar(0.2045) * w112 * w43 + w54 * Scalar(0.2045) * w115 + w282 * w54)) + w283 - w284 + w288 + w289 + w290 + w291 + w303 - w307 - w312;
+    C(0, 5) = -(qd(5) * (w56 * w315 - w55 * (w317 * w54 * Scalar(0.2045) - w316 * Scalar(0.2045) * w43 - w318 * w43 - w320 * w54)) - w313 + w321 + w322 - w323 + w324 + w330 + w331 - w332 + w338 + w339 + w340);
+    C(0, 6) = -(w341 + w342 + w343 + w344 - w345 - w346 + w347 + w348 + w349 - w350 + w351);
+    C(1, 0) = -(w195 + w206 + w215 + w230 + w232 - w210 - w218 - w213 + w197 + w233 + w237);
+    C(1, 1) = w161 * qd(2) + w352 * qd(5) * Scalar(0.5) - w353 * Scalar(0.5) * qd(6) + w354 * Scalar(0.5) * qd(3) + Scalar(0.5) * w355 * qd(4);
+    C(1, 2) = -(w356 + w357 + w359 - w360 + w362 - w118 * qd(2) - w363 - w364 - w365 + w367 + w369 - w371);
+    C(1, 3) = w372 - w374 + w375 - (w116 * Scalar(0.42) * w43 + w54 * w111) * qd(3) + w377 + w378 + w380 + w382 - w384 + w385 + w386 + w388;
+    C(1, 4) = w389 + w390 + w394 + w395 - w396 + w398 + w399 + w401 + w402 + (w281 * w54 - Scalar(0.2045) * w115 * w43 + w54 * Scalar(0.2045) * w112 - w282 * w43) * qd(4) + w404 + w405;
+    C(1, 5) = -(w406 - (w317 * Scalar(0.2045) * w43 - w320 * w43 + w316 * w54 * Scalar(0.2045) + w318 * w54) * qd(5) + w407 - w408 + w409 + w410 + w411 + w413 + w414 + w415 - w417 + w418);
+    C(1, 6) = w419 + w420 + w421 + w422 + w423 - w424 + w425 + w426 + w427 + w428 - w429;
+    C(2, 0) = -(w239 + w241 + w256 + w243 + w254 + w244 - w246 + w248 + w252 + w250 + w249);
+    C(2, 1) = -(w356 + w365 + w359 + w364 + w371 + w363 + w367 - w357 + w369 + w360 - w362);
+    C(2, 2) = w430 * qd(3) + w432 * qd(4) - Scalar(0.5) * qd(6) * w186 + qd(5) * Scalar(0.5) * w36;
+    C(2, 3) = w433 - w434 + w435 + w436 + w437 + w438 + w439 + w440 + w441 + w442 - w443 + w90 * qd(3);
+    C(2, 4) = w444 - w445 - w446 + w447 + w448 + w449 + w450 + qd(4) * w280 + w451 + w452 + w453 + w454;
+    C(2, 5) = -(w455 + w456 + w457 + w458 + w459 + w460 + qd(5) * w315 + w461 - w462 + w463 + w464 + w465);
+    C(2, 6) = -(w466 + w467 + w468 + w469 + w470 + w471 + w472 + w473 + w474 + w475 + w476);
+    C(3, 0) = w258 + w259 + w277 + w260 - w274 - w264 + w266 + w269 - w263 + w272 - w273;
+    C(3, 1) = -(w372 + w375 + w377 + w374 - w378 - w380 + w382 + w384 + w385 + w386 + w388);
+    C(3, 2) = -(w433 + w435 + w436 + w437 + w438 + w434 + w439 + w440 + w443 + w442 - w441);
+    C(3, 3) = -(w65 * qd(5) * Scalar(0.5) + qd(4) * w431 - w180 * Scalar(0.5) * qd(6));
+    C(3, 4) = qd(4) * w102 + w477 + w478 + w479 + w480 + w481 + w482 + w483 + w484 + w485 + w486 - w487;
+    C(3, 5) = -(w488 - w489 + w490 - w319 * qd(5) + w491 + w492 + w493 + w494 + w495 + w496 + w497 + w498);
+    C(3, 6) = -(w499 + w500 + w501 + w502 + w503 + w504 + w505 + w506 + w507 + w508 + w509);
+    C(4, 0) = w279 + w283 + w288 - w290 + w289 - w291 + w303 + w312 + w307 + w278 + w284;
+    C(4, 1) = -(w389 + w390 + w394 + w395 + w398 + w396 - w402 + w399 - w404 - w401 + w405);
+    C(4, 2) = -(w444 - w450 + w447 + w448 + w449 + w451 + w445 + w452 + w446 + w453 + w454);
+    C(4, 3) = -(w477 + w478 + w479 + w480 + w481 + w483 + w484 + w485 - w482 + w486 + w487);
+    C(4, 4) = -(w164 * Scalar(0.5) * qd(6) - qd(5) * Scalar(0.5) * w8);
+    C(4, 5) = w510 + w511 + w512 + w513 + w514 - w515 + w516 + w517 - qd(5) * w26 + w518 + w519 + w520;
+    C(4, 6) = -(w522 - w521 + w523 + w524 - w525 - w526 - w527 + w528 + w529 + w530 + w531);
+    C(5, 0) = -(w332 - w331 + w323 - w321 + w322 + w324 + w330 - w338 + w339 + w340 + w313);
+    C(5, 1) = w406 + w407 - w409 + w410 + w408 - w418 + w411 + w413 + w414 + w415 + w417;
+    C(5, 2) = w455 + w457 - w456 + w459 + w460 - w458 + w461 + w463 + w462 + w464 + w465;
+    C(5, 3) = w488 + w490 - w493 + w489 + w491 + w492 + w494 + w495 + w496 + w497 + w498;
+    C(5, 4) = -(w510 + w511 + w512 + w513 + w514 + w515 + w516 + w517 + w518 + w519 + w520);
+    C(5, 5) = w163 * Scalar(0.5) * qd(6);
+    C(5, 6) = w532;
+    C(6, 0) = -(w341 - w347 - w344 + w342 + w346 + w343 + w345 - w351 + w350 + w348 + w349);
+    C(6, 1) = -(w419 + w420 + w421 + w422 + w429 + w425 - w428 + w426 + w427 - w423 + w424);
+    C(6, 2) = w466 + w468 + w470 + w471 + w472 - w473 + w474 - w467 - w469 + w475 + w476;
+    C(6, 3) = w499 + w500 + w501 + w502 + w504 - w505 + w506 + w507 + w508 + w509 - w503;
+    C(6, 4) = -(w522 - w530 + w525 + w521 - w523 - w524 - w529 + w527 - w531 - w528 + w526);
+    C(6, 5) = -w532;
+    C(6, 6) = Scalar(0);
+  }
+
+  /// C(q, qd) from the Christoffel symbols of M: dM/dt - 2 C is skew-symmetric
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void coriolis_matrix(const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Parameters<typename DerivedQ::Scalar>& p, Out0&& C) noexcept {
+    coriolis_matrix(q, qd, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(C));
+  }
+
+  /// J = dy/dq of the output iiwa_link_ee_kuka_position
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_iiwa_link_ee_kuka_position([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& J) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, nq), "J: expected 3 x nq");
+    eigen_assert(q.size() == nq && J.rows() == 3 && J.cols() == nq);
+    using std::sin; using std::cos;
+    const Scalar w0 = cos(q(3));
+    const Scalar w1 = sin(q(1));
+    const Scalar w2 = sin(q(0));
+    const Scalar w3 = sin(q(5));
+    const Scalar w4 = sin(q(2));
+    const Scalar w5 = cos(q(0));
+    const Scalar w6 = cos(q(1));
+    const Scalar w7 = cos(q(2));
+    const Scalar w8 = w4 * w5 + w6 * w2 * w7;
+    const Scalar w9 = sin(q(3));
+    const Scalar w10 = w0 * w8 + w1 * w2 * w9;
+    const Scalar w11 = cos(q(4));
+    const Scalar w12 = sin(q(4));
+    const Scalar w13 = w6 * w4 * w2 - w5 * w7;
+    const Scalar w14 = w10 * w11 - w12 * w13;
+    const Scalar w15 = w9 * w8 - w0 * w1 * w2;
+    const Scalar w16 = cos(q(5));
+    const Scalar w17 = w6 * w4 * w5 + w2 * w7;
+    const Scalar w18 = w4 * w2 - w6 * w5 * w7;
+    const Scalar w19 = w0 * w18 - w1 * w9 * w5;
+    const Scalar w20 = w18 * w9 + w0 * w1 * w5;
+    const Scalar w21 = w19 * w11 + w12 * w17;
+    const Scalar w22 = w0 * w6 + w1 * w9 * w7;
+    const Scalar w23 = w0 * w1 * w7 - w6 * w9;
+    J(0, 0) = -(w0 * w1 * w2 * Scalar(0.4) + w3 * w14 * Scalar(0.126) + w1 * Scalar(0.42) * w2 - w15 * w16 * Scalar(0.126) - w9 * w8 * Scalar(0.4));
+    J(0, 1) = w0 * w6 * Scalar(0.4) * w5 + (w11 * (w6 * w9 * w5 - w0 * w1 * w5 * w7) + w12 * w1 * w4 * w5) * w3 * Scalar(0.126) + (w1 * w9 * w5 * w7 + w0 * w6 * w5) * w16 * Scalar(0.126) + w1 * w9 * Scalar(0.4) * w5 * w7 + w6 * Scalar(0.42) * w5;
+    J(0, 2) = w17 * w9 * w16 * Scalar(0.126) + w3 * (w12 * w18 - w0 * w11 * w17) * Scalar(0.126) + w17 * w9 * Scalar(0.4);
+    J(0, 3) = -(w1 * w9 * Scalar(0.4) * w5 - w0 * w18 * Scalar(0.4) - w19 * w16 * Scalar(0.126) - w11 * w3 * w20 * Scalar(0.126));
+    J(0, 4) = w3 * (w12 * w19 - w11 * w17) * Scalar(0.126);
+    J(0, 5) = -(w3 * w20 * Scalar(0.126) + w21 * w16 * Scalar(0.126));
+    J(1, 0) = -(w3 * w21 * Scalar(0.126) - w0 * w1 * Scalar(0.4) * w5 - w20 * w16 * Scalar(0.126) - w1 * Scalar(0.42) * w5 - w18 * w9 * Scalar(0.4));
+    J(1, 1) = (w0 * w6 * w2 + w1 * w2 * w9 * w7) * w16 * Scalar(0.126) + ((w6 * w2 * w9 - w0 * w1 * w2 * w7) * w11 + w12 * w1 * w4 * w2) * w3 * Scalar(0.126) + w1 * w2 * w9 * Scalar(0.4) * w7 + w6 * Scalar(0.42) * w2 + w0 * w6 * w2 * Scalar(0.4);
+    J(1, 2) = -((w12 * w8 + w0 * w11 * w13) * w3 * Scalar(0.126) - w9 * w16 * Scalar(0.126) * w13 - w9 * w13 * Scalar(0.4));
+    J(1, 3) = -(w10 * w16 * Scalar(0.126) + w15 * w11 * w3 * Scalar(0.126) + w0 * w8 * Scalar(0.4) + w1 * w2 * w9 * Scalar(0.4));
+    J(1, 4) = -(w3 * (w12 * w10 + w11 * w13) * Scalar(0.126));
+    J(1, 5) = w15 * w3 * Scalar(0.126) + w14 * w16 * Scalar(0.126);
+    J(2, 1) = w6 * w9 * Scalar(0.4) * w7 - w0 * w1 * Scalar(0.4) - (w11 * (w1 * w9 + w0 * w6 * w7) - w12 * w6 * w4) * w3 * Scalar(0.126) - w1 * Scalar(0.42) - (w0 * w1 - w6 * w9 * w7) * w16 * Scalar(0.126);
+    J(2, 2) = -(w1 * w4 * w9 * Scalar(0.4) + w1 * w4 * w9 * w16 * Scalar(0.126) - w3 * (w12 * w1 * w7 + w0 * w1 * w11 * w4) * Scalar(0.126));
+    J(2, 3) = w22 * w11 * w3 * Scalar(0.126) + w16 * Scalar(0.126) * w23 + w0 * w1 * Scalar(0.4) * w7 - w6 * w9 * Scalar(0.4);
+    J(2, 4) = (w1 * w11 * w4 + w12 * w23) * w3 * Scalar(0.126);
+    J(2, 5) = -(w22 * w3 * Scalar(0.126) + (w11 * w23 - w12 * w1 * w4) * w16 * Scalar(0.126));
+    J(0, 6) = Scalar(0);
+    J(1, 6) = Scalar(0);
+    J(2, 0) = Scalar(0);
+    J(2, 6) = Scalar(0);
+  }
+
+  /// J = dy/dq of the output iiwa_link_ee_kuka_position
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_iiwa_link_ee_kuka_position(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& J) noexcept {
+    output_jacobian_iiwa_link_ee_kuka_position(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(J));
+  }
+
+  /// Jdot qd of the output iiwa_link_ee_kuka_position: its acceleration at qdd = 0
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_iiwa_link_ee_kuka_position([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& Jdot_qd) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, 1), "Jdot_qd: expected 3 x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && Jdot_qd.rows() == 3 && Jdot_qd.cols() == 1);
+    using std::sin; using std::cos;
+    const Scalar w0 = qd(3) * qd(3);
+    const Scalar w1 = cos(q(3));
+    const Scalar w2 = cos(q(1));
+    const Scalar w3 = cos(q(0));
+    const Scalar w4 = cos(q(2));
+    const Scalar w5 = sin(q(2));
+    const Scalar w6 = sin(q(0));
+    const Scalar w7 = w5 * w6 - w2 * w3 * w4;
+    const Scalar w8 = sin(q(1));
+    const Scalar w9 = sin(q(3));
+    const Scalar w10 = w8 * w9 * w3;
+    const Scalar w11 = w1 * w7 - w10;
+    const Scalar w12 = cos(q(4));
+    const Scalar w13 = sin(q(5));
+    const Scalar w14 = w1 * w8 * Scalar(0.4) * w3;
+    const Scalar w15 = -w14;
+    const Scalar w16 = w1 * w8 * w3;
+    const Scalar w17 = w7 * w9 + w16;
+    const Scalar w18 = cos(q(5));
+    const Scalar w19 = -(w17 * w18 * Scalar(0.126));
+    const Scalar w20 = -(w7 * w9 * Scalar(0.4));
+    const Scalar w21 = w5 * w3 + w2 * w6 * w4;
+    const Scalar w22 = -(w1 * w8 * w6);
+    const Scalar w23 = w9 * w21 + w22;
+    const Scalar w24 = w8 * w6 * w9;
+    const Scalar w25 = w1 * w21 + w24;
+    const Scalar w26 = sin(q(4));
+    const Scalar w27 = w2 * w5 * w6 - w3 * w4;
+    const Scalar w28 = -(w26 * w27);
+    const Scalar w29 = w25 * w12 + w28;
+    const Scalar w30 = w26 * w25 + w12 * w27;
+    const Scalar w31 = w2 * w5 * w3 + w6 * w4;
+    const Scalar w32 = qd(1) * qd(2);
+    const Scalar w33 = qd(3) * qd(2);
+    const Scalar w34 = qd(1) * qd(3);
+    const Scalar w35 = w8 * w9 * w3 * w4 + w1 * w2 * w3;
+    const Scalar w36 = w2 * w9 * w3 - w1 * w8 * w3 * w4;
+    const Scalar w37 = w12 * w36 + w26 * w8 * w5 * w3;
+    const Scalar w38 = w26 * w31;
+    const Scalar w39 = qd(2) * qd(2);
+    const Scalar w40 = w11 * w12 + w38;
+    const Scalar w41 = qd(4) * qd(4);
+    const Scalar w42 = w26 * w7 - w1 * w12 * w31;
+    const Scalar w43 = w2 * w6 * w9 - w1 * w8 * w6 * w4;
+    const Scalar w44 = w43 * w12 + w26 * w8 * w5 * w6;
+    const Scalar w45 = w1 * w2 * w6 + w8 * w6 * w9 * w4;
+    const Scalar w46 = qd(1) * qd(0);
+    const Scalar w47 = w26 * w11 - w12 * w31;
+    const Scalar w48 = qd(0) * qd(3);
+    const Scalar w49 = w8 * Scalar(0.42) * w3;
+    const Scalar w50 = qd(0) * qd(0);
+    const Scalar w51 = qd(0) * qd(2);
+    const Scalar w52 = w26 * w21 + w1 * w12 * w27;
+    const Scalar w53 = qd(5) * qd(5);
+    const Scalar w54 = qd(1) * qd(1);
+    const Scalar w55 = w1 * w8 * w6 * Scalar(0.4);
+    const Scalar w56 = w8 * Scalar(0.42) * w6;
+    const Scalar w57 = -(w23 * w18 * Scalar(0.126));
+    const Scalar w58 = w9 * w21 * Scalar(0.4);
+    const Scalar w59 = -w58;
+    const Scalar w60 = w8 * w9 + w1 * w2 * w4;
+    const Scalar w61 = w1 * w8 - w2 * w9 * w4;
+    const Scalar w62 = w1 * w2 + w8 * w9 * w4;
+    const Scalar w63 = w1 * w8 * w4 - w2 * w9;
+    const Scalar w64 = w26 * w8 * w5;
+    const Scalar w65 = w12 * w63 - w64;
+    const Scalar w66 = w62 * w18 * Scalar(0.126);
+    const Scalar w67 = w1 * w2 * Scalar(0.4);
+    const Scalar w68 = w8 * w9 * Scalar(0.4) * w4;
+    Jdot_qd(0) = w0 * (w11 * w12 * w13 * Scalar(0.126) + w15 + w19 + w20) - (w23 * w13 + w29 * w18) * qd(5) * qd(0) * Scalar(0.252) + w13 * qd(0) * w30 * qd(4) * Scalar(0.252) + (w12 * w7 + w26 * w1 * w31) * w13 * qd(4) * Scalar(0.252) * qd(2) + w32 * ((w26 * w8 * w3 * w4 + w1 * w8 * w12 * w5 * w3) * w13 * Scalar(0.252) - w8 * w5 * w9 * w3 * Scalar(0.8) - w8 * w5 * w9 * Scalar(0.252) * w18 * w3) + (w1 * w31 * Scalar(0.252) * w18 + w1 * w31 * Scalar(0.8) + w12 * w31 * w13 * w9 * Scalar(0.252)) * w33 + w34 * (w1 * w8 * w3 * w4 * Scalar(0.8) + w35 * w12 * w13 * Scalar(0.252) - w36 * Scalar(0.252) * w18 - w2 * w9 * w3 * Scalar(0.8)) - w26 * w13 * w17 * qd(4) * qd(3) * Scalar(0.252) + qd(1) * (w37 * w18 - w35 * w13) * qd(5) * Scalar(0.252) + ((w1 * w12 * w7 + w38) * w13 * Scalar(0.126) - w7 * w9 * w18 * Scalar(0.126) + w20) * w39 + w13 * w40 * w41 * Scalar(0.126) - qd(5) * (w31 * w13 * w9 - w42 * w18) * Scalar(0.252) * qd(2) - (w44 * w13 * Scalar(0.252) + Scalar(0.84) * w2 * w6 + w45 * Scalar(0.252) * w18 + w8 * w6 * w9 * w4 * Scalar(0.8) + w1 * w2 * w6 * Scalar(0.8)) * w46 + (w12 * w17 * w18 - w11 * w13) * qd(5) * qd(3) * Scalar(0.252) + qd(5) * qd(4) * w47 * Scalar(0.252) * w18 + (w1 * w21 * Scalar(0.8) + w25 * Scalar(0.252) * w18 + w8 * w6 * w9 * Scalar(0.8) + w23 * w12 * w13 * Scalar(0.252)) * w48 - qd(1) * (w26 * w36 - w8 * w12 * w5 * w3) * w13 * qd(4) * Scalar(0.252) + (w13 * w40 * Scalar(0.126) + w15 + w19 - w49 + w20) * w50 - w51 * (w9 * w27 * Scalar(0.8) + w9 * Scalar(0.252) * w18 * w27 - w52 * w13 * Scalar(0.252)) + (w13 * w40 - w17 * w18) * w53 * Scalar(0.126) - (w18 * Scalar(0.126) * (w16 - w2 * w9 * w3 * w4) - (w26 * w2 * w5 * w3 - w12 * (w1 * w2 * w3 * w4 + w10)) * w13 * Scalar(0.126) + w49 + w14 - w2 * w9 * Scalar(0.4) * w3 * w4) * w54;
+    Jdot_qd(1) = w13 * qd(0) * qd(4) * w47 * Scalar(0.252) - w50 * (w55 + w13 * w29 * Scalar(0.126) + w56 + w57 + w59) - w13 * w29 * w41 * Scalar(0.126) - qd(5) * (w13 * w17 + w40 * w18) * qd(0) * Scalar(0.252) - w32 * (w8 * w5 * w6 * w9 * Scalar(0.252) * w18 + w8 * w5 * w6 * w9 * Scalar(0.8) - w13 * Scalar(0.252) * (w1 * w8 * w12 * w5 * w6 + w26 * w8 * w6 * w4)) + (w8 * w12 * w5 * w6 - w43 * w26) * qd(1) * w13 * qd(4) * Scalar(0.252) + (w1 * w2 * w3 * Scalar(0.8) + w37 * w13 * Scalar(0.252) + w35 * Scalar(0.252) * w18 + w8 * w9 * w3 * w4 * Scalar(0.8) + Scalar(0.84) * w2 * w3) * w46 - w0 * (w25 * w12 * w13 * Scalar(0.126) + w55 + w57 + w59) - (w8 * w9 * w3 * Scalar(0.8) - w11 * Scalar(0.252) * w18 - w12 * w13 * w17 * Scalar(0.252) - w1 * w7 * Scalar(0.8)) * w48 + w26 * w23 * w13 * qd(4) * qd(3) * Scalar(0.252) - qd(5) * (w52 * w18 + w13 * w9 * w27) * Scalar(0.252) * qd(2) + w51 * (w13 * w42 * Scalar(0.252) + w31 * w9 * Scalar(0.252) * w18 + w31 * w9 * Scalar(0.8)) - (w55 - w18 * Scalar(0.126) * (w22 + w2 * w6 * w9 * w4) + w56 + w13 * Scalar(0.126) * (w12 * (w1 * w2 * w6 * w4 + w24) - w26 * w2 * w5 * w6) - w2 * w6 * w9 * Scalar(0.4) * w4) * w54 + (w9 * w21 * w18 * Scalar(0.126) + w58 - (w28 + w1 * w12 * w21) * w13 * Scalar(0.126)) * w39 - qd(1) * qd(5) * (w13 * w45 - w44 * w18) * Scalar(0.252) - (w12 * w21 - w26 * w1 * w27) * w13 * qd(4) * Scalar(0.252) * qd(2) - w34 * (w43 * Scalar(0.252) * w18 - w1 * w8 * w6 * w4 * Scalar(0.8) - w12 * w13 * w45 * Scalar(0.252) + w2 * w6 * w9 * Scalar(0.8)) + w53 * (w23 * w18 - w13 * w29) * Scalar(0.126) - qd(5) * w30 * qd(4) * Scalar(0.252) * w18 - qd(5) * (w23 * w12 * w18 - w25 * w13) * qd(3) * Scalar(0.252) + w33 * (w1 * w27 * Scalar(0.8) + w1 * Scalar(0.252) * w18 * w27 + w12 * w13 * w9 * Scalar(0.252) * w27);
+    Jdot_qd(2) = -(qd(1) * ((w12 * w60 - w26 * w2 * w5) * w18 - w61 * w13) * qd(5) * Scalar(0.252) - qd(5) * qd(3) * Scalar(0.252) * (w62 * w12 * w18 - w13 * w63) - qd(5) * (w8 * w12 * w5 + w26 * w63) * qd(4) * Scalar(0.252) * w18 - qd(1) * w13 * (w2 * w12 * w5 + w26 * w60) * qd(4) * Scalar(0.252) - w65 * w13 * w41 * Scalar(0.126) + (w1 * w8 * w5 * Scalar(0.252) * w18 + w1 * w8 * w5 * Scalar(0.8) + w8 * w12 * w13 * w5 * w9 * Scalar(0.252)) * w33 + (w26 * w1 * w8 * w5 - w8 * w12 * w4) * w13 * qd(4) * Scalar(0.252) * qd(2) - qd(5) * Scalar(0.252) * (w8 * w13 * w5 * w9 + (w26 * w8 * w4 + w1 * w8 * w12 * w5) * w18) * qd(2) + w0 * (w66 + w67 + w68 - w12 * w13 * Scalar(0.126) * w63) + (w2 * w5 * w9 * Scalar(0.252) * w18 + w2 * w5 * w9 * Scalar(0.8) - w13 * (w1 * w2 * w12 * w5 + w26 * w2 * w4) * Scalar(0.252)) * w32 + (w2 * Scalar(0.42) - w65 * w13 * Scalar(0.126) + w66 + w67 + w68) * w54 + ((w64 - w1 * w8 * w12 * w4) * w13 * Scalar(0.126) + w8 * w9 * w18 * Scalar(0.126) * w4 + w68) * w39 - w34 * (w60 * Scalar(0.252) * w18 + w1 * w2 * w4 * Scalar(0.8) - w61 * w12 * w13 * Scalar(0.252) + w8 * w9 * Scalar(0.8)) + w53 * (w62 * w18 - w65 * w13) * Scalar(0.126) + w26 * w62 * w13 * qd(4) * qd(3) * Scalar(0.252));
+  }
+
+  /// Jdot qd of the output iiwa_link_ee_kuka_position: its acceleration at qdd = 0
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_iiwa_link_ee_kuka_position(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Parameters<typename DerivedQ::Scalar>& p, Out0&& Jdot_qd) noexcept {
+    output_bias_iiwa_link_ee_kuka_position(t, q, qd, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(Jdot_qd));
+  }
+
+  /// J = dy/dq of the output iiwa_link_ee_kuka_axis_1
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_iiwa_link_ee_kuka_axis_1([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& J) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, nq), "J: expected 3 x nq");
+    eigen_assert(q.size() == nq && J.rows() == 3 && J.cols() == nq);
+    using std::sin; using std::cos;
+    const Scalar w0 = sin(q(6));
+    const Scalar w1 = sin(q(4));
+    const Scalar w2 = cos(q(3));
+    const Scalar w3 = sin(q(2));
+    const Scalar w4 = cos(q(0));
+    const Scalar w5 = cos(q(1));
+    const Scalar w6 = sin(q(0));
+    const Scalar w7 = cos(q(2));
+    const Scalar w8 = w3 * w4 + w5 * w6 * w7;
+    const Scalar w9 = sin(q(1));
+    const Scalar w10 = sin(q(3));
+    const Scalar w11 = w2 * w8 + w9 * w6 * w10;
+    const Scalar w12 = cos(q(4));
+    const Scalar w13 = w5 * w3 * w6 - w4 * w7;
+    const Scalar w14 = w1 * w11 + w12 * w13;
+    const Scalar w15 = w10 * w8 - w2 * w9 * w6;
+    const Scalar w16 = sin(q(5));
+    const Scalar w17 = w11 * w12 - w1 * w13;
+    const Scalar w18 = cos(q(5));
+    const Scalar w19 = w15 * w16 + w17 * w18;
+    const Scalar w20 = cos(q(6));
+    const Scalar w21 = w5 * w10 * w4 - w2 * w9 * w4 * w7;
+    const Scalar w22 = w3 * w6 - w5 * w4 * w7;
+    const Scalar w23 = w5 * w3 * w4 + w6 * w7;
+    const Scalar w24 = w22 * w10 + w2 * w9 * w4;
+    const Scalar w25 = w2 * w22 - w9 * w10 * w4;
+    const Scalar w26 = w25 * w12 + w1 * w23;
+    const Scalar w27 = w1 * w25 - w12 * w23;
+    const Scalar w28 = w16 * w24 + w26 * w18;
+    const Scalar w29 = w5 * w6 * w10 - w2 * w9 * w6 * w7;
+    const Scalar w30 = w9 * w10 + w2 * w5 * w7;
+    const Scalar w31 = w2 * w5 + w9 * w10 * w7;
+    const Scalar w32 = w2 * w9 * w7 - w5 * w10;
+    const Scalar w33 = w9 * w12 * w3 + w1 * w32;
+    const Scalar w34 = w12 * w32 - w1 * w9 * w3;
+    J(0, 0) = w0 * w14 - w19 * w20;
+    J(0, 1) = -(w0 * (w1 * w21 - w9 * w12 * w3 * w4) - ((w12 * w21 + w1 * w9 * w3 * w4) * w18 - (w9 * w10 * w4 * w7 + w2 * w5 * w4) * w16) * w20);
+    J(0, 2) = -((w23 * w16 * w10 - (w1 * w22 - w2 * w12 * w23) * w18) * w20 - (w12 * w22 + w1 * w2 * w23) * w0);
+    J(0, 3) = (w12 * w24 * w18 - w25 * w16) * w20 - w1 * w0 * w24;
+    J(0, 4) = w0 * w26 + w27 * w20 * w18;
+    J(0, 5) = (w16 * w26 - w24 * w18) * w20;
+    J(0, 6) = w27 * w20 + w0 * w28;
+    J(1, 0) = w0 * w27 - w28 * w20;
+    J(1, 1) = -((w16 * (w2 * w5 * w6 + w9 * w6 * w10 * w7) - (w29 * w12 + w1 * w9 * w3 * w6) * w18) * w20 - (w9 * w12 * w3 * w6 - w29 * w1) * w0);
+    J(1, 2) = -(((w1 * w8 + w2 * w12 * w13) * w18 + w16 * w10 * w13) * w20 + w0 * (w12 * w8 - w1 * w2 * w13));
+    J(1, 3) = -((w15 * w12 * w18 - w11 * w16) * w20 - w1 * w0 * w15);
+    J(1, 4) = -(w14 * w20 * w18 + w0 * w17);
+    J(1, 5) = (w15 * w18 - w16 * w17) * w20;
+    J(1, 6) = -(w14 * w20 + w19 * w0);
+    J(2, 1) = w0 * (w5 * w12 * w3 + w1 * w30) - ((w12 * w30 - w1 * w5 * w3) * w18 - (w2 * w9 - w5 * w10 * w7) * w16) * w20;
+    J(2, 2) = -(w0 * (w1 * w2 * w9 * w3 - w9 * w12 * w7) - w20 * (w9 * w16 * w3 * w10 + (w1 * w9 * w7 + w2 * w9 * w12 * w3) * w18));
+    J(2, 3) = -(w1 * w0 * w31 - w20 * (w31 * w12 * w18 - w16 * w32));
+    J(2, 4) = w33 * w20 * w18 + w34 * w0;
+    J(2, 5) = -((w31 * w18 - w34 * w16) * w20);
+    J(2, 6) = w0 * (w31 * w16 + w34 * w18) + w33 * w20;
+    J(2, 0) = Scalar(0);
+  }
+
+  /// J = dy/dq of the output iiwa_link_ee_kuka_axis_1
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_iiwa_link_ee_kuka_axis_1(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& J) noexcept {
+    output_jacobian_iiwa_link_ee_kuka_axis_1(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(J));
+  }
+
+  /// Jdot qd of the output iiwa_link_ee_kuka_axis_1: its acceleration at qdd = 0
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_iiwa_link_ee_kuka_axis_1([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& Jdot_qd) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, 1), "Jdot_qd: expected 3 x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && Jdot_qd.rows() == 3 && Jdot_qd.cols() == 1);
+    using std::sin; using std::cos;
+    const Scalar w0 = sin(q(6));
+    const Scalar w1 = cos(q(3));
+    const Scalar w2 = cos(q(1));
+    const Scalar w3 = cos(q(0));
+    const Scalar w4 = cos(q(2));
+    const Scalar w5 = sin(q(2));
+    const Scalar w6 = sin(q(0));
+    const Scalar w7 = w5 * w6 - w2 * w3 * w4;
+    const Scalar w8 = sin(q(1));
+    const Scalar w9 = sin(q(3));
+    const Scalar w10 = w8 * w9 * w3;
+    const Scalar w11 = w1 * w7 - w10;
+    const Scalar w12 = sin(q(5));
+    const Scalar w13 = cos(q(4));
+    const Scalar w14 = w1 * w8 * w3;
+    const Scalar w15 = w7 * w9 + w14;
+    const Scalar w16 = cos(q(5));
+    const Scalar w17 = w13 * w15 * w16 - w11 * w12;
+    const Scalar w18 = sin(q(4));
+    const Scalar w19 = cos(q(6));
+    const Scalar w20 = w5 * w3 + w2 * w6 * w4;
+    const Scalar w21 = w8 * w6 * w9;
+    const Scalar w22 = w1 * w20 + w21;
+    const Scalar w23 = w2 * w5 * w6 - w3 * w4;
+    const Scalar w24 = w13 * w23;
+    const Scalar w25 = w18 * w22 + w24;
+    const Scalar w26 = -(w18 * w23);
+    const Scalar w27 = w22 * w13 + w26;
+    const Scalar w28 = w2 * w5 * w3 + w6 * w4;
+    const Scalar w29 = w18 * w7 - w1 * w13 * w28;
+    const Scalar w30 = w2 * w9 * w3 - w1 * w8 * w3 * w4;
+    const Scalar w31 = w13 * w30 + w18 * w8 * w5 * w3;
+    const Scalar w32 = w8 * w9 * w3 * w4 + w1 * w2 * w3;
+    const Scalar w33 = -(w13 * w28);
+    const Scalar w34 = w18 * w11 + w33;
+    const Scalar w35 = w0 * w34;
+    const Scalar w36 = w18 * w28;
+    const Scalar w37 = w11 * w13 + w36;
+    const Scalar w38 = qd(4) * qd(4);
+    const Scalar w39 = qd(3) * qd(3);
+    const Scalar w40 = w12 * w15;
+    const Scalar w41 = w40 + w37 * w16;
+    const Scalar w42 = w35 - w41 * w19;
+    const Scalar w43 = qd(6) * qd(6);
+    const Scalar w44 = -(w1 * w8 * w6);
+    const Scalar w45 = w9 * w20 + w44;
+    const Scalar w46 = w45 * w12;
+    const Scalar w47 = w46 + w27 * w16;
+    const Scalar w48 = qd(2) * qd(2);
+    const Scalar w49 = w18 * w20 + w1 * w13 * w23;
+    const Scalar w50 = w49 * w16 + w12 * w9 * w23;
+    const Scalar w51 = w13 * w20 - w18 * w1 * w23;
+    const Scalar w52 = w45 * w13 * w16 - w22 * w12;
+    const Scalar w53 = w18 * w30 - w8 * w13 * w5 * w3;
+    const Scalar w54 = w1 * w2 * w3 * w4 + w10;
+    const Scalar w55 = qd(1) * qd(1);
+    const Scalar w56 = qd(5) * qd(5);
+    const Scalar w57 = qd(0) * qd(0);
+    const Scalar w58 = w31 * w16 - w32 * w12;
+    const Scalar w59 = w28 * w12 * w9 - w29 * w16;
+    const Scalar w60 = w13 * w7 + w18 * w1 * w28;
+    const Scalar w61 = w45 * w16 - w12 * w27;
+    const Scalar w62 = w12 * w37 - w15 * w16;
+    const Scalar w63 = w1 * w2 * w6 + w8 * w6 * w9 * w4;
+    const Scalar w64 = w2 * w6 * w9 - w1 * w8 * w6 * w4;
+    const Scalar w65 = w64 * w13 + w18 * w8 * w5 * w6;
+    const Scalar w66 = w12 * w63 - w65 * w16;
+    const Scalar w67 = w8 * w13 * w5 * w6 - w64 * w18;
+    const Scalar w68 = w0 * w25;
+    const Scalar w69 = w1 * w2 * w6 * w4 + w21;
+    const Scalar w70 = w68 - w47 * w19;
+    const Scalar w71 = w1 * w8 - w2 * w9 * w4;
+    const Scalar w72 = w8 * w9 + w1 * w2 * w4;
+    const Scalar w73 = w18 * w8 * w4 + w1 * w8 * w13 * w5;
+    const Scalar w74 = w18 * w1 * w8 * w5 - w8 * w13 * w4;
+    const Scalar w75 = w18 * w8 * w5;
+    const Scalar w76 = w8 * w13 * w5;
+    const Scalar w77 = w1 * w8 * w4 - w2 * w9;
+    const Scalar w78 = w76 + w18 * w77;
+    const Scalar w79 = w1 * w2 + w8 * w9 * w4;
+    const Scalar w80 = w79 * w12;
+    const Scalar w81 = w13 * w77 - w75;
+    const Scalar w82 = w80 + w81 * w16;
+    const Scalar w83 = w0 * w78;
+    const Scalar w84 = w83 - w82 * w19;
+    const Scalar w85 = w13 * w72 - w18 * w2 * w5;
+    const Scalar w86 = w2 * w13 * w5 + w18 * w72;
+    Jdot_qd(0) = -(Scalar(2) * (w0 * w17 + w18 * w15 * w19) * qd(6) * qd(3) - qd(1) * (w19 * ((w18 * w8 * w3 * w4 + w1 * w8 * w13 * w5 * w3) * w16 + w8 * w12 * w5 * w9 * w3) + w0 * (w8 * w13 * w3 * w4 - w18 * w1 * w8 * w5 * w3)) * Scalar(2) * qd(2) - Scalar(2) * (w25 * w19 * w16 + w0 * w27) * qd(0) * qd(4) + qd(5) * Scalar(2) * w19 * (w12 * w29 + w28 * w9 * w16) * qd(2) + qd(1) * qd(5) * Scalar(2) * (w31 * w12 + w32 * w16) * w19 + Scalar(2) * qd(4) * qd(3) * (w18 * w15 * w19 * w16 + w0 * w13 * w15) + (w35 - w37 * w19 * w16) * w38 + w39 * (w18 * w0 * w11 - (w40 + w11 * w13 * w16) * w19) - Scalar(2) * ((w13 * w28 * w9 * w16 - w1 * w28 * w12) * w19 - w18 * w0 * w28 * w9) * qd(3) * qd(2) + w42 * w43 + Scalar(2) * qd(6) * qd(4) * (w0 * w34 * w16 - w37 * w19) - (w25 * w19 + w47 * w0) * Scalar(2) * qd(0) * qd(6) + (w0 * (w18 * w1 * w7 + w33) - ((w1 * w13 * w7 + w36) * w16 + w7 * w12 * w9) * w19) * w48 - Scalar(2) * (w50 * w19 + w0 * w51) * qd(0) * qd(2) - (w52 * w19 - w18 * w0 * w45) * Scalar(2) * qd(0) * qd(3) + qd(1) * (w53 * w19 * w16 + w0 * w31) * Scalar(2) * qd(4) + qd(5) * Scalar(2) * (w13 * w12 * w15 + w11 * w16) * qd(3) * w19 - ((w12 * (w14 - w2 * w9 * w3 * w4) + (w18 * w2 * w5 * w3 - w13 * w54) * w16) * w19 + w0 * (w2 * w13 * w5 * w3 + w18 * w54)) * w55 - w56 * w41 * w19 + w42 * w57 + qd(1) * (w0 * w58 + w53 * w19) * Scalar(2) * qd(6) - Scalar(2) * (w0 * w59 + w60 * w19) * qd(6) * qd(2) + (w0 * w29 - w60 * w19 * w16) * Scalar(2) * qd(4) * qd(2) + qd(5) * Scalar(2) * w12 * qd(4) * w34 * w19 + qd(5) * Scalar(2) * w61 * qd(0) * w19 - qd(1) * Scalar(2) * qd(3) * ((w30 * w12 + w32 * w13 * w16) * w19 - w18 * w0 * w32) + w0 * w62 * qd(5) * Scalar(2) * qd(6) - qd(1) * Scalar(2) * qd(0) * (w66 * w19 - w67 * w0));
+    Jdot_qd(1) = qd(5) * Scalar(2) * qd(3) * (w22 * w16 + w45 * w13 * w12) * w19 - qd(1) * (w0 * w53 - w58 * w19) * Scalar(2) * qd(0) + (w68 - w27 * w19 * w16) * w38 + ((w64 * w12 + w13 * w63 * w16) * w19 - w18 * w0 * w63) * qd(1) * Scalar(2) * qd(3) + qd(5) * Scalar(2) * w12 * w25 * qd(4) * w19 + (w0 * w49 - w51 * w19 * w16) * Scalar(2) * qd(4) * qd(2) - qd(1) * Scalar(2) * qd(4) * (w0 * w65 - w67 * w19 * w16) + Scalar(2) * qd(0) * (w17 * w19 - w18 * w0 * w15) * qd(3) + w39 * (w18 * w0 * w22 - (w46 + w22 * w13 * w16) * w19) + w62 * qd(5) * Scalar(2) * qd(0) * w19 + w48 * ((w18 * w1 * w20 + w24) * w0 - (w12 * w9 * w20 + (w26 + w1 * w13 * w20) * w16) * w19) - ((w16 * (w13 * w69 - w18 * w2 * w5 * w6) + w12 * (w44 + w2 * w6 * w9 * w4)) * w19 - w0 * (w2 * w13 * w5 * w6 + w18 * w69)) * w55 + qd(5) * Scalar(2) * (w49 * w12 - w9 * w16 * w23) * w19 * qd(2) + w70 * w43 + (w0 * w50 - w51 * w19) * Scalar(2) * qd(6) * qd(2) + ((w13 * w9 * w16 * w23 - w1 * w12 * w23) * w19 - w18 * w0 * w9 * w23) * Scalar(2) * qd(3) * qd(2) + qd(1) * Scalar(2) * qd(6) * (w67 * w19 + w0 * w66) + Scalar(2) * (w0 * w45 * w13 + w18 * w45 * w19 * w16) * qd(4) * qd(3) + qd(1) * ((w8 * w12 * w5 * w6 * w9 + w16 * (w1 * w8 * w13 * w5 * w6 + w18 * w8 * w6 * w4)) * w19 - w0 * (w18 * w1 * w8 * w5 * w6 - w8 * w13 * w6 * w4)) * Scalar(2) * qd(2) - (w27 * w19 - w0 * w25 * w16) * Scalar(2) * qd(6) * qd(4) + (w0 * w52 + w18 * w45 * w19) * Scalar(2) * qd(6) * qd(3) + w57 * w70 + Scalar(2) * qd(0) * qd(4) * (w0 * w37 + w34 * w19 * w16) - w47 * w56 * w19 - qd(1) * (w65 * w12 + w63 * w16) * qd(5) * Scalar(2) * w19 - w0 * qd(5) * Scalar(2) * w61 * qd(6) + (w34 * w19 + w0 * w41) * Scalar(2) * qd(0) * qd(6) - Scalar(2) * qd(0) * (w59 * w19 - w60 * w0) * qd(2);
+    Jdot_qd(2) = qd(1) * Scalar(2) * ((w2 * w12 * w5 * w9 + (w1 * w2 * w13 * w5 + w18 * w2 * w4) * w16) * w19 + (w2 * w13 * w4 - w18 * w1 * w2 * w5) * w0) * qd(2) - qd(1) * Scalar(2) * qd(3) * ((w71 * w13 * w16 + w12 * w72) * w19 - w18 * w0 * w71) - Scalar(2) * qd(4) * qd(2) * (w0 * w73 + w74 * w19 * w16) + w48 * ((w8 * w12 * w9 * w4 - (w75 - w1 * w8 * w13 * w4) * w16) * w19 - w0 * (w76 + w18 * w1 * w8 * w4)) - qd(5) * Scalar(2) * w78 * w12 * qd(4) * w19 - w84 * w43 + w56 * w82 * w19 + w39 * (w19 * (w13 * w16 * w77 + w80) - w18 * w0 * w77) + w38 * (w81 * w19 * w16 - w83) + qd(1) * Scalar(2) * (w0 * (w85 * w16 - w71 * w12) + w86 * w19) * qd(6) + Scalar(2) * (w81 * w19 - w0 * w78 * w16) * qd(6) * qd(4) + qd(1) * (w85 * w12 + w71 * w16) * qd(5) * Scalar(2) * w19 - qd(5) * Scalar(2) * (w16 * w77 + w79 * w13 * w12) * qd(3) * w19 - Scalar(2) * qd(3) * qd(2) * ((w8 * w13 * w5 * w9 * w16 - w1 * w8 * w12 * w5) * w19 - w18 * w0 * w8 * w5 * w9) + (w86 * w19 * w16 + w0 * w85) * qd(1) * Scalar(2) * qd(4) - w84 * w55 - (w0 * w79 * w13 + w18 * w79 * w19 * w16) * Scalar(2) * qd(4) * qd(3) + qd(5) * Scalar(2) * w19 * (w8 * w5 * w9 * w16 - w12 * w73) * qd(2) + w0 * qd(5) * Scalar(2) * qd(6) * (w79 * w16 - w81 * w12) - (w18 * w79 * w19 + w0 * (w79 * w13 * w16 - w12 * w77)) * Scalar(2) * qd(6) * qd(3) - Scalar(2) * qd(6) * (w0 * (w8 * w12 * w5 * w9 + w73 * w16) + w74 * w19) * qd(2);
+  }
+
+  /// Jdot qd of the output iiwa_link_ee_kuka_axis_1: its acceleration at qdd = 0
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_iiwa_link_ee_kuka_axis_1(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Parameters<typename DerivedQ::Scalar>& p, Out0&& Jdot_qd) noexcept {
+    output_bias_iiwa_link_ee_kuka_axis_1(t, q, qd, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(Jdot_qd));
+  }
+
+  /// J = dy/dq of the output iiwa_link_ee_kuka_axis_2
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_iiwa_link_ee_kuka_axis_2([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& J) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, nq), "J: expected 3 x nq");
+    eigen_assert(q.size() == nq && J.rows() == 3 && J.cols() == nq);
+    using std::sin; using std::cos;
+    const Scalar w0 = sin(q(4));
+    const Scalar w1 = cos(q(3));
+    const Scalar w2 = sin(q(2));
+    const Scalar w3 = cos(q(0));
+    const Scalar w4 = cos(q(1));
+    const Scalar w5 = sin(q(0));
+    const Scalar w6 = cos(q(2));
+    const Scalar w7 = w2 * w3 + w4 * w5 * w6;
+    const Scalar w8 = sin(q(1));
+    const Scalar w9 = sin(q(3));
+    const Scalar w10 = w1 * w7 + w8 * w5 * w9;
+    const Scalar w11 = cos(q(4));
+    const Scalar w12 = w4 * w2 * w5 - w3 * w6;
+    const Scalar w13 = w0 * w10 + w11 * w12;
+    const Scalar w14 = cos(q(6));
+    const Scalar w15 = w9 * w7 - w1 * w8 * w5;
+    const Scalar w16 = sin(q(5));
+    const Scalar w17 = w10 * w11 - w0 * w12;
+    const Scalar w18 = cos(q(5));
+    const Scalar w19 = w15 * w16 + w17 * w18;
+    const Scalar w20 = sin(q(6));
+    const Scalar w21 = w4 * w9 * w3 - w1 * w8 * w3 * w6;
+    const Scalar w22 = w2 * w5 - w4 * w3 * w6;
+    const Scalar w23 = w4 * w2 * w3 + w5 * w6;
+    const Scalar w24 = w1 * w22 - w8 * w9 * w3;
+    const Scalar w25 = w22 * w9 + w1 * w8 * w3;
+    const Scalar w26 = w0 * w24 - w11 * w23;
+    const Scalar w27 = w24 * w11 + w0 * w23;
+    const Scalar w28 = w16 * w25 + w27 * w18;
+    const Scalar w29 = w4 * w5 * w9 - w1 * w8 * w5 * w6;
+    const Scalar w30 = w8 * w9 + w1 * w4 * w6;
+    const Scalar w31 = w1 * w4 + w8 * w9 * w6;
+    const Scalar w32 = w1 * w8 * w6 - w4 * w9;
+    const Scalar w33 = w11 * w32 - w0 * w8 * w2;
+    const Scalar w34 = w8 * w11 * w2 + w0 * w32;
+    J(0, 0) = w13 * w14 + w19 * w20;
+    J(0, 1) = -(w20 * ((w11 * w21 + w0 * w8 * w2 * w3) * w18 - (w8 * w9 * w3 * w6 + w1 * w4 * w3) * w16) + (w0 * w21 - w8 * w11 * w2 * w3) * w14);
+    J(0, 2) = w20 * (w23 * w16 * w9 - (w0 * w22 - w1 * w11 * w23) * w18) + (w11 * w22 + w0 * w1 * w23) * w14;
+    J(0, 3) = -(w20 * (w11 * w25 * w18 - w24 * w16) + w0 * w25 * w14);
+    J(0, 4) = -(w20 * w26 * w18 - w27 * w14);
+    J(0, 5) = -(w20 * (w16 * w27 - w25 * w18));
+    J(0, 6) = -(w20 * w26 - w28 * w14);
+    J(1, 0) = w26 * w14 + w20 * w28;
+    J(1, 1) = (w8 * w11 * w2 * w5 - w29 * w0) * w14 + w20 * (w16 * (w1 * w4 * w5 + w8 * w5 * w9 * w6) - (w29 * w11 + w0 * w8 * w2 * w5) * w18);
+    J(1, 2) = w20 * ((w0 * w7 + w1 * w11 * w12) * w18 + w16 * w9 * w12) - (w11 * w7 - w0 * w1 * w12) * w14;
+    J(1, 3) = w20 * (w15 * w11 * w18 - w10 * w16) + w0 * w15 * w14;
+    J(1, 4) = -(w17 * w14 - w20 * w13 * w18);
+    J(1, 5) = -(w20 * (w15 * w18 - w16 * w17));
+    J(1, 6) = w20 * w13 - w19 * w14;
+    J(2, 1) = w20 * ((w11 * w30 - w0 * w4 * w2) * w18 - (w1 * w8 - w4 * w9 * w6) * w16) + (w4 * w11 * w2 + w0 * w30) * w14;
+    J(2, 2) = -(w20 * (w8 * w16 * w2 * w9 + (w0 * w8 * w6 + w1 * w8 * w11 * w2) * w18) + (w0 * w1 * w8 * w2 - w8 * w11 * w6) * w14);
+    J(2, 3) = -(w0 * w31 * w14 + w20 * (w31 * w11 * w18 - w16 * w32));
+    J(2, 4) = w33 * w14 - w20 * w34 * w18;
+    J(2, 5) = w20 * (w31 * w18 - w33 * w16);
+    J(2, 6) = -(w20 * w34 - (w31 * w16 + w33 * w18) * w14);
+    J(2, 0) = Scalar(0);
+  }
+
+  /// J = dy/dq of the output iiwa_link_ee_kuka_axis_2
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_iiwa_link_ee_kuka_axis_2(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& J) noexcept {
+    output_jacobian_iiwa_link_ee_kuka_axis_2(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(J));
+  }
+
+  /// Jdot qd of the output iiwa_link_ee_kuka_axis_2: its acceleration at qdd = 0
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_iiwa_link_ee_kuka_axis_2([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& Jdot_qd) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, 1), "Jdot_qd: expected 3 x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && Jdot_qd.rows() == 3 && Jdot_qd.cols() == 1);
+    using std::sin; using std::cos;
+    const Scalar w0 = sin(q(4));
+    const Scalar w1 = cos(q(3));
+    const Scalar w2 = cos(q(1));
+    const Scalar w3 = cos(q(0));
+    const Scalar w4 = cos(q(2));
+    const Scalar w5 = sin(q(2));
+    const Scalar w6 = sin(q(0));
+    const Scalar w7 = w5 * w6 - w2 * w3 * w4;
+    const Scalar w8 = sin(q(1));
+    const Scalar w9 = sin(q(3));
+    const Scalar w10 = w8 * w9 * w3;
+    const Scalar w11 = w1 * w7 - w10;
+    const Scalar w12 = cos(q(4));
+    const Scalar w13 = w2 * w5 * w3 + w6 * w4;
+    const Scalar w14 = -(w12 * w13);
+    const Scalar w15 = w0 * w11 + w14;
+    const Scalar w16 = cos(q(6));
+    const Scalar w17 = w15 * w16;
+    const Scalar w18 = sin(q(6));
+    const Scalar w19 = w0 * w13;
+    const Scalar w20 = w11 * w12 + w19;
+    const Scalar w21 = cos(q(5));
+    const Scalar w22 = qd(4) * qd(4);
+    const Scalar w23 = w12 * w7 + w0 * w1 * w13;
+    const Scalar w24 = w0 * w7 - w1 * w12 * w13;
+    const Scalar w25 = w5 * w3 + w2 * w6 * w4;
+    const Scalar w26 = -(w1 * w8 * w6);
+    const Scalar w27 = w9 * w25 + w26;
+    const Scalar w28 = w8 * w6 * w9;
+    const Scalar w29 = w1 * w25 + w28;
+    const Scalar w30 = sin(q(5));
+    const Scalar w31 = w27 * w12 * w21 - w29 * w30;
+    const Scalar w32 = w1 * w8 * w3;
+    const Scalar w33 = w1 * w2 * w3 * w4 + w10;
+    const Scalar w34 = qd(1) * qd(1);
+    const Scalar w35 = w2 * w9 * w3 - w1 * w8 * w3 * w4;
+    const Scalar w36 = w12 * w35 + w0 * w8 * w5 * w3;
+    const Scalar w37 = w0 * w35 - w8 * w12 * w5 * w3;
+    const Scalar w38 = qd(5) * qd(5);
+    const Scalar w39 = w7 * w9 + w32;
+    const Scalar w40 = w30 * w39;
+    const Scalar w41 = w40 + w20 * w21;
+    const Scalar w42 = w8 * w9 * w3 * w4 + w1 * w2 * w3;
+    const Scalar w43 = qd(2) * qd(2);
+    const Scalar w44 = w2 * w5 * w6 - w3 * w4;
+    const Scalar w45 = w0 * w25 + w1 * w12 * w44;
+    const Scalar w46 = w45 * w21 + w30 * w9 * w44;
+    const Scalar w47 = w12 * w25 - w0 * w1 * w44;
+    const Scalar w48 = -(w0 * w44);
+    const Scalar w49 = w29 * w12 + w48;
+    const Scalar w50 = w12 * w44;
+    const Scalar w51 = w0 * w29 + w50;
+    const Scalar w52 = w12 * w39 * w21 - w11 * w30;
+    const Scalar w53 = w17 + w18 * w41;
+    const Scalar w54 = qd(6) * qd(6);
+    const Scalar w55 = w27 * w30;
+    const Scalar w56 = w55 + w49 * w21;
+    const Scalar w57 = w13 * w30 * w9 - w24 * w21;
+    const Scalar w58 = w2 * w6 * w9 - w1 * w8 * w6 * w4;
+    const Scalar w59 = w8 * w12 * w5 * w6 - w58 * w0;
+    const Scalar w60 = w1 * w2 * w6 + w8 * w6 * w9 * w4;
+    const Scalar w61 = w58 * w12 + w0 * w8 * w5 * w6;
+    const Scalar w62 = w30 * w60 - w61 * w21;
+    const Scalar w63 = w27 * w21 - w30 * w49;
+    const Scalar w64 = qd(0) * qd(0);
+    const Scalar w65 = w36 * w21 - w42 * w30;
+    const Scalar w66 = qd(3) * qd(3);
+    const Scalar w67 = w30 * w20 - w39 * w21;
+    const Scalar w68 = w1 * w2 * w6 * w4 + w28;
+    const Scalar w69 = w51 * w16;
+    const Scalar w70 = w69 + w56 * w18;
+    const Scalar w71 = w1 * w2 + w8 * w9 * w4;
+    const Scalar w72 = w1 * w8 * w4 - w2 * w9;
+    const Scalar w73 = w1 * w8 - w2 * w9 * w4;
+    const Scalar w74 = w8 * w9 + w1 * w2 * w4;
+    const Scalar w75 = w0 * w1 * w8 * w5 - w8 * w12 * w4;
+    const Scalar w76 = w0 * w8 * w4 + w1 * w8 * w12 * w5;
+    const Scalar w77 = w2 * w12 * w5 + w0 * w74;
+    const Scalar w78 = w12 * w74 - w0 * w2 * w5;
+    const Scalar w79 = w71 * w30;
+    const Scalar w80 = w0 * w8 * w5;
+    const Scalar w81 = w12 * w72 - w80;
+    const Scalar w82 = w79 + w81 * w21;
+    const Scalar w83 = w8 * w12 * w5;
+    const Scalar w84 = w83 + w0 * w72;
+    const Scalar w85 = w84 * w16;
+    const Scalar w86 = w18 * w82 + w85;
+    Jdot_qd(0) = -((w17 + w18 * w20 * w21) * w22 + (w23 * w18 * w21 + w24 * w16) * Scalar(2) * qd(4) * qd(2) + (w18 * w31 + w0 * w27 * w16) * Scalar(2) * qd(0) * qd(3) + (w18 * (w30 * (w32 - w2 * w9 * w3 * w4) + (w0 * w2 * w5 * w3 - w12 * w33) * w21) - (w2 * w12 * w5 * w3 + w0 * w33) * w16) * w34 + qd(1) * Scalar(2) * (w36 * w16 - w18 * w37 * w21) * qd(4) + w18 * w38 * w41 - w18 * qd(5) * Scalar(2) * w30 * qd(4) * w15 - Scalar(2) * qd(4) * qd(3) * (w0 * w18 * w39 * w21 - w12 * w39 * w16) + qd(1) * Scalar(2) * qd(3) * (w18 * (w35 * w30 + w42 * w12 * w21) + w0 * w42 * w16) + qd(1) * Scalar(2) * (w18 * ((w0 * w8 * w3 * w4 + w1 * w8 * w12 * w5 * w3) * w21 + w8 * w30 * w5 * w9 * w3) - (w8 * w12 * w3 * w4 - w0 * w1 * w8 * w5 * w3) * w16) * qd(2) + (w18 * ((w1 * w12 * w7 + w19) * w21 + w7 * w30 * w9) + (w0 * w1 * w7 + w14) * w16) * w43 + (w18 * w46 - w47 * w16) * Scalar(2) * qd(0) * qd(2) + Scalar(2) * qd(6) * qd(4) * (w18 * w20 + w15 * w16 * w21) - (w49 * w16 - w18 * w51 * w21) * Scalar(2) * qd(0) * qd(4) + Scalar(2) * qd(6) * (w52 * w16 - w0 * w18 * w39) * qd(3) + w53 * w54 - w18 * qd(5) * Scalar(2) * (w12 * w30 * w39 + w11 * w21) * qd(3) + (w0 * w13 * w9 * w16 + w18 * (w12 * w13 * w9 * w21 - w1 * w13 * w30)) * Scalar(2) * qd(3) * qd(2) + (w18 * w51 - w56 * w16) * Scalar(2) * qd(0) * qd(6) - Scalar(2) * qd(6) * (w57 * w16 - w23 * w18) * qd(2) + qd(1) * Scalar(2) * qd(0) * (w59 * w16 + w18 * w62) - w18 * qd(5) * Scalar(2) * w63 * qd(0) + w53 * w64 - qd(1) * (w18 * w37 - w65 * w16) * Scalar(2) * qd(6) + w66 * (w0 * w11 * w16 + w18 * (w40 + w11 * w12 * w21)) - w18 * qd(5) * Scalar(2) * (w30 * w24 + w13 * w9 * w21) * qd(2) - w18 * qd(1) * qd(5) * Scalar(2) * (w36 * w30 + w42 * w21) + w67 * qd(5) * Scalar(2) * qd(6) * w16);
+    Jdot_qd(1) = -(qd(1) * Scalar(2) * qd(4) * (w61 * w16 + w59 * w18 * w21) - ((w2 * w12 * w5 * w6 + w0 * w68) * w16 + w18 * (w21 * (w12 * w68 - w0 * w2 * w5 * w6) + w30 * (w26 + w2 * w6 * w9 * w4))) * w34 - Scalar(2) * (w51 * w16 * w21 + w18 * w49) * qd(6) * qd(4) + Scalar(2) * qd(0) * (w18 * w52 + w0 * w39 * w16) * qd(3) + w18 * qd(5) * Scalar(2) * (w45 * w30 - w9 * w21 * w44) * qd(2) + (w0 * w18 * w27 * w21 - w27 * w12 * w16) * Scalar(2) * qd(4) * qd(3) - (w69 + w18 * w49 * w21) * w22 - (w31 * w16 - w0 * w18 * w27) * Scalar(2) * qd(6) * qd(3) - qd(1) * Scalar(2) * qd(6) * (w62 * w16 - w59 * w18) + w18 * w67 * qd(5) * Scalar(2) * qd(0) - Scalar(2) * (w46 * w16 + w18 * w47) * qd(6) * qd(2) - Scalar(2) * (w18 * w47 * w21 + w45 * w16) * qd(4) * qd(2) + Scalar(2) * qd(3) * (w0 * w9 * w16 * w44 + w18 * (w12 * w9 * w21 * w44 - w1 * w30 * w44)) * qd(2) + w18 * qd(5) * Scalar(2) * qd(3) * (w29 * w21 + w27 * w12 * w30) + (w18 * w15 - w41 * w16) * Scalar(2) * qd(0) * qd(6) + qd(1) * Scalar(2) * ((w0 * w1 * w8 * w5 * w6 - w8 * w12 * w6 * w4) * w16 + w18 * (w8 * w30 * w5 * w6 * w9 + w21 * (w1 * w8 * w12 * w5 * w6 + w0 * w8 * w6 * w4))) * qd(2) + w18 * qd(5) * Scalar(2) * w30 * w51 * qd(4) - w70 * w54 - w64 * w70 - w66 * ((w55 + w29 * w12 * w21) * w18 + w0 * w29 * w16) - w56 * w18 * w38 - Scalar(2) * (w18 * w57 + w23 * w16) * qd(0) * qd(2) - w18 * qd(1) * (w61 * w30 + w60 * w21) * qd(5) * Scalar(2) + Scalar(2) * qd(0) * qd(4) * (w18 * w15 * w21 - w20 * w16) + qd(5) * Scalar(2) * w63 * qd(6) * w16 + qd(1) * (w18 * w65 + w37 * w16) * Scalar(2) * qd(0) + qd(1) * Scalar(2) * (w18 * (w58 * w30 + w12 * w60 * w21) + w0 * w60 * w16) * qd(3) - ((w0 * w1 * w25 + w50) * w16 + w18 * (w30 * w9 * w25 + (w48 + w1 * w12 * w25) * w21)) * w43);
+    Jdot_qd(2) = -(Scalar(2) * (w76 * w16 - w18 * w75 * w21) * qd(4) * qd(2) - (w0 * w18 * w71 - w16 * (w71 * w12 * w21 - w30 * w72)) * Scalar(2) * qd(6) * qd(3) - qd(1) * (w18 * (w73 * w12 * w21 + w30 * w74) + w0 * w73 * w16) * Scalar(2) * qd(3) + w18 * qd(5) * Scalar(2) * (w8 * w5 * w9 * w21 - w30 * w76) * qd(2) + qd(1) * Scalar(2) * (w18 * w77 * w21 - w78 * w16) * qd(4) + w86 * w54 + w86 * w34 + w66 * (w0 * w16 * w72 + w18 * (w12 * w21 * w72 + w79)) + ((w83 + w0 * w1 * w8 * w4) * w16 + w18 * (w8 * w30 * w9 * w4 - (w80 - w1 * w8 * w12 * w4) * w21)) * w43 - Scalar(2) * (w0 * w8 * w5 * w9 * w16 + w18 * (w8 * w12 * w5 * w9 * w21 - w1 * w8 * w30 * w5)) * qd(3) * qd(2) + (w81 * w18 * w21 + w85) * w22 - qd(5) * Scalar(2) * qd(6) * (w71 * w21 - w81 * w30) * w16 + (w71 * w12 * w16 - w0 * w18 * w71 * w21) * Scalar(2) * qd(4) * qd(3) + w18 * w38 * w82 + Scalar(2) * qd(6) * qd(4) * (w84 * w16 * w21 + w81 * w18) + qd(1) * Scalar(2) * (w18 * (w2 * w30 * w5 * w9 + (w1 * w2 * w12 * w5 + w0 * w2 * w4) * w21) - (w2 * w12 * w4 - w0 * w1 * w2 * w5) * w16) * qd(2) - Scalar(2) * (w18 * w75 - w16 * (w8 * w30 * w5 * w9 + w76 * w21)) * qd(6) * qd(2) + qd(1) * (w18 * w77 - (w78 * w21 - w73 * w30) * w16) * Scalar(2) * qd(6) + w18 * qd(1) * (w78 * w30 + w73 * w21) * qd(5) * Scalar(2) - w18 * qd(5) * Scalar(2) * (w21 * w72 + w71 * w12 * w30) * qd(3) - w18 * qd(5) * Scalar(2) * w84 * w30 * qd(4));
+  }
+
+  /// Jdot qd of the output iiwa_link_ee_kuka_axis_2: its acceleration at qdd = 0
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_iiwa_link_ee_kuka_axis_2(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Parameters<typename DerivedQ::Scalar>& p, Out0&& Jdot_qd) noexcept {
+    output_bias_iiwa_link_ee_kuka_axis_2(t, q, qd, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(Jdot_qd));
+  }
+
+  /// J = dy/dq of the output iiwa_link_ee_kuka_axis_3
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_iiwa_link_ee_kuka_axis_3([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& J) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, nq), "J: expected 3 x nq");
+    eigen_assert(q.size() == nq && J.rows() == 3 && J.cols() == nq);
+    using std::sin; using std::cos;
+    const Scalar w0 = sin(q(3));
+    const Scalar w1 = sin(q(2));
+    const Scalar w2 = cos(q(0));
+    const Scalar w3 = cos(q(1));
+    const Scalar w4 = sin(q(0));
+    const Scalar w5 = cos(q(2));
+    const Scalar w6 = w1 * w2 + w3 * w4 * w5;
+    const Scalar w7 = cos(q(3));
+    const Scalar w8 = sin(q(1));
+    const Scalar w9 = w0 * w6 - w7 * w8 * w4;
+    const Scalar w10 = cos(q(5));
+    const Scalar w11 = sin(q(5));
+    const Scalar w12 = w7 * w6 + w8 * w4 * w0;
+    const Scalar w13 = cos(q(4));
+    const Scalar w14 = sin(q(4));
+    const Scalar w15 = w3 * w1 * w4 - w2 * w5;
+    const Scalar w16 = w12 * w13 - w14 * w15;
+    const Scalar w17 = w1 * w4 - w3 * w2 * w5;
+    const Scalar w18 = w3 * w1 * w2 + w4 * w5;
+    const Scalar w19 = w17 * w0 + w7 * w8 * w2;
+    const Scalar w20 = w7 * w17 - w8 * w0 * w2;
+    const Scalar w21 = w20 * w13 + w14 * w18;
+    const Scalar w22 = w7 * w8 * w5 - w3 * w0;
+    const Scalar w23 = w7 * w3 + w8 * w0 * w5;
+    J(0, 0) = w9 * w10 - w11 * w16;
+    J(0, 1) = (w13 * (w3 * w0 * w2 - w7 * w8 * w2 * w5) + w14 * w8 * w1 * w2) * w11 + (w8 * w0 * w2 * w5 + w7 * w3 * w2) * w10;
+    J(0, 2) = w11 * (w14 * w17 - w7 * w13 * w18) + w18 * w0 * w10;
+    J(0, 3) = w13 * w11 * w19 + w20 * w10;
+    J(0, 4) = w11 * (w14 * w20 - w13 * w18);
+    J(0, 5) = -(w11 * w19 + w21 * w10);
+    J(1, 0) = -(w11 * w21 - w19 * w10);
+    J(1, 1) = ((w3 * w4 * w0 - w7 * w8 * w4 * w5) * w13 + w14 * w8 * w1 * w4) * w11 + (w7 * w3 * w4 + w8 * w4 * w0 * w5) * w10;
+    J(1, 2) = -((w14 * w6 + w7 * w13 * w15) * w11 - w0 * w10 * w15);
+    J(1, 3) = -(w12 * w10 + w9 * w13 * w11);
+    J(1, 4) = -(w11 * (w14 * w12 + w13 * w15));
+    J(1, 5) = w9 * w11 + w16 * w10;
+    J(2, 1) = -((w13 * (w8 * w0 + w7 * w3 * w5) - w14 * w3 * w1) * w11 + (w7 * w8 - w3 * w0 * w5) * w10);
+    J(2, 2) = -(w8 * w1 * w0 * w10 - w11 * (w14 * w8 * w5 + w7 * w8 * w13 * w1));
+    J(2, 3) = w10 * w22 + w23 * w13 * w11;
+    J(2, 4) = (w8 * w13 * w1 + w14 * w22) * w11;
+    J(2, 5) = -(w23 * w11 + (w13 * w22 - w14 * w8 * w1) * w10);
+    J(0, 6) = Scalar(0);
+    J(1, 6) = Scalar(0);
+    J(2, 0) = Scalar(0);
+    J(2, 6) = Scalar(0);
+  }
+
+  /// J = dy/dq of the output iiwa_link_ee_kuka_axis_3
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_iiwa_link_ee_kuka_axis_3(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& J) noexcept {
+    output_jacobian_iiwa_link_ee_kuka_axis_3(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(J));
+  }
+
+  /// Jdot qd of the output iiwa_link_ee_kuka_axis_3: its acceleration at qdd = 0
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_iiwa_link_ee_kuka_axis_3([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& Jdot_qd) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, 1), "Jdot_qd: expected 3 x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && Jdot_qd.rows() == 3 && Jdot_qd.cols() == 1);
+    using std::sin; using std::cos;
+    const Scalar w0 = sin(q(1));
+    const Scalar w1 = cos(q(4));
+    const Scalar w2 = sin(q(2));
+    const Scalar w3 = cos(q(0));
+    const Scalar w4 = sin(q(4));
+    const Scalar w5 = cos(q(3));
+    const Scalar w6 = cos(q(2));
+    const Scalar w7 = cos(q(1));
+    const Scalar w8 = sin(q(3));
+    const Scalar w9 = w7 * w8 * w3 - w5 * w0 * w3 * w6;
+    const Scalar w10 = sin(q(5));
+    const Scalar w11 = cos(q(5));
+    const Scalar w12 = w0 * w8 * w3 * w6 + w5 * w7 * w3;
+    const Scalar w13 = sin(q(0));
+    const Scalar w14 = w7 * w2 * w3 + w13 * w6;
+    const Scalar w15 = w2 * w13 - w7 * w3 * w6;
+    const Scalar w16 = w0 * w8 * w3;
+    const Scalar w17 = w5 * w15 - w16;
+    const Scalar w18 = w4 * w17 - w1 * w14;
+    const Scalar w19 = w5 * w0 * w3;
+    const Scalar w20 = w15 * w8 + w19;
+    const Scalar w21 = w2 * w3 + w7 * w13 * w6;
+    const Scalar w22 = -(w5 * w0 * w13);
+    const Scalar w23 = w8 * w21 + w22;
+    const Scalar w24 = w0 * w13 * w8;
+    const Scalar w25 = w5 * w21 + w24;
+    const Scalar w26 = w7 * w2 * w13 - w3 * w6;
+    const Scalar w27 = -(w4 * w26);
+    const Scalar w28 = w25 * w1 + w27;
+    const Scalar w29 = w1 * w9 + w4 * w0 * w2 * w3;
+    const Scalar w30 = w7 * w13 * w8 - w5 * w0 * w13 * w6;
+    const Scalar w31 = w30 * w1 + w4 * w0 * w2 * w13;
+    const Scalar w32 = w5 * w7 * w13 + w0 * w13 * w8 * w6;
+    const Scalar w33 = w4 * w21 + w5 * w1 * w26;
+    const Scalar w34 = w4 * w14;
+    const Scalar w35 = w17 * w1 + w34;
+    const Scalar w36 = qd(4) * qd(4);
+    const Scalar w37 = qd(2) * qd(2);
+    const Scalar w38 = w4 * w15 - w5 * w1 * w14;
+    const Scalar w39 = w20 * w11;
+    const Scalar w40 = qd(3) * qd(3);
+    const Scalar w41 = w10 * w35 - w39;
+    const Scalar w42 = qd(5) * qd(5);
+    const Scalar w43 = qd(0) * qd(0);
+    const Scalar w44 = w4 * w25 + w1 * w26;
+    const Scalar w45 = qd(1) * qd(1);
+    const Scalar w46 = w23 * w11;
+    const Scalar w47 = w46 - w10 * w28;
+    const Scalar w48 = w5 * w7 + w0 * w8 * w6;
+    const Scalar w49 = w0 * w8 + w5 * w7 * w6;
+    const Scalar w50 = w4 * w0 * w2;
+    const Scalar w51 = w5 * w0 * w6 - w7 * w8;
+    const Scalar w52 = w1 * w51 - w50;
+    const Scalar w53 = w48 * w11;
+    const Scalar w54 = w53 - w52 * w10;
+    const Scalar w55 = w5 * w0 - w7 * w8 * w6;
+    Jdot_qd(0) = -(qd(1) * (w4 * w9 - w0 * w1 * w2 * w3) * Scalar(2) * w10 * qd(4) + qd(1) * Scalar(2) * (w9 * w11 - w12 * w1 * w10) * qd(3) - (w5 * w14 * w11 + w1 * w14 * w10 * w8) * Scalar(2) * qd(3) * qd(2) - qd(5) * Scalar(2) * qd(4) * w18 * w11 + w4 * Scalar(2) * w10 * w20 * qd(4) * qd(3) - (w1 * w20 * w11 - w17 * w10) * qd(5) * Scalar(2) * qd(3) + qd(1) * Scalar(2) * (w0 * w2 * w8 * w11 * w3 - (w4 * w0 * w3 * w6 + w5 * w0 * w1 * w2 * w3) * w10) * qd(2) + (w23 * w10 + w28 * w11) * qd(5) * Scalar(2) * qd(0) - Scalar(2) * qd(0) * qd(3) * (w25 * w11 + w23 * w1 * w10) - qd(1) * (w29 * w11 - w12 * w10) * qd(5) * Scalar(2) + qd(1) * (w31 * w10 + w32 * w11) * Scalar(2) * qd(0) - Scalar(2) * qd(0) * (w33 * w10 - w8 * w11 * w26) * qd(2) - w10 * w35 * w36 + (w15 * w8 * w11 - (w5 * w1 * w15 + w34) * w10) * w37 + qd(5) * Scalar(2) * (w14 * w10 * w8 - w38 * w11) * qd(2) + (w39 - w17 * w1 * w10) * w40 - w41 * w42 - w41 * w43 - Scalar(2) * w10 * qd(0) * w44 * qd(4) + (w11 * (w19 - w7 * w8 * w3 * w6) - (w4 * w7 * w2 * w3 - w1 * (w5 * w7 * w3 * w6 + w16)) * w10) * w45 - (w1 * w15 + w4 * w5 * w14) * Scalar(2) * w10 * qd(4) * qd(2));
+    Jdot_qd(1) = (w8 * w21 * w11 - (w27 + w5 * w1 * w21) * w10) * w37 - qd(5) * Scalar(2) * w44 * qd(4) * w11 - Scalar(2) * (w1 * w21 - w4 * w5 * w26) * w10 * qd(4) * qd(2) - qd(5) * Scalar(2) * (w33 * w11 + w10 * w8 * w26) * qd(2) + (w0 * w1 * w2 * w13 - w30 * w4) * qd(1) * Scalar(2) * w10 * qd(4) + w40 * (w46 - w25 * w1 * w10) + Scalar(2) * (w1 * w10 * w20 + w17 * w11) * qd(0) * qd(3) + w4 * w23 * Scalar(2) * w10 * qd(4) * qd(3) + Scalar(2) * w10 * qd(0) * qd(4) * w18 - qd(1) * qd(5) * Scalar(2) * (w10 * w32 - w31 * w11) + Scalar(2) * qd(0) * (w10 * w38 + w14 * w8 * w11) * qd(2) - qd(5) * Scalar(2) * (w23 * w1 * w11 - w25 * w10) * qd(3) + qd(1) * Scalar(2) * qd(0) * (w29 * w10 + w12 * w11) - w45 * (w10 * (w1 * (w5 * w7 * w13 * w6 + w24) - w4 * w7 * w2 * w13) - w11 * (w22 + w7 * w13 * w8 * w6)) + w42 * w47 - qd(5) * Scalar(2) * (w10 * w20 + w35 * w11) * qd(0) - qd(1) * Scalar(2) * (w0 * w2 * w13 * w8 * w11 - w10 * (w5 * w0 * w1 * w2 * w13 + w4 * w0 * w13 * w6)) * qd(2) + Scalar(2) * (w5 * w11 * w26 + w1 * w10 * w8 * w26) * qd(3) * qd(2) + w43 * w47 - w10 * w28 * w36 - qd(1) * Scalar(2) * qd(3) * (w30 * w11 - w1 * w10 * w32);
+    Jdot_qd(2) = -(w4 * w48 * Scalar(2) * w10 * qd(4) * qd(3) - qd(1) * Scalar(2) * w10 * (w7 * w1 * w2 + w4 * w49) * qd(4) - w52 * w10 * w36 + w42 * w54 + (w5 * w0 * w2 * w11 + w0 * w1 * w10 * w2 * w8) * Scalar(2) * qd(3) * qd(2) - qd(5) * Scalar(2) * (w0 * w10 * w2 * w8 + (w4 * w0 * w6 + w5 * w0 * w1 * w2) * w11) * qd(2) + (w0 * w8 * w11 * w6 + (w50 - w5 * w0 * w1 * w6) * w10) * w37 + qd(1) * ((w1 * w49 - w4 * w7 * w2) * w11 - w55 * w10) * qd(5) * Scalar(2) + w54 * w45 - w40 * (w1 * w10 * w51 - w53) - qd(5) * Scalar(2) * qd(3) * (w48 * w1 * w11 - w10 * w51) + qd(1) * Scalar(2) * (w55 * w1 * w10 - w49 * w11) * qd(3) - qd(5) * Scalar(2) * (w0 * w1 * w2 + w4 * w51) * qd(4) * w11 + (w4 * w5 * w0 * w2 - w0 * w1 * w6) * Scalar(2) * w10 * qd(4) * qd(2) + (w7 * w2 * w8 * w11 - w10 * (w5 * w7 * w1 * w2 + w4 * w7 * w6)) * qd(1) * Scalar(2) * qd(2));
+  }
+
+  /// Jdot qd of the output iiwa_link_ee_kuka_axis_3: its acceleration at qdd = 0
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_iiwa_link_ee_kuka_axis_3(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Parameters<typename DerivedQ::Scalar>& p, Out0&& Jdot_qd) noexcept {
+    output_bias_iiwa_link_ee_kuka_axis_3(t, q, qd, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(Jdot_qd));
+  }
+
+  /// J = dy/dqd of the output iiwa_link_ee_kuka_angular_velocity
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_iiwa_link_ee_kuka_angular_velocity([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& J) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, nq), "J: expected 3 x nq");
+    eigen_assert(q.size() == nq && J.rows() == 3 && J.cols() == nq);
+    using std::sin; using std::cos;
+    const Scalar w0 = sin(q(0));
+    const Scalar w1 = sin(q(1));
+    const Scalar w2 = cos(q(0));
+    const Scalar w3 = cos(q(1));
+    const Scalar w4 = sin(q(2));
+    const Scalar w5 = cos(q(2));
+    const Scalar w6 = w3 * w4 * w2 + w0 * w5;
+    const Scalar w7 = w4 * w0 - w3 * w2 * w5;
+    const Scalar w8 = sin(q(3));
+    const Scalar w9 = cos(q(3));
+    const Scalar w10 = w7 * w8 + w9 * w1 * w2;
+    const Scalar w11 = sin(q(4));
+    const Scalar w12 = w9 * w7 - w1 * w8 * w2;
+    const Scalar w13 = cos(q(4));
+    const Scalar w14 = cos(q(5));
+    const Scalar w15 = sin(q(5));
+    const Scalar w16 = w3 * w4 * w0 - w2 * w5;
+    const Scalar w17 = w4 * w2 + w3 * w0 * w5;
+    const Scalar w18 = w8 * w17 - w9 * w1 * w0;
+    const Scalar w19 = w9 * w17 + w1 * w0 * w8;
+    const Scalar w20 = w9 * w3 + w1 * w8 * w5;
+    const Scalar w21 = w9 * w1 * w5 - w3 * w8;
+    J(0, 1) = -w0;
+    J(0, 2) = w1 * w2;
+    J(0, 3) = w6;
+    J(0, 4) = w10;
+    J(0, 5) = w11 * w12 - w13 * w6;
+    J(0, 6) = -(w15 * (w12 * w13 + w11 * w6) - w10 * w14);
+    J(1, 1) = w2;
+    J(1, 2) = w1 * w0;
+    J(1, 3) = w16;
+    J(1, 4) = -w18;
+    J(1, 5) = -(w11 * w19 + w13 * w16);
+    J(1, 6) = -(w18 * w14 - w15 * (w19 * w13 - w11 * w16));
+    J(2, 0) = Scalar(1);
+    J(2, 2) = w3;
+    J(2, 3) = -(w1 * w4);
+    J(2, 4) = w20;
+    J(2, 5) = w1 * w13 * w4 + w11 * w21;
+    J(2, 6) = w20 * w14 - (w13 * w21 - w11 * w1 * w4) * w15;
+    J(0, 0) = Scalar(0);
+    J(1, 0) = Scalar(0);
+    J(2, 1) = Scalar(0);
+  }
+
+  /// J = dy/dqd of the output iiwa_link_ee_kuka_angular_velocity
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_iiwa_link_ee_kuka_angular_velocity(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& J) noexcept {
+    output_jacobian_iiwa_link_ee_kuka_angular_velocity(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(J));
+  }
+
+  /// Jdot qd of the output iiwa_link_ee_kuka_angular_velocity: its rate at qdd = 0
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_iiwa_link_ee_kuka_angular_velocity([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& Jdot_qd) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, 1), "Jdot_qd: expected 3 x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && Jdot_qd.rows() == 3 && Jdot_qd.cols() == 1);
+    using std::sin; using std::cos;
+    const Scalar w0 = cos(q(4));
+    const Scalar w1 = sin(q(5));
+    const Scalar w2 = cos(q(1));
+    const Scalar w3 = cos(q(0));
+    const Scalar w4 = cos(q(2));
+    const Scalar w5 = sin(q(2));
+    const Scalar w6 = sin(q(0));
+    const Scalar w7 = w5 * w6 - w2 * w3 * w4;
+    const Scalar w8 = sin(q(3));
+    const Scalar w9 = cos(q(3));
+    const Scalar w10 = sin(q(1));
+    const Scalar w11 = w7 * w8 + w9 * w10 * w3;
+    const Scalar w12 = w9 * w7 - w10 * w8 * w3;
+    const Scalar w13 = cos(q(5));
+    const Scalar w14 = sin(q(4));
+    const Scalar w15 = w2 * w5 * w6 - w3 * w4;
+    const Scalar w16 = w5 * w3 + w2 * w6 * w4;
+    const Scalar w17 = w8 * w16 - w9 * w10 * w6;
+    const Scalar w18 = w9 * w16 + w10 * w6 * w8;
+    const Scalar w19 = w14 * w18 + w0 * w15;
+    const Scalar w20 = w18 * w0 - w14 * w15;
+    const Scalar w21 = w2 * w5 * w3 + w6 * w4;
+    const Scalar w22 = w10 * w8 * w3 * w4 + w9 * w2 * w3;
+    const Scalar w23 = w2 * w8 * w3 - w9 * w10 * w3 * w4;
+    const Scalar w24 = w12 * w0 + w14 * w21;
+    const Scalar w25 = w14 * w12 - w0 * w21;
+    const Scalar w26 = w9 * w2 * w6 + w10 * w6 * w8 * w4;
+    const Scalar w27 = w2 * w6 * w8 - w9 * w10 * w6 * w4;
+    const Scalar w28 = w9 * w10 * w4 - w2 * w8;
+    const Scalar w29 = w0 * w28 - w14 * w10 * w5;
+    const Scalar w30 = w9 * w2 + w10 * w8 * w4;
+    const Scalar w31 = w10 * w8 + w9 * w2 * w4;
+    const Scalar w32 = w9 * w10 - w2 * w8 * w4;
+    Jdot_qd(0) = ((w0 * w1 * w11 + w12 * w13) * qd(6) - w14 * qd(5) * w11 + w12 * qd(4)) * qd(3) - (qd(1) * w3 + qd(3) * w15 + w10 * w6 * qd(2) - w17 * qd(4) - qd(5) * w19 - (w17 * w13 - w1 * w20) * qd(6)) * qd(0) + ((w0 * w7 + w14 * w9 * w21) * qd(5) - w7 * qd(3) + w21 * w8 * qd(4) + qd(6) * (w1 * (w14 * w7 - w9 * w0 * w21) + w21 * w8 * w13)) * qd(2) + qd(1) * (w22 * qd(4) - w10 * w5 * qd(3) * w3 - qd(5) * (w14 * w23 - w10 * w0 * w5 * w3) + ((w0 * w23 + w14 * w10 * w5 * w3) * w1 + w22 * w13) * qd(6) + w2 * w3 * qd(2)) - qd(5) * (w1 * w11 + w24 * w13) * qd(6) + (qd(5) * w24 + w1 * qd(6) * w25) * qd(4);
+    Jdot_qd(1) = -((qd(1) * w6 - w21 * qd(3) - w10 * w3 * qd(2) - qd(5) * w25 + (w1 * w24 - w11 * w13) * qd(6) - w11 * qd(4)) * qd(0) - qd(1) * (qd(4) * w26 - w10 * w5 * w6 * qd(3) + ((w27 * w0 + w14 * w10 * w5 * w6) * w1 + w26 * w13) * qd(6) + (w10 * w0 * w5 * w6 - w27 * w14) * qd(5) + w2 * w6 * qd(2)) + (qd(5) * w20 + w1 * qd(6) * w19) * qd(4) - (w17 * w1 + w20 * w13) * qd(5) * qd(6) - qd(3) * (w14 * w17 * qd(5) - qd(6) * (w18 * w13 + w17 * w0 * w1) - w18 * qd(4)) - qd(2) * (w8 * qd(4) * w15 - qd(5) * (w0 * w16 - w14 * w9 * w15) + qd(3) * w16 - qd(6) * ((w14 * w16 + w9 * w0 * w15) * w1 - w8 * w13 * w15)));
+    Jdot_qd(2) = ((w10 * w0 * w5 + w14 * w28) * w1 * qd(6) + w29 * qd(5)) * qd(4) - qd(5) * (w30 * w1 + w29 * w13) * qd(6) + (qd(4) * w28 - w14 * w30 * qd(5) + qd(6) * (w13 * w28 + w30 * w0 * w1)) * qd(3) - qd(1) * (w32 * qd(4) - qd(5) * (w2 * w0 * w5 + w14 * w31) + w2 * w5 * qd(3) + ((w0 * w31 - w14 * w2 * w5) * w1 + w32 * w13) * qd(6) + w10 * qd(2)) - (qd(6) * (w10 * w5 * w8 * w13 - w1 * (w14 * w10 * w4 + w9 * w10 * w0 * w5)) + w10 * w5 * w8 * qd(4) + (w14 * w9 * w10 * w5 - w10 * w0 * w4) * qd(5) + w10 * qd(3) * w4) * qd(2);
+  }
+
+  /// Jdot qd of the output iiwa_link_ee_kuka_angular_velocity: its rate at qdd = 0
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_iiwa_link_ee_kuka_angular_velocity(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Parameters<typename DerivedQ::Scalar>& p, Out0&& Jdot_qd) noexcept {
+    output_bias_iiwa_link_ee_kuka_angular_velocity(t, q, qd, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(Jdot_qd));
+  }
+
+  /// J = dy/dq of the output iiwa_link_ee_position
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_iiwa_link_ee_position([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& J) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, nq), "J: expected 3 x nq");
+    eigen_assert(q.size() == nq && J.rows() == 3 && J.cols() == nq);
+    using std::sin; using std::cos;
+    const Scalar w0 = cos(q(3));
+    const Scalar w1 = sin(q(1));
+    const Scalar w2 = sin(q(0));
+    const Scalar w3 = sin(q(5));
+    const Scalar w4 = sin(q(2));
+    const Scalar w5 = cos(q(0));
+    const Scalar w6 = cos(q(1));
+    const Scalar w7 = cos(q(2));
+    const Scalar w8 = w4 * w5 + w6 * w2 * w7;
+    const Scalar w9 = sin(q(3));
+    const Scalar w10 = w0 * w8 + w1 * w2 * w9;
+    const Scalar w11 = cos(q(4));
+    const Scalar w12 = sin(q(4));
+    const Scalar w13 = w6 * w4 * w2 - w5 * w7;
+    const Scalar w14 = w10 * w11 - w12 * w13;
+    const Scalar w15 = w9 * w8 - w0 * w1 * w2;
+    const Scalar w16 = cos(q(5));
+    const Scalar w17 = w6 * w4 * w5 + w2 * w7;
+    const Scalar w18 = w4 * w2 - w6 * w5 * w7;
+    const Scalar w19 = w0 * w18 - w1 * w9 * w5;
+    const Scalar w20 = w18 * w9 + w0 * w1 * w5;
+    const Scalar w21 = w19 * w11 + w12 * w17;
+    const Scalar w22 = w0 * w6 + w1 * w9 * w7;
+    const Scalar w23 = w0 * w1 * w7 - w6 * w9;
+    J(0, 0) = -(w0 * w1 * w2 * Scalar(0.4) + w3 * w14 * Scalar(0.126) + w1 * Scalar(0.42) * w2 - w15 * w16 * Scalar(0.126) - w9 * w8 * Scalar(0.4));
+    J(0, 1) = w0 * w6 * Scalar(0.4) * w5 + (w11 * (w6 * w9 * w5 - w0 * w1 * w5 * w7) + w12 * w1 * w4 * w5) * w3 * Scalar(0.126) + (w1 * w9 * w5 * w7 + w0 * w6 * w5) * w16 * Scalar(0.126) + w1 * w9 * Scalar(0.4) * w5 * w7 + w6 * Scalar(0.42) * w5;
+    J(0, 2) = w17 * w9 * w16 * Scalar(0.126) + w3 * (w12 * w18 - w0 * w11 * w17) * Scalar(0.126) + w17 * w9 * Scalar(0.4);
+    J(0, 3) = -(w1 * w9 * Scalar(0.4) * w5 - w0 * w18 * Scalar(0.4) - w19 * w16 * Scalar(0.126) - w11 * w3 * w20 * Scalar(0.126));
+    J(0, 4) = w3 * (w12 * w19 - w11 * w17) * Scalar(0.126);
+    J(0, 5) = -(w3 * w20 * Scalar(0.126) + w21 * w16 * Scalar(0.126));
+    J(1, 0) = -(w3 * w21 * Scalar(0.126) - w0 * w1 * Scalar(0.4) * w5 - w20 * w16 * Scalar(0.126) - w1 * Scalar(0.42) * w5 - w18 * w9 * Scalar(0.4));
+    J(1, 1) = (w0 * w6 * w2 + w1 * w2 * w9 * w7) * w16 * Scalar(0.126) + ((w6 * w2 * w9 - w0 * w1 * w2 * w7) * w11 + w12 * w1 * w4 * w2) * w3 * Scalar(0.126) + w1 * w2 * w9 * Scalar(0.4) * w7 + w6 * Scalar(0.42) * w2 + w0 * w6 * w2 * Scalar(0.4);
+    J(1, 2) = -((w12 * w8 + w0 * w11 * w13) * w3 * Scalar(0.126) - w9 * w16 * Scalar(0.126) * w13 - w9 * w13 * Scalar(0.4));
+    J(1, 3) = -(w10 * w16 * Scalar(0.126) + w15 * w11 * w3 * Scalar(0.126) + w0 * w8 * Scalar(0.4) + w1 * w2 * w9 * Scalar(0.4));
+    J(1, 4) = -(w3 * (w12 * w10 + w11 * w13) * Scalar(0.126));
+    J(1, 5) = w15 * w3 * Scalar(0.126) + w14 * w16 * Scalar(0.126);
+    J(2, 1) = w6 * w9 * Scalar(0.4) * w7 - w0 * w1 * Scalar(0.4) - (w11 * (w1 * w9 + w0 * w6 * w7) - w12 * w6 * w4) * w3 * Scalar(0.126) - w1 * Scalar(0.42) - (w0 * w1 - w6 * w9 * w7) * w16 * Scalar(0.126);
+    J(2, 2) = -(w1 * w4 * w9 * Scalar(0.4) + w1 * w4 * w9 * w16 * Scalar(0.126) - w3 * (w12 * w1 * w7 + w0 * w1 * w11 * w4) * Scalar(0.126));
+    J(2, 3) = w22 * w11 * w3 * Scalar(0.126) + w16 * Scalar(0.126) * w23 + w0 * w1 * Scalar(0.4) * w7 - w6 * w9 * Scalar(0.4);
+    J(2, 4) = (w1 * w11 * w4 + w12 * w23) * w3 * Scalar(0.126);
+    J(2, 5) = -(w22 * w3 * Scalar(0.126) + (w11 * w23 - w12 * w1 * w4) * w16 * Scalar(0.126));
+    J(0, 6) = Scalar(0);
+    J(1, 6) = Scalar(0);
+    J(2, 0) = Scalar(0);
+    J(2, 6) = Scalar(0);
+  }
+
+  /// J = dy/dq of the output iiwa_link_ee_position
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_iiwa_link_ee_position(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& J) noexcept {
+    output_jacobian_iiwa_link_ee_position(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(J));
+  }
+
+  /// Jdot qd of the output iiwa_link_ee_position: its acceleration at qdd = 0
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_iiwa_link_ee_position([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& Jdot_qd) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, 1), "Jdot_qd: expected 3 x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && Jdot_qd.rows() == 3 && Jdot_qd.cols() == 1);
+    using std::sin; using std::cos;
+    const Scalar w0 = qd(3) * qd(3);
+    const Scalar w1 = cos(q(3));
+    const Scalar w2 = cos(q(1));
+    const Scalar w3 = cos(q(0));
+    const Scalar w4 = cos(q(2));
+    const Scalar w5 = sin(q(2));
+    const Scalar w6 = sin(q(0));
+    const Scalar w7 = w5 * w6 - w2 * w3 * w4;
+    const Scalar w8 = sin(q(1));
+    const Scalar w9 = sin(q(3));
+    const Scalar w10 = w8 * w9 * w3;
+    const Scalar w11 = w1 * w7 - w10;
+    const Scalar w12 = cos(q(4));
+    const Scalar w13 = sin(q(5));
+    const Scalar w14 = w1 * w8 * Scalar(0.4) * w3;
+    const Scalar w15 = -w14;
+    const Scalar w16 = w1 * w8 * w3;
+    const Scalar w17 = w7 * w9 + w16;
+    const Scalar w18 = cos(q(5));
+    const Scalar w19 = -(w17 * w18 * Scalar(0.126));
+    const Scalar w20 = -(w7 * w9 * Scalar(0.4));
+    const Scalar w21 = w5 * w3 + w2 * w6 * w4;
+    const Scalar w22 = -(w1 * w8 * w6);
+    const Scalar w23 = w9 * w21 + w22;
+    const Scalar w24 = w8 * w6 * w9;
+    const Scalar w25 = w1 * w21 + w24;
+    const Scalar w26 = sin(q(4));
+    const Scalar w27 = w2 * w5 * w6 - w3 * w4;
+    const Scalar w28 = -(w26 * w27);
+    const Scalar w29 = w25 * w12 + w28;
+    const Scalar w30 = w26 * w25 + w12 * w27;
+    const Scalar w31 = w2 * w5 * w3 + w6 * w4;
+    const Scalar w32 = qd(1) * qd(2);
+    const Scalar w33 = qd(3) * qd(2);
+    const Scalar w34 = qd(1) * qd(3);
+    const Scalar w35 = w8 * w9 * w3 * w4 + w1 * w2 * w3;
+    const Scalar w36 = w2 * w9 * w3 - w1 * w8 * w3 * w4;
+    const Scalar w37 = w12 * w36 + w26 * w8 * w5 * w3;
+    const Scalar w38 = w26 * w31;
+    const Scalar w39 = qd(2) * qd(2);
+    const Scalar w40 = w11 * w12 + w38;
+    const Scalar w41 = qd(4) * qd(4);
+    const Scalar w42 = w26 * w7 - w1 * w12 * w31;
+    const Scalar w43 = w2 * w6 * w9 - w1 * w8 * w6 * w4;
+    const Scalar w44 = w43 * w12 + w26 * w8 * w5 * w6;
+    const Scalar w45 = w1 * w2 * w6 + w8 * w6 * w9 * w4;
+    const Scalar w46 = qd(1) * qd(0);
+    const Scalar w47 = w26 * w11 - w12 * w31;
+    const Scalar w48 = qd(0) * qd(3);
+    const Scalar w49 = w8 * Scalar(0.42) * w3;
+    const Scalar w50 = qd(0) * qd(0);
+    const Scalar w51 = qd(0) * qd(2);
+    const Scalar w52 = w26 * w21 + w1 * w12 * w27;
+    const Scalar w53 = qd(5) * qd(5);
+    const Scalar w54 = qd(1) * qd(1);
+    const Scalar w55 = w1 * w8 * w6 * Scalar(0.4);
+    const Scalar w56 = w8 * Scalar(0.42) * w6;
+    const Scalar w57 = -(w23 * w18 * Scalar(0.126));
+    const Scalar w58 = w9 * w21 * Scalar(0.4);
+    const Scalar w59 = -w58;
+    const Scalar w60 = w8 * w9 + w1 * w2 * w4;
+    const Scalar w61 = w1 * w8 - w2 * w9 * w4;
+    const Scalar w62 = w1 * w2 + w8 * w9 * w4;
+    const Scalar w63 = w1 * w8 * w4 - w2 * w9;
+    const Scalar w64 = w26 * w8 * w5;
+    const Scalar w65 = w12 * w63 - w64;
+    const Scalar w66 = w62 * w18 * Scalar(0.126);
+    const Scalar w67 = w1 * w2 * Scalar(0.4);
+    const Scalar w68 = w8 * w9 * Scalar(0.4) * w4;
+    Jdot_qd(0) = w0 * (w11 * w12 * w13 * Scalar(0.126) + w15 + w19 + w20) - (w23 * w13 + w29 * w18) * qd(5) * qd(0) * Scalar(0.252) + w13 * qd(0) * w30 * qd(4) * Scalar(0.252) + (w12 * w7 + w26 * w1 * w31) * w13 * qd(4) * Scalar(0.252) * qd(2) + w32 * ((w26 * w8 * w3 * w4 + w1 * w8 * w12 * w5 * w3) * w13 * Scalar(0.252) - w8 * w5 * w9 * w3 * Scalar(0.8) - w8 * w5 * w9 * Scalar(0.252) * w18 * w3) + (w1 * w31 * Scalar(0.252) * w18 + w1 * w31 * Scalar(0.8) + w12 * w31 * w13 * w9 * Scalar(0.252)) * w33 + w34 * (w1 * w8 * w3 * w4 * Scalar(0.8) + w35 * w12 * w13 * Scalar(0.252) - w36 * Scalar(0.252) * w18 - w2 * w9 * w3 * Scalar(0.8)) - w26 * w13 * w17 * qd(4) * qd(3) * Scalar(0.252) + qd(1) * (w37 * w18 - w35 * w13) * qd(5) * Scalar(0.252) + ((w1 * w12 * w7 + w38) * w13 * Scalar(0.126) - w7 * w9 * w18 * Scalar(0.126) + w20) * w39 + w13 * w40 * w41 * Scalar(0.126) - qd(5) * (w31 * w13 * w9 - w42 * w18) * Scalar(0.252) * qd(2) - (w44 * w13 * Scalar(0.252) + Scalar(0.84) * w2 * w6 + w45 * Scalar(0.252) * w18 + w8 * w6 * w9 * w4 * Scalar(0.8) + w1 * w2 * w6 * Scalar(0.8)) * w46 + (w12 * w17 * w18 - w11 * w13) * qd(5) * qd(3) * Scalar(0.252) + qd(5) * qd(4) * w47 * Scalar(0.252) * w18 + (w1 * w21 * Scalar(0.8) + w25 * Scalar(0.252) * w18 + w8 * w6 * w9 * Scalar(0.8) + w23 * w12 * w13 * Scalar(0.252)) * w48 - qd(1) * (w26 * w36 - w8 * w12 * w5 * w3) * w13 * qd(4) * Scalar(0.252) + (w13 * w40 * Scalar(0.126) + w15 + w19 - w49 + w20) * w50 - w51 * (w9 * w27 * Scalar(0.8) + w9 * Scalar(0.252) * w18 * w27 - w52 * w13 * Scalar(0.252)) + (w13 * w40 - w17 * w18) * w53 * Scalar(0.126) - (w18 * Scalar(0.126) * (w16 - w2 * w9 * w3 * w4) - (w26 * w2 * w5 * w3 - w12 * (w1 * w2 * w3 * w4 + w10)) * w13 * Scalar(0.126) + w49 + w14 - w2 * w9 * Scalar(0.4) * w3 * w4) * w54;
+    Jdot_qd(1) = w13 * qd(0) * qd(4) * w47 * Scalar(0.252) - w50 * (w55 + w13 * w29 * Scalar(0.126) + w56 + w57 + w59) - w13 * w29 * w41 * Scalar(0.126) - qd(5) * (w13 * w17 + w40 * w18) * qd(0) * Scalar(0.252) - w32 * (w8 * w5 * w6 * w9 * Scalar(0.252) * w18 + w8 * w5 * w6 * w9 * Scalar(0.8) - w13 * Scalar(0.252) * (w1 * w8 * w12 * w5 * w6 + w26 * w8 * w6 * w4)) + (w8 * w12 * w5 * w6 - w43 * w26) * qd(1) * w13 * qd(4) * Scalar(0.252) + (w1 * w2 * w3 * Scalar(0.8) + w37 * w13 * Scalar(0.252) + w35 * Scalar(0.252) * w18 + w8 * w9 * w3 * w4 * Scalar(0.8) + Scalar(0.84) * w2 * w3) * w46 - w0 * (w25 * w12 * w13 * Scalar(0.126) + w55 + w57 + w59) - (w8 * w9 * w3 * Scalar(0.8) - w11 * Scalar(0.252) * w18 - w12 * w13 * w17 * Scalar(0.252) - w1 * w7 * Scalar(0.8)) * w48 + w26 * w23 * w13 * qd(4) * qd(3) * Scalar(0.252) - qd(5) * (w52 * w18 + w13 * w9 * w27) * Scalar(0.252) * qd(2) + w51 * (w13 * w42 * Scalar(0.252) + w31 * w9 * Scalar(0.252) * w18 + w31 * w9 * Scalar(0.8)) - (w55 - w18 * Scalar(0.126) * (w22 + w2 * w6 * w9 * w4) + w56 + w13 * Scalar(0.126) * (w12 * (w1 * w2 * w6 * w4 + w24) - w26 * w2 * w5 * w6) - w2 * w6 * w9 * Scalar(0.4) * w4) * w54 + (w9 * w21 * w18 * Scalar(0.126) + w58 - (w28 + w1 * w12 * w21) * w13 * Scalar(0.126)) * w39 - qd(1) * qd(5) * (w13 * w45 - w44 * w18) * Scalar(0.252) - (w12 * w21 - w26 * w1 * w27) * w13 * qd(4) * Scalar(0.252) * qd(2) - w34 * (w43 * Scalar(0.252) * w18 - w1 * w8 * w6 * w4 * Scalar(0.8) - w12 * w13 * w45 * Scalar(0.252) + w2 * w6 * w9 * Scalar(0.8)) + w53 * (w23 * w18 - w13 * w29) * Scalar(0.126) - qd(5) * w30 * qd(4) * Scalar(0.252) * w18 - qd(5) * (w23 * w12 * w18 - w25 * w13) * qd(3) * Scalar(0.252) + w33 * (w1 * w27 * Scalar(0.8) + w1 * Scalar(0.252) * w18 * w27 + w12 * w13 * w9 * Scalar(0.252) * w27);
+    Jdot_qd(2) = -(qd(1) * ((w12 * w60 - w26 * w2 * w5) * w18 - w61 * w13) * qd(5) * Scalar(0.252) - qd(5) * qd(3) * Scalar(0.252) * (w62 * w12 * w18 - w13 * w63) - qd(5) * (w8 * w12 * w5 + w26 * w63) * qd(4) * Scalar(0.252) * w18 - qd(1) * w13 * (w2 * w12 * w5 + w26 * w60) * qd(4) * Scalar(0.252) - w65 * w13 * w41 * Scalar(0.126) + (w1 * w8 * w5 * Scalar(0.252) * w18 + w1 * w8 * w5 * Scalar(0.8) + w8 * w12 * w13 * w5 * w9 * Scalar(0.252)) * w33 + (w26 * w1 * w8 * w5 - w8 * w12 * w4) * w13 * qd(4) * Scalar(0.252) * qd(2) - qd(5) * Scalar(0.252) * (w8 * w13 * w5 * w9 + (w26 * w8 * w4 + w1 * w8 * w12 * w5) * w18) * qd(2) + w0 * (w66 + w67 + w68 - w12 * w13 * Scalar(0.126) * w63) + (w2 * w5 * w9 * Scalar(0.252) * w18 + w2 * w5 * w9 * Scalar(0.8) - w13 * (w1 * w2 * w12 * w5 + w26 * w2 * w4) * Scalar(0.252)) * w32 + (w2 * Scalar(0.42) - w65 * w13 * Scalar(0.126) + w66 + w67 + w68) * w54 + ((w64 - w1 * w8 * w12 * w4) * w13 * Scalar(0.126) + w8 * w9 * w18 * Scalar(0.126) * w4 + w68) * w39 - w34 * (w60 * Scalar(0.252) * w18 + w1 * w2 * w4 * Scalar(0.8) - w61 * w12 * w13 * Scalar(0.252) + w8 * w9 * Scalar(0.8)) + w53 * (w62 * w18 - w65 * w13) * Scalar(0.126) + w26 * w62 * w13 * qd(4) * qd(3) * Scalar(0.252));
+  }
+
+  /// Jdot qd of the output iiwa_link_ee_position: its acceleration at qdd = 0
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_iiwa_link_ee_position(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Parameters<typename DerivedQ::Scalar>& p, Out0&& Jdot_qd) noexcept {
+    output_bias_iiwa_link_ee_position(t, q, qd, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(Jdot_qd));
+  }
+
+  /// J = dy/dq of the output iiwa_link_ee_axis_1
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_iiwa_link_ee_axis_1([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& J) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, nq), "J: expected 3 x nq");
+    eigen_assert(q.size() == nq && J.rows() == 3 && J.cols() == nq);
+    using std::sin; using std::cos;
+    const Scalar w0 = sin(q(3));
+    const Scalar w1 = sin(q(2));
+    const Scalar w2 = cos(q(0));
+    const Scalar w3 = cos(q(1));
+    const Scalar w4 = sin(q(0));
+    const Scalar w5 = cos(q(2));
+    const Scalar w6 = w1 * w2 + w3 * w4 * w5;
+    const Scalar w7 = cos(q(3));
+    const Scalar w8 = sin(q(1));
+    const Scalar w9 = w0 * w6 - w7 * w8 * w4;
+    const Scalar w10 = cos(q(5));
+    const Scalar w11 = sin(q(5));
+    const Scalar w12 = w7 * w6 + w8 * w4 * w0;
+    const Scalar w13 = cos(q(4));
+    const Scalar w14 = sin(q(4));
+    const Scalar w15 = w3 * w1 * w4 - w2 * w5;
+    const Scalar w16 = w12 * w13 - w14 * w15;
+    const Scalar w17 = w1 * w4 - w3 * w2 * w5;
+    const Scalar w18 = w3 * w1 * w2 + w4 * w5;
+    const Scalar w19 = w17 * w0 + w7 * w8 * w2;
+    const Scalar w20 = w7 * w17 - w8 * w0 * w2;
+    const Scalar w21 = w20 * w13 + w14 * w18;
+    const Scalar w22 = w7 * w8 * w5 - w3 * w0;
+    const Scalar w23 = w7 * w3 + w8 * w0 * w5;
+    J(0, 0) = w9 * w10 - w11 * w16;
+    J(0, 1) = (w13 * (w3 * w0 * w2 - w7 * w8 * w2 * w5) + w14 * w8 * w1 * w2) * w11 + (w8 * w0 * w2 * w5 + w7 * w3 * w2) * w10;
+    J(0, 2) = w11 * (w14 * w17 - w7 * w13 * w18) + w18 * w0 * w10;
+    J(0, 3) = w13 * w11 * w19 + w20 * w10;
+    J(0, 4) = w11 * (w14 * w20 - w13 * w18);
+    J(0, 5) = -(w11 * w19 + w21 * w10);
+    J(1, 0) = -(w11 * w21 - w19 * w10);
+    J(1, 1) = ((w3 * w4 * w0 - w7 * w8 * w4 * w5) * w13 + w14 * w8 * w1 * w4) * w11 + (w7 * w3 * w4 + w8 * w4 * w0 * w5) * w10;
+    J(1, 2) = -((w14 * w6 + w7 * w13 * w15) * w11 - w0 * w10 * w15);
+    J(1, 3) = -(w12 * w10 + w9 * w13 * w11);
+    J(1, 4) = -(w11 * (w14 * w12 + w13 * w15));
+    J(1, 5) = w9 * w11 + w16 * w10;
+    J(2, 1) = -((w13 * (w8 * w0 + w7 * w3 * w5) - w14 * w3 * w1) * w11 + (w7 * w8 - w3 * w0 * w5) * w10);
+    J(2, 2) = -(w8 * w1 * w0 * w10 - w11 * (w14 * w8 * w5 + w7 * w8 * w13 * w1));
+    J(2, 3) = w10 * w22 + w23 * w13 * w11;
+    J(2, 4) = (w8 * w13 * w1 + w14 * w22) * w11;
+    J(2, 5) = -(w23 * w11 + (w13 * w22 - w14 * w8 * w1) * w10);
+    J(0, 6) = Scalar(0);
+    J(1, 6) = Scalar(0);
+    J(2, 0) = Scalar(0);
+    J(2, 6) = Scalar(0);
+  }
+
+  /// J = dy/dq of the output iiwa_link_ee_axis_1
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_iiwa_link_ee_axis_1(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& J) noexcept {
+    output_jacobian_iiwa_link_ee_axis_1(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(J));
+  }
+
+  /// Jdot qd of the output iiwa_link_ee_axis_1: its acceleration at qdd = 0
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_iiwa_link_ee_axis_1([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& Jdot_qd) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, 1), "Jdot_qd: expected 3 x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && Jdot_qd.rows() == 3 && Jdot_qd.cols() == 1);
+    using std::sin; using std::cos;
+    const Scalar w0 = sin(q(1));
+    const Scalar w1 = cos(q(4));
+    const Scalar w2 = sin(q(2));
+    const Scalar w3 = cos(q(0));
+    const Scalar w4 = sin(q(4));
+    const Scalar w5 = cos(q(3));
+    const Scalar w6 = cos(q(2));
+    const Scalar w7 = cos(q(1));
+    const Scalar w8 = sin(q(3));
+    const Scalar w9 = w7 * w8 * w3 - w5 * w0 * w3 * w6;
+    const Scalar w10 = sin(q(5));
+    const Scalar w11 = cos(q(5));
+    const Scalar w12 = w0 * w8 * w3 * w6 + w5 * w7 * w3;
+    const Scalar w13 = sin(q(0));
+    const Scalar w14 = w7 * w2 * w3 + w13 * w6;
+    const Scalar w15 = w2 * w13 - w7 * w3 * w6;
+    const Scalar w16 = w0 * w8 * w3;
+    const Scalar w17 = w5 * w15 - w16;
+    const Scalar w18 = w4 * w17 - w1 * w14;
+    const Scalar w19 = w5 * w0 * w3;
+    const Scalar w20 = w15 * w8 + w19;
+    const Scalar w21 = w2 * w3 + w7 * w13 * w6;
+    const Scalar w22 = -(w5 * w0 * w13);
+    const Scalar w23 = w8 * w21 + w22;
+    const Scalar w24 = w0 * w13 * w8;
+    const Scalar w25 = w5 * w21 + w24;
+    const Scalar w26 = w7 * w2 * w13 - w3 * w6;
+    const Scalar w27 = -(w4 * w26);
+    const Scalar w28 = w25 * w1 + w27;
+    const Scalar w29 = w1 * w9 + w4 * w0 * w2 * w3;
+    const Scalar w30 = w7 * w13 * w8 - w5 * w0 * w13 * w6;
+    const Scalar w31 = w30 * w1 + w4 * w0 * w2 * w13;
+    const Scalar w32 = w5 * w7 * w13 + w0 * w13 * w8 * w6;
+    const Scalar w33 = w4 * w21 + w5 * w1 * w26;
+    const Scalar w34 = w4 * w14;
+    const Scalar w35 = w17 * w1 + w34;
+    const Scalar w36 = qd(4) * qd(4);
+    const Scalar w37 = qd(2) * qd(2);
+    const Scalar w38 = w4 * w15 - w5 * w1 * w14;
+    const Scalar w39 = w20 * w11;
+    const Scalar w40 = qd(3) * qd(3);
+    const Scalar w41 = w10 * w35 - w39;
+    const Scalar w42 = qd(5) * qd(5);
+    const Scalar w43 = qd(0) * qd(0);
+    const Scalar w44 = w4 * w25 + w1 * w26;
+    const Scalar w45 = qd(1) * qd(1);
+    const Scalar w46 = w23 * w11;
+    const Scalar w47 = w46 - w10 * w28;
+    const Scalar w48 = w5 * w7 + w0 * w8 * w6;
+    const Scalar w49 = w0 * w8 + w5 * w7 * w6;
+    const Scalar w50 = w4 * w0 * w2;
+    const Scalar w51 = w5 * w0 * w6 - w7 * w8;
+    const Scalar w52 = w1 * w51 - w50;
+    const Scalar w53 = w48 * w11;
+    const Scalar w54 = w53 - w52 * w10;
+    const Scalar w55 = w5 * w0 - w7 * w8 * w6;
+    Jdot_qd(0) = -(qd(1) * (w4 * w9 - w0 * w1 * w2 * w3) * Scalar(2) * w10 * qd(4) + qd(1) * Scalar(2) * (w9 * w11 - w12 * w1 * w10) * qd(3) - (w5 * w14 * w11 + w1 * w14 * w10 * w8) * Scalar(2) * qd(3) * qd(2) - qd(5) * Scalar(2) * qd(4) * w18 * w11 + w4 * Scalar(2) * w10 * w20 * qd(4) * qd(3) - (w1 * w20 * w11 - w17 * w10) * qd(5) * Scalar(2) * qd(3) + qd(1) * Scalar(2) * (w0 * w2 * w8 * w11 * w3 - (w4 * w0 * w3 * w6 + w5 * w0 * w1 * w2 * w3) * w10) * qd(2) + (w23 * w10 + w28 * w11) * qd(5) * Scalar(2) * qd(0) - Scalar(2) * qd(0) * qd(3) * (w25 * w11 + w23 * w1 * w10) - qd(1) * (w29 * w11 - w12 * w10) * qd(5) * Scalar(2) + qd(1) * (w31 * w10 + w32 * w11) * Scalar(2) * qd(0) - Scalar(2) * qd(0) * (w33 * w10 - w8 * w11 * w26) * qd(2) - w10 * w35 * w36 + (w15 * w8 * w11 - (w5 * w1 * w15 + w34) * w10) * w37 + qd(5) * Scalar(2) * (w14 * w10 * w8 - w38 * w11) * qd(2) + (w39 - w17 * w1 * w10) * w40 - w41 * w42 - w41 * w43 - Scalar(2) * w10 * qd(0) * w44 * qd(4) + (w11 * (w19 - w7 * w8 * w3 * w6) - (w4 * w7 * w2 * w3 - w1 * (w5 * w7 * w3 * w6 + w16)) * w10) * w45 - (w1 * w15 + w4 * w5 * w14) * Scalar(2) * w10 * qd(4) * qd(2));
+    Jdot_qd(1) = (w8 * w21 * w11 - (w27 + w5 * w1 * w21) * w10) * w37 - qd(5) * Scalar(2) * w44 * qd(4) * w11 - Scalar(2) * (w1 * w21 - w4 * w5 * w26) * w10 * qd(4) * qd(2) - qd(5) * Scalar(2) * (w33 * w11 + w10 * w8 * w26) * qd(2) + (w0 * w1 * w2 * w13 - w30 * w4) * qd(1) * Scalar(2) * w10 * qd(4) + w40 * (w46 - w25 * w1 * w10) + Scalar(2) * (w1 * w10 * w20 + w17 * w11) * qd(0) * qd(3) + w4 * w23 * Scalar(2) * w10 * qd(4) * qd(3) + Scalar(2) * w10 * qd(0) * qd(4) * w18 - qd(1) * qd(5) * Scalar(2) * (w10 * w32 - w31 * w11) + Scalar(2) * qd(0) * (w10 * w38 + w14 * w8 * w11) * qd(2) - qd(5) * Scalar(2) * (w23 * w1 * w11 - w25 * w10) * qd(3) + qd(1) * Scalar(2) * qd(0) * (w29 * w10 + w12 * w11) - w45 * (w10 * (w1 * (w5 * w7 * w13 * w6 + w24) - w4 * w7 * w2 * w13) - w11 * (w22 + w7 * w13 * w8 * w6)) + w42 * w47 - qd(5) * Scalar(2) * (w10 * w20 + w35 * w11) * qd(0) - qd(1) * Scalar(2) * (w0 * w2 * w13 * w8 * w11 - w10 * (w5 * w0 * w1 * w2 * w13 + w4 * w0 * w13 * w6)) * qd(2) + Scalar(2) * (w5 * w11 * w26 + w1 * w10 * w8 * w26) * qd(3) * qd(2) + w43 * w47 - w10 * w28 * w36 - qd(1) * Scalar(2) * qd(3) * (w30 * w11 - w1 * w10 * w32);
+    Jdot_qd(2) = -(w4 * w48 * Scalar(2) * w10 * qd(4) * qd(3) - qd(1) * Scalar(2) * w10 * (w7 * w1 * w2 + w4 * w49) * qd(4) - w52 * w10 * w36 + w42 * w54 + (w5 * w0 * w2 * w11 + w0 * w1 * w10 * w2 * w8) * Scalar(2) * qd(3) * qd(2) - qd(5) * Scalar(2) * (w0 * w10 * w2 * w8 + (w4 * w0 * w6 + w5 * w0 * w1 * w2) * w11) * qd(2) + (w0 * w8 * w11 * w6 + (w50 - w5 * w0 * w1 * w6) * w10) * w37 + qd(1) * ((w1 * w49 - w4 * w7 * w2) * w11 - w55 * w10) * qd(5) * Scalar(2) + w54 * w45 - w40 * (w1 * w10 * w51 - w53) - qd(5) * Scalar(2) * qd(3) * (w48 * w1 * w11 - w10 * w51) + qd(1) * Scalar(2) * (w55 * w1 * w10 - w49 * w11) * qd(3) - qd(5) * Scalar(2) * (w0 * w1 * w2 + w4 * w51) * qd(4) * w11 + (w4 * w5 * w0 * w2 - w0 * w1 * w6) * Scalar(2) * w10 * qd(4) * qd(2) + (w7 * w2 * w8 * w11 - w10 * (w5 * w7 * w1 * w2 + w4 * w7 * w6)) * qd(1) * Scalar(2) * qd(2));
+  }
+
+  /// Jdot qd of the output iiwa_link_ee_axis_1: its acceleration at qdd = 0
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_iiwa_link_ee_axis_1(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Parameters<typename DerivedQ::Scalar>& p, Out0&& Jdot_qd) noexcept {
+    output_bias_iiwa_link_ee_axis_1(t, q, qd, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(Jdot_qd));
+  }
+
+  /// J = dy/dq of the output iiwa_link_ee_axis_2
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_iiwa_link_ee_axis_2([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& J) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, nq), "J: expected 3 x nq");
+    eigen_assert(q.size() == nq && J.rows() == 3 && J.cols() == nq);
+    using std::sin; using std::cos;
+    const Scalar w0 = sin(q(4));
+    const Scalar w1 = cos(q(3));
+    const Scalar w2 = sin(q(2));
+    const Scalar w3 = cos(q(0));
+    const Scalar w4 = cos(q(1));
+    const Scalar w5 = sin(q(0));
+    const Scalar w6 = cos(q(2));
+    const Scalar w7 = w2 * w3 + w4 * w5 * w6;
+    const Scalar w8 = sin(q(1));
+    const Scalar w9 = sin(q(3));
+    const Scalar w10 = w1 * w7 + w8 * w5 * w9;
+    const Scalar w11 = cos(q(4));
+    const Scalar w12 = w4 * w2 * w5 - w3 * w6;
+    const Scalar w13 = w0 * w10 + w11 * w12;
+    const Scalar w14 = cos(q(6));
+    const Scalar w15 = w9 * w7 - w1 * w8 * w5;
+    const Scalar w16 = sin(q(5));
+    const Scalar w17 = w10 * w11 - w0 * w12;
+    const Scalar w18 = cos(q(5));
+    const Scalar w19 = w15 * w16 + w17 * w18;
+    const Scalar w20 = sin(q(6));
+    const Scalar w21 = w4 * w9 * w3 - w1 * w8 * w3 * w6;
+    const Scalar w22 = w2 * w5 - w4 * w3 * w6;
+    const Scalar w23 = w4 * w2 * w3 + w5 * w6;
+    const Scalar w24 = w1 * w22 - w8 * w9 * w3;
+    const Scalar w25 = w22 * w9 + w1 * w8 * w3;
+    const Scalar w26 = w0 * w24 - w11 * w23;
+    const Scalar w27 = w24 * w11 + w0 * w23;
+    const Scalar w28 = w16 * w25 + w27 * w18;
+    const Scalar w29 = w4 * w5 * w9 - w1 * w8 * w5 * w6;
+    const Scalar w30 = w8 * w9 + w1 * w4 * w6;
+    const Scalar w31 = w1 * w4 + w8 * w9 * w6;
+    const Scalar w32 = w1 * w8 * w6 - w4 * w9;
+    const Scalar w33 = w11 * w32 - w0 * w8 * w2;
+    const Scalar w34 = w8 * w11 * w2 + w0 * w32;
+    J(0, 0) = w13 * w14 + w19 * w20;
+    J(0, 1) = -(w20 * ((w11 * w21 + w0 * w8 * w2 * w3) * w18 - (w8 * w9 * w3 * w6 + w1 * w4 * w3) * w16) + (w0 * w21 - w8 * w11 * w2 * w3) * w14);
+    J(0, 2) = w20 * (w23 * w16 * w9 - (w0 * w22 - w1 * w11 * w23) * w18) + (w11 * w22 + w0 * w1 * w23) * w14;
+    J(0, 3) = -(w20 * (w11 * w25 * w18 - w24 * w16) + w0 * w25 * w14);
+    J(0, 4) = -(w20 * w26 * w18 - w27 * w14);
+    J(0, 5) = -(w20 * (w16 * w27 - w25 * w18));
+    J(0, 6) = -(w20 * w26 - w28 * w14);
+    J(1, 0) = w26 * w14 + w20 * w28;
+    J(1, 1) = (w8 * w11 * w2 * w5 - w29 * w0) * w14 + w20 * (w16 * (w1 * w4 * w5 + w8 * w5 * w9 * w6) - (w29 * w11 + w0 * w8 * w2 * w5) * w18);
+    J(1, 2) = w20 * ((w0 * w7 + w1 * w11 * w12) * w18 + w16 * w9 * w12) - (w11 * w7 - w0 * w1 * w12) * w14;
+    J(1, 3) = w20 * (w15 * w11 * w18 - w10 * w16) + w0 * w15 * w14;
+    J(1, 4) = -(w17 * w14 - w20 * w13 * w18);
+    J(1, 5) = -(w20 * (w15 * w18 - w16 * w17));
+    J(1, 6) = w20 * w13 - w19 * w14;
+    J(2, 1) = w20 * ((w11 * w30 - w0 * w4 * w2) * w18 - (w1 * w8 - w4 * w9 * w6) * w16) + (w4 * w11 * w2 + w0 * w30) * w14;
+    J(2, 2) = -(w20 * (w8 * w16 * w2 * w9 + (w0 * w8 * w6 + w1 * w8 * w11 * w2) * w18) + (w0 * w1 * w8 * w2 - w8 * w11 * w6) * w14);
+    J(2, 3) = -(w0 * w31 * w14 + w20 * (w31 * w11 * w18 - w16 * w32));
+    J(2, 4) = w33 * w14 - w20 * w34 * w18;
+    J(2, 5) = w20 * (w31 * w18 - w33 * w16);
+    J(2, 6) = -(w20 * w34 - (w31 * w16 + w33 * w18) * w14);
+    J(2, 0) = Scalar(0);
+  }
+
+  /// J = dy/dq of the output iiwa_link_ee_axis_2
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_iiwa_link_ee_axis_2(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& J) noexcept {
+    output_jacobian_iiwa_link_ee_axis_2(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(J));
+  }
+
+  /// Jdot qd of the output iiwa_link_ee_axis_2: its acceleration at qdd = 0
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_iiwa_link_ee_axis_2([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& Jdot_qd) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, 1), "Jdot_qd: expected 3 x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && Jdot_qd.rows() == 3 && Jdot_qd.cols() == 1);
+    using std::sin; using std::cos;
+    const Scalar w0 = sin(q(4));
+    const Scalar w1 = cos(q(3));
+    const Scalar w2 = cos(q(1));
+    const Scalar w3 = cos(q(0));
+    const Scalar w4 = cos(q(2));
+    const Scalar w5 = sin(q(2));
+    const Scalar w6 = sin(q(0));
+    const Scalar w7 = w5 * w6 - w2 * w3 * w4;
+    const Scalar w8 = sin(q(1));
+    const Scalar w9 = sin(q(3));
+    const Scalar w10 = w8 * w9 * w3;
+    const Scalar w11 = w1 * w7 - w10;
+    const Scalar w12 = cos(q(4));
+    const Scalar w13 = w2 * w5 * w3 + w6 * w4;
+    const Scalar w14 = -(w12 * w13);
+    const Scalar w15 = w0 * w11 + w14;
+    const Scalar w16 = cos(q(6));
+    const Scalar w17 = w15 * w16;
+    const Scalar w18 = sin(q(6));
+    const Scalar w19 = w0 * w13;
+    const Scalar w20 = w11 * w12 + w19;
+    const Scalar w21 = cos(q(5));
+    const Scalar w22 = qd(4) * qd(4);
+    const Scalar w23 = w12 * w7 + w0 * w1 * w13;
+    const Scalar w24 = w0 * w7 - w1 * w12 * w13;
+    const Scalar w25 = w5 * w3 + w2 * w6 * w4;
+    const Scalar w26 = -(w1 * w8 * w6);
+    const Scalar w27 = w9 * w25 + w26;
+    const Scalar w28 = w8 * w6 * w9;
+    const Scalar w29 = w1 * w25 + w28;
+    const Scalar w30 = sin(q(5));
+    const Scalar w31 = w27 * w12 * w21 - w29 * w30;
+    const Scalar w32 = w1 * w8 * w3;
+    const Scalar w33 = w1 * w2 * w3 * w4 + w10;
+    const Scalar w34 = qd(1) * qd(1);
+    const Scalar w35 = w2 * w9 * w3 - w1 * w8 * w3 * w4;
+    const Scalar w36 = w12 * w35 + w0 * w8 * w5 * w3;
+    const Scalar w37 = w0 * w35 - w8 * w12 * w5 * w3;
+    const Scalar w38 = qd(5) * qd(5);
+    const Scalar w39 = w7 * w9 + w32;
+    const Scalar w40 = w30 * w39;
+    const Scalar w41 = w40 + w20 * w21;
+    const Scalar w42 = w8 * w9 * w3 * w4 + w1 * w2 * w3;
+    const Scalar w43 = qd(2) * qd(2);
+    const Scalar w44 = w2 * w5 * w6 - w3 * w4;
+    const Scalar w45 = w0 * w25 + w1 * w12 * w44;
+    const Scalar w46 = w45 * w21 + w30 * w9 * w44;
+    const Scalar w47 = w12 * w25 - w0 * w1 * w44;
+    const Scalar w48 = -(w0 * w44);
+    const Scalar w49 = w29 * w12 + w48;
+    const Scalar w50 = w12 * w44;
+    const Scalar w51 = w0 * w29 + w50;
+    const Scalar w52 = w12 * w39 * w21 - w11 * w30;
+    const Scalar w53 = w17 + w18 * w41;
+    const Scalar w54 = qd(6) * qd(6);
+    const Scalar w55 = w27 * w30;
+    const Scalar w56 = w55 + w49 * w21;
+    const Scalar w57 = w13 * w30 * w9 - w24 * w21;
+    const Scalar w58 = w2 * w6 * w9 - w1 * w8 * w6 * w4;
+    const Scalar w59 = w8 * w12 * w5 * w6 - w58 * w0;
+    const Scalar w60 = w1 * w2 * w6 + w8 * w6 * w9 * w4;
+    const Scalar w61 = w58 * w12 + w0 * w8 * w5 * w6;
+    const Scalar w62 = w30 * w60 - w61 * w21;
+    const Scalar w63 = w27 * w21 - w30 * w49;
+    const Scalar w64 = qd(0) * qd(0);
+    const Scalar w65 = w36 * w21 - w42 * w30;
+    const Scalar w66 = qd(3) * qd(3);
+    const Scalar w67 = w30 * w20 - w39 * w21;
+    const Scalar w68 = w1 * w2 * w6 * w4 + w28;
+    const Scalar w69 = w51 * w16;
+    const Scalar w70 = w69 + w56 * w18;
+    const Scalar w71 = w1 * w2 + w8 * w9 * w4;
+    const Scalar w72 = w1 * w8 * w4 - w2 * w9;
+    const Scalar w73 = w1 * w8 - w2 * w9 * w4;
+    const Scalar w74 = w8 * w9 + w1 * w2 * w4;
+    const Scalar w75 = w0 * w1 * w8 * w5 - w8 * w12 * w4;
+    const Scalar w76 = w0 * w8 * w4 + w1 * w8 * w12 * w5;
+    const Scalar w77 = w2 * w12 * w5 + w0 * w74;
+    const Scalar w78 = w12 * w74 - w0 * w2 * w5;
+    const Scalar w79 = w71 * w30;
+    const Scalar w80 = w0 * w8 * w5;
+    const Scalar w81 = w12 * w72 - w80;
+    const Scalar w82 = w79 + w81 * w21;
+    const Scalar w83 = w8 * w12 * w5;
+    const Scalar w84 = w83 + w0 * w72;
+    const Scalar w85 = w84 * w16;
+    const Scalar w86 = w18 * w82 + w85;
+    Jdot_qd(0) = -((w17 + w18 * w20 * w21) * w22 + (w23 * w18 * w21 + w24 * w16) * Scalar(2) * qd(4) * qd(2) + (w18 * w31 + w0 * w27 * w16) * Scalar(2) * qd(0) * qd(3) + (w18 * (w30 * (w32 - w2 * w9 * w3 * w4) + (w0 * w2 * w5 * w3 - w12 * w33) * w21) - (w2 * w12 * w5 * w3 + w0 * w33) * w16) * w34 + qd(1) * Scalar(2) * (w36 * w16 - w18 * w37 * w21) * qd(4) + w18 * w38 * w41 - w18 * qd(5) * Scalar(2) * w30 * qd(4) * w15 - Scalar(2) * qd(4) * qd(3) * (w0 * w18 * w39 * w21 - w12 * w39 * w16) + qd(1) * Scalar(2) * qd(3) * (w18 * (w35 * w30 + w42 * w12 * w21) + w0 * w42 * w16) + qd(1) * Scalar(2) * (w18 * ((w0 * w8 * w3 * w4 + w1 * w8 * w12 * w5 * w3) * w21 + w8 * w30 * w5 * w9 * w3) - (w8 * w12 * w3 * w4 - w0 * w1 * w8 * w5 * w3) * w16) * qd(2) + (w18 * ((w1 * w12 * w7 + w19) * w21 + w7 * w30 * w9) + (w0 * w1 * w7 + w14) * w16) * w43 + (w18 * w46 - w47 * w16) * Scalar(2) * qd(0) * qd(2) + Scalar(2) * qd(6) * qd(4) * (w18 * w20 + w15 * w16 * w21) - (w49 * w16 - w18 * w51 * w21) * Scalar(2) * qd(0) * qd(4) + Scalar(2) * qd(6) * (w52 * w16 - w0 * w18 * w39) * qd(3) + w53 * w54 - w18 * qd(5) * Scalar(2) * (w12 * w30 * w39 + w11 * w21) * qd(3) + (w0 * w13 * w9 * w16 + w18 * (w12 * w13 * w9 * w21 - w1 * w13 * w30)) * Scalar(2) * qd(3) * qd(2) + (w18 * w51 - w56 * w16) * Scalar(2) * qd(0) * qd(6) - Scalar(2) * qd(6) * (w57 * w16 - w23 * w18) * qd(2) + qd(1) * Scalar(2) * qd(0) * (w59 * w16 + w18 * w62) - w18 * qd(5) * Scalar(2) * w63 * qd(0) + w53 * w64 - qd(1) * (w18 * w37 - w65 * w16) * Scalar(2) * qd(6) + w66 * (w0 * w11 * w16 + w18 * (w40 + w11 * w12 * w21)) - w18 * qd(5) * Scalar(2) * (w30 * w24 + w13 * w9 * w21) * qd(2) - w18 * qd(1) * qd(5) * Scalar(2) * (w36 * w30 + w42 * w21) + w67 * qd(5) * Scalar(2) * qd(6) * w16);
+    Jdot_qd(1) = -(qd(1) * Scalar(2) * qd(4) * (w61 * w16 + w59 * w18 * w21) - ((w2 * w12 * w5 * w6 + w0 * w68) * w16 + w18 * (w21 * (w12 * w68 - w0 * w2 * w5 * w6) + w30 * (w26 + w2 * w6 * w9 * w4))) * w34 - Scalar(2) * (w51 * w16 * w21 + w18 * w49) * qd(6) * qd(4) + Scalar(2) * qd(0) * (w18 * w52 + w0 * w39 * w16) * qd(3) + w18 * qd(5) * Scalar(2) * (w45 * w30 - w9 * w21 * w44) * qd(2) + (w0 * w18 * w27 * w21 - w27 * w12 * w16) * Scalar(2) * qd(4) * qd(3) - (w69 + w18 * w49 * w21) * w22 - (w31 * w16 - w0 * w18 * w27) * Scalar(2) * qd(6) * qd(3) - qd(1) * Scalar(2) * qd(6) * (w62 * w16 - w59 * w18) + w18 * w67 * qd(5) * Scalar(2) * qd(0) - Scalar(2) * (w46 * w16 + w18 * w47) * qd(6) * qd(2) - Scalar(2) * (w18 * w47 * w21 + w45 * w16) * qd(4) * qd(2) + Scalar(2) * qd(3) * (w0 * w9 * w16 * w44 + w18 * (w12 * w9 * w21 * w44 - w1 * w30 * w44)) * qd(2) + w18 * qd(5) * Scalar(2) * qd(3) * (w29 * w21 + w27 * w12 * w30) + (w18 * w15 - w41 * w16) * Scalar(2) * qd(0) * qd(6) + qd(1) * Scalar(2) * ((w0 * w1 * w8 * w5 * w6 - w8 * w12 * w6 * w4) * w16 + w18 * (w8 * w30 * w5 * w6 * w9 + w21 * (w1 * w8 * w12 * w5 * w6 + w0 * w8 * w6 * w4))) * qd(2) + w18 * qd(5) * Scalar(2) * w30 * w51 * qd(4) - w70 * w54 - w64 * w70 - w66 * ((w55 + w29 * w12 * w21) * w18 + w0 * w29 * w16) - w56 * w18 * w38 - Scalar(2) * (w18 * w57 + w23 * w16) * qd(0) * qd(2) - w18 * qd(1) * (w61 * w30 + w60 * w21) * qd(5) * Scalar(2) + Scalar(2) * qd(0) * qd(4) * (w18 * w15 * w21 - w20 * w16) + qd(5) * Scalar(2) * w63 * qd(6) * w16 + qd(1) * (w18 * w65 + w37 * w16) * Scalar(2) * qd(0) + qd(1) * Scalar(2) * (w18 * (w58 * w30 + w12 * w60 * w21) + w0 * w60 * w16) * qd(3) - ((w0 * w1 * w25 + w50) * w16 + w18 * (w30 * w9 * w25 + (w48 + w1 * w12 * w25) * w21)) * w43);
+    Jdot_qd(2) = -(Scalar(2) * (w76 * w16 - w18 * w75 * w21) * qd(4) * qd(2) - (w0 * w18 * w71 - w16 * (w71 * w12 * w21 - w30 * w72)) * Scalar(2) * qd(6) * qd(3) - qd(1) * (w18 * (w73 * w12 * w21 + w30 * w74) + w0 * w73 * w16) * Scalar(2) * qd(3) + w18 * qd(5) * Scalar(2) * (w8 * w5 * w9 * w21 - w30 * w76) * qd(2) + qd(1) * Scalar(2) * (w18 * w77 * w21 - w78 * w16) * qd(4) + w86 * w54 + w86 * w34 + w66 * (w0 * w16 * w72 + w18 * (w12 * w21 * w72 + w79)) + ((w83 + w0 * w1 * w8 * w4) * w16 + w18 * (w8 * w30 * w9 * w4 - (w80 - w1 * w8 * w12 * w4) * w21)) * w43 - Scalar(2) * (w0 * w8 * w5 * w9 * w16 + w18 * (w8 * w12 * w5 * w9 * w21 - w1 * w8 * w30 * w5)) * qd(3) * qd(2) + (w81 * w18 * w21 + w85) * w22 - qd(5) * Scalar(2) * qd(6) * (w71 * w21 - w81 * w30) * w16 + (w71 * w12 * w16 - w0 * w18 * w71 * w21) * Scalar(2) * qd(4) * qd(3) + w18 * w38 * w82 + Scalar(2) * qd(6) * qd(4) * (w84 * w16 * w21 + w81 * w18) + qd(1) * Scalar(2) * (w18 * (w2 * w30 * w5 * w9 + (w1 * w2 * w12 * w5 + w0 * w2 * w4) * w21) - (w2 * w12 * w4 - w0 * w1 * w2 * w5) * w16) * qd(2) - Scalar(2) * (w18 * w75 - w16 * (w8 * w30 * w5 * w9 + w76 * w21)) * qd(6) * qd(2) + qd(1) * (w18 * w77 - (w78 * w21 - w73 * w30) * w16) * Scalar(2) * qd(6) + w18 * qd(1) * (w78 * w30 + w73 * w21) * qd(5) * Scalar(2) - w18 * qd(5) * Scalar(2) * (w21 * w72 + w71 * w12 * w30) * qd(3) - w18 * qd(5) * Scalar(2) * w84 * w30 * qd(4));
+  }
+
+  /// Jdot qd of the output iiwa_link_ee_axis_2: its acceleration at qdd = 0
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_iiwa_link_ee_axis_2(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Parameters<typename DerivedQ::Scalar>& p, Out0&& Jdot_qd) noexcept {
+    output_bias_iiwa_link_ee_axis_2(t, q, qd, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(Jdot_qd));
+  }
+
+  /// J = dy/dq of the output iiwa_link_ee_axis_3
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_iiwa_link_ee_axis_3([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& J) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, nq), "J: expected 3 x nq");
+    eigen_assert(q.size() == nq && J.rows() == 3 && J.cols() == nq);
+    using std::sin; using std::cos;
+    const Scalar w0 = sin(q(6));
+    const Scalar w1 = sin(q(4));
+    const Scalar w2 = cos(q(3));
+    const Scalar w3 = sin(q(2));
+    const Scalar w4 = cos(q(0));
+    const Scalar w5 = cos(q(1));
+    const Scalar w6 = sin(q(0));
+    const Scalar w7 = cos(q(2));
+    const Scalar w8 = w3 * w4 + w5 * w6 * w7;
+    const Scalar w9 = sin(q(1));
+    const Scalar w10 = sin(q(3));
+    const Scalar w11 = w2 * w8 + w9 * w6 * w10;
+    const Scalar w12 = cos(q(4));
+    const Scalar w13 = w5 * w3 * w6 - w4 * w7;
+    const Scalar w14 = w1 * w11 + w12 * w13;
+    const Scalar w15 = w10 * w8 - w2 * w9 * w6;
+    const Scalar w16 = sin(q(5));
+    const Scalar w17 = w11 * w12 - w1 * w13;
+    const Scalar w18 = cos(q(5));
+    const Scalar w19 = w15 * w16 + w17 * w18;
+    const Scalar w20 = cos(q(6));
+    const Scalar w21 = w5 * w10 * w4 - w2 * w9 * w4 * w7;
+    const Scalar w22 = w3 * w6 - w5 * w4 * w7;
+    const Scalar w23 = w5 * w3 * w4 + w6 * w7;
+    const Scalar w24 = w22 * w10 + w2 * w9 * w4;
+    const Scalar w25 = w2 * w22 - w9 * w10 * w4;
+    const Scalar w26 = w25 * w12 + w1 * w23;
+    const Scalar w27 = w1 * w25 - w12 * w23;
+    const Scalar w28 = w16 * w24 + w26 * w18;
+    const Scalar w29 = w5 * w6 * w10 - w2 * w9 * w6 * w7;
+    const Scalar w30 = w9 * w10 + w2 * w5 * w7;
+    const Scalar w31 = w2 * w5 + w9 * w10 * w7;
+    const Scalar w32 = w2 * w9 * w7 - w5 * w10;
+    const Scalar w33 = w9 * w12 * w3 + w1 * w32;
+    const Scalar w34 = w12 * w32 - w1 * w9 * w3;
+    J(0, 0) = -(w0 * w14 - w19 * w20);
+    J(0, 1) = w0 * (w1 * w21 - w9 * w12 * w3 * w4) - ((w12 * w21 + w1 * w9 * w3 * w4) * w18 - (w9 * w10 * w4 * w7 + w2 * w5 * w4) * w16) * w20;
+    J(0, 2) = (w23 * w16 * w10 - (w1 * w22 - w2 * w12 * w23) * w18) * w20 - (w12 * w22 + w1 * w2 * w23) * w0;
+    J(0, 3) = -((w12 * w24 * w18 - w25 * w16) * w20 - w1 * w0 * w24);
+    J(0, 4) = -(w0 * w26 + w27 * w20 * w18);
+    J(0, 5) = -((w16 * w26 - w24 * w18) * w20);
+    J(0, 6) = -(w27 * w20 + w0 * w28);
+    J(1, 0) = -(w0 * w27 - w28 * w20);
+    J(1, 1) = (w16 * (w2 * w5 * w6 + w9 * w6 * w10 * w7) - (w29 * w12 + w1 * w9 * w3 * w6) * w18) * w20 - (w9 * w12 * w3 * w6 - w29 * w1) * w0;
+    J(1, 2) = ((w1 * w8 + w2 * w12 * w13) * w18 + w16 * w10 * w13) * w20 + w0 * (w12 * w8 - w1 * w2 * w13);
+    J(1, 3) = (w15 * w12 * w18 - w11 * w16) * w20 - w1 * w0 * w15;
+    J(1, 4) = w14 * w20 * w18 + w0 * w17;
+    J(1, 5) = -((w15 * w18 - w16 * w17) * w20);
+    J(1, 6) = w14 * w20 + w19 * w0;
+    J(2, 1) = -(w0 * (w5 * w12 * w3 + w1 * w30) - ((w12 * w30 - w1 * w5 * w3) * w18 - (w2 * w9 - w5 * w10 * w7) * w16) * w20);
+    J(2, 2) = w0 * (w1 * w2 * w9 * w3 - w9 * w12 * w7) - w20 * (w9 * w16 * w3 * w10 + (w1 * w9 * w7 + w2 * w9 * w12 * w3) * w18);
+    J(2, 3) = w1 * w0 * w31 - w20 * (w31 * w12 * w18 - w16 * w32);
+    J(2, 4) = -(w33 * w20 * w18 + w34 * w0);
+    J(2, 5) = (w31 * w18 - w34 * w16) * w20;
+    J(2, 6) = -(w0 * (w31 * w16 + w34 * w18) + w33 * w20);
+    J(2, 0) = Scalar(0);
+  }
+
+  /// J = dy/dq of the output iiwa_link_ee_axis_3
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_iiwa_link_ee_axis_3(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& J) noexcept {
+    output_jacobian_iiwa_link_ee_axis_3(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(J));
+  }
+
+  /// Jdot qd of the output iiwa_link_ee_axis_3: its acceleration at qdd = 0
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_iiwa_link_ee_axis_3([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& Jdot_qd) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, 1), "Jdot_qd: expected 3 x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && Jdot_qd.rows() == 3 && Jdot_qd.cols() == 1);
+    using std::sin; using std::cos;
+    const Scalar w0 = sin(q(6));
+    const Scalar w1 = cos(q(3));
+    const Scalar w2 = cos(q(1));
+    const Scalar w3 = cos(q(0));
+    const Scalar w4 = cos(q(2));
+    const Scalar w5 = sin(q(2));
+    const Scalar w6 = sin(q(0));
+    const Scalar w7 = w5 * w6 - w2 * w3 * w4;
+    const Scalar w8 = sin(q(1));
+    const Scalar w9 = sin(q(3));
+    const Scalar w10 = w8 * w9 * w3;
+    const Scalar w11 = w1 * w7 - w10;
+    const Scalar w12 = sin(q(5));
+    const Scalar w13 = cos(q(4));
+    const Scalar w14 = w1 * w8 * w3;
+    const Scalar w15 = w7 * w9 + w14;
+    const Scalar w16 = cos(q(5));
+    const Scalar w17 = w13 * w15 * w16 - w11 * w12;
+    const Scalar w18 = sin(q(4));
+    const Scalar w19 = cos(q(6));
+    const Scalar w20 = w5 * w3 + w2 * w6 * w4;
+    const Scalar w21 = w8 * w6 * w9;
+    const Scalar w22 = w1 * w20 + w21;
+    const Scalar w23 = w2 * w5 * w6 - w3 * w4;
+    const Scalar w24 = w13 * w23;
+    const Scalar w25 = w18 * w22 + w24;
+    const Scalar w26 = -(w18 * w23);
+    const Scalar w27 = w22 * w13 + w26;
+    const Scalar w28 = w2 * w5 * w3 + w6 * w4;
+    const Scalar w29 = w18 * w7 - w1 * w13 * w28;
+    const Scalar w30 = w2 * w9 * w3 - w1 * w8 * w3 * w4;
+    const Scalar w31 = w13 * w30 + w18 * w8 * w5 * w3;
+    const Scalar w32 = w8 * w9 * w3 * w4 + w1 * w2 * w3;
+    const Scalar w33 = -(w13 * w28);
+    const Scalar w34 = w18 * w11 + w33;
+    const Scalar w35 = w0 * w34;
+    const Scalar w36 = w18 * w28;
+    const Scalar w37 = w11 * w13 + w36;
+    const Scalar w38 = qd(4) * qd(4);
+    const Scalar w39 = qd(3) * qd(3);
+    const Scalar w40 = w12 * w15;
+    const Scalar w41 = w40 + w37 * w16;
+    const Scalar w42 = w35 - w41 * w19;
+    const Scalar w43 = qd(6) * qd(6);
+    const Scalar w44 = -(w1 * w8 * w6);
+    const Scalar w45 = w9 * w20 + w44;
+    const Scalar w46 = w45 * w12;
+    const Scalar w47 = w46 + w27 * w16;
+    const Scalar w48 = qd(2) * qd(2);
+    const Scalar w49 = w18 * w20 + w1 * w13 * w23;
+    const Scalar w50 = w49 * w16 + w12 * w9 * w23;
+    const Scalar w51 = w13 * w20 - w18 * w1 * w23;
+    const Scalar w52 = w45 * w13 * w16 - w22 * w12;
+    const Scalar w53 = w18 * w30 - w8 * w13 * w5 * w3;
+    const Scalar w54 = w1 * w2 * w3 * w4 + w10;
+    const Scalar w55 = qd(1) * qd(1);
+    const Scalar w56 = qd(5) * qd(5);
+    const Scalar w57 = qd(0) * qd(0);
+    const Scalar w58 = w31 * w16 - w32 * w12;
+    const Scalar w59 = w28 * w12 * w9 - w29 * w16;
+    const Scalar w60 = w13 * w7 + w18 * w1 * w28;
+    const Scalar w61 = w45 * w16 - w12 * w27;
+    const Scalar w62 = w12 * w37 - w15 * w16;
+    const Scalar w63 = w1 * w2 * w6 + w8 * w6 * w9 * w4;
+    const Scalar w64 = w2 * w6 * w9 - w1 * w8 * w6 * w4;
+    const Scalar w65 = w64 * w13 + w18 * w8 * w5 * w6;
+    const Scalar w66 = w12 * w63 - w65 * w16;
+    const Scalar w67 = w8 * w13 * w5 * w6 - w64 * w18;
+    const Scalar w68 = w0 * w25;
+    const Scalar w69 = w1 * w2 * w6 * w4 + w21;
+    const Scalar w70 = w68 - w47 * w19;
+    const Scalar w71 = w1 * w8 - w2 * w9 * w4;
+    const Scalar w72 = w8 * w9 + w1 * w2 * w4;
+    const Scalar w73 = w18 * w8 * w4 + w1 * w8 * w13 * w5;
+    const Scalar w74 = w18 * w1 * w8 * w5 - w8 * w13 * w4;
+    const Scalar w75 = w18 * w8 * w5;
+    const Scalar w76 = w8 * w13 * w5;
+    const Scalar w77 = w1 * w8 * w4 - w2 * w9;
+    const Scalar w78 = w76 + w18 * w77;
+    const Scalar w79 = w1 * w2 + w8 * w9 * w4;
+    const Scalar w80 = w79 * w12;
+    const Scalar w81 = w13 * w77 - w75;
+    const Scalar w82 = w80 + w81 * w16;
+    const Scalar w83 = w0 * w78;
+    const Scalar w84 = w83 - w82 * w19;
+    const Scalar w85 = w13 * w72 - w18 * w2 * w5;
+    const Scalar w86 = w2 * w13 * w5 + w18 * w72;
+    Jdot_qd(0) = Scalar(2) * (w0 * w17 + w18 * w15 * w19) * qd(6) * qd(3) - qd(1) * (w19 * ((w18 * w8 * w3 * w4 + w1 * w8 * w13 * w5 * w3) * w16 + w8 * w12 * w5 * w9 * w3) + w0 * (w8 * w13 * w3 * w4 - w18 * w1 * w8 * w5 * w3)) * Scalar(2) * qd(2) - Scalar(2) * (w25 * w19 * w16 + w0 * w27) * qd(0) * qd(4) + qd(5) * Scalar(2) * w19 * (w12 * w29 + w28 * w9 * w16) * qd(2) + qd(1) * qd(5) * Scalar(2) * (w31 * w12 + w32 * w16) * w19 + Scalar(2) * qd(4) * qd(3) * (w18 * w15 * w19 * w16 + w0 * w13 * w15) + (w35 - w37 * w19 * w16) * w38 + w39 * (w18 * w0 * w11 - (w40 + w11 * w13 * w16) * w19) - Scalar(2) * ((w13 * w28 * w9 * w16 - w1 * w28 * w12) * w19 - w18 * w0 * w28 * w9) * qd(3) * qd(2) + w42 * w43 + Scalar(2) * qd(6) * qd(4) * (w0 * w34 * w16 - w37 * w19) - (w25 * w19 + w47 * w0) * Scalar(2) * qd(0) * qd(6) + (w0 * (w18 * w1 * w7 + w33) - ((w1 * w13 * w7 + w36) * w16 + w7 * w12 * w9) * w19) * w48 - Scalar(2) * (w50 * w19 + w0 * w51) * qd(0) * qd(2) - (w52 * w19 - w18 * w0 * w45) * Scalar(2) * qd(0) * qd(3) + qd(1) * (w53 * w19 * w16 + w0 * w31) * Scalar(2) * qd(4) + qd(5) * Scalar(2) * (w13 * w12 * w15 + w11 * w16) * qd(3) * w19 - ((w12 * (w14 - w2 * w9 * w3 * w4) + (w18 * w2 * w5 * w3 - w13 * w54) * w16) * w19 + w0 * (w2 * w13 * w5 * w3 + w18 * w54)) * w55 - w56 * w41 * w19 + w42 * w57 + qd(1) * (w0 * w58 + w53 * w19) * Scalar(2) * qd(6) - Scalar(2) * (w0 * w59 + w60 * w19) * qd(6) * qd(2) + (w0 * w29 - w60 * w19 * w16) * Scalar(2) * qd(4) * qd(2) + qd(5) * Scalar(2) * w12 * qd(4) * w34 * w19 + qd(5) * Scalar(2) * w61 * qd(0) * w19 - qd(1) * Scalar(2) * qd(3) * ((w30 * w12 + w32 * w13 * w16) * w19 - w18 * w0 * w32) + w0 * w62 * qd(5) * Scalar(2) * qd(6) - qd(1) * Scalar(2) * qd(0) * (w66 * w19 - w67 * w0);
+    Jdot_qd(1) = -(qd(5) * Scalar(2) * qd(3) * (w22 * w16 + w45 * w13 * w12) * w19 - qd(1) * (w0 * w53 - w58 * w19) * Scalar(2) * qd(0) + (w68 - w27 * w19 * w16) * w38 + ((w64 * w12 + w13 * w63 * w16) * w19 - w18 * w0 * w63) * qd(1) * Scalar(2) * qd(3) + qd(5) * Scalar(2) * w12 * w25 * qd(4) * w19 + (w0 * w49 - w51 * w19 * w16) * Scalar(2) * qd(4) * qd(2) - qd(1) * Scalar(2) * qd(4) * (w0 * w65 - w67 * w19 * w16) + Scalar(2) * qd(0) * (w17 * w19 - w18 * w0 * w15) * qd(3) + w39 * (w18 * w0 * w22 - (w46 + w22 * w13 * w16) * w19) + w62 * qd(5) * Scalar(2) * qd(0) * w19 + w48 * ((w18 * w1 * w20 + w24) * w0 - (w12 * w9 * w20 + (w26 + w1 * w13 * w20) * w16) * w19) - ((w16 * (w13 * w69 - w18 * w2 * w5 * w6) + w12 * (w44 + w2 * w6 * w9 * w4)) * w19 - w0 * (w2 * w13 * w5 * w6 + w18 * w69)) * w55 + qd(5) * Scalar(2) * (w49 * w12 - w9 * w16 * w23) * w19 * qd(2) + w70 * w43 + (w0 * w50 - w51 * w19) * Scalar(2) * qd(6) * qd(2) + ((w13 * w9 * w16 * w23 - w1 * w12 * w23) * w19 - w18 * w0 * w9 * w23) * Scalar(2) * qd(3) * qd(2) + qd(1) * Scalar(2) * qd(6) * (w67 * w19 + w0 * w66) + Scalar(2) * (w0 * w45 * w13 + w18 * w45 * w19 * w16) * qd(4) * qd(3) + qd(1) * ((w8 * w12 * w5 * w6 * w9 + w16 * (w1 * w8 * w13 * w5 * w6 + w18 * w8 * w6 * w4)) * w19 - w0 * (w18 * w1 * w8 * w5 * w6 - w8 * w13 * w6 * w4)) * Scalar(2) * qd(2) - (w27 * w19 - w0 * w25 * w16) * Scalar(2) * qd(6) * qd(4) + (w0 * w52 + w18 * w45 * w19) * Scalar(2) * qd(6) * qd(3) + w57 * w70 + Scalar(2) * qd(0) * qd(4) * (w0 * w37 + w34 * w19 * w16) - w47 * w56 * w19 - qd(1) * (w65 * w12 + w63 * w16) * qd(5) * Scalar(2) * w19 - w0 * qd(5) * Scalar(2) * w61 * qd(6) + (w34 * w19 + w0 * w41) * Scalar(2) * qd(0) * qd(6) - Scalar(2) * qd(0) * (w59 * w19 - w60 * w0) * qd(2));
+    Jdot_qd(2) = -(qd(1) * Scalar(2) * ((w2 * w12 * w5 * w9 + (w1 * w2 * w13 * w5 + w18 * w2 * w4) * w16) * w19 + (w2 * w13 * w4 - w18 * w1 * w2 * w5) * w0) * qd(2) - qd(1) * Scalar(2) * qd(3) * ((w71 * w13 * w16 + w12 * w72) * w19 - w18 * w0 * w71) - Scalar(2) * qd(4) * qd(2) * (w0 * w73 + w74 * w19 * w16) + w48 * ((w8 * w12 * w9 * w4 - (w75 - w1 * w8 * w13 * w4) * w16) * w19 - w0 * (w76 + w18 * w1 * w8 * w4)) - qd(5) * Scalar(2) * w78 * w12 * qd(4) * w19 - w84 * w43 + w56 * w82 * w19 + w39 * (w19 * (w13 * w16 * w77 + w80) - w18 * w0 * w77) + w38 * (w81 * w19 * w16 - w83) + qd(1) * Scalar(2) * (w0 * (w85 * w16 - w71 * w12) + w86 * w19) * qd(6) + Scalar(2) * (w81 * w19 - w0 * w78 * w16) * qd(6) * qd(4) + qd(1) * (w85 * w12 + w71 * w16) * qd(5) * Scalar(2) * w19 - qd(5) * Scalar(2) * (w16 * w77 + w79 * w13 * w12) * qd(3) * w19 - Scalar(2) * qd(3) * qd(2) * ((w8 * w13 * w5 * w9 * w16 - w1 * w8 * w12 * w5) * w19 - w18 * w0 * w8 * w5 * w9) + (w86 * w19 * w16 + w0 * w85) * qd(1) * Scalar(2) * qd(4) - w84 * w55 - (w0 * w79 * w13 + w18 * w79 * w19 * w16) * Scalar(2) * qd(4) * qd(3) + qd(5) * Scalar(2) * w19 * (w8 * w5 * w9 * w16 - w12 * w73) * qd(2) + w0 * qd(5) * Scalar(2) * qd(6) * (w79 * w16 - w81 * w12) - (w18 * w79 * w19 + w0 * (w79 * w13 * w16 - w12 * w77)) * Scalar(2) * qd(6) * qd(3) - Scalar(2) * qd(6) * (w0 * (w8 * w12 * w5 * w9 + w73 * w16) + w74 * w19) * qd(2));
+  }
+
+  /// Jdot qd of the output iiwa_link_ee_axis_3: its acceleration at qdd = 0
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_iiwa_link_ee_axis_3(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Parameters<typename DerivedQ::Scalar>& p, Out0&& Jdot_qd) noexcept {
+    output_bias_iiwa_link_ee_axis_3(t, q, qd, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(Jdot_qd));
+  }
+
+  /// J = dy/dqd of the output iiwa_link_ee_angular_velocity
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_iiwa_link_ee_angular_velocity([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& J) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, nq), "J: expected 3 x nq");
+    eigen_assert(q.size() == nq && J.rows() == 3 && J.cols() == nq);
+    using std::sin; using std::cos;
+    const Scalar w0 = sin(q(0));
+    const Scalar w1 = sin(q(1));
+    const Scalar w2 = cos(q(0));
+    const Scalar w3 = cos(q(1));
+    const Scalar w4 = sin(q(2));
+    const Scalar w5 = cos(q(2));
+    const Scalar w6 = w3 * w4 * w2 + w0 * w5;
+    const Scalar w7 = w4 * w0 - w3 * w2 * w5;
+    const Scalar w8 = sin(q(3));
+    const Scalar w9 = cos(q(3));
+    const Scalar w10 = w7 * w8 + w9 * w1 * w2;
+    const Scalar w11 = sin(q(4));
+    const Scalar w12 = w9 * w7 - w1 * w8 * w2;
+    const Scalar w13 = cos(q(4));
+    const Scalar w14 = cos(q(5));
+    const Scalar w15 = sin(q(5));
+    const Scalar w16 = w3 * w4 * w0 - w2 * w5;
+    const Scalar w17 = w4 * w2 + w3 * w0 * w5;
+    const Scalar w18 = w8 * w17 - w9 * w1 * w0;
+    const Scalar w19 = w9 * w17 + w1 * w0 * w8;
+    const Scalar w20 = w9 * w3 + w1 * w8 * w5;
+    const Scalar w21 = w9 * w1 * w5 - w3 * w8;
+    J(0, 1) = -w0;
+    J(0, 2) = w1 * w2;
+    J(0, 3) = w6;
+    J(0, 4) = w10;
+    J(0, 5) = w11 * w12 - w13 * w6;
+    J(0, 6) = -(w15 * (w12 * w13 + w11 * w6) - w10 * w14);
+    J(1, 1) = w2;
+    J(1, 2) = w1 * w0;
+    J(1, 3) = w16;
+    J(1, 4) = -w18;
+    J(1, 5) = -(w11 * w19 + w13 * w16);
+    J(1, 6) = -(w18 * w14 - w15 * (w19 * w13 - w11 * w16));
+    J(2, 0) = Scalar(1);
+    J(2, 2) = w3;
+    J(2, 3) = -(w1 * w4);
+    J(2, 4) = w20;
+    J(2, 5) = w1 * w13 * w4 + w11 * w21;
+    J(2, 6) = w20 * w14 - (w13 * w21 - w11 * w1 * w4) * w15;
+    J(0, 0) = Scalar(0);
+    J(1, 0) = Scalar(0);
+    J(2, 1) = Scalar(0);
+  }
+
+  /// J = dy/dqd of the output iiwa_link_ee_angular_velocity
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_iiwa_link_ee_angular_velocity(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& J) noexcept {
+    output_jacobian_iiwa_link_ee_angular_velocity(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(J));
+  }
+
+  /// Jdot qd of the output iiwa_link_ee_angular_velocity: its rate at qdd = 0
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_iiwa_link_ee_angular_velocity([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& Jdot_qd) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, 1), "Jdot_qd: expected 3 x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && Jdot_qd.rows() == 3 && Jdot_qd.cols() == 1);
+    using std::sin; using std::cos;
+    const Scalar w0 = cos(q(4));
+    const Scalar w1 = sin(q(5));
+    const Scalar w2 = cos(q(1));
+    const Scalar w3 = cos(q(0));
+    const Scalar w4 = cos(q(2));
+    const Scalar w5 = sin(q(2));
+    const Scalar w6 = sin(q(0));
+    const Scalar w7 = w5 * w6 - w2 * w3 * w4;
+    const Scalar w8 = sin(q(3));
+    const Scalar w9 = cos(q(3));
+    const Scalar w10 = sin(q(1));
+    const Scalar w11 = w7 * w8 + w9 * w10 * w3;
+    const Scalar w12 = w9 * w7 - w10 * w8 * w3;
+    const Scalar w13 = cos(q(5));
+    const Scalar w14 = sin(q(4));
+    const Scalar w15 = w2 * w5 * w6 - w3 * w4;
+    const Scalar w16 = w5 * w3 + w2 * w6 * w4;
+    const Scalar w17 = w8 * w16 - w9 * w10 * w6;
+    const Scalar w18 = w9 * w16 + w10 * w6 * w8;
+    const Scalar w19 = w14 * w18 + w0 * w15;
+    const Scalar w20 = w18 * w0 - w14 * w15;
+    const Scalar w21 = w2 * w5 * w3 + w6 * w4;
+    const Scalar w22 = w10 * w8 * w3 * w4 + w9 * w2 * w3;
+    const Scalar w23 = w2 * w8 * w3 - w9 * w10 * w3 * w4;
+    const Scalar w24 = w12 * w0 + w14 * w21;
+    const Scalar w25 = w14 * w12 - w0 * w21;
+    const Scalar w26 = w9 * w2 * w6 + w10 * w6 * w8 * w4;
+    const Scalar w27 = w2 * w6 * w8 - w9 * w10 * w6 * w4;
+    const Scalar w28 = w9 * w10 * w4 - w2 * w8;
+    const Scalar w29 = w0 * w28 - w14 * w10 * w5;
+    const Scalar w30 = w9 * w2 + w10 * w8 * w4;
+    const Scalar w31 = w10 * w8 + w9 * w2 * w4;
+    const Scalar w32 = w9 * w10 - w2 * w8 * w4;
+    Jdot_qd(0) = ((w0 * w1 * w11 + w12 * w13) * qd(6) - w14 * qd(5) * w11 + w12 * qd(4)) * qd(3) - (qd(1) * w3 + qd(3) * w15 + w10 * w6 * qd(2) - w17 * qd(4) - qd(5) * w19 - (w17 * w13 - w1 * w20) * qd(6)) * qd(0) + ((w0 * w7 + w14 * w9 * w21) * qd(5) - w7 * qd(3) + w21 * w8 * qd(4) + qd(6) * (w1 * (w14 * w7 - w9 * w0 * w21) + w21 * w8 * w13)) * qd(2) + qd(1) * (w22 * qd(4) - w10 * w5 * qd(3) * w3 - qd(5) * (w14 * w23 - w10 * w0 * w5 * w3) + ((w0 * w23 + w14 * w10 * w5 * w3) * w1 + w22 * w13) * qd(6) + w2 * w3 * qd(2)) - qd(5) * (w1 * w11 + w24 * w13) * qd(6) + (qd(5) * w24 + w1 * qd(6) * w25) * qd(4);
+    Jdot_qd(1) = -((qd(1) * w6 - w21 * qd(3) - w10 * w3 * qd(2) - qd(5) * w25 + (w1 * w24 - w11 * w13) * qd(6) - w11 * qd(4)) * qd(0) - qd(1) * (qd(4) * w26 - w10 * w5 * w6 * qd(3) + ((w27 * w0 + w14 * w10 * w5 * w6) * w1 + w26 * w13) * qd(6) + (w10 * w0 * w5 * w6 - w27 * w14) * qd(5) + w2 * w6 * qd(2)) + (qd(5) * w20 + w1 * qd(6) * w19) * qd(4) - (w17 * w1 + w20 * w13) * qd(5) * qd(6) - qd(3) * (w14 * w17 * qd(5) - qd(6) * (w18 * w13 + w17 * w0 * w1) - w18 * qd(4)) - qd(2) * (w8 * qd(4) * w15 - qd(5) * (w0 * w16 - w14 * w9 * w15) + qd(3) * w16 - qd(6) * ((w14 * w16 + w9 * w0 * w15) * w1 - w8 * w13 * w15)));
+    Jdot_qd(2) = ((w10 * w0 * w5 + w14 * w28) * w1 * qd(6) + w29 * qd(5)) * qd(4) - qd(5) * (w30 * w1 + w29 * w13) * qd(6) + (qd(4) * w28 - w14 * w30 * qd(5) + qd(6) * (w13 * w28 + w30 * w0 * w1)) * qd(3) - qd(1) * (w32 * qd(4) - qd(5) * (w2 * w0 * w5 + w14 * w31) + w2 * w5 * qd(3) + ((w0 * w31 - w14 * w2 * w5) * w1 + w32 * w13) * qd(6) + w10 * qd(2)) - (qd(6) * (w10 * w5 * w8 * w13 - w1 * (w14 * w10 * w4 + w9 * w10 * w0 * w5)) + w10 * w5 * w8 * qd(4) + (w14 * w9 * w10 * w5 - w10 * w0 * w4) * qd(5) + w10 * qd(3) * w4) * qd(2);
+  }
+
+  /// Jdot qd of the output iiwa_link_ee_angular_velocity: its rate at qdd = 0
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_iiwa_link_ee_angular_velocity(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Parameters<typename DerivedQ::Scalar>& p, Out0&& Jdot_qd) noexcept {
+    output_bias_iiwa_link_ee_angular_velocity(t, q, qd, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(Jdot_qd));
+  }
+
+  /// Y with M qdd - F = Y pi + (the loads other than gravity, negated), pi the inertial parameters (inertial_parameter_names)
+  template <class DerivedQ, class DerivedQd, class DerivedQdd, class Out0>
+  static void regressor([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedQdd>& qdd, const Constants<typename DerivedQ::Scalar>& c, Out0&& Y) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<DerivedQdd>(nq, 1), "qdd: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(nq, npi), "Y: expected nq x npi");
+    eigen_assert(q.size() == nq && qd.size() == nq && qdd.size() == nq && Y.rows() == nq && Y.cols() == npi);
+    using std::sin; using std::cos;
+    const Scalar w0 = sin(q(1));
+    const Scalar w1 = cos(q(1));
+    const Scalar w2 = c.p.g * w1;
+    const Scalar w3 = c.p.g * w0;
+    const Scalar w4 = w0 * qd(0);
+    const Scalar w5 = qd(1) * w4;
+    const Scalar w6 = w5 * w1;
+    const Scalar w7 = w1 * qd(0);
+    const Scalar w8 = qd(1) * w7;
+    const Scalar w9 = w8 + qdd(0) * w0;
+    const Scalar w10 = w5 - qdd(0) * w1;
+    const Scalar w11 = w8 * w0;
+    const Scalar w12 = w7 * w4;
+    const Scalar w13 = w4 * w4;
+    const Scalar w14 = -(qd(1) * qd(1));
+    const Scalar w15 = -w12;
+    const Scalar w16 = w7 * w7;
+    const Scalar w17 = cos(q(2));
+    const Scalar w18 = sin(q(2));
+    const Scalar w19 = w9 * w18 + qdd(1) * w17;
+    const Scalar w20 = qd(1) * w18 - w4 * w17;
+    const Scalar w21 = w3 * w17 - w19 * Scalar(0.2045) - w7 * Scalar(0.2045) * w20;
+    const Scalar w22 = w9 * w17 - qdd(1) * w18;
+    const Scalar w23 = w4 * w18 + qd(1) * w17;
+    const Scalar w24 = w22 * Scalar(0.2045) + w23 * w7 * Scalar(0.2045) + w3 * w18;
+    const Scalar w25 = w23 * w23;
+    const Scalar w26 = w20 * w20;
+    const Scalar w27 = w25 * Scalar(0.2045) + w26 * Scalar(0.2045) - w2;
+    const Scalar w28 = w7 + qd(2);
+    const Scalar w29 = w28 * w28;
+    const Scalar w30 = w27 - (w25 + w29) * Scalar(0.2045);
+    const Scalar w31 = w23 * w20;
+    const Scalar w32 = -w10;
+    const Scalar w33 = w32 + qdd(2);
+    const Scalar w34 = w31 + w33;
+    const Scalar w35 = w31 - w33;
+    const Scalar w36 = Scalar(0.2045) * (w26 + w29) - w27;
+    const Scalar w37 = w28 * w20;
+    const Scalar w38 = w19 - w20 * qd(2);
+    const Scalar w39 = w37 + w38;
+    const Scalar w40 = w39 * Scalar(0.2045) - w21;
+    const Scalar w41 = w23 * w28;
+    const Scalar w42 = w23 * qd(2) - w22;
+    const Scalar w43 = w41 - w42;
+    const Scalar w44 = Scalar(0.2045) * w43 + w24;
+    const Scalar w45 = w31 * w1;
+    const Scalar w46 = w37 * w18;
+    const Scalar w47 = w25 - w26;
+    const Scalar w48 = w41 + w42;
+    const Scalar w49 = -w38;
+    const Scalar w50 = w37 + w49;
+    const Scalar w51 = w41 * w17;
+    const Scalar w52 = -w29;
+    const Scalar w53 = w26 + w52;
+    const Scalar w54 = w25 + w52;
+    const Scalar w55 = cos(q(3));
+    const Scalar w56 = sin(q(3));
+    const Scalar w57 = Scalar(0.2155) * w26 + w25 * Scalar(0.2155);
+    const Scalar w58 = Scalar(0.2155) * w28 * w20;
+    const Scalar w59 = w21 - Scalar(0.2155) * w38;
+    const Scalar w60 = w27 * w56 + w56 * w57 - w55 * w58 + w55 * w59;
+    const Scalar w61 = w55 * w27 + w55 * w57 + w58 * w56 - w59 * w56;
+    const Scalar w62 = w55 * w60 - w61 * w56;
+    const Scalar w63 = Scalar(0.2155) * w42 - w24 - Scalar(0.2155) * w23 * w28;
+    const Scalar w64 = w55 * w63;
+    const Scalar w65 = w23 - qd(3);
+    const Scalar w66 = w65 * w65;
+    const Scalar w67 = w55 * w28 - w56 * w20;
+    const Scalar w68 = w67 * w67;
+    const Scalar w69 = w55 * w20 + w28 * w56;
+    const Scalar w70 = w69 * w67;
+    const Scalar w71 = qdd(3) + w49;
+    const Scalar w72 = w70 + w71;
+    const Scalar w73 = w72 * w56;
+    const Scalar w74 = w55 * (w66 + w68) + w73;
+    const Scalar w75 = w61 - Scalar(0.2155) * w74 - w74 * Scalar(0.2045);
+    const Scalar w76 = w56 * w63;
+    const Scalar w77 = w69 * w65;
+    const Scalar w78 = w69 * qd(3) + w56 * w42 - w55 * w33;
+    const Scalar w79 = w77 - w78;
+    const Scalar w80 = w76 - Scalar(0.2155) * w79 - w79 * Scalar(0.2045);
+    const Scalar w81 = w69 * w69;
+    const Scalar w82 = w70 - w71;
+    const Scalar w83 = w55 * w82;
+    const Scalar w84 = (w81 + w66) * w56 + w83;
+    const Scalar w85 = w84 * Scalar(0.2045) + w84 * Scalar(0.2155) - w60;
+    const Scalar w86 = w67 * qd(3) + w55 * w42 + w33 * w56;
+    const Scalar w87 = w67 * w65;
+    const Scalar w88 = w86 - w87;
+    const Scalar w89 = w88 * Scalar(0.2045) + w64 + Scalar(0.2155) * w88;
+    const Scalar w90 = w81 + w68;
+    const Scalar w91 = w56 * w60 - Scalar(0.2155) * w90 + w55 * w61 - Scalar(0.2045) * w90;
+    const Scalar w92 = w77 + w78;
+    const Scalar w93 = w86 + w87;
+    const Scalar w94 = w56 * w93 - w55 * w92;
+    const Scalar w95 = w77 * w56;
+    const Scalar w96 = w55 * w86 + w95;
+    const Scalar w97 = w70 * w18;
+    const Scalar w98 = -(w55 * w77);
+    const Scalar w99 = w86 * w56 + w98;
+    const Scalar w100 = w55 * w88 + w79 * w56;
+    const Scalar w101 = -w68;
+    const Scalar w102 = w101 + w81;
+    const Scalar w103 = w88 * w56 - w55 * w79;
+    const Scalar w104 = w55 * w87;
+    const Scalar w105 = w56 * w78 + w104;
+    const Scalar w106 = w87 * w56;
+    const Scalar w107 = w55 * w78 - w106;
+    const Scalar w108 = w81 - w66;
+    const Scalar w109 = w55 * w72 + w56 * w108;
+    const Scalar w110 = w55 * w108 - w73;
+    const Scalar w111 = w101 + w66;
+    const Scalar w112 = w82 * w56 - w55 * w111;
+    const Scalar w113 = w56 * w111 + w83;
+    const Scalar w114 = w104 + w95;
+    const Scalar w115 = w106 + w98;
+    const Scalar w116 = sin(q(4));
+    const Scalar w117 = cos(q(4));
+    const Scalar w118 = w117 * w65 - w69 * w116;
+    const Scalar w119 = w118 * w118;
+    const Scalar w120 = w69 * w117 + w116 * w65;
+    const Scalar w121 = w120 * w120;
+    const Scalar w122 = w61 + w119 * Scalar(0.1845) + w121 * Scalar(0.1845);
+    const Scalar w123 = w117 * w86 - w116 * w71;
+    const Scalar w124 = w117 * w63 + w123 * Scalar(0.1845) - w67 * w118 * Scalar(0.1845) - w116 * w60;
+    const Scalar w125 = w117 * w71 + w116 * w86;
+    const Scalar w126 = w125 * Scalar(0.1845) + w117 * w60 + w116 * w63 - w67 * w120 * Scalar(0.1845);
+    const Scalar w127 = w56 * w122 - w55 * (w117 * w126 - w116 * w124);
+    const Scalar w128 = w116 * w124 * Scalar(0.1845) - w117 * Scalar(0.1845) * w126;
+    const Scalar w129 = w127 * Scalar(0.2045) + Scalar(0.2155) * w127 + w128;
+    const Scalar w130 = w116 * w126 + w124 * w117;
+    const Scalar w131 = w124 * w117 * Scalar(0.1845) + w116 * Scalar(0.1845) * w126;
+    const Scalar w132 = w130 * Scalar(0.2045) + w55 * w131 + Scalar(0.2155) * w130;
+    const Scalar w133 = w131 * w56;
+    const Scalar w134 = w67 + qd(4);
+    const Scalar w135 = w134 * w134;
+    const Scalar w136 = w119 + w135;
+    const Scalar w137 = w122 - w136 * Scalar(0.1845);
+    const Scalar w138 = w120 * w118;
+    const Scalar w139 = -w138;
+    const Scalar w140 = w78 - qdd(4);
+    const Scalar w141 = w139 + w140;
+    const Scalar w142 = w116 * w137 - w117 * Scalar(0.1845) * w141;
+    const Scalar w143 = w56 * w142 + w124 * w55;
+    const Scalar w144 = w117 * w141;
+    const Scalar w145 = w116 * w136 + w144;
+    const Scalar w146 = w55 * w142 - w124 * w56 - w145 * Scalar(0.2155) - w145 * Scalar(0.2045);
+    const Scalar w147 = w116 * w141;
+    const Scalar w148 = w120 * w134;
+    const Scalar w149 = w125 + w120 * qd(4);
+    const Scalar w150 = w148 + w149;
+    const Scalar w151 = w55 * (w147 - w136 * w117) - w150 * w56;
+    const Scalar w152 = w116 * Scalar(0.1845) * w141 + w117 * w137;
+    const Scalar w153 = w151 * Scalar(0.2045) + w152 + Scalar(0.2155) * w151;
+    const Scalar w154 = w140 + w138;
+    const Scalar w155 = w121 + w135;
+    const Scalar w156 = Scalar(0.1845) * w155 - w122;
+    const Scalar w157 = w156 * w117 - w116 * w154 * Scalar(0.1845);
+    const Scalar w158 = w55 * w126 + w157 * w56;
+    const Scalar w159 = w154 * w117;
+    const Scalar w160 = w118 * qd(4) + w123;
+    const Scalar w161 = w118 * w134;
+    const Scalar w162 = w160 + w161;
+    const Scalar w163 = w162 * w56 - w55 * (w159 + w116 * w155);
+    const Scalar w164 = w116 * w156 + w154 * w117 * Scalar(0.1845);
+    const Scalar w165 = Scalar(0.2155) * w163 - w164 + Scalar(0.2045) * w163;
+    const Scalar w166 = w116 * w154;
+    const Scalar w167 = w166 - w117 * w155;
+    const Scalar w168 = w167 * Scalar(0.2045) - (w55 * w157 - w56 * w126 - Scalar(0.2155) * w167);
+    const Scalar w169 = w160 - w161;
+    const Scalar w170 = w124 + w169 * Scalar(0.1845);
+    const Scalar w171 = w148 - w149;
+    const Scalar w172 = -w126;
+    const Scalar w173 = w171 * Scalar(0.1845) + w172;
+    const Scalar w174 = w117 * w170 - w116 * w173;
+    const Scalar w175 = w174 * w56;
+    const Scalar w176 = w169 * w117 - w116 * w171;
+    const Scalar w177 = Scalar(0.2155) * w176 + w55 * w174 + w176 * Scalar(0.2045);
+    const Scalar w178 = (w121 + w119) * w56 + w55 * (w116 * w169 + w117 * w171);
+    const Scalar w179 = w117 * w173 + w116 * w170;
+    const Scalar w180 = Scalar(0.2045) * w178 + w179 + Scalar(0.2155) * w178;
+    const Scalar w181 = w55 * w138;
+    const Scalar w182 = w116 * w148;
+    const Scalar w183 = w182 - w160 * w117;
+    const Scalar w184 = w181 + w183 * w56;
+    const Scalar w185 = -(w56 * w138);
+    const Scalar w186 = w183 * w55 + w185;
+    const Scalar w187 = w148 * w117;
+    const Scalar w188 = w187 + w160 * w116;
+    const Scalar w189 = w162 * w117 - w116 * w150;
+    const Scalar w190 = w121 - w119;
+    const Scalar w191 = w150 * w117 + w162 * w116;
+    const Scalar w192 = w56 * w190 + w55 * w191;
+    const Scalar w193 = w56 * w191 - w55 * w190;
+    const Scalar w194 = w117 * w161;
+    const Scalar w195 = w116 * w149 - w194;
+    const Scalar w196 = w55 * w195 + w185;
+    const Scalar w197 = w116 * w161;
+    const Scalar w198 = w197 + w117 * w149;
+    const Scalar w199 = w56 * w195 + w181;
+    const Scalar w200 = -w135;
+    const Scalar w201 = w121 + w200;
+    const Scalar w202 = w144 - w116 * w201;
+    const Scalar w203 = w169 * w55 - w202 * w56;
+    const Scalar w204 = w147 + w201 * w117;
+    const Scalar w205 = w55 * w202 + w169 * w56;
+    const Scalar w206 = w200 + w119;
+    const Scalar w207 = w166 + w117 * w206;
+    const Scalar w208 = w55 * w171 + w207 * w56;
+    const Scalar w209 = w207 * w55 - w56 * w171;
+    const Scalar w210 = w116 * w206 - w159;
+    const Scalar w211 = w194 + w182;
+    const Scalar w212 = w55 * w140 - w211 * w56;
+    const Scalar w213 = w197 - w187;
+    const Scalar w214 = w140 * w56 + w211 * w55;
+    const Scalar w215 = sin(q(5));
+    const Scalar w216 = cos(q(5));
+    const Scalar w217 = Scalar(0.2155) * w149 + w126;
+    const Scalar w218 = Scalar(0.2155) * w120 * w134;
+    const Scalar w219 = w121 * Scalar(0.2155) + Scalar(0.2155) * w119;
+    const Scalar w220 = w122 * w216 + w215 * w217 + w219 * w216 - w218 * w215;
+    const Scalar w221 = w217 * w216 - (w219 * w215 + w218 * w216) - w215 * w122;
+    const Scalar w222 = w215 * w220 + w221 * w216;
+    const Scalar w223 = Scalar(0.2155) * w118 * w134 - (w124 + w160 * Scalar(0.2155));
+    const Scalar w224 = w116 * w222 * Scalar(0.4) - w223 * w117 * Scalar(0.4);
+    const Scalar w225 = w224 * w56;
+    const Scalar w226 = w221 * w215;
+    const Scalar w227 = w220 * w216;
+    const Scalar w228 = w55 * (w222 * w117 + w116 * w223) - (w227 - w226) * w56;
+    const Scalar w229 = w116 * w223 * Scalar(0.4) + w222 * w117 * Scalar(0.4);
+    const Scalar w230 = w228 * Scalar(0.2155) + w229 + w228 * Scalar(0.2045);
+    const Scalar w231 = w223 * w117 - w116 * w222;
+    const Scalar w232 = w55 * w224 - Scalar(0.2155) * w231 - w231 * Scalar(0.2045);
+    const Scalar w233 = w215 * w134 - w120 * w216;
+    const Scalar w234 = w134 * w216 + w120 * w215;
+    const Scalar w235 = w233 * w234;
+    const Scalar w236 = w149 - qdd(5);
+    const Scalar w237 = -w236;
+    const Scalar w238 = w235 + w237;
+    const Scalar w239 = w238 * w216;
+    const Scalar w240 = qd(5) + w118;
+    const Scalar w241 = w240 * w240;
+    const Scalar w242 = w234 * w234;
+    const Scalar w243 = w241 + w242;
+    const Scalar w244 = w238 * w215;
+    const Scalar w245 = w216 * w243 + w244;
+    const Scalar w246 = w233 * w240;
+    const Scalar w247 = w140 * w216 - w160 * w215 + qd(5) * w233;
+    const Scalar w248 = w246 + w247;
+    const Scalar w249 = w56 * (w239 - w215 * w243) + w55 * (w116 * w248 - w245 * w117);
+    const Scalar w250 = w220 - w245 * Scalar(0.2155) - w245 * Scalar(0.1845);
+    const Scalar w251 = w223 * w215;
+    const Scalar w252 = w248 * Scalar(0.1845) + Scalar(0.2155) * w248 + w251;
+    const Scalar w253 = w250 * w117 + w116 * w252;
+    const Scalar w254 = Scalar(0.2045) * w249 + w253 + Scalar(0.2155) * w249;
+    const Scalar w255 = w116 * w245 + w248 * w117;
+    const Scalar w256 = w223 * w216;
+    const Scalar w257 = w116 * w250 - w117 * w252;
+    const Scalar w258 = w256 * w56 - Scalar(0.2155) * w255 + w55 * w257 - w255 * Scalar(0.2045);
+    const Scalar w259 = w257 * w56 - w256 * w55;
+    const Scalar w260 = w233 * w233;
+    const Scalar w261 = w241 + w260;
+    const Scalar w262 = w235 + w236;
+    const Scalar w263 = w262 * w216;
+    const Scalar w264 = w215 * w261 + w263;
+    const Scalar w265 = Scalar(0.1845) * w264 + Scalar(0.2155) * w264 + w221;
+    const Scalar w266 = qd(5) * w234 - (w160 * w216 + w215 * w140);
+    const Scalar w267 = w234 * w240;
+    const Scalar w268 = w266 + w267;
+    const Scalar w269 = w268 * Scalar(0.1845) + w256 + Scalar(0.2155) * w268;
+    const Scalar w270 = w116 * w265 - w117 * w269;
+    const Scalar w271 = w55 * w251 + w270 * w56;
+    const Scalar w272 = w116 * w264 - w117 * w268;
+    const Scalar w273 = w272 * Scalar(0.2045) + w55 * w270 - w56 * w251 + w272 * Scalar(0.2155);
+    const Scalar w274 = w116 * w269 + w117 * w265;
+    const Scalar w275 = -(w262 * w215);
+    const Scalar w276 = w55 * (w117 * w264 + w116 * w268) - (w275 + w261 * w216) * w56;
+    const Scalar w277 = w274 + Scalar(0.2155) * w276 + w276 * Scalar(0.2045);
+    const Scalar w278 = w266 - w267;
+    const Scalar w279 = -w247;
+    const Scalar w280 = w246 + w279;
+    const Scalar w281 = w278 * w215 + w280 * w216;
+    const Scalar w282 = w242 + w260;
+    const Scalar w283 = Scalar(0.2155) * w282 - w227 + w226 + Scalar(0.1845) * w282;
+    const Scalar w284 = w281 * w116 * Scalar(0.4) + w117 * w283;
+    const Scalar w285 = w284 * w56 + w55 * w222;
+    const Scalar w286 = (w280 * w215 - w278 * w216) * w56 - w55 * (w116 * w282 - w281 * w117);
+    const Scalar w287 = w281 * w117 * Scalar(0.4) - w116 * w283;
+    const Scalar w288 = w286 * Scalar(0.2045) + w287 + Scalar(0.2155) * w286;
+    const Scalar w289 = w281 * w116 + w117 * w282;
+    const Scalar w290 = w55 * w284 - w222 * w56 + Scalar(0.2155) * w289 + Scalar(0.2045) * w289;
+    const Scalar w291 = w246 * w216;
+    const Scalar w292 = w291 + w266 * w215;
+    const Scalar w293 = -(w116 * w235);
+    const Scalar w294 = w246 * w215;
+    const Scalar w295 = w266 * w216 - w294;
+    const Scalar w296 = w293 + w117 * w295;
+    const Scalar w297 = w296 * w56 - w55 * w292;
+    const Scalar w298 = w292 * w56 + w55 * w296;
+    const Scalar w299 = w235 * w117;
+    const Scalar w300 = w116 * w295 + w299;
+    const Scalar w301 = w268 * w216 - w248 * w215;
+    const Scalar w302 = -w260;
+    const Scalar w303 = w302 + w242;
+    const Scalar w304 = w248 * w216 + w215 * w268;
+    const Scalar w305 = w116 * w303 + w304 * w117;
+    const Scalar w306 = w301 * w55 + w305 * w56;
+    const Scalar w307 = w55 * w305 - w301 * w56;
+    const Scalar w308 = w117 * w303 - w304 * w116;
+    const Scalar w309 = w267 * w215;
+    const Scalar w310 = w309 + w247 * w216;
+    const Scalar w311 = w267 * w216;
+    const Scalar w312 = w311 - w215 * w247;
+    const Scalar w313 = w293 + w117 * w312;
+    const Scalar w314 = w56 * w310 + w55 * w313;
+    const Scalar w315 = w299 + w116 * w312;
+    const Scalar w316 = w55 * w310 - w56 * w313;
+    const Scalar w317 = w302 + w241;
+    const Scalar w318 = w244 + w216 * w317;
+    const Scalar w319 = w239 - w215 * w317;
+    const Scalar w320 = w116 * w278 + w319 * w117;
+    const Scalar w321 = w318 * w56 + w55 * w320;
+    const Scalar w322 = w319 * w116 - w278 * w117;
+    const Scalar w323 = w55 * w318 - w320 * w56;
+    const Scalar w324 = w241 - w242;
+    const Scalar w325 = w275 + w324 * w216;
+    const Scalar w326 = w116 * w280 - w117 * w325;
+    const Scalar w327 = w324 * w215 + w263;
+    const Scalar w328 = w326 * w56 + w55 * w327;
+    const Scalar w329 = w280 * w117 + w116 * w325;
+    const Scalar w330 = w55 * w326 - w327 * w56;
+    const Scalar w331 = w311 + w294;
+    const Scalar w332 = w117 * w331 - w116 * w236;
+    const Scalar w333 = w309 - w291;
+    const Scalar w334 = w55 * w333 - w56 * w332;
+    const Scalar w335 = w55 * w332 + w333 * w56;
+    const Scalar w336 = w116 * w331 + w117 * w236;
+    const Scalar w337 = cos(q(6));
+    const Scalar w338 = sin(q(6));
+    const Scalar w339 = w338 * w236 + w266 * w337;
+    const Scalar w340 = w240 * w337 + w338 * w233;
+    const Scalar w341 = w338 * w221 + w339 * Scalar(0.081) + Scalar(0.081) * w340 * w234 + w223 * w337;
+    const Scalar w342 = w266 * w338 - w236 * w337;
+    const Scalar w343 = w233 * w337 - w338 * w240;
+    const Scalar w344 = w342 * Scalar(0.081) - w221 * w337 - Scalar(0.081) * w234 * w343 + w338 * w223;
+    const Scalar w345 = Scalar(0.081) * w337 * w341 + w338 * Scalar(0.081) * w344;
+    const Scalar w346 = w345 * w215;
+    const Scalar w347 = w340 * w340;
+    const Scalar w348 = w343 * w343;
+    const Scalar w349 = w347 * Scalar(0.081) + Scalar(0.081) * w348 + w220;
+    const Scalar w350 = w338 * w341 - w344 * w337;
+    const Scalar w351 = w215 * w349 + w350 * w216;
+    const Scalar w352 = Scalar(0.081) * w344 * w337 - w338 * Scalar(0.081) * w341;
+    const Scalar w353 = Scalar(0.1845) * w351 - (w352 - Scalar(0.2155) * w351);
+    const Scalar w354 = w337 * w341 + w338 * w344;
+    const Scalar w355 = w354 * Scalar(0.1845) + Scalar(0.2155) * w354 + w345 * w216;
+    const Scalar w356 = w116 * w353 - w117 * w355;
+    const Scalar w357 = w55 * w346 + w356 * w56;
+    const Scalar w358 = w55 * (w116 * w354 + w117 * w351) - (w216 * w349 - w350 * w215) * w56;
+    const Scalar w359 = w116 * w355 + w117 * w353;
+    const Scalar w360 = w358 * Scalar(0.2045) + w358 * Scalar(0.2155) + w359;
+    const Scalar w361 = w116 * w351 - w354 * w117;
+    const Scalar w362 = Scalar(0.2155) * w361 - w56 * w346 + w55 * w356 + w361 * Scalar(0.2045);
+    const Scalar w363 = qd(6) + w234;
+    const Scalar w364 = w363 * w363;
+    const Scalar w365 = w347 + w364;
+    const Scalar w366 = qdd(6) + w279;
+    const Scalar w367 = w340 * w343;
+    const Scalar w368 = w367 - w366;
+    const Scalar w369 = w368 * w337;
+    const Scalar w370 = w338 * w365 + w369;
+    const Scalar w371 = w363 * w343;
+    const Scalar w372 = w342 + qd(6) * w343;
+    const Scalar w373 = w371 + w372;
+    const Scalar w374 = w338 * w368;
+    const Scalar w375 = w374 - w365 * w337;
+    const Scalar w376 = w215 * w373 - w375 * w216;
+    const Scalar w377 = w370 * w117 + w116 * w376;
+    const Scalar w378 = -w349;
+    const Scalar w379 = w378 + Scalar(0.081) * w365;
+    const Scalar w380 = w338 * w379 + Scalar(0.081) * w368 * w337;
+    const Scalar w381 = w341 * w216 - w380 * w215;
+    const Scalar w382 = w370 * Scalar(0.1845) + w215 * w341 + Scalar(0.2155) * w370 + w380 * w216;
+    const Scalar w383 = w379 * w337 - w338 * Scalar(0.081) * w368;
+    const Scalar w384 = w376 * Scalar(0.1845) + Scalar(0.2155) * w376 + w383;
+    const Scalar w385 = w382 * w117 + w116 * w384;
+    const Scalar w386 = w377 * Scalar(0.2045) + Scalar(0.2155) * w377 - w381 * w56 + w55 * w385;
+    const Scalar w387 = w55 * (w117 * w376 - w116 * w370) - (w373 * w216 + w215 * w375) * w56;
+    const Scalar w388 = w116 * w382 - w117 * w384;
+    const Scalar w389 = w387 * Scalar(0.2045) - (w388 - Scalar(0.2155) * w387);
+    const Scalar w390 = w55 * w381 + w385 * w56;
+    const Scalar w391 = w364 + w348;
+    const Scalar w392 = w367 + w366;
+    const Scalar w393 = w392 * w337;
+    const Scalar w394 = w338 * w391 - w393;
+    const Scalar w395 = w340 * qd(6) - w339;
+    const Scalar w396 = w363 * w340;
+    const Scalar w397 = w395 + w396;
+    const Scalar w398 = w394 * w216 + w397 * w215;
+    const Scalar w399 = w392 * w338;
+    const Scalar w400 = w399 + w391 * w337;
+    const Scalar w401 = w116 * w398 - w117 * w400;
+    const Scalar w402 = w378 + Scalar(0.081) * w391;
+    const Scalar w403 = -(w392 * Scalar(0.081) * w337 - w338 * w402);
+    const Scalar w404 = Scalar(0.1845) * w398 + Scalar(0.2155) * w398 + w403;
+    const Scalar w405 = w402 * w337 + w392 * w338 * Scalar(0.081);
+    const Scalar w406 = w400 * Scalar(0.1845) + Scalar(0.2155) * w400 + w405 * w216 - w344 * w215;
+    const Scalar w407 = w117 * w406 - w404 * w116;
+    const Scalar w408 = w405 * w215 + w344 * w216;
+    const Scalar w409 = Scalar(0.2155) * w401 - w55 * w407 - w408 * w56 + Scalar(0.2045) * w401;
+    const Scalar w410 = w404 * w117 + w116 * w406;
+    const Scalar w411 = w55 * (w116 * w400 + w117 * w398) + w56 * (w215 * w394 - w397 * w216);
+    const Scalar w412 = w410 + Scalar(0.2155) * w411 + w411 * Scalar(0.2045);
+    const Scalar w413 = w55 * w408 - w407 * w56;
+    const Scalar w414 = w395 - w396;
+    const Scalar w415 = w371 - w372;
+    const Scalar w416 = w337 * w415 - w338 * w414;
+    const Scalar w417 = w347 + w348;
+    const Scalar w418 = w416 * w216 + w215 * w417;
+    const Scalar w419 = w414 * Scalar(0.081) - w341;
+    const Scalar w420 = w344 - Scalar(0.081) * w415;
+    const Scalar w421 = w338 * w419 + w420 * w337;
+    const Scalar w422 = Scalar(0.1845) * w418 + Scalar(0.2155) * w418 - w421;
+    const Scalar w423 = w419 * w337 - w338 * w420;
+    const Scalar w424 = w338 * w415 + w414 * w337;
+    const Scalar w425 = w423 * w216 + Scalar(0.2155) * w424 + w424 * Scalar(0.1845);
+    const Scalar w426 = w116 * w422 + w117 * w425;
+    const Scalar w427 = w117 * w424 + w116 * w418;
+    const Scalar w428 = w423 * w215;
+    const Scalar w429 = w55 * w426 + Scalar(0.2155) * w427 + w428 * w56 + Scalar(0.2045) * w427;
+    const Scalar w430 = w55 * (w117 * w418 - w116 * w424) - (w216 * w417 - w215 * w416) * w56;
+    const Scalar w431 = w117 * w422 - w116 * w425;
+    const Scalar w432 = Scalar(0.2045) * w430 + Scalar(0.2155) * w430 + w431;
+    const Scalar w433 = w55 * w428 - w56 * w426;
+    const Scalar w434 = w371 * w337;
+    const Scalar w435 = w338 * w395 - w434;
+    const Scalar w436 = w367 * w215;
+    const Scalar w437 = w371 * w338;
+    const Scalar w438 = w437 + w395 * w337;
+    const Scalar w439 = w436 + w438 * w216;
+    const Scalar w440 = w435 * w117 + w116 * w439;
+    const Scalar w441 = w367 * w216;
+    const Scalar w442 = w441 - w438 * w215;
+    const Scalar w443 = w435 * w116 - w117 * w439;
+    const Scalar w444 = w442 * w56 + w55 * w443;
+    const Scalar w445 = w443 * w56 - w55 * w442;
+    const Scalar w446 = w397 * w338 - w373 * w337;
+    const Scalar w447 = -w348;
+    const Scalar w448 = w347 + w447;
+    const Scalar w449 = w446 * w215 - w448 * w216;
+    const Scalar w450 = w338 * w373 + w397 * w337;
+    const Scalar w451 = w448 * w215 + w446 * w216;
+    const Scalar w452 = w116 * w450 + w117 * w451;
+    const Scalar w453 = w55 * w449 - w56 * w452;
+    const Scalar w454 = w450 * w117 - w116 * w451;
+    const Scalar w455 = w55 * w452 + w56 * w449;
+    const Scalar w456 = w396 * w337;
+    const Scalar w457 = w456 + w338 * w372;
+    const Scalar w458 = w457 * w215 - w441;
+    const Scalar w459 = w338 * w396;
+    const Scalar w460 = w372 * w337 - w459;
+    const Scalar w461 = w436 + w457 * w216;
+    const Scalar w462 = w116 * w460 + w461 * w117;
+    const Scalar w463 = w56 * w458 + w55 * w462;
+    const Scalar w464 = w116 * w461 - w117 * w460;
+    const Scalar w465 = w56 * w462 - w55 * w458;
+    const Scalar w466 = w447 + w364;
+    const Scalar w467 = w466 * w338 + w369;
+    const Scalar w468 = w414 * w215 - w467 * w216;
+    const Scalar w469 = w374 - w466 * w337;
+    const Scalar w470 = w469 * w117 - w116 * w468;
+    const Scalar w471 = w468 * w117 + w116 * w469;
+    const Scalar w472 = w467 * w215 + w414 * w216;
+    const Scalar w473 = w471 * w55 - w472 * w56;
+    const Scalar w474 = w471 * w56 + w55 * w472;
+    const Scalar w475 = w347 - w364;
+    const Scalar w476 = w475 * w337 - w399;
+    const Scalar w477 = w215 * w415 - w476 * w216;
+    const Scalar w478 = w393 + w338 * w475;
+    const Scalar w479 = w117 * w477 + w116 * w478;
+    const Scalar w480 = w215 * w476 + w216 * w415;
+    const Scalar w481 = w479 * w56 + w480 * w55;
+    const Scalar w482 = w55 * w479 - w480 * w56;
+    const Scalar w483 = w117 * w478 - w116 * w477;
+    const Scalar w484 = w434 + w459;
+    const Scalar w485 = w456 - w437;
+    const Scalar w486 = w216 * w485 + w366 * w215;
+    const Scalar w487 = w116 * w484 - w117 * w486;
+    const Scalar w488 = w215 * w485 - w366 * w216;
+    const Scalar w489 = w487 * w56 + w55 * w488;
+    const Scalar w490 = w116 * w486 + w117 * w484;
+    const Scalar w491 = w55 * w487 - w56 * w488;
+    const Scalar w492 = w37 * w17;
+    const Scalar w493 = w41 * w18;
+    const Scalar w494 = w70 * w17;
+    Y(0, 9) = qdd(0);
+    Y(0, 13) = -(w0 * w2 - w3 * w1);
+    Y(0, 14) = w6 + w0 * w9;
+    Y(0, 15) = -(w0 * (w5 + w10) - w1 * (w8 + w9));
+    Y(0, 16) = -(w1 * w10 + w11);
+    Y(0, 17) = -((w13 + w14) * w1 - w0 * (qdd(1) + w12));
+    Y(0, 18) = w1 * (qdd(1) + w15) + (w16 + w14) * w0;
+    Y(0, 19) = w11 - w6;
+    Y(0, 20) = -(w0 * (w21 * w18 * Scalar(0.2045) - Scalar(0.2045) * w24 * w17));
+    Y(0, 21) = w1 * w24 + w0 * (w18 * w30 + w34 * Scalar(0.2045) * w17);
+    Y(0, 22) = w0 * (w18 * w35 * Scalar(0.2045) - w36 * w17) + w21 * w1;
+    Y(0, 23) = w0 * (w18 * w40 + w44 * w17);
+    Y(0, 24) = -(w45 + (w42 * w17 - w46) * w0);
+    Y(0, 25) = w0 * (w48 * w18 + w50 * w17) - w1 * w47;
+    Y(0, 26) = w0 * (w18 * w38 + w51) + w45;
+    Y(0, 27) = -(w0 * (w18 * w53 + w34 * w17) + w1 * w43);
+    Y(0, 28) = -(w0 * (w18 * w35 + w54 * w17) - w1 * w39);
+    Y(0, 29) = -(w0 * (w46 + w51) - w1 * w33);
+    Y(0, 30) = -(w0 * (w62 * Scalar(0.42) * w18 + Scalar(0.42) * w63 * w17));
+    Y(0, 31) = -(w64 * w1 - (w75 * w18 - w80 * w17) * w0);
+    Y(0, 32) = (w85 * w18 - w89 * w17) * w0 + w1 * w76;
+    Y(0, 33) = w0 * (Scalar(0.42) * w18 * w94 - w91 * w17) - w62 * w1;
+    Y(0, 34) = -((w96 * w17 - w97) * w0 - w1 * w99);
+    Y(0, 35) = w1 * w100 - w0 * (w18 * w102 - w103 * w17);
+    Y(0, 36) = -(w0 * (w105 * w17 + w97) + w107 * w1);
+    Y(0, 37) = -(w0 * (w18 * w93 + w109 * w17) + w1 * w110);
+    Y(0, 38) = -(w0 * (w112 * w17 - w18 * w92) + w1 * w113);
+    Y(0, 39) = w0 * (w114 * w17 - w18 * w71) - w115 * w1;
+    Y(0, 40) = w133 * w1 - w0 * (w132 * w17 - w129 * w18);
+    Y(0, 41) = w143 * w1 - w0 * (w146 * w17 + w18 * w153);
+    Y(0, 42) = -(w158 * w1 + w0 * (w168 * w17 - w165 * w18));
+    Y(0, 43) = w175 * w1 + w0 * (w18 * w180 - w177 * w17);
+    Y(0, 44) = -(w1 * w184 - w0 * (w186 * w17 + w188 * w18));
+    Y(0, 45) = -(w193 * w1 - w0 * (w189 * w18 + w192 * w17));
+    Y(0, 46) = -(w0 * (w196 * w17 + w18 * w198) - w1 * w199);
+    Y(0, 47) = -(w203 * w1 - (w204 * w18 - w205 * w17) * w0);
+    Y(0, 48) = -(w208 * w1 + w0 * (w210 * w18 - w209 * w17));
+    Y(0, 49) = -(w212 * w1 + w0 * (w214 * w17 - w213 * w18));
+    Y(0, 50) = w1 * w225 - (w18 * w230 + w232 * w17) * w0;
+    Y(0, 51) = w1 * w259 - (w254 * w18 + w258 * w17) * w0;
+    Y(0, 52) = -(w0 * (w273 * w17 + w277 * w18) - w1 * w271);
+    Y(0, 53) = w1 * w285 - w0 * (w288 * w18 + w290 * w17);
+    Y(0, 54) = -(w1 * w297 - w0 * (w298 * w17 - w18 * w300));
+    Y(0, 55) = w1 * w306 - w0 * (w307 * w17 + w18 * w308);
+    Y(0, 56) = -(w0 * (w314 * w17 - w315 * w18) + w1 * w316);
+    Y(0, 57) = -((w18 * w322 - w321 * w17) * w0 - w1 * w323);
+    Y(0, 58) = -(w1 * w328 - (w329 * w18 + w330 * w17) * w0);
+    Y(0, 59) = w334 * w1 + w0 * (w335 * w17 - w18 * w336);
+    Y(0, 60) = -(w0 * (w18 * w360 + w362 * w17) - w1 * w357);
+    Y(0, 61) = -(w0 * (w386 * w17 + w18 * w389) - w1 * w390);
+    Y(0, 62) = -(w413 * w1 - w0 * (w409 * w17 + w18 * w412));
+    Y(0, 63) = -(w0 * (w429 * w17 + w18 * w432) + w433 * w1);
+    Y(0, 64) = w0 * (w18 * w440 + w444 * w17) - w1 * w445;
+    Y(0, 65) = w453 * w1 + w0 * (w454 * w18 + w455 * w17);
+    Y(0, 66) = -((w464 * w18 - w463 * w17) * w0 + w465 * w1);
+    Y(0, 67) = w1 * w474 - w0 * (w18 * w470 + w473 * w17);
+    Y(0, 68) = -(w1 * w481 - w0 * (w482 * w17 + w18 * w483));
+    Y(0, 69) = -(w1 * w489 - w0 * (w18 * w490 + w491 * w17));
+    Y(1, 11) = w2;
+    Y(1, 12) = -w3;
+    Y(1, 14) = w15;
+    Y(1, 15) = w13 - w16;
+    Y(1, 16) = w12;
+    Y(1, 17) = -(w8 - w9);
+    Y(1, 18) = w5 + w32;
+    Y(1, 19) = qdd(1);
+    Y(1, 20) = -(w18 * Scalar(0.2045) * w24 + w21 * Scalar(0.2045) * w17);
+    Y(1, 21) = w30 * w17 - w34 * w18 * Scalar(0.2045);
+    Y(1, 22) = w36 * w18 + w35 * Scalar(0.2045) * w17;
+    Y(1, 23) = -(w18 * w44 - w40 * w17);
+    Y(1, 24) = w492 + w18 * w42;
+    Y(1, 25) = -(w50 * w18 - w48 * w17);
+    Y(1, 26) = -(w493 - w17 * w38);
+    Y(1, 27) = w34 * w18 - w53 * w17;
+    Y(1, 28) = -(w35 * w17 - w18 * w54);
+    Y(1, 29) = w493 - w492;
+    Y(1, 30) = Scalar(0.42) * w18 * w63 - w62 * Scalar(0.42) * w17;
+    Y(1, 31) = w75 * w17 + w80 * w18;
+    Y(1, 32) = w89 * w18 + w85 * w17;
+    Y(1, 33) = Scalar(0.42) * w94 * w17 + w91 * w18;
+    Y(1, 34) = w18 * w96 + w494;
+    Y(1, 35) = -(w102 * w17 + w18 * w103);
+    Y(1, 36) = w105 * w18 - w494;
+    Y(1, 37) = w18 * w109 - w93 * w17;
+    Y(1, 38) = w18 * w112 + w92 * w17;
+    Y(1, 39) = -(w114 * w18 + w71 * w17);
+    Y(1, 40) = w129 * w17 + w18 * w132;
+    Y(1, 41) = w18 * w146 - w153 * w17;
+    Y(1, 42) = w18 * w168 + w165 * w17;
+    Y(1, 43) = w18 * w177 + w180 * w17;
+    Y(1, 44) = w188 * w17 - w186 * w18;
+    Y(1, 45) = -(w18 * w192 - w189 * w17);
+    Y(1, 46) = w18 * w196 - w198 * w17;
+    Y(1, 47) = w205 * w18 + w204 * w17;
+    Y(1, 48) = -(w210 * w17 + w18 * w209);
+    Y(1, 49) = w213 * w17 + w18 * w214;
+    Y(1, 50) = w18 * w232 - w230 * w17;
+    Y(1, 51) = w18 * w258 - w254 * w17;
+    Y(1, 52) = -(w277 * w17 - w18 * w273);
+    Y(1, 53) = w290 * w18 - w288 * w17;
+    Y(1, 54) = -(w300 * w17 + w298 * w18);
+    Y(1, 55) = w307 * w18 - w308 * w17;
+    Y(1, 56) = w315 * w17 + w314 * w18;
+    Y(1, 57) = -(w322 * w17 + w18 * w321);
+    Y(1, 58) = -(w18 * w330 - w329 * w17);
+    Y(1, 59) = -(w18 * w335 + w336 * w17);
+    Y(1, 60) = w362 * w18 - w360 * w17;
+    Y(1, 61) = -(w389 * w17 - w386 * w18);
+    Y(1, 62) = -(w409 * w18 - w412 * w17);
+    Y(1, 63) = -(w17 * w432 - w18 * w429);
+    Y(1, 64) = w440 * w17 - w444 * w18;
+    Y(1, 65) = -(w455 * w18 - w454 * w17);
+    Y(1, 66) = -(w464 * w17 + w18 * w463);
+    Y(1, 67) = -(w470 * w17 - w473 * w18);
+    Y(1, 68) = -(w18 * w482 - w483 * w17);
+    Y(1, 69) = -(w18 * w491 - w490 * w17);
+    Y(2, 21) = w24;
+    Y(2, 22) = w21;
+    Y(2, 24) = -w31;
+    Y(2, 25) = -w47;
+    Y(2, 26) = w31;
+    Y(2, 27) = -w43;
+    Y(2, 28) = w39;
+    Y(2, 29) = w33;
+    Y(2, 31) = -w64;
+    Y(2, 32) = w76;
+    Y(2, 33) = -w62;
+    Y(2, 34) = w99;
+    Y(2, 35) = w100;
+    Y(2, 36) = -w107;
+    Y(2, 37) = -w110;
+    Y(2, 38) = -w113;
+    Y(2, 39) = -w115;
+    Y(2, 40) = w133;
+    Y(2, 41) = w143;
+    Y(2, 42) = -w158;
+    Y(2, 43) = w175;
+    Y(2, 44) = -w184;
+    Y(2, 45) = -w193;
+    Y(2, 46) = w199;
+    Y(2, 47) = -w203;
+    Y(2, 48) = -w208;
+    Y(2, 49) = -w212;
+    Y(2, 50) = w225;
+    Y(2, 51) = w259;
+    Y(2, 52) = w271;
+    Y(2, 53) = w285;
+    Y(2, 54) = -w297;
+    Y(2, 55) = w306;
+    Y(2, 56) = -w316;
+    Y(2, 57) = w323;
+    Y(2, 58) = -w328;
+    Y(2, 59) = w334;
+    Y(2, 60) = w357;
+    Y(2, 61) = w390;
+    Y(2, 62) = -w413;
+    Y(2, 63) = -w433;
+    Y(2, 64) = -w445;
+    Y(2, 65) = w453;
+    Y(2, 66) = -w465;
+    Y(2, 67) = w474;
+    Y(2, 68) = -w481;
+    Y(2, 69) = -w489;
+    Y(3, 31) = -w61;
+    Y(3, 32) = w60;
+    Y(3, 34) = -w70;
+    Y(3, 35) = w102;
+    Y(3, 36) = w70;
+    Y(3, 37) = w93;
+    Y(3, 38) = -w92;
+    Y(3, 39) = w71;
+    Y(3, 40) = -w128;
+    Y(3, 41) = w152;
+    Y(3, 42) = w164;
+    Y(3, 43) = -w179;
+    Y(3, 44) = -w188;
+    Y(3, 45) = -w189;
+    Y(3, 46) = w198;
+    Y(3, 47) = -w204;
+    Y(3, 48) = w210;
+    Y(3, 49) = -w213;
+    Y(3, 50) = w229;
+    Y(3, 51) = w253;
+    Y(3, 52) = w274;
+    Y(3, 53) = w287;
+    Y(3, 54) = w300;
+    Y(3, 55) = w308;
+    Y(3, 56) = -w315;
+    Y(3, 57) = w322;
+    Y(3, 58) = -w329;
+    Y(3, 59) = w336;
+    Y(3, 60) = w359;
+    Y(3, 61) = -w388;
+    Y(3, 62) = -w410;
+    Y(3, 63) = w431;
+    Y(3, 64) = -w440;
+    Y(3, 65) = -w454;
+    Y(3, 66) = w464;
+    Y(3, 67) = w470;
+    Y(3, 68) = -w483;
+    Y(3, 69) = -w490;
+    Y(4, 41) = w124;
+    Y(4, 42) = w172;
+    Y(4, 44) = w139;
+    Y(4, 45) = w190;
+    Y(4, 46) = w138;
+    Y(4, 47) = -w169;
+    Y(4, 48) = -w171;
+    Y(4, 49) = -w140;
+    Y(4, 51) = -w256;
+    Y(4, 52) = w251;
+    Y(4, 53) = w222;
+    Y(4, 54) = w292;
+    Y(4, 55) = w301;
+    Y(4, 56) = -w310;
+    Y(4, 57) = w318;
+    Y(4, 58) = -w327;
+    Y(4, 59) = w333;
+    Y(4, 60) = w346;
+    Y(4, 61) = w381;
+    Y(4, 62) = -w408;
+    Y(4, 63) = -w428;
+    Y(4, 64) = w442;
+    Y(4, 65) = w449;
+    Y(4, 66) = w458;
+    Y(4, 67) = w472;
+    Y(4, 68) = -w480;
+    Y(4, 69) = -w488;
+    Y(5, 51) = -w220;
+    Y(5, 52) = -w221;
+    Y(5, 54) = -w235;
+    Y(5, 55) = -w303;
+    Y(5, 56) = w235;
+    Y(5, 57) = w278;
+    Y(5, 58) = w280;
+    Y(5, 59) = w237;
+    Y(5, 60) = w352;
+    Y(5, 61) = -w383;
+    Y(5, 62) = w403;
+    Y(5, 63) = w421;
+    Y(5, 64) = w435;
+    Y(5, 65) = w450;
+    Y(5, 66) = w460;
+    Y(5, 67) = -w469;
+    Y(5, 68) = w478;
+    Y(5, 69) = w484;
+    Y(6, 61) = w341;
+    Y(6, 62) = -w344;
+    Y(6, 64) = w367;
+    Y(6, 65) = -w448;
+    Y(6, 66) = -w367;
+    Y(6, 67) = w414;
+    Y(6, 68) = -w415;
+    Y(6, 69) = w366;
+    Y(0, 0) = Scalar(0);
+    Y(0, 1) = Scalar(0);
+    Y(0, 2) = Scalar(0);
+    Y(0, 3) = Scalar(0);
+    Y(0, 4) = Scalar(0);
+    Y(0, 5) = Scalar(0);
+    Y(0, 6) = Scalar(0);
+    Y(0, 7) = Scalar(0);
+    Y(0, 8) = Scalar(0);
+    Y(0, 10) = Scalar(0);
+    Y(0, 11) = Scalar(0);
+    Y(0, 12) = Scalar(0);
+    Y(1, 0) = Scalar(0);
+    Y(1, 1) = Scalar(0);
+    Y(1, 2) = Scalar(0);
+    Y(1, 3) = Scalar(0);
+    Y(1, 4) = Scalar(0);
+    Y(1, 5) = Scalar(0);
+    Y(1, 6) = Scalar(0);
+    Y(1, 7) = Scalar(0);
+    Y(1, 8) = Scalar(0);
+    Y(1, 9) = Scalar(0);
+    Y(1, 10) = Scalar(0);
+    Y(1, 13) = Scalar(0);
+    Y(2, 0) = Scalar(0);
+    Y(2, 1) = Scalar(0);
+    Y(2, 2) = Scalar(0);
+    Y(2, 3) = Scalar(0);
+    Y(2, 4) = Scalar(0);
+    Y(2, 5) = Scalar(0);
+    Y(2, 6) = Scalar(0);
+    Y(2, 7) = Scalar(0);
+    Y(2, 8) = Scalar(0);
+    Y(2, 9) = Scalar(0);
+    Y(2, 10) = Scalar(0);
+    Y(2, 11) = Scalar(0);
+    Y(2, 12) = Scalar(0);
+    Y(2, 13) = Scalar(0);
+    Y(2, 14) = Scalar(0);
+    Y(2, 15) = Scalar(0);
+    Y(2, 16) = Scalar(0);
+    Y(2, 17) = Scalar(0);
+    Y(2, 18) = Scalar(0);
+    Y(2, 19) = Scalar(0);
+    Y(2, 20) = Scalar(0);
+    Y(2, 23) = Scalar(0);
+    Y(2, 30) = Scalar(0);
+    Y(3, 0) = Scalar(0);
+    Y(3, 1) = Scalar(0);
+    Y(3, 2) = Scalar(0);
+    Y(3, 3) = Scalar(0);
+    Y(3, 4) = Scalar(0);
+    Y(3, 5) = Scalar(0);
+    Y(3, 6) = Scalar(0);
+    Y(3, 7) = Scalar(0);
+    Y(3, 8) = Scalar(0);
+    Y(3, 9) = Scalar(0);
+    Y(3, 10) = Scalar(0);
+    Y(3, 11) = Scalar(0);
+    Y(3, 12) = Scalar(0);
+    Y(3, 13) = Scalar(0);
+    Y(3, 14) = Scalar(0);
+    Y(3, 15) = Scalar(0);
+    Y(3, 16) = Scalar(0);
+    Y(3, 17) = Scalar(0);
+    Y(3, 18) = Scalar(0);
+    Y(3, 19) = Scalar(0);
+    Y(3, 20) = Scalar(0);
+    Y(3, 21) = Scalar(0);
+    Y(3, 22) = Scalar(0);
+    Y(3, 23) = Scalar(0);
+    Y(3, 24) = Scalar(0);
+    Y(3, 25) = Scalar(0);
+    Y(3, 26) = Scalar(0);
+    Y(3, 27) = Scalar(0);
+    Y(3, 28) = Scalar(0);
+    Y(3, 29) = Scalar(0);
+    Y(3, 30) = Scalar(0);
+    Y(3, 33) = Scalar(0);
+    Y(4, 0) = Scalar(0);
+    Y(4, 1) = Scalar(0);
+    Y(4, 2) = Scalar(0);
+    Y(4, 3) = Scalar(0);
+    Y(4, 4) = Scalar(0);
+    Y(4, 5) = Scalar(0);
+    Y(4, 6) = Scalar(0);
+    Y(4, 7) = Scalar(0);
+    Y(4, 8) = Scalar(0);
+    Y(4, 9) = Scalar(0);
+    Y(4, 10) = Scalar(0);
+    Y(4, 11) = Scalar(0);
+    Y(4, 12) = Scalar(0);
+    Y(4, 13) = Scalar(0);
+    Y(4, 14) = Scalar(0);
+    Y(4, 15) = Scalar(0);
+    Y(4, 16) = Scalar(0);
+    Y(4, 17) = Scalar(0);
+    Y(4, 18) = Scalar(0);
+    Y(4, 19) = Scalar(0);
+    Y(4, 20) = Scalar(0);
+    Y(4, 21) = Scalar(0);
+    Y(4, 22) = Scalar(0);
+    Y(4, 23) = Scalar(0);
+    Y(4, 24) = Scalar(0);
+    Y(4, 25) = Scalar(0);
+    Y(4, 26) = Scalar(0);
+    Y(4, 27) = Scalar(0);
+    Y(4, 28) = Scalar(0);
+    Y(4, 29) = Scalar(0);
+    Y(4, 30) = Scalar(0);
+    Y(4, 31) = Scalar(0);
+    Y(4, 32) = Scalar(0);
+    Y(4, 33) = Scalar(0);
+    Y(4, 34) = Scalar(0);
+    Y(4, 35) = Scalar(0);
+    Y(4, 36) = Scalar(0);
+    Y(4, 37) = Scalar(0);
+    Y(4, 38) = Scalar(0);
+    Y(4, 39) = Scalar(0);
+    Y(4, 40) = Scalar(0);
+    Y(4, 43) = Scalar(0);
+    Y(4, 50) = Scalar(0);
+    Y(5, 0) = Scalar(0);
+    Y(5, 1) = Scalar(0);
+    Y(5, 2) = Scalar(0);
+    Y(5, 3) = Scalar(0);
+    Y(5, 4) = Scalar(0);
+    Y(5, 5) = Scalar(0);
+    Y(5, 6) = Scalar(0);
+    Y(5, 7) = Scalar(0);
+    Y(5, 8) = Scalar(0);
+    Y(5, 9) = Scalar(0);
+    Y(5, 10) = Scalar(0);
+    Y(5, 11) = Scalar(0);
+    Y(5, 12) = Scalar(0);
+    Y(5, 13) = Scalar(0);
+    Y(5, 14) = Scalar(0);
+    Y(5, 15) = Scalar(0);
+    Y(5, 16) = Scalar(0);
+    Y(5, 17) = Scalar(0);
+    Y(5, 18) = Scalar(0);
+    Y(5, 19) = Scalar(0);
+    Y(5, 20) = Scalar(0);
+    Y(5, 21) = Scalar(0);
+    Y(5, 22) = Scalar(0);
+    Y(5, 23) = Scalar(0);
+    Y(5, 24) = Scalar(0);
+    Y(5, 25) = Scalar(0);
+    Y(5, 26) = Scalar(0);
+    Y(5, 27) = Scalar(0);
+    Y(5, 28) = Scalar(0);
+    Y(5, 29) = Scalar(0);
+    Y(5, 30) = Scalar(0);
+    Y(5, 31) = Scalar(0);
+    Y(5, 32) = Scalar(0);
+    Y(5, 33) = Scalar(0);
+    Y(5, 34) = Scalar(0);
+    Y(5, 35) = Scalar(0);
+    Y(5, 36) = Scalar(0);
+    Y(5, 37) = Scalar(0);
+    Y(5, 38) = Scalar(0);
+    Y(5, 39) = Scalar(0);
+    Y(5, 40) = Scalar(0);
+    Y(5, 41) = Scalar(0);
+    Y(5, 42) = Scalar(0);
+    Y(5, 43) = Scalar(0);
+    Y(5, 44) = Scalar(0);
+    Y(5, 45) = Scalar(0);
+    Y(5, 46) = Scalar(0);
+    Y(5, 47) = Scalar(0);
+    Y(5, 48) = Scalar(0);
+    Y(5, 49) = Scalar(0);
+    Y(5, 50) = Scalar(0);
+    Y(5, 53) = Scalar(0);
+    Y(6, 0) = Scalar(0);
+    Y(6, 1) = Scalar(0);
+    Y(6, 2) = Scalar(0);
+    Y(6, 3) = Scalar(0);
+    Y(6, 4) = Scalar(0);
+    Y(6, 5) = Scalar(0);
+    Y(6, 6) = Scalar(0);
+    Y(6, 7) = Scalar(0);
+    Y(6, 8) = Scalar(0);
+    Y(6, 9) = Scalar(0);
+    Y(6, 10) = Scalar(0);
+    Y(6, 11) = Scalar(0);
+    Y(6, 12) = Scalar(0);
+    Y(6, 13) = Scalar(0);
+    Y(6, 14) = Scalar(0);
+    Y(6, 15) = Scalar(0);
+    Y(6, 16) = Scalar(0);
+    Y(6, 17) = Scalar(0);
+    Y(6, 18) = Scalar(0);
+    Y(6, 19) = Scalar(0);
+    Y(6, 20) = Scalar(0);
+    Y(6, 21) = Scalar(0);
+    Y(6, 22) = Scalar(0);
+    Y(6, 23) = Scalar(0);
+    Y(6, 24) = Scalar(0);
+    Y(6, 25) = Scalar(0);
+    Y(6, 26) = Scalar(0);
+    Y(6, 27) = Scalar(0);
+    Y(6, 28) = Scalar(0);
+    Y(6, 29) = Scalar(0);
+    Y(6, 30) = Scalar(0);
+    Y(6, 31) = Scalar(0);
+    Y(6, 32) = Scalar(0);
+    Y(6, 33) = Scalar(0);
+    Y(6, 34) = Scalar(0);
+    Y(6, 35) = Scalar(0);
+    Y(6, 36) = Scalar(0);
+    Y(6, 37) = Scalar(0);
+    Y(6, 38) = Scalar(0);
+    Y(6, 39) = Scalar(0);
+    Y(6, 40) = Scalar(0);
+    Y(6, 41) = Scalar(0);
+    Y(6, 42) = Scalar(0);
+    Y(6, 43) = Scalar(0);
+    Y(6, 44) = Scalar(0);
+    Y(6, 45) = Scalar(0);
+    Y(6, 46) = Scalar(0);
+    Y(6, 47) = Scalar(0);
+    Y(6, 48) = Scalar(0);
+    Y(6, 49) = Scalar(0);
+    Y(6, 50) = Scalar(0);
+    Y(6, 51) = Scalar(0);
+    Y(6, 52) = Scalar(0);
+    Y(6, 53) = Scalar(0);
+    Y(6, 54) = Scalar(0);
+    Y(6, 55) = Scalar(0);
+    Y(6, 56) = Scalar(0);
+    Y(6, 57) = Scalar(0);
+    Y(6, 58) = Scalar(0);
+    Y(6, 59) = Scalar(0);
+    Y(6, 60) = Scalar(0);
+    Y(6, 63) = Scalar(0);
+  }
+
+  /// Y with M qdd - F = Y pi + (the loads other than gravity, negated), pi the inertial parameters (inertial_parameter_names)
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class DerivedQd, class DerivedQdd, class Out0>
+  static void regressor(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedQdd>& qdd, const Parameters<typename DerivedQ::Scalar>& p, Out0&& Y) noexcept {
+    regressor(t, q, qd, qdd, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(Y));
+  }
+
+  /// pi of the model's parameters: every body's m, m c and inertia about its origin, in its frame
+  template <class Scalar, class Out0>
+  static void inertial_parameters(const Constants<Scalar>& c, Out0&& pi) noexcept {
+    static_assert(fits<std::decay_t<Out0>>(npi, 1), "pi: expected npi x 1");
+    eigen_assert(pi.rows() == npi && pi.cols() == 1);
+    pi(0) = c.p.iiwa_link_1_mass;
+    pi(2) = c.k80;
+    pi(3) = c.k81;
+    pi(4) = c.k82;
+    pi(6) = c.k83;
+    pi(8) = c.k84;
+    pi(9) = c.k39;
+    pi(10) = c.p.iiwa_link_2_mass;
+    pi(11) = c.k62;
+    pi(12) = c.k63;
+    pi(13) = c.k44;
+    pi(14) = c.k36;
+    pi(15) = c.k85;
+    pi(16) = c.k38;
+    pi(17) = c.k86;
+    pi(18) = c.k87;
+    pi(19) = c.k42;
+    pi(20) = c.p.iiwa_link_3_mass;
+    pi(22) = c.k23;
+    pi(23) = c.k31;
+    pi(24) = c.k35;
+    pi(26) = c.k34;
+    pi(28) = c.k88;
+    pi(29) = c.k37;
+    pi(30) = c.p.iiwa_link_4_mass;
+    pi(32) = c.k24;
+    pi(33) = c.k21;
+    pi(34) = c.k28;
+    pi(36) = c.k27;
+    pi(38) = c.k11;
+    pi(39) = c.k33;
+    pi(40) = c.p.iiwa_link_5_mass;
+    pi(41) = c.k55;
+    pi(42) = c.k51;
+    pi(43) = c.k17;
+    pi(44) = c.k19;
+    pi(45) = c.k89;
+    pi(46) = c.k16;
+    pi(47) = c.k90;
+    pi(48) = c.k9;
+    pi(49) = c.k26;
+    pi(50) = c.p.iiwa_link_6_mass;
+    pi(52) = c.k52;
+    pi(53) = c.k50;
+    pi(54) = c.k4;
+    pi(56) = c.k49;
+    pi(58) = c.k91;
+    pi(59) = c.k14;
+    pi(60) = c.p.iiwa_link_7_mass;
+    pi(63) = c.k53;
+    pi(64) = c.k47;
+    pi(66) = c.k48;
+    pi(69) = c.p.iiwa_link_7_izz;
+    pi(1) = Scalar(0);
+    pi(5) = Scalar(0);
+    pi(7) = Scalar(0);
+    pi(21) = Scalar(0);
+    pi(25) = Scalar(0);
+    pi(27) = Scalar(0);
+    pi(31) = Scalar(0);
+    pi(35) = Scalar(0);
+    pi(37) = Scalar(0);
+    pi(51) = Scalar(0);
+    pi(55) = Scalar(0);
+    pi(57) = Scalar(0);
+    pi(61) = Scalar(0);
+    pi(62) = Scalar(0);
+    pi(65) = Scalar(0);
+    pi(67) = Scalar(0);
+    pi(68) = Scalar(0);
+  }
+
+  /// pi of the model's parameters: every body's m, m c and inertia about its origin, in its frame
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar, class Out0>
+  static void inertial_parameters(const Parameters<Scalar>& p, Out0&& pi) noexcept {
+    inertial_parameters(Constants<Scalar>(p), std::forward<Out0>(pi));
   }
 };
 

@@ -7,6 +7,8 @@
 
 #include <array>
 #include <cmath>
+#include <type_traits>
+#include <utility>
 
 namespace eomgen_models {
 namespace two_arm_torso {
@@ -17,12 +19,12 @@ struct Model {
   static constexpr int nc = 0;  // constraints (rows of Xi)
   static constexpr int nh = 0;  // holonomic constraints (rows of phi)
   static constexpr int np = 49;  // parameters
-  static constexpr int ny = 24;  // output components
+  static constexpr int ny = 30;  // output components
   static constexpr int ni = 0;  // independent speeds declared in the model (0: none, null space from QR of Xi)
   static constexpr const char* name = "two_arm_torso";
   static constexpr const char* description = "two_arm_torso (imported from two_arm_torso.urdf)";
   static constexpr const char* generator_version = "0.1.0";
-  static constexpr const char* model_hash = "ce3c32dfb77c40a4";
+  static constexpr const char* model_hash = "7c6785313ca9b2da";
   static constexpr std::array<const char*, nq> coordinate_names{{"torso_lift_joint", "waist_joint", "left_shoulder_pitch_joint", "left_elbow_joint", "left_wrist_joint", "right_shoulder_pitch_joint", "right_elbow_joint", "right_wrist_joint"}};
   static constexpr std::array<const char*, nu> input_names{{"torso_lift_joint_force", "waist_joint_torque", "left_shoulder_pitch_joint_torque", "left_elbow_joint_torque", "left_wrist_joint_torque", "right_shoulder_pitch_joint_torque", "right_elbow_joint_torque", "right_wrist_joint_torque"}};
   static constexpr std::array<const char*, np> parameter_names{{"g", "lift_link_mass", "lift_link_com_z", "lift_link_ixx", "lift_link_iyy", "lift_link_izz", "waist_joint_damping", "torso_mass", "torso_com_z", "torso_ixx", "torso_ixy", "torso_ixz", "torso_iyy", "torso_iyz", "torso_izz", "left_shoulder_pitch_joint_damping", "left_upper_arm_mass", "left_upper_arm_com_z", "left_upper_arm_ixx", "left_upper_arm_iyy", "left_upper_arm_izz", "left_forearm_mass", "left_forearm_com_z", "left_forearm_ixx", "left_forearm_iyy", "left_forearm_izz", "left_wrist_joint_damping", "left_hand_mass", "left_hand_com_z", "left_hand_ixx", "left_hand_iyy", "left_hand_izz", "right_shoulder_pitch_joint_damping", "right_upper_arm_mass", "right_upper_arm_com_z", "right_upper_arm_ixx", "right_upper_arm_iyy", "right_upper_arm_izz", "right_forearm_mass", "right_forearm_com_z", "right_forearm_ixx", "right_forearm_iyy", "right_forearm_izz", "right_wrist_joint_damping", "right_hand_mass", "right_hand_com_z", "right_hand_ixx", "right_hand_iyy", "right_hand_izz"}};
@@ -30,7 +32,9 @@ struct Model {
   static constexpr std::array<const char*, nc> constraint_names{{}};
   static constexpr std::array<int, nh> holonomic_rows{{}};  // row of Xi of each entry of phi
   static constexpr std::array<int, ni> independent_speeds{{}};  // their coordinate indices
-  static constexpr std::array<const char*, ny> output_names{{"left_ee_position_1", "left_ee_position_2", "left_ee_position_3", "left_ee_axis_1_1", "left_ee_axis_1_2", "left_ee_axis_1_3", "left_ee_axis_2_1", "left_ee_axis_2_2", "left_ee_axis_2_3", "left_ee_axis_3_1", "left_ee_axis_3_2", "left_ee_axis_3_3", "right_ee_position_1", "right_ee_position_2", "right_ee_position_3", "right_ee_axis_1_1", "right_ee_axis_1_2", "right_ee_axis_1_3", "right_ee_axis_2_1", "right_ee_axis_2_2", "right_ee_axis_2_3", "right_ee_axis_3_1", "right_ee_axis_3_2", "right_ee_axis_3_3"}};
+  static constexpr std::array<const char*, ny> output_names{{"left_ee_position_1", "left_ee_position_2", "left_ee_position_3", "left_ee_axis_1_1", "left_ee_axis_1_2", "left_ee_axis_1_3", "left_ee_axis_2_1", "left_ee_axis_2_2", "left_ee_axis_2_3", "left_ee_axis_3_1", "left_ee_axis_3_2", "left_ee_axis_3_3", "left_ee_angular_velocity_1", "left_ee_angular_velocity_2", "left_ee_angular_velocity_3", "right_ee_position_1", "right_ee_position_2", "right_ee_position_3", "right_ee_axis_1_1", "right_ee_axis_1_2", "right_ee_axis_1_3", "right_ee_axis_2_1", "right_ee_axis_2_2", "right_ee_axis_2_3", "right_ee_axis_3_1", "right_ee_axis_3_2", "right_ee_axis_3_3", "right_ee_angular_velocity_1", "right_ee_angular_velocity_2", "right_ee_angular_velocity_3"}};
+  static constexpr int npi = 80;  // inertial parameters: 10 per body (regressor)
+  static constexpr std::array<const char*, npi> inertial_parameter_names{{"lift_link_body.m", "lift_link_body.mx", "lift_link_body.my", "lift_link_body.mz", "lift_link_body.Ixx", "lift_link_body.Ixy", "lift_link_body.Iyy", "lift_link_body.Ixz", "lift_link_body.Iyz", "lift_link_body.Izz", "torso_body.m", "torso_body.mx", "torso_body.my", "torso_body.mz", "torso_body.Ixx", "torso_body.Ixy", "torso_body.Iyy", "torso_body.Ixz", "torso_body.Iyz", "torso_body.Izz", "left_upper_arm_body.m", "left_upper_arm_body.mx", "left_upper_arm_body.my", "left_upper_arm_body.mz", "left_upper_arm_body.Ixx", "left_upper_arm_body.Ixy", "left_upper_arm_body.Iyy", "left_upper_arm_body.Ixz", "left_upper_arm_body.Iyz", "left_upper_arm_body.Izz", "right_upper_arm_body.m", "right_upper_arm_body.mx", "right_upper_arm_body.my", "right_upper_arm_body.mz", "right_upper_arm_body.Ixx", "right_upper_arm_body.Ixy", "right_upper_arm_body.Iyy", "right_upper_arm_body.Ixz", "right_upper_arm_body.Iyz", "right_upper_arm_body.Izz", "left_forearm_body.m", "left_forearm_body.mx", "left_forearm_body.my", "left_forearm_body.mz", "left_forearm_body.Ixx", "left_forearm_body.Ixy", "left_forearm_body.Iyy", "left_forearm_body.Ixz", "left_forearm_body.Iyz", "left_forearm_body.Izz", "right_forearm_body.m", "right_forearm_body.mx", "right_forearm_body.my", "right_forearm_body.mz", "right_forearm_body.Ixx", "right_forearm_body.Ixy", "right_forearm_body.Iyy", "right_forearm_body.Ixz", "right_forearm_body.Iyz", "right_forearm_body.Izz", "left_hand_body.m", "left_hand_body.mx", "left_hand_body.my", "left_hand_body.mz", "left_hand_body.Ixx", "left_hand_body.Ixy", "left_hand_body.Iyy", "left_hand_body.Ixz", "left_hand_body.Iyz", "left_hand_body.Izz", "right_hand_body.m", "right_hand_body.mx", "right_hand_body.my", "right_hand_body.mz", "right_hand_body.Ixx", "right_hand_body.Ixy", "right_hand_body.Iyy", "right_hand_body.Ixz", "right_hand_body.Iyz", "right_hand_body.Izz"}};
   static constexpr bool has_forward_dynamics = true;  // forward_dynamics(), without M
   static constexpr bool prefers_forward_dynamics = true;  // fewer operations than M, F and their Cholesky solve
 
@@ -41,6 +45,14 @@ struct Model {
   template <class Scalar> using ConstraintVector = Eigen::Matrix<Scalar, nc, 1>;
   template <class Scalar> using HolonomicVector = Eigen::Matrix<Scalar, nh, 1>;
   template <class Scalar> using OutputVector = Eigen::Matrix<Scalar, ny, 1>;
+
+  /// Whether an Eigen expression of type Derived can be rows x cols: its sizes fixed to those,
+  /// or dynamic (then eigen_assert tests them).
+  template <class Derived>
+  static constexpr bool fits(int rows, int cols) noexcept {
+    return (int(Derived::RowsAtCompileTime) == Eigen::Dynamic || int(Derived::RowsAtCompileTime) == rows) &&
+           (int(Derived::ColsAtCompileTime) == Eigen::Dynamic || int(Derived::ColsAtCompileTime) == cols);
+  }
 
   /// Parameters, defaulted to the model's values.
   template <class Scalar>
@@ -105,9 +117,7 @@ struct Model {
    public:
     /// Computes every constant from a copy of the parameters.
     explicit Constants(const Parameters<Scalar>& parameters) noexcept : p(parameters) {
-      using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-      using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-      using std::log; using std::abs; using std::pow;
+      using std::sin; using std::cos;
       const Scalar w0 = p.right_forearm_mass + p.right_hand_mass;
       const Scalar w1 = w0 + p.right_upper_arm_mass;
       const Scalar w2 = p.left_forearm_mass + p.left_hand_mass;
@@ -131,69 +141,83 @@ struct Model {
       const Scalar w20 = w17 + w18 + w19;
       const Scalar w21 = p.right_hand_iyy * w13 + w15 * p.right_hand_ixx + w16;
       const Scalar w22 = w18 + w21 + w19;
-      const Scalar w23 = w14 * w12 * p.right_hand_ixx - p.right_hand_iyy * w14 * w12;
-      const Scalar w24 = sin(Scalar(0.1));
-      const Scalar w25 = cos(Scalar(0.1));
-      const Scalar w26 = w24 * w24;
-      const Scalar w27 = w25 * w25;
-      const Scalar w28 = p.right_upper_arm_mass * p.right_upper_arm_com_z * p.right_upper_arm_com_z;
-      const Scalar w29 = p.left_upper_arm_com_z * p.left_upper_arm_com_z * p.left_upper_arm_mass;
-      const Scalar w30 = -(Scalar(0.25) * w6);
-      const Scalar w31 = Scalar(0.25) * w7;
-      const Scalar w32 = p.left_hand_mass * p.left_hand_com_z * p.left_hand_com_z;
-      const Scalar w33 = p.left_hand_ixx * w13 + w15 * p.left_hand_iyy + w32;
-      const Scalar w34 = w30 + w31 + w33;
-      const Scalar w35 = p.left_hand_ixx * w15 + w13 * p.left_hand_iyy + w32;
-      const Scalar w36 = w30 + w31 + w35;
-      const Scalar w37 = p.left_hand_ixx * w14 * w12 - w14 * w12 * p.left_hand_iyy;
-      const Scalar w38 = p.left_forearm_mass * p.left_forearm_com_z * p.left_forearm_com_z;
-      const Scalar w39 = p.left_hand_izz + p.left_forearm_izz;
+      const Scalar w23 = w20 - w22;
+      const Scalar w24 = w14 * w12 * p.right_hand_ixx - p.right_hand_iyy * w14 * w12;
+      const Scalar w25 = sin(Scalar(0.1));
+      const Scalar w26 = cos(Scalar(0.1));
+      const Scalar w27 = w25 * p.right_upper_arm_ixx * w26 - w25 * p.right_upper_arm_izz * w26;
+      const Scalar w28 = w25 * w25;
+      const Scalar w29 = w26 * w26;
+      const Scalar w30 = p.right_upper_arm_mass * p.right_upper_arm_com_z * p.right_upper_arm_com_z;
+      const Scalar w31 = p.left_upper_arm_com_z * p.left_upper_arm_com_z * p.left_upper_arm_mass;
+      const Scalar w32 = -(Scalar(0.25) * w6);
+      const Scalar w33 = Scalar(0.25) * w7;
+      const Scalar w34 = p.left_hand_mass * p.left_hand_com_z * p.left_hand_com_z;
+      const Scalar w35 = p.left_hand_ixx * w13 + w15 * p.left_hand_iyy + w34;
+      const Scalar w36 = w32 + w33 + w35;
+      const Scalar w37 = p.left_hand_ixx * w15 + w13 * p.left_hand_iyy + w34;
+      const Scalar w38 = w32 + w33 + w37;
+      const Scalar w39 = w38 - w36;
+      const Scalar w40 = p.left_hand_ixx * w14 * w12 - w14 * w12 * p.left_hand_iyy;
+      const Scalar w41 = p.left_forearm_mass * p.left_forearm_com_z * p.left_forearm_com_z;
+      const Scalar w42 = p.left_hand_izz + p.left_forearm_izz;
+      const Scalar w43 = w25 * w26 * p.left_upper_arm_ixx - w25 * p.left_upper_arm_izz * w26;
+      const Scalar w44 = p.g * p.lift_link_mass;
+      const Scalar w45 = p.g * p.torso_mass;
+      const Scalar w46 = p.g * p.right_forearm_mass;
+      const Scalar w47 = p.g * p.left_hand_mass;
+      const Scalar w48 = p.g * p.right_upper_arm_mass;
+      const Scalar w49 = p.g * p.left_forearm_mass;
+      const Scalar w50 = p.g * p.right_hand_mass;
+      const Scalar w51 = p.g * p.left_upper_arm_mass;
+      const Scalar w52 = p.lift_link_com_z * p.lift_link_com_z * p.lift_link_mass;
+      const Scalar w53 = p.torso_mass * p.torso_com_z * p.torso_com_z;
       k0 = w5 - w7;
       k1 = Scalar(0.3) * w2;
       k2 = p.left_upper_arm_com_z * p.left_upper_arm_mass;
       k3 = w9 - w10;
       k4 = Scalar(0.3) * w0;
       k5 = p.right_upper_arm_mass * p.right_upper_arm_com_z;
-      k6 = w20 - w22;
-      k7 = w23 * Scalar(2);
+      k6 = w23;
+      k7 = w24 * Scalar(2);
       k8 = w20;
       k9 = p.right_forearm_ixx + w11;
       k10 = p.right_forearm_izz + p.right_hand_izz;
-      k11 = w24 * p.right_upper_arm_ixx * w25 - w24 * p.right_upper_arm_izz * w25;
-      k12 = w26 * p.right_upper_arm_izz + p.right_upper_arm_ixx * w27 + w28;
-      k13 = w27 * p.right_upper_arm_izz + w26 * p.right_upper_arm_ixx;
+      k11 = w27;
+      k12 = w28 * p.right_upper_arm_izz + p.right_upper_arm_ixx * w29 + w30;
+      k13 = w29 * p.right_upper_arm_izz + w28 * p.right_upper_arm_ixx;
       k14 = w1 * Scalar(0.0625);
-      k15 = w36 - w34;
-      k16 = w37 * Scalar(2);
-      k17 = w34;
-      k18 = w38 + p.left_forearm_ixx;
-      k19 = -w39;
-      k20 = w29 + w26 * p.left_upper_arm_izz + w27 * p.left_upper_arm_ixx;
-      k21 = w39;
-      k22 = p.left_upper_arm_izz * w27 + w26 * p.left_upper_arm_ixx;
-      k23 = w24 * w25 * p.left_upper_arm_ixx - w24 * p.left_upper_arm_izz * w25;
+      k15 = w39;
+      k16 = w40 * Scalar(2);
+      k17 = w36;
+      k18 = w41 + p.left_forearm_ixx;
+      k19 = -w42;
+      k20 = w31 + w28 * p.left_upper_arm_izz + w29 * p.left_upper_arm_ixx;
+      k21 = w42;
+      k22 = p.left_upper_arm_izz * w29 + w28 * p.left_upper_arm_ixx;
+      k23 = w43;
       k24 = Scalar(0.0625) * w3;
-      k25 = w37;
-      k26 = w23;
-      k27 = w36;
-      k28 = p.left_forearm_iyy + w38;
-      k29 = w29 + p.left_upper_arm_iyy;
+      k25 = w40;
+      k26 = w24;
+      k27 = w38;
+      k28 = p.left_forearm_iyy + w41;
+      k29 = w31 + p.left_upper_arm_iyy;
       k30 = w22;
       k31 = p.right_forearm_iyy + w11;
-      k32 = p.right_upper_arm_iyy + w28;
+      k32 = p.right_upper_arm_iyy + w30;
       k33 = w4;
       k34 = w8;
       k35 = w6;
-      k36 = p.g * p.torso_mass;
-      k37 = p.g * p.lift_link_mass;
+      k36 = w45;
+      k37 = w44;
       k38 = w17;
       k39 = w21;
       k40 = w10;
       k41 = w5;
-      k42 = w33;
-      k43 = w35;
-      k44 = w24;
-      k45 = w25;
+      k42 = w35;
+      k43 = w37;
+      k44 = w25;
+      k45 = w26;
       k46 = Scalar(0.5) * p.left_upper_arm_mass;
       k47 = w12;
       k48 = w14;
@@ -204,15 +228,26 @@ struct Model {
       k53 = p.left_forearm_mass * Scalar(0.5);
       k54 = Scalar(0.5) * p.right_upper_arm_mass;
       k55 = Scalar(0.5) * p.left_hand_mass;
-      k56 = p.g * p.right_forearm_mass;
-      k57 = p.g * p.left_hand_mass;
-      k58 = p.g * p.right_upper_arm_mass;
-      k59 = p.g * p.left_forearm_mass;
-      k60 = p.g * p.right_hand_mass;
-      k61 = p.g * p.left_upper_arm_mass;
+      k56 = w46;
+      k57 = w47;
+      k58 = w48;
+      k59 = w49;
+      k60 = w50;
+      k61 = w51;
       k62 = Scalar(1) / p.left_hand_izz;
       k63 = Scalar(1) / p.right_hand_izz;
       k64 = -w4;
+      k65 = w48 + w44 + w46 + w45 + w50 + w49 + w47 + w51;
+      k66 = w39 * Scalar(0.5);
+      k67 = w23 * Scalar(0.5);
+      k68 = p.lift_link_com_z * p.lift_link_mass;
+      k69 = p.lift_link_ixx + w52;
+      k70 = p.lift_link_iyy + w52;
+      k71 = p.torso_com_z * p.torso_mass;
+      k72 = p.torso_ixx + w53;
+      k73 = p.torso_iyy + w53;
+      k74 = -w43;
+      k75 = -w27;
     }
     /// The parameters these constants were computed from.
     const Parameters<Scalar>& parameters() const noexcept { return p; }
@@ -226,15 +261,18 @@ struct Model {
     Scalar k30, k31, k32, k33, k34, k35, k36, k37, k38, k39;
     Scalar k40, k41, k42, k43, k44, k45, k46, k47, k48, k49;
     Scalar k50, k51, k52, k53, k54, k55, k56, k57, k58, k59;
-    Scalar k60, k61, k62, k63, k64;
+    Scalar k60, k61, k62, k63, k64, k65, k66, k67, k68, k69;
+    Scalar k70, k71, k72, k73, k74, k75;
   };
 
   /// M(q, t), symmetric positive (semi)definite
-  template <class Scalar>
-  static void mass_matrix([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] MassMatrix<Scalar>& M) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class Out0>
+  static void mass_matrix([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Constants<typename DerivedQ::Scalar>& c, Out0&& M) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(nq, nq), "M: expected nq x nq");
+    eigen_assert(q.size() == nq && M.rows() == nq && M.cols() == nq);
+    using std::sin; using std::cos;
     const Scalar w0 = sin(q(3));
     const Scalar w1 = c.k0 * w0;
     const Scalar w2 = cos(q(2));
@@ -353,17 +391,21 @@ struct Model {
   /// M(q, t), symmetric positive (semi)definite
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static void mass_matrix([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] MassMatrix<Scalar>& M) noexcept {
-    mass_matrix(t, q, Constants<Scalar>(p), M);
+  template <class DerivedQ, class Out0>
+  static void mass_matrix(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& M) noexcept {
+    mass_matrix(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(M));
   }
 
   /// F(q, qd, t, u): everything of Lagrange's equations except M qdd
-  template <class Scalar>
-  static void forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] Vector<Scalar>& F) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class DerivedQd, class DerivedU, class Out0>
+  static void forcing([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedU>& u, const Constants<typename DerivedQ::Scalar>& c, Out0&& F) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<DerivedU>(nu, 1), "u: expected a column of nu entries");
+    static_assert(fits<std::decay_t<Out0>>(nq, 1), "F: expected nq x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && u.size() == nu && F.rows() == nq && F.cols() == 1);
+    using std::sin; using std::cos;
     const Scalar w0 = sin(q(5));
     const Scalar w1 = qd(1) * w0;
     const Scalar w2 = Scalar(0.3) * qd(5) * qd(5) + w1 * w1 * Scalar(0.3);
@@ -494,17 +536,22 @@ struct Model {
   /// F(q, qd, t, u): everything of Lagrange's equations except M qdd
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static void forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] Vector<Scalar>& F) noexcept {
-    forcing(t, q, qd, u, Constants<Scalar>(p), F);
+  template <class DerivedQ, class DerivedQd, class DerivedU, class Out0>
+  static void forcing(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedU>& u, const Parameters<typename DerivedQ::Scalar>& p, Out0&& F) noexcept {
+    forcing(t, q, qd, u, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(F));
   }
 
   /// M and F together, sharing their common subexpressions
-  template <class Scalar>
-  static void mass_matrix_and_forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] MassMatrix<Scalar>& M, [[maybe_unused]] Vector<Scalar>& F) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class DerivedQd, class DerivedU, class Out0, class Out1>
+  static void mass_matrix_and_forcing([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedU>& u, const Constants<typename DerivedQ::Scalar>& c, Out0&& M, Out1&& F) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<DerivedU>(nu, 1), "u: expected a column of nu entries");
+    static_assert(fits<std::decay_t<Out0>>(nq, nq), "M: expected nq x nq");
+    static_assert(fits<std::decay_t<Out1>>(nq, 1), "F: expected nq x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && u.size() == nu && M.rows() == nq && M.cols() == nq && F.rows() == nq && F.cols() == 1);
+    using std::sin; using std::cos;
     const Scalar w0 = sin(q(3));
     const Scalar w1 = c.k0 * w0;
     const Scalar w2 = cos(q(2));
@@ -738,81 +785,84 @@ struct Model {
   /// M and F together, sharing their common subexpressions
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static void mass_matrix_and_forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] MassMatrix<Scalar>& M, [[maybe_unused]] Vector<Scalar>& F) noexcept {
-    mass_matrix_and_forcing(t, q, qd, u, Constants<Scalar>(p), M, F);
+  template <class DerivedQ, class DerivedQd, class DerivedU, class Out0, class Out1>
+  static void mass_matrix_and_forcing(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedU>& u, const Parameters<typename DerivedQ::Scalar>& p, Out0&& M, Out1&& F) noexcept {
+    mass_matrix_and_forcing(t, q, qd, u, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(M), std::forward<Out1>(F));
   }
 
   /// Xi(q, t) of the Pfaffian constraints Xi qd + Xi_t = 0
-  template <class Scalar>
-  static void constraint_jacobian([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] ConstraintJacobian<Scalar>& Xi) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class Out0>
+  static void constraint_jacobian([[maybe_unused]] const typename DerivedQ::Scalar& t, [[maybe_unused]] const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, [[maybe_unused]] Out0&& Xi) noexcept {
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(nc, nq), "Xi: expected nc x nq");
+    eigen_assert(q.size() == nq && Xi.rows() == nc && Xi.cols() == nq);
   }
 
   /// Xi(q, t) of the Pfaffian constraints Xi qd + Xi_t = 0
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static void constraint_jacobian([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintJacobian<Scalar>& Xi) noexcept {
-    constraint_jacobian(t, q, Constants<Scalar>(p), Xi);
+  template <class DerivedQ, class Out0>
+  static void constraint_jacobian(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& Xi) noexcept {
+    constraint_jacobian(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(Xi));
   }
 
   /// Xi_t(q, t)
-  template <class Scalar>
-  static void constraint_rate_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] ConstraintVector<Scalar>& Xi_t) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class Out0>
+  static void constraint_rate_term([[maybe_unused]] const typename DerivedQ::Scalar& t, [[maybe_unused]] const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, [[maybe_unused]] Out0&& Xi_t) noexcept {
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(nc, 1), "Xi_t: expected nc x 1");
+    eigen_assert(q.size() == nq && Xi_t.rows() == nc && Xi_t.cols() == 1);
   }
 
   /// Xi_t(q, t)
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static void constraint_rate_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintVector<Scalar>& Xi_t) noexcept {
-    constraint_rate_term(t, q, Constants<Scalar>(p), Xi_t);
+  template <class DerivedQ, class Out0>
+  static void constraint_rate_term(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& Xi_t) noexcept {
+    constraint_rate_term(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(Xi_t));
   }
 
   /// dXi/dt qd + dXi_t/dt, so that Xi qdd + b = 0
-  template <class Scalar>
-  static void constraint_acceleration_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] ConstraintVector<Scalar>& b) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void constraint_acceleration_term([[maybe_unused]] const typename DerivedQ::Scalar& t, [[maybe_unused]] const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Eigen::MatrixBase<DerivedQd>& qd, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, [[maybe_unused]] Out0&& b) noexcept {
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(nc, 1), "b: expected nc x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && b.rows() == nc && b.cols() == 1);
   }
 
   /// dXi/dt qd + dXi_t/dt, so that Xi qdd + b = 0
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static void constraint_acceleration_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintVector<Scalar>& b) noexcept {
-    constraint_acceleration_term(t, q, qd, Constants<Scalar>(p), b);
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void constraint_acceleration_term(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Parameters<typename DerivedQ::Scalar>& p, Out0&& b) noexcept {
+    constraint_acceleration_term(t, q, qd, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(b));
   }
 
   /// phi(q, t) of the holonomic constraints
-  template <class Scalar>
-  static void holonomic_residuals([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] HolonomicVector<Scalar>& phi) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class Out0>
+  static void holonomic_residuals([[maybe_unused]] const typename DerivedQ::Scalar& t, [[maybe_unused]] const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, [[maybe_unused]] Out0&& phi) noexcept {
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(nh, 1), "phi: expected nh x 1");
+    eigen_assert(q.size() == nq && phi.rows() == nh && phi.cols() == 1);
   }
 
   /// phi(q, t) of the holonomic constraints
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static void holonomic_residuals([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] HolonomicVector<Scalar>& phi) noexcept {
-    holonomic_residuals(t, q, Constants<Scalar>(p), phi);
+  template <class DerivedQ, class Out0>
+  static void holonomic_residuals(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& phi) noexcept {
+    holonomic_residuals(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(phi));
   }
 
   /// T(q, qd, t)
-  template <class Scalar>
-  static Scalar kinetic_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Constants<Scalar>& c) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class DerivedQd>
+  static typename DerivedQ::Scalar kinetic_energy([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Constants<typename DerivedQ::Scalar>& c) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    eigen_assert(q.size() == nq && qd.size() == nq);
+    using std::sin; using std::cos;
     Scalar T = Scalar(0);
     const Scalar w0 = cos(q(5));
     const Scalar w1 = qd(1) * w0;
@@ -898,17 +948,18 @@ struct Model {
   /// T(q, qd, t)
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static Scalar kinetic_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Parameters<Scalar>& p) noexcept {
-    return kinetic_energy(t, q, qd, Constants<Scalar>(p));
+  template <class DerivedQ, class DerivedQd>
+  static typename DerivedQ::Scalar kinetic_energy(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Parameters<typename DerivedQ::Scalar>& p) noexcept {
+    return kinetic_energy(t, q, qd, Constants<typename DerivedQ::Scalar>(p));
   }
 
   /// V(q, t)
-  template <class Scalar>
-  static Scalar potential_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ>
+  static typename DerivedQ::Scalar potential_energy([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Constants<typename DerivedQ::Scalar>& c) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    eigen_assert(q.size() == nq);
+    using std::sin; using std::cos;
     Scalar V = Scalar(0);
     const Scalar w0 = cos(q(5));
     const Scalar w1 = q(0) + Scalar(0.4);
@@ -926,17 +977,21 @@ struct Model {
   /// V(q, t)
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static Scalar potential_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p) noexcept {
-    return potential_energy(t, q, Constants<Scalar>(p));
+  template <class DerivedQ>
+  static typename DerivedQ::Scalar potential_energy(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p) noexcept {
+    return potential_energy(t, q, Constants<typename DerivedQ::Scalar>(p));
   }
 
   /// the model's named outputs, in the order of output_names
-  template <class Scalar>
-  static void outputs([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] OutputVector<Scalar>& y) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class DerivedQd, class DerivedU, class Out0>
+  static void outputs([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, [[maybe_unused]] const Eigen::MatrixBase<DerivedU>& u, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& y) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<DerivedU>(nu, 1), "u: expected a column of nu entries");
+    static_assert(fits<std::decay_t<Out0>>(ny, 1), "y: expected ny x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && u.size() == nu && y.rows() == ny && y.cols() == 1);
+    using std::sin; using std::cos;
     const Scalar w0 = cos(q(1));
     const Scalar w1 = q(2) + q(3);
     const Scalar w2 = sin(w1);
@@ -965,34 +1020,44 @@ struct Model {
     y(9) = w0 * w2;
     y(10) = w4 * w2;
     y(11) = w7;
-    y(12) = -(Scalar(0.3) * w0 * w10 + w0 * w12 * Scalar(0.45) - w5);
-    y(13) = -(w4 * w12 * Scalar(0.45) + w6 + w4 * Scalar(0.3) * w10);
-    y(14) = -(w13 * Scalar(0.45) - q(0) - Scalar(0.8) + Scalar(0.3) * cos(q(5)));
-    y(15) = w15 * w0 * w13 - w4 * w14;
-    y(16) = w4 * w15 * w13 + w0 * w14;
-    y(17) = -(w15 * w12);
-    y(18) = -(w0 * w13 * w14 + w4 * w15);
-    y(19) = -(w4 * w13 * w14 - w15 * w0);
-    y(20) = w14 * w12;
-    y(21) = w0 * w12;
-    y(22) = w4 * w12;
-    y(23) = w13;
+    y(12) = -(w4 * qd(3) - w0 * qd(4) * w2 + w4 * qd(2));
+    y(13) = w4 * qd(4) * w2 + w0 * qd(3) + w0 * qd(2);
+    y(14) = qd(1) + qd(4) * w7;
+    y(15) = -(Scalar(0.3) * w0 * w10 + w0 * w12 * Scalar(0.45) - w5);
+    y(16) = -(w4 * w12 * Scalar(0.45) + w6 + w4 * Scalar(0.3) * w10);
+    y(17) = -(w13 * Scalar(0.45) - q(0) - Scalar(0.8) + Scalar(0.3) * cos(q(5)));
+    y(18) = w15 * w0 * w13 - w4 * w14;
+    y(19) = w4 * w15 * w13 + w0 * w14;
+    y(20) = -(w15 * w12);
+    y(21) = -(w0 * w13 * w14 + w4 * w15);
+    y(22) = -(w4 * w13 * w14 - w15 * w0);
+    y(23) = w14 * w12;
+    y(24) = w0 * w12;
+    y(25) = w4 * w12;
+    y(26) = w13;
+    y(27) = -(w4 * qd(6) - w0 * qd(7) * w12 + w4 * qd(5));
+    y(28) = w4 * qd(7) * w12 + w0 * qd(6) + w0 * qd(5);
+    y(29) = qd(1) + w13 * qd(7);
   }
 
   /// the model's named outputs, in the order of output_names
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static void outputs([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] OutputVector<Scalar>& y) noexcept {
-    outputs(t, q, qd, u, Constants<Scalar>(p), y);
+  template <class DerivedQ, class DerivedQd, class DerivedU, class Out0>
+  static void outputs(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedU>& u, const Parameters<typename DerivedQ::Scalar>& p, Out0&& y) noexcept {
+    outputs(t, q, qd, u, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(y));
   }
 
   /// qdd of M qdd = F by the composite-body M and F and M's LDL^T factors; false if M is not positive definite (a pivot is not positive) or qdd is not finite
-  template <class Scalar>
-  static bool forward_dynamics([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] Vector<Scalar>& qdd) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class DerivedQd, class DerivedU, class Out0>
+  static bool forward_dynamics([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedU>& u, const Constants<typename DerivedQ::Scalar>& c, Out0&& qdd) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<DerivedU>(nu, 1), "u: expected a column of nu entries");
+    static_assert(fits<std::decay_t<Out0>>(nq, 1), "qdd: expected nq x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && u.size() == nu && qdd.rows() == nq && qdd.cols() == 1);
+    using std::sin; using std::cos;
     Eigen::Matrix<Scalar, 8, 1> pivot;
     const Scalar w0 = sin(q(7));
     const Scalar w1 = w0 * w0;
@@ -1222,9 +1287,2303 @@ struct Model {
   /// qdd of M qdd = F by the composite-body M and F and M's LDL^T factors; false if M is not positive definite (a pivot is not positive) or qdd is not finite
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static bool forward_dynamics([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] Vector<Scalar>& qdd) noexcept {
-    return forward_dynamics(t, q, qd, u, Constants<Scalar>(p), qdd);
+  template <class DerivedQ, class DerivedQd, class DerivedU, class Out0>
+  static bool forward_dynamics(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedU>& u, const Parameters<typename DerivedQ::Scalar>& p, Out0&& qdd) noexcept {
+    return forward_dynamics(t, q, qd, u, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(qdd));
+  }
+
+  /// tau = M qdd - F: the generalized forces to add to produce qdd, by the Newton-Euler recursion
+  template <class DerivedQ, class DerivedQd, class DerivedQdd, class DerivedU, class Out0>
+  static void inverse_dynamics([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedQdd>& qdd, const Eigen::MatrixBase<DerivedU>& u, const Constants<typename DerivedQ::Scalar>& c, Out0&& tau) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<DerivedQdd>(nq, 1), "qdd: expected a column of nq entries");
+    static_assert(fits<DerivedU>(nu, 1), "u: expected a column of nu entries");
+    static_assert(fits<std::decay_t<Out0>>(nq, 1), "tau: expected nq x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && qdd.size() == nq && u.size() == nu && tau.rows() == nq && tau.cols() == 1);
+    using std::sin; using std::cos;
+    const Scalar w0 = qdd(0) + c.p.g;
+    const Scalar w1 = sin(q(5));
+    const Scalar w2 = qd(1) * w1;
+    const Scalar w3 = w2 * c.p.right_upper_arm_com_z;
+    const Scalar w4 = cos(q(5));
+    const Scalar w5 = qd(1) * w4;
+    const Scalar w6 = w0 * w1 - qdd(1) * Scalar(0.25) * w4;
+    const Scalar w7 = sin(q(6));
+    const Scalar w8 = w0 * w4 + qdd(1) * Scalar(0.25) * w1;
+    const Scalar w9 = cos(q(6));
+    const Scalar w10 = w6 + Scalar(0.3) * qdd(5);
+    const Scalar w11 = Scalar(0.3) * qd(5) * qd(5) + w2 * w2 * Scalar(0.3);
+    const Scalar w12 = Scalar(0.3) * w5 * w2;
+    const Scalar w13 = w8 * w9 - w7 * w10 + w11 * w9 + w7 * w12;
+    const Scalar w14 = w7 * w5 + w2 * w9;
+    const Scalar w15 = w14 * c.p.right_forearm_com_z;
+    const Scalar w16 = qd(5) + qd(6);
+    const Scalar w17 = w16 * c.p.right_forearm_com_z;
+    const Scalar w18 = cos(q(7));
+    const Scalar w19 = sin(q(7));
+    const Scalar w20 = w16 * w19 - w14 * w18;
+    const Scalar w21 = w14 * w19 + w16 * w18;
+    const Scalar w22 = c.p.right_hand_com_z * w21;
+    const Scalar w23 = c.p.right_hand_com_z * w20;
+    const Scalar w24 = (w14 * w15 + w16 * w17) * c.p.right_forearm_mass - c.p.right_forearm_mass * w13 - (c.p.right_hand_mass * (Scalar(0.25) * w20 * w20 + w21 * w21 * Scalar(0.25) + w13) - (w22 * w21 + w20 * w23) * c.p.right_hand_mass);
+    const Scalar w25 = w7 * w2 - w5 * w9;
+    const Scalar w26 = qdd(6) + qdd(5);
+    const Scalar w27 = qd(5) * w2 - qdd(1) * w4;
+    const Scalar w28 = qd(5) * w5 + qdd(1) * w1;
+    const Scalar w29 = w7 * w27 - w9 * w28 + w25 * qd(6);
+    const Scalar w30 = w18 * w29 + w26 * w19;
+    const Scalar w31 = qd(7) * w21 + w30;
+    const Scalar w32 = w25 - qd(7);
+    const Scalar w33 = Scalar(0.25) * qd(1) * qd(1);
+    const Scalar w34 = Scalar(0.3) * w28 - w33 + Scalar(0.3) * qd(5) * w5;
+    const Scalar w35 = w7 * w8 + w10 * w9 + w7 * w11 - w12 * w9;
+    const Scalar w36 = Scalar(0.25) * w30 - w18 * w34 + w19 * w35 + Scalar(0.25) * w25 * w21;
+    const Scalar w37 = w31 * c.k34 + c.p.right_hand_mass * w32 * w22 - c.p.right_hand_mass * w36;
+    const Scalar w38 = w29 * w19 - w18 * w26;
+    const Scalar w39 = Scalar(0.25) * w25 * w20 - w19 * w34 + Scalar(0.25) * w38 - w18 * w35;
+    const Scalar w40 = w20 * qd(7) + w38;
+    const Scalar w41 = c.p.right_hand_mass * w39 - c.k34 * w40 - c.p.right_hand_mass * w32 * w23;
+    const Scalar w42 = w15 * c.p.right_forearm_mass * w25 + c.k40 * w26 + w37 * w19 - c.p.right_forearm_mass * w35 + w18 * w41;
+    const Scalar w43 = w7 * w24 - w42 * w9;
+    const Scalar w44 = c.k5 * qdd(5) - w3 * w5 * c.p.right_upper_arm_mass - w6 * c.p.right_upper_arm_mass - w43;
+    const Scalar w45 = (w3 * w2 + qd(5) * qd(5) * c.p.right_upper_arm_com_z) * c.p.right_upper_arm_mass - c.p.right_upper_arm_mass * w8 + w24 * w9 + w7 * w42;
+    const Scalar w46 = sin(q(2));
+    const Scalar w47 = qd(1) * w46;
+    const Scalar w48 = c.p.left_upper_arm_com_z * w47;
+    const Scalar w49 = cos(q(2));
+    const Scalar w50 = qd(1) * w49;
+    const Scalar w51 = qd(3) + qd(2);
+    const Scalar w52 = cos(q(4));
+    const Scalar w53 = sin(q(4));
+    const Scalar w54 = cos(q(3));
+    const Scalar w55 = sin(q(3));
+    const Scalar w56 = w47 * w54 + w50 * w55;
+    const Scalar w57 = w51 * w52 + w53 * w56;
+    const Scalar w58 = w52 * w56 - w51 * w53;
+    const Scalar w59 = w0 * w46 + qdd(1) * Scalar(0.25) * w49;
+    const Scalar w60 = w59 + Scalar(0.3) * qdd(2);
+    const Scalar w61 = w0 * w49 - qdd(1) * Scalar(0.25) * w46;
+    const Scalar w62 = Scalar(0.3) * w47 * w47 + Scalar(0.3) * qd(2) * qd(2);
+    const Scalar w63 = w47 * Scalar(0.3) * w50;
+    const Scalar w64 = w54 * w61 - w55 * w60 + w54 * w62 + w55 * w63;
+    const Scalar w65 = c.p.left_hand_com_z * w58;
+    const Scalar w66 = c.p.left_hand_com_z * w57;
+    const Scalar w67 = w51 * c.p.left_forearm_com_z;
+    const Scalar w68 = w56 * c.p.left_forearm_com_z;
+    const Scalar w69 = (Scalar(0.25) * w57 * w57 + Scalar(0.25) * w58 * w58 + w64) * c.p.left_hand_mass - (w65 * w58 + w66 * w57) * c.p.left_hand_mass + w64 * c.p.left_forearm_mass - c.p.left_forearm_mass * (w51 * w67 + w56 * w68);
+    const Scalar w70 = w54 * w50 - w47 * w55;
+    const Scalar w71 = w70 + qd(4);
+    const Scalar w72 = qdd(3) + qdd(2);
+    const Scalar w73 = w50 * qd(2) + qdd(1) * w46;
+    const Scalar w74 = w47 * qd(2) - qdd(1) * w49;
+    const Scalar w75 = w70 * qd(3) - (w55 * w74 - w54 * w73);
+    const Scalar w76 = w52 * w72 + w53 * w75;
+    const Scalar w77 = w58 * qd(4) + w76;
+    const Scalar w78 = w73 * Scalar(0.3) + w33 + Scalar(0.3) * w50 * qd(2);
+    const Scalar w79 = w54 * w60 + w55 * w61 - (w54 * w63 - w62 * w55);
+    const Scalar w80 = w70 * Scalar(0.25) * w58 - Scalar(0.25) * w76 - w53 * w78 - w52 * w79;
+    const Scalar w81 = w77 * c.k35 - w65 * c.p.left_hand_mass * w71 + w80 * c.p.left_hand_mass;
+    const Scalar w82 = w52 * w75 - w53 * w72;
+    const Scalar w83 = w82 - qd(4) * w57;
+    const Scalar w84 = w70 * Scalar(0.25) * w57 + w82 * Scalar(0.25) + w52 * w78 - w53 * w79;
+    const Scalar w85 = w83 * c.k35 + w66 * c.p.left_hand_mass * w71 - c.p.left_hand_mass * w84;
+    const Scalar w86 = w81 * w52 - w53 * w85 - w70 * c.p.left_forearm_mass * w68 + c.k41 * w72 - c.p.left_forearm_mass * w79;
+    const Scalar w87 = w69 * w55 + w54 * w86;
+    const Scalar w88 = w48 * w50 * c.p.left_upper_arm_mass - w87 - c.k2 * qdd(2) + w59 * c.p.left_upper_arm_mass;
+    const Scalar w89 = w86 * w55 - w54 * w69 - c.p.left_upper_arm_mass * w61 + (c.p.left_upper_arm_com_z * qd(2) * qd(2) + w47 * w48) * c.p.left_upper_arm_mass;
+    const Scalar w90 = qd(5) * c.k32;
+    const Scalar w91 = w2 * c.k12 + c.k11 * w5;
+    const Scalar w92 = c.k31 * w16;
+    const Scalar w93 = w7 * w28 + w27 * w9 + w14 * qd(6);
+    const Scalar w94 = c.k26 * w20 + w21 * c.k39;
+    const Scalar w95 = c.k38 * w20 + c.k26 * w21;
+    const Scalar w96 = (w93 - qdd(7)) * c.p.right_hand_izz - w20 * w94 + w21 * w95;
+    const Scalar w97 = w14 * c.k9;
+    const Scalar w98 = w14 * w92 + w96 + c.p.right_forearm_izz * w93 - w16 * w97;
+    const Scalar w99 = w25 * c.p.right_forearm_izz;
+    const Scalar w100 = c.p.right_hand_izz * w32;
+    const Scalar w101 = c.k26 * w40 - w32 * w94 + w100 * w21 + c.k34 * w36 - w31 * c.k38 + Scalar(0.25) * w37;
+    const Scalar w102 = Scalar(0.25) * w41 + c.k39 * w40 - w31 * c.k26 + w32 * w95 - w100 * w20 - c.k34 * w39;
+    const Scalar w103 = w16 * w99 - c.k9 * w29 + w18 * w101 - c.k40 * w34 - w102 * w19 - w25 * w92;
+    const Scalar w104 = w50 * c.k22 + w47 * c.k23;
+    const Scalar w105 = c.k29 * qd(2);
+    const Scalar w106 = w51 * c.k28;
+    const Scalar w107 = w56 * c.k18;
+    const Scalar w108 = w73 * w55 + w54 * w74 + w56 * qd(3);
+    const Scalar w109 = c.k43 * w57 - c.k25 * w58;
+    const Scalar w110 = w58 * c.k42 - c.k25 * w57;
+    const Scalar w111 = w109 * w58 - w110 * w57 + (w108 - qdd(4)) * c.p.left_hand_izz;
+    const Scalar w112 = w51 * w107 - w56 * w106 - w108 * c.p.left_forearm_izz - w111;
+    const Scalar w113 = c.p.left_hand_izz * w71;
+    const Scalar w114 = Scalar(0.25) * w85 - (w83 * c.k42 - w77 * c.k25 - w113 * w57 + w109 * w71 - c.k35 * w84);
+    const Scalar w115 = w70 * c.p.left_forearm_izz;
+    const Scalar w116 = w81 * Scalar(0.25) + w110 * w71 - c.k35 * w80 + w83 * c.k25 - w77 * c.k43 - w113 * w58;
+    const Scalar w117 = c.k41 * w78 + w52 * w114 - w75 * c.k18 + w51 * w115 + w53 * w116 - w70 * w106;
+    const Scalar w118 = c.k13 * w5 + c.k11 * w2;
+    const Scalar w119 = w47 * c.k20 + w50 * c.k23;
+    const Scalar w120 = w52 * w116 - w115 * w56 + c.k41 * w79 + w70 * w107 - w53 * w114 - c.k28 * w72;
+    const Scalar w121 = c.k40 * w35 - c.k31 * w26 + w18 * w102 - w25 * w97 + w14 * w99 + w19 * w101;
+    tau(0) = w0 * c.p.torso_mass - (w1 * w44 + w45 * w4) - (w89 * w49 - w88 * w46) + w0 * c.p.lift_link_mass - u(0);
+    tau(1) = qd(1) * c.p.waist_joint_damping - u(1) - ((w2 * w90 - qd(5) * w91 + c.k13 * w27 - c.k11 * w28 + w98 * w9 - w7 * w103) * w4 - (w73 * c.k20 - w104 * qd(2) - c.k2 * w33 - (w81 * w53 + w70 * w67 * c.p.left_forearm_mass + w52 * w85 + c.k41 * w75 - c.p.left_forearm_mass * w78) * Scalar(0.3) + w50 * w105 - w112 * w55 - w74 * c.k23 - w54 * w117) * w46 - Scalar(0.25) * (w46 * w89 + w88 * w49) - w1 * (w103 * w9 + (c.k40 * w29 - w41 * w19 + c.p.right_forearm_mass * w25 * w17 + w18 * w37 + c.p.right_forearm_mass * w34) * Scalar(0.3) + c.k12 * w28 - c.k11 * w27 + w5 * w90 + w33 * c.k5 - qd(5) * w118 + w98 * w7) - (w73 * c.k23 - w117 * w55 + w54 * w112 - w47 * w105 + w119 * qd(2) - c.k22 * w74) * w49 - Scalar(0.25) * (w44 * w4 - w45 * w1) - c.p.torso_izz * qdd(1));
+    tau(2) = -(c.k2 * w59 - c.k29 * qdd(2) + w120 + Scalar(0.3) * w87 + w119 * w50 - w47 * w104 + u(2) - c.p.left_shoulder_pitch_joint_damping * qd(2));
+    tau(3) = -(u(3) + w120);
+    tau(4) = -(w111 - (qd(4) * c.p.left_wrist_joint_damping - u(4)));
+    tau(5) = -(w6 * c.k5 - w118 * w2 + w121 - Scalar(0.3) * w43 + w5 * w91 - c.k32 * qdd(5) + u(5) - qd(5) * c.p.right_shoulder_pitch_joint_damping);
+    tau(6) = -(w121 + u(6));
+    tau(7) = -(u(7) - qd(7) * c.p.right_wrist_joint_damping + w96);
+  }
+
+  /// tau = M qdd - F: the generalized forces to add to produce qdd, by the Newton-Euler recursion
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class DerivedQd, class DerivedQdd, class DerivedU, class Out0>
+  static void inverse_dynamics(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedQdd>& qdd, const Eigen::MatrixBase<DerivedU>& u, const Parameters<typename DerivedQ::Scalar>& p, Out0&& tau) noexcept {
+    inverse_dynamics(t, q, qd, qdd, u, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(tau));
+  }
+
+  /// G(q) = dV/dq: the generalized forces of gravity and springs, with C qd + G = -F at zero input and no other loads
+  template <class DerivedQ, class Out0>
+  static void gravity_forces(const Eigen::MatrixBase<DerivedQ>& q, const Constants<typename DerivedQ::Scalar>& c, Out0&& G) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(nq, 1), "G: expected nq x 1");
+    eigen_assert(q.size() == nq && G.rows() == nq && G.cols() == 1);
+    using std::sin; using std::cos;
+    const Scalar w0 = sin(q(2));
+    const Scalar w1 = cos(q(3)) * w0 + sin(q(3)) * cos(q(2));
+    const Scalar w2 = w1 * c.p.left_forearm_com_z;
+    const Scalar w3 = Scalar(0.3) * w0;
+    const Scalar w4 = w1 * c.p.left_hand_com_z;
+    const Scalar w5 = w1 * Scalar(0.25);
+    const Scalar w6 = sin(q(5));
+    const Scalar w7 = w6 * cos(q(6)) + sin(q(6)) * cos(q(5));
+    const Scalar w8 = c.p.right_forearm_com_z * w7;
+    const Scalar w9 = Scalar(0.3) * w6;
+    const Scalar w10 = c.p.right_hand_com_z * w7;
+    const Scalar w11 = Scalar(0.25) * w7;
+    G(0) = c.k65;
+    G(2) = -(c.k59 * (w2 - w3) + c.k57 * (w4 - (w3 + w5)) + c.k61 * c.p.left_upper_arm_com_z * w0);
+    G(3) = -(c.k59 * w2 + c.k57 * (w4 - w5));
+    G(5) = -(c.k56 * (w8 - w9) + c.k60 * (w10 - (w11 + w9)) + c.k58 * w6 * c.p.right_upper_arm_com_z);
+    G(6) = -(w8 * c.k56 + c.k60 * (w10 - w11));
+    G(1) = Scalar(0);
+    G(4) = Scalar(0);
+    G(7) = Scalar(0);
+  }
+
+  /// G(q) = dV/dq: the generalized forces of gravity and springs, with C qd + G = -F at zero input and no other loads
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class Out0>
+  static void gravity_forces(const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& G) noexcept {
+    gravity_forces(q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(G));
+  }
+
+  /// C(q, qd) from the Christoffel symbols of M: dM/dt - 2 C is skew-symmetric
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void coriolis_matrix(const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Constants<typename DerivedQ::Scalar>& c, Out0&& C) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(nq, nq), "C: expected nq x nq");
+    eigen_assert(q.size() == nq && qd.size() == nq && C.rows() == nq && C.cols() == nq);
+    using std::sin; using std::cos;
+    const Scalar w0 = sin(q(3));
+    const Scalar w1 = c.k0 * w0;
+    const Scalar w2 = sin(q(2));
+    const Scalar w3 = w1 * w2;
+    const Scalar w4 = cos(q(3));
+    const Scalar w5 = w4 * c.k0;
+    const Scalar w6 = cos(q(2));
+    const Scalar w7 = w3 - w5 * w6;
+    const Scalar w8 = Scalar(0.5) * w7 * qd(3);
+    const Scalar w9 = c.k1 - w5;
+    const Scalar w10 = c.k2 - w9;
+    const Scalar w11 = Scalar(0.5) * w7 * qd(2);
+    const Scalar w12 = sin(q(5));
+    const Scalar w13 = sin(q(6));
+    const Scalar w14 = w13 * c.k3;
+    const Scalar w15 = w12 * w14;
+    const Scalar w16 = cos(q(6));
+    const Scalar w17 = w16 * c.k3;
+    const Scalar w18 = cos(q(5));
+    const Scalar w19 = w17 * w18 - w15;
+    const Scalar w20 = w19 * Scalar(0.5) * qd(6);
+    const Scalar w21 = w17 + c.k4;
+    const Scalar w22 = c.k5 - w21;
+    const Scalar w23 = w19 * qd(5) * Scalar(0.5);
+    const Scalar w24 = w0 * w0;
+    const Scalar w25 = cos(q(4));
+    const Scalar w26 = sin(q(4));
+    const Scalar w27 = w26 * w26;
+    const Scalar w28 = w27 - w25 * w25;
+    const Scalar w29 = w26 * Scalar(2) * w25;
+    const Scalar w30 = c.k16 * w28 + c.k15 * w29;
+    const Scalar w31 = w24 * w30;
+    const Scalar w32 = w4 * w0;
+    const Scalar w33 = w2 * w6;
+    const Scalar w34 = w2 * w2;
+    const Scalar w35 = w31 + w32 * w30 * Scalar(2) * w33 - w34 * (w31 - w30 + w31);
+    const Scalar w36 = sin(q(7));
+    const Scalar w37 = w36 * w36;
+    const Scalar w38 = cos(q(7));
+    const Scalar w39 = w38 * w36;
+    const Scalar w40 = c.k9 + c.k8 - (w37 * c.k6 + c.k7 * w39);
+    const Scalar w41 = c.k10 - w40;
+    const Scalar w42 = w13 * Scalar(2) * w16 * w41;
+    const Scalar w43 = w13 * w13;
+    const Scalar w44 = w17 * Scalar(0.3);
+    const Scalar w45 = w12 * w18;
+    const Scalar w46 = w12 * w12;
+    const Scalar w47 = w42 + ((w16 * w16 - w43) * w41 - w44) * Scalar(2) * w45 - w46 * (w42 + w42 - Scalar(0.6) * w14);
+    const Scalar w48 = w43 * w41;
+    const Scalar w49 = w13 * w16;
+    const Scalar w50 = Scalar(0.5) * (c.k12 + Scalar(0.3) * w21 + w48 + w40 + w44 - (c.k13 + c.k10 - w48)) * Scalar(2) * w12 * w18 - (w46 - w18 * w18) * (Scalar(0.3) * w14 - w49 * w41 + c.k11);
+    const Scalar w51 = w26 * w25;
+    const Scalar w52 = c.k17 + c.k15 * w27 - c.k16 * w51 + c.k18;
+    const Scalar w53 = w52 + c.k19;
+    const Scalar w54 = w4 * Scalar(2) * w0 * w53;
+    const Scalar w55 = Scalar(0.3) * w5;
+    const Scalar w56 = w34 * (w54 + w54 - Scalar(0.6) * w1) + Scalar(2) * ((w24 - w4 * w4) * w53 + w55) * w33 - w54;
+    const Scalar w57 = w37 - w38 * w38;
+    const Scalar w58 = w38 * Scalar(2) * w36;
+    const Scalar w59 = w57 * c.k7 - c.k6 * w58;
+    const Scalar w60 = w59 * w43;
+    const Scalar w61 = -w60;
+    const Scalar w62 = w46 * (w59 + w61 + w61) + Scalar(2) * w59 * w49 * w45 + w60;
+    const Scalar w63 = w53 * w24;
+    const Scalar w64 = Scalar(0.5) * (c.k20 + w52 - w63 - w55 + Scalar(0.3) * w9 - (c.k21 + w63 + c.k22)) * Scalar(2) * w2 * w6 - (w34 - w6 * w6) * (w53 * w32 - Scalar(0.3) * w1 + c.k23);
+    const Scalar w65 = qd(1) * w64;
+    const Scalar w66 = c.k16 * w29 - c.k15 * w28;
+    const Scalar w67 = w0 * w66 * w6 + w4 * w66 * w2;
+    const Scalar w68 = Scalar(0.5) * w67 * qd(4);
+    const Scalar w69 = w1 * w6;
+    const Scalar w70 = c.k25 - (c.k15 * w51 + c.k16 * w27);
+    const Scalar w71 = w70 * w0 * w2;
+    const Scalar w72 = -(w4 * w70 * w6);
+    const Scalar w73 = (w69 + w5 * w2) * Scalar(0.25) + w71 + w72;
+    const Scalar w74 = Scalar(0.5) * qd(3) * w73;
+    const Scalar w75 = c.p.left_hand_izz * w0 * w6 + w2 * w4 * c.p.left_hand_izz;
+    const Scalar w76 = Scalar(0.5) * qd(4) * w75;
+    const Scalar w77 = -w76;
+    const Scalar w78 = w56 * qd(1) * Scalar(0.5);
+    const Scalar w79 = -w68;
+    const Scalar w80 = -(Scalar(0.5) * w73 * qd(2));
+    const Scalar w81 = Scalar(0.5) * w67 * qd(3);
+    const Scalar w82 = Scalar(0.5) * qd(3) * w75;
+    const Scalar w83 = Scalar(0.5) * w67 * qd(2);
+    const Scalar w84 = Scalar(0.5) * w75 * qd(2);
+    const Scalar w85 = qd(1) * w35 * Scalar(0.5);
+    const Scalar w86 = c.k6 * w57 + c.k7 * w58;
+    const Scalar w87 = w13 * w86 * w18 + w16 * w86 * w12;
+    const Scalar w88 = w87 * Scalar(0.5) * qd(7);
+    const Scalar w89 = c.p.right_hand_izz * w16 * w12 + w13 * c.p.right_hand_izz * w18;
+    const Scalar w90 = w89 * Scalar(0.5) * qd(7);
+    const Scalar w91 = -w90;
+    const Scalar w92 = c.k26 - (w37 * c.k7 - c.k6 * w39);
+    const Scalar w93 = w92 * w16 * w18;
+    const Scalar w94 = w14 * w18;
+    const Scalar w95 = w13 * w92 * w12;
+    const Scalar w96 = (w94 + w17 * w12) * Scalar(0.25) - w93 + w95;
+    const Scalar w97 = w96 * Scalar(0.5) * qd(6);
+    const Scalar w98 = qd(1) * w50;
+    const Scalar w99 = w96 * qd(5) * Scalar(0.5);
+    const Scalar w100 = qd(1) * w47 * Scalar(0.5);
+    const Scalar w101 = w87 * Scalar(0.5) * qd(6);
+    const Scalar w102 = w89 * Scalar(0.5) * qd(6);
+    const Scalar w103 = w87 * qd(5) * Scalar(0.5);
+    const Scalar w104 = w89 * qd(5) * Scalar(0.5);
+    const Scalar w105 = qd(1) * Scalar(0.5) * w62;
+    const Scalar w106 = -(Scalar(0.3) * w1 * qd(3));
+    const Scalar w107 = c.k66 * w29 + c.k25 * w28;
+    const Scalar w108 = w107 * qd(4);
+    const Scalar w109 = Scalar(0.3) * w1 * qd(2);
+    const Scalar w110 = w107 * qd(2) - qd(1) * Scalar(0.5) * w67 - qd(1) * Scalar(0.5) * w75 + w107 * qd(3);
+    const Scalar w111 = -w110;
+    const Scalar w112 = Scalar(0.3) * qd(6) * w14;
+    const Scalar w113 = w57 * c.k26 - c.k67 * w58;
+    const Scalar w114 = qd(7) * w113;
+    const Scalar w115 = Scalar(0.3) * qd(5) * w14;
+    const Scalar w116 = qd(6) * w113 - qd(1) * w87 * Scalar(0.5) - w89 * qd(1) * Scalar(0.5) + qd(5) * w113;
+    const Scalar w117 = -w116;
+    C(0, 2) = w8 + w8 + (w3 - w10 * w6) * qd(2);
+    C(0, 3) = w7 * qd(3) + w11 + w11;
+    C(0, 5) = w20 + w20 - (w22 * w18 + w15) * qd(5);
+    C(0, 6) = w19 * qd(6) + w23 + w23;
+    C(1, 1) = w35 * Scalar(0.5) * qd(4) - w47 * Scalar(0.5) * qd(6) + qd(5) * w50 - w56 * Scalar(0.5) * qd(3) + Scalar(0.5) * qd(7) * w62 + w64 * qd(2);
+    C(1, 2) = w65 + w68 + w74 + w74 + ((w69 + w2 * w10) * Scalar(0.25) + w71 + w72) * qd(2) + w77;
+    C(1, 3) = -(w78 + w79 + w80 + w80 + w76 - qd(3) * w73);
+    C(1, 4) = w81 - w82 + w83 - w84 + w85;
+    C(1, 5) = w88 + w91 + w97 + w97 - qd(5) * (Scalar(0.25) * (w22 * w12 - w94) + w93 - w95) + w98;
+    C(1, 6) = w88 + w91 + w96 * qd(6) + w99 + w99 - w100;
+    C(1, 7) = w101 - w102 + w103 - w104 + w105;
+    C(2, 1) = -(w65 + w79 + w77);
+    C(2, 2) = -(w106 + w108);
+    C(2, 3) = -(w106 - w109 + w108);
+    C(2, 4) = w111;
+    C(3, 1) = w78 + w68 + w76;
+    C(3, 2) = -(w108 + w109);
+    C(3, 3) = -w108;
+    C(3, 4) = w111;
+    C(4, 1) = -(w81 + w82 + w83 + w84 + w85);
+    C(4, 2) = w110;
+    C(4, 3) = w110;
+    C(5, 1) = w88 - w98 + w90;
+    C(5, 5) = -(w112 + w114);
+    C(5, 6) = -(w112 + w114 + w115);
+    C(5, 7) = w117;
+    C(6, 1) = w88 + w100 + w90;
+    C(6, 5) = -(w114 - w115);
+    C(6, 6) = -w114;
+    C(6, 7) = w117;
+    C(7, 1) = -(w101 + w103 + w105 + w102 + w104);
+    C(7, 5) = w116;
+    C(7, 6) = w116;
+    C(0, 0) = Scalar(0);
+    C(0, 1) = Scalar(0);
+    C(0, 4) = Scalar(0);
+    C(0, 7) = Scalar(0);
+    C(1, 0) = Scalar(0);
+    C(2, 0) = Scalar(0);
+    C(2, 5) = Scalar(0);
+    C(2, 6) = Scalar(0);
+    C(2, 7) = Scalar(0);
+    C(3, 0) = Scalar(0);
+    C(3, 5) = Scalar(0);
+    C(3, 6) = Scalar(0);
+    C(3, 7) = Scalar(0);
+    C(4, 0) = Scalar(0);
+    C(4, 4) = Scalar(0);
+    C(4, 5) = Scalar(0);
+    C(4, 6) = Scalar(0);
+    C(4, 7) = Scalar(0);
+    C(5, 0) = Scalar(0);
+    C(5, 2) = Scalar(0);
+    C(5, 3) = Scalar(0);
+    C(5, 4) = Scalar(0);
+    C(6, 0) = Scalar(0);
+    C(6, 2) = Scalar(0);
+    C(6, 3) = Scalar(0);
+    C(6, 4) = Scalar(0);
+    C(7, 0) = Scalar(0);
+    C(7, 2) = Scalar(0);
+    C(7, 3) = Scalar(0);
+    C(7, 4) = Scalar(0);
+    C(7, 7) = Scalar(0);
+  }
+
+  /// C(q, qd) from the Christoffel symbols of M: dM/dt - 2 C is skew-symmetric
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void coriolis_matrix(const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Parameters<typename DerivedQ::Scalar>& p, Out0&& C) noexcept {
+    coriolis_matrix(q, qd, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(C));
+  }
+
+  /// J = dy/dq of the output left_ee_position
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_left_ee_position([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& J) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, nq), "J: expected 3 x nq");
+    eigen_assert(q.size() == nq && J.rows() == 3 && J.cols() == nq);
+    using std::sin; using std::cos;
+    const Scalar w0 = sin(q(1));
+    const Scalar w1 = sin(q(2));
+    const Scalar w2 = q(2) + q(3);
+    const Scalar w3 = sin(w2);
+    const Scalar w4 = cos(q(1));
+    const Scalar w5 = cos(q(2));
+    const Scalar w6 = cos(w2);
+    const Scalar w7 = w4 * w6 * Scalar(0.45);
+    const Scalar w8 = w0 * w6 * Scalar(0.45);
+    const Scalar w9 = w3 * Scalar(0.45);
+    J(0, 1) = w0 * Scalar(0.3) * w1 + w0 * w3 * Scalar(0.45) - Scalar(0.25) * w4;
+    J(0, 2) = -(Scalar(0.3) * w4 * w5 + w7);
+    J(0, 3) = -w7;
+    J(1, 1) = -(w4 * w3 * Scalar(0.45) + Scalar(0.3) * w4 * w1 + w0 * Scalar(0.25));
+    J(1, 2) = -(w8 + w0 * Scalar(0.3) * w5);
+    J(1, 3) = -w8;
+    J(2, 0) = Scalar(1);
+    J(2, 2) = Scalar(0.3) * w1 + w9;
+    J(2, 3) = w9;
+    J(0, 0) = Scalar(0);
+    J(0, 4) = Scalar(0);
+    J(0, 5) = Scalar(0);
+    J(0, 6) = Scalar(0);
+    J(0, 7) = Scalar(0);
+    J(1, 0) = Scalar(0);
+    J(1, 4) = Scalar(0);
+    J(1, 5) = Scalar(0);
+    J(1, 6) = Scalar(0);
+    J(1, 7) = Scalar(0);
+    J(2, 1) = Scalar(0);
+    J(2, 4) = Scalar(0);
+    J(2, 5) = Scalar(0);
+    J(2, 6) = Scalar(0);
+    J(2, 7) = Scalar(0);
+  }
+
+  /// J = dy/dq of the output left_ee_position
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_left_ee_position(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& J) noexcept {
+    output_jacobian_left_ee_position(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(J));
+  }
+
+  /// Jdot qd of the output left_ee_position: its acceleration at qdd = 0
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_left_ee_position([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& Jdot_qd) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, 1), "Jdot_qd: expected 3 x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && Jdot_qd.rows() == 3 && Jdot_qd.cols() == 1);
+    using std::sin; using std::cos;
+    const Scalar w0 = sin(q(1));
+    const Scalar w1 = cos(q(2));
+    const Scalar w2 = q(2) + q(3);
+    const Scalar w3 = cos(w2);
+    const Scalar w4 = cos(q(1));
+    const Scalar w5 = sin(q(2));
+    const Scalar w6 = sin(w2);
+    Jdot_qd(0) = qd(1) * ((Scalar(6) * w0 * w1 + w0 * w3 * Scalar(9)) * qd(2) + w0 * qd(3) * w3 * Scalar(9) + qd(1) * (Scalar(6) * w4 * w5 + w4 * w6 * Scalar(9) + w0 * Scalar(5))) * Scalar(0.05) + (qd(1) * w0 * w3 + w4 * w6 * qd(2) + w4 * qd(3) * w6) * qd(3) * Scalar(0.45) + Scalar(0.15) * (qd(1) * (w0 * Scalar(3) * w3 + w0 * Scalar(2) * w1) + (w4 * w6 * Scalar(3) + w4 * Scalar(2) * w5) * qd(2) + w4 * qd(3) * w6 * Scalar(3)) * qd(2);
+    Jdot_qd(1) = -(qd(1) * (w4 * qd(3) * w3 * Scalar(9) - qd(1) * (w0 * w6 * Scalar(9) - w4 * Scalar(5) + Scalar(6) * w0 * w5) + (Scalar(6) * w4 * w1 + w4 * w3 * Scalar(9)) * qd(2)) * Scalar(0.05) - Scalar(0.15) * ((w0 * w6 * Scalar(3) + w0 * Scalar(2) * w5) * qd(2) - qd(1) * (w4 * Scalar(2) * w1 + w4 * Scalar(3) * w3) + w0 * qd(3) * w6 * Scalar(3)) * qd(2) - qd(3) * Scalar(0.45) * (w0 * qd(3) * w6 + w0 * w6 * qd(2) - qd(1) * w4 * w3));
+    Jdot_qd(2) = (qd(3) * Scalar(3) * w3 + (Scalar(3) * w3 + Scalar(2) * w1) * qd(2)) * Scalar(0.15) * qd(2) + (qd(3) * w3 + w3 * qd(2)) * qd(3) * Scalar(0.45);
+  }
+
+  /// Jdot qd of the output left_ee_position: its acceleration at qdd = 0
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_left_ee_position(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Parameters<typename DerivedQ::Scalar>& p, Out0&& Jdot_qd) noexcept {
+    output_bias_left_ee_position(t, q, qd, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(Jdot_qd));
+  }
+
+  /// J = dy/dq of the output left_ee_axis_1
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_left_ee_axis_1([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& J) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, nq), "J: expected 3 x nq");
+    eigen_assert(q.size() == nq && J.rows() == 3 && J.cols() == nq);
+    using std::sin; using std::cos;
+    const Scalar w0 = sin(q(4));
+    const Scalar w1 = cos(q(1));
+    const Scalar w2 = sin(q(1));
+    const Scalar w3 = cos(q(4));
+    const Scalar w4 = q(2) + q(3);
+    const Scalar w5 = cos(w4);
+    const Scalar w6 = sin(w4);
+    const Scalar w7 = -(w1 * w3 * w6);
+    const Scalar w8 = -(w2 * w3 * w6);
+    const Scalar w9 = -(w3 * w5);
+    J(0, 1) = -(w0 * w1 + w2 * w3 * w5);
+    J(0, 2) = w7;
+    J(0, 3) = w7;
+    J(0, 4) = -(w2 * w3 + w0 * w1 * w5);
+    J(1, 1) = w1 * w3 * w5 - w0 * w2;
+    J(1, 2) = w8;
+    J(1, 3) = w8;
+    J(1, 4) = -(w0 * w2 * w5 - w1 * w3);
+    J(2, 2) = w9;
+    J(2, 3) = w9;
+    J(2, 4) = w0 * w6;
+    J(0, 0) = Scalar(0);
+    J(0, 5) = Scalar(0);
+    J(0, 6) = Scalar(0);
+    J(0, 7) = Scalar(0);
+    J(1, 0) = Scalar(0);
+    J(1, 5) = Scalar(0);
+    J(1, 6) = Scalar(0);
+    J(1, 7) = Scalar(0);
+    J(2, 0) = Scalar(0);
+    J(2, 1) = Scalar(0);
+    J(2, 5) = Scalar(0);
+    J(2, 6) = Scalar(0);
+    J(2, 7) = Scalar(0);
+  }
+
+  /// J = dy/dq of the output left_ee_axis_1
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_left_ee_axis_1(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& J) noexcept {
+    output_jacobian_left_ee_axis_1(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(J));
+  }
+
+  /// Jdot qd of the output left_ee_axis_1: its acceleration at qdd = 0
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_left_ee_axis_1([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& Jdot_qd) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, 1), "Jdot_qd: expected 3 x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && Jdot_qd.rows() == 3 && Jdot_qd.cols() == 1);
+    using std::sin; using std::cos;
+    const Scalar w0 = sin(q(4));
+    const Scalar w1 = cos(q(1));
+    const Scalar w2 = q(2) + q(3);
+    const Scalar w3 = sin(w2);
+    const Scalar w4 = cos(q(4));
+    const Scalar w5 = cos(w2);
+    const Scalar w6 = sin(q(1));
+    const Scalar w7 = w0 * w1 * qd(4) * w3 - w1 * w4 * qd(3) * w5 - w1 * w4 * w5 * qd(2) + qd(1) * w6 * w4 * w3;
+    const Scalar w8 = w0 * w6 * w5 - w1 * w4;
+    const Scalar w9 = w1 * w4 * w5 - w0 * w6;
+    const Scalar w10 = w6 * w4 * qd(3) * w5 + w6 * w4 * w5 * qd(2) + qd(1) * w1 * w4 * w3 - w0 * w6 * qd(4) * w3;
+    const Scalar w11 = w0 * w1 + w6 * w4 * w5;
+    const Scalar w12 = w6 * w4 + w0 * w1 * w5;
+    const Scalar w13 = w4 * qd(3) * w3 + w0 * qd(4) * w5 + w4 * w3 * qd(2);
+    Jdot_qd(0) = w7 * qd(2) + qd(1) * (w6 * w4 * qd(3) * w3 + w8 * qd(4) - qd(1) * w9 + w6 * w4 * w3 * qd(2)) + (w0 * w1 * w3 * qd(2) - w9 * qd(4) + w0 * w1 * qd(3) * w3 + qd(1) * w8) * qd(4) + w7 * qd(3);
+    Jdot_qd(1) = -(w10 * qd(3) + w10 * qd(2) + qd(1) * (w1 * w4 * qd(3) * w3 + w1 * w4 * w3 * qd(2) + qd(1) * w11 + w12 * qd(4)) - (w0 * w6 * w3 * qd(2) + w0 * w6 * qd(3) * w3 - w12 * qd(1) - w11 * qd(4)) * qd(4));
+    Jdot_qd(2) = w13 * qd(3) + w13 * qd(2) + (w0 * qd(3) * w5 + w4 * qd(4) * w3 + w0 * w5 * qd(2)) * qd(4);
+  }
+
+  /// Jdot qd of the output left_ee_axis_1: its acceleration at qdd = 0
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_left_ee_axis_1(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Parameters<typename DerivedQ::Scalar>& p, Out0&& Jdot_qd) noexcept {
+    output_bias_left_ee_axis_1(t, q, qd, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(Jdot_qd));
+  }
+
+  /// J = dy/dq of the output left_ee_axis_2
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_left_ee_axis_2([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& J) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, nq), "J: expected 3 x nq");
+    eigen_assert(q.size() == nq && J.rows() == 3 && J.cols() == nq);
+    using std::sin; using std::cos;
+    const Scalar w0 = sin(q(4));
+    const Scalar w1 = sin(q(1));
+    const Scalar w2 = q(2) + q(3);
+    const Scalar w3 = cos(w2);
+    const Scalar w4 = cos(q(1));
+    const Scalar w5 = cos(q(4));
+    const Scalar w6 = sin(w2);
+    const Scalar w7 = w0 * w4 * w6;
+    const Scalar w8 = w0 * w1 * w6;
+    const Scalar w9 = w0 * w3;
+    J(0, 1) = w0 * w1 * w3 - w4 * w5;
+    J(0, 2) = w7;
+    J(0, 3) = w7;
+    J(0, 4) = -(w4 * w5 * w3 - w0 * w1);
+    J(1, 1) = -(w1 * w5 + w0 * w4 * w3);
+    J(1, 2) = w8;
+    J(1, 3) = w8;
+    J(1, 4) = -(w0 * w4 + w1 * w5 * w3);
+    J(2, 2) = w9;
+    J(2, 3) = w9;
+    J(2, 4) = w5 * w6;
+    J(0, 0) = Scalar(0);
+    J(0, 5) = Scalar(0);
+    J(0, 6) = Scalar(0);
+    J(0, 7) = Scalar(0);
+    J(1, 0) = Scalar(0);
+    J(1, 5) = Scalar(0);
+    J(1, 6) = Scalar(0);
+    J(1, 7) = Scalar(0);
+    J(2, 0) = Scalar(0);
+    J(2, 1) = Scalar(0);
+    J(2, 5) = Scalar(0);
+    J(2, 6) = Scalar(0);
+    J(2, 7) = Scalar(0);
+  }
+
+  /// J = dy/dq of the output left_ee_axis_2
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_left_ee_axis_2(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& J) noexcept {
+    output_jacobian_left_ee_axis_2(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(J));
+  }
+
+  /// Jdot qd of the output left_ee_axis_2: its acceleration at qdd = 0
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_left_ee_axis_2([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& Jdot_qd) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, 1), "Jdot_qd: expected 3 x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && Jdot_qd.rows() == 3 && Jdot_qd.cols() == 1);
+    using std::sin; using std::cos;
+    const Scalar w0 = cos(q(1));
+    const Scalar w1 = cos(q(4));
+    const Scalar w2 = q(2) + q(3);
+    const Scalar w3 = sin(w2);
+    const Scalar w4 = sin(q(4));
+    const Scalar w5 = sin(q(1));
+    const Scalar w6 = cos(w2);
+    const Scalar w7 = w4 * w0 + w5 * w1 * w6;
+    const Scalar w8 = w5 * w1 + w4 * w0 * w6;
+    const Scalar w9 = w0 * w1 * qd(4) * w3 + w4 * w0 * qd(3) * w6 - w4 * qd(1) * w5 * w3 + w4 * w0 * w6 * qd(2);
+    const Scalar w10 = w0 * w1 * w6 - w4 * w5;
+    const Scalar w11 = w4 * w5 * w6 - w0 * w1;
+    const Scalar w12 = w4 * qd(1) * w0 * w3 + w5 * w1 * qd(4) * w3 + w4 * w5 * w6 * qd(2) + w4 * w5 * qd(3) * w6;
+    const Scalar w13 = w1 * qd(4) * w6 - w4 * qd(3) * w3 - w4 * w3 * qd(2);
+    Jdot_qd(0) = (w0 * w1 * qd(3) * w3 + w0 * w1 * w3 * qd(2) + qd(1) * w7 + w8 * qd(4)) * qd(4) - qd(1) * (w4 * w5 * w3 * qd(2) + w4 * w5 * qd(3) * w3 - w8 * qd(1) - w7 * qd(4)) + qd(3) * w9 + w9 * qd(2);
+    Jdot_qd(1) = (w4 * w0 * w3 * qd(2) - w10 * qd(4) + w4 * w0 * qd(3) * w3 + qd(1) * w11) * qd(1) + w12 * qd(2) + (w5 * w1 * qd(3) * w3 + w11 * qd(4) - qd(1) * w10 + w5 * w1 * w3 * qd(2)) * qd(4) + qd(3) * w12;
+    Jdot_qd(2) = w13 * qd(3) - (w4 * qd(4) * w3 - w1 * qd(3) * w6 - w1 * w6 * qd(2)) * qd(4) + w13 * qd(2);
+  }
+
+  /// Jdot qd of the output left_ee_axis_2: its acceleration at qdd = 0
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_left_ee_axis_2(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Parameters<typename DerivedQ::Scalar>& p, Out0&& Jdot_qd) noexcept {
+    output_bias_left_ee_axis_2(t, q, qd, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(Jdot_qd));
+  }
+
+  /// J = dy/dq of the output left_ee_axis_3
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_left_ee_axis_3([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& J) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, nq), "J: expected 3 x nq");
+    eigen_assert(q.size() == nq && J.rows() == 3 && J.cols() == nq);
+    using std::sin; using std::cos;
+    const Scalar w0 = sin(q(1));
+    const Scalar w1 = q(2) + q(3);
+    const Scalar w2 = sin(w1);
+    const Scalar w3 = cos(q(1));
+    const Scalar w4 = cos(w1);
+    const Scalar w5 = w3 * w4;
+    const Scalar w6 = w0 * w4;
+    const Scalar w7 = -w2;
+    J(0, 1) = -(w0 * w2);
+    J(0, 2) = w5;
+    J(0, 3) = w5;
+    J(1, 1) = w3 * w2;
+    J(1, 2) = w6;
+    J(1, 3) = w6;
+    J(2, 2) = w7;
+    J(2, 3) = w7;
+    J(0, 0) = Scalar(0);
+    J(0, 4) = Scalar(0);
+    J(0, 5) = Scalar(0);
+    J(0, 6) = Scalar(0);
+    J(0, 7) = Scalar(0);
+    J(1, 0) = Scalar(0);
+    J(1, 4) = Scalar(0);
+    J(1, 5) = Scalar(0);
+    J(1, 6) = Scalar(0);
+    J(1, 7) = Scalar(0);
+    J(2, 0) = Scalar(0);
+    J(2, 1) = Scalar(0);
+    J(2, 4) = Scalar(0);
+    J(2, 5) = Scalar(0);
+    J(2, 6) = Scalar(0);
+    J(2, 7) = Scalar(0);
+  }
+
+  /// J = dy/dq of the output left_ee_axis_3
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_left_ee_axis_3(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& J) noexcept {
+    output_jacobian_left_ee_axis_3(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(J));
+  }
+
+  /// Jdot qd of the output left_ee_axis_3: its acceleration at qdd = 0
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_left_ee_axis_3([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& Jdot_qd) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, 1), "Jdot_qd: expected 3 x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && Jdot_qd.rows() == 3 && Jdot_qd.cols() == 1);
+    using std::sin; using std::cos;
+    const Scalar w0 = sin(q(1));
+    const Scalar w1 = q(2) + q(3);
+    const Scalar w2 = cos(w1);
+    const Scalar w3 = cos(q(1));
+    const Scalar w4 = sin(w1);
+    const Scalar w5 = qd(1) * w0 * w2 + w3 * w4 * qd(2) + w3 * qd(3) * w4;
+    const Scalar w6 = w0 * qd(3) * w4 + w0 * w4 * qd(2) - qd(1) * w3 * w2;
+    const Scalar w7 = qd(3) * w2 + w2 * qd(2);
+    Jdot_qd(0) = -(qd(1) * (w0 * qd(3) * w2 + w0 * w2 * qd(2) + qd(1) * w3 * w4) + w5 * qd(2) + w5 * qd(3));
+    Jdot_qd(1) = -(w6 * qd(2) + qd(3) * w6 - qd(1) * (w3 * w2 * qd(2) + w3 * qd(3) * w2 - qd(1) * w0 * w4));
+    Jdot_qd(2) = -(w7 * qd(3) + w7 * qd(2));
+  }
+
+  /// Jdot qd of the output left_ee_axis_3: its acceleration at qdd = 0
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_left_ee_axis_3(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Parameters<typename DerivedQ::Scalar>& p, Out0&& Jdot_qd) noexcept {
+    output_bias_left_ee_axis_3(t, q, qd, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(Jdot_qd));
+  }
+
+  /// J = dy/dqd of the output left_ee_angular_velocity
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_left_ee_angular_velocity([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& J) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, nq), "J: expected 3 x nq");
+    eigen_assert(q.size() == nq && J.rows() == 3 && J.cols() == nq);
+    using std::sin; using std::cos;
+    const Scalar w0 = sin(q(1));
+    const Scalar w1 = -w0;
+    const Scalar w2 = cos(q(1));
+    const Scalar w3 = q(2) + q(3);
+    const Scalar w4 = sin(w3);
+    J(0, 2) = w1;
+    J(0, 3) = w1;
+    J(0, 4) = w2 * w4;
+    J(1, 2) = w2;
+    J(1, 3) = w2;
+    J(1, 4) = w0 * w4;
+    J(2, 1) = Scalar(1);
+    J(2, 4) = cos(w3);
+    J(0, 0) = Scalar(0);
+    J(0, 1) = Scalar(0);
+    J(0, 5) = Scalar(0);
+    J(0, 6) = Scalar(0);
+    J(0, 7) = Scalar(0);
+    J(1, 0) = Scalar(0);
+    J(1, 1) = Scalar(0);
+    J(1, 5) = Scalar(0);
+    J(1, 6) = Scalar(0);
+    J(1, 7) = Scalar(0);
+    J(2, 0) = Scalar(0);
+    J(2, 2) = Scalar(0);
+    J(2, 3) = Scalar(0);
+    J(2, 5) = Scalar(0);
+    J(2, 6) = Scalar(0);
+    J(2, 7) = Scalar(0);
+  }
+
+  /// J = dy/dqd of the output left_ee_angular_velocity
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_left_ee_angular_velocity(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& J) noexcept {
+    output_jacobian_left_ee_angular_velocity(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(J));
+  }
+
+  /// Jdot qd of the output left_ee_angular_velocity: its rate at qdd = 0
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_left_ee_angular_velocity([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& Jdot_qd) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, 1), "Jdot_qd: expected 3 x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && Jdot_qd.rows() == 3 && Jdot_qd.cols() == 1);
+    using std::sin; using std::cos;
+    const Scalar w0 = cos(q(1));
+    const Scalar w1 = q(2) + q(3);
+    const Scalar w2 = cos(w1);
+    const Scalar w3 = sin(q(1));
+    const Scalar w4 = sin(w1);
+    Jdot_qd(0) = w0 * qd(4) * w2 * qd(2) - qd(1) * (w3 * qd(4) * w4 + w0 * qd(3) + w0 * qd(2)) + w0 * qd(4) * qd(3) * w2;
+    Jdot_qd(1) = -(qd(1) * (w3 * qd(3) - w0 * qd(4) * w4 + w3 * qd(2)) - w3 * qd(4) * qd(3) * w2 - w3 * qd(4) * w2 * qd(2));
+    Jdot_qd(2) = -(qd(4) * w4 * qd(2) + qd(4) * qd(3) * w4);
+  }
+
+  /// Jdot qd of the output left_ee_angular_velocity: its rate at qdd = 0
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_left_ee_angular_velocity(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Parameters<typename DerivedQ::Scalar>& p, Out0&& Jdot_qd) noexcept {
+    output_bias_left_ee_angular_velocity(t, q, qd, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(Jdot_qd));
+  }
+
+  /// J = dy/dq of the output right_ee_position
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_right_ee_position([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& J) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, nq), "J: expected 3 x nq");
+    eigen_assert(q.size() == nq && J.rows() == 3 && J.cols() == nq);
+    using std::sin; using std::cos;
+    const Scalar w0 = sin(q(1));
+    const Scalar w1 = q(6) + q(5);
+    const Scalar w2 = sin(w1);
+    const Scalar w3 = cos(q(1));
+    const Scalar w4 = sin(q(5));
+    const Scalar w5 = cos(w1);
+    const Scalar w6 = w3 * w5 * Scalar(0.45);
+    const Scalar w7 = cos(q(5));
+    const Scalar w8 = w0 * w5 * Scalar(0.45);
+    const Scalar w9 = w2 * Scalar(0.45);
+    J(0, 1) = w0 * w2 * Scalar(0.45) + Scalar(0.25) * w3 + w0 * Scalar(0.3) * w4;
+    J(0, 5) = -(w6 + Scalar(0.3) * w3 * w7);
+    J(0, 6) = -w6;
+    J(1, 1) = -(Scalar(0.3) * w3 * w4 + w3 * w2 * Scalar(0.45) - w0 * Scalar(0.25));
+    J(1, 5) = -(w8 + w0 * Scalar(0.3) * w7);
+    J(1, 6) = -w8;
+    J(2, 0) = Scalar(1);
+    J(2, 5) = w9 + Scalar(0.3) * w4;
+    J(2, 6) = w9;
+    J(0, 0) = Scalar(0);
+    J(0, 2) = Scalar(0);
+    J(0, 3) = Scalar(0);
+    J(0, 4) = Scalar(0);
+    J(0, 7) = Scalar(0);
+    J(1, 0) = Scalar(0);
+    J(1, 2) = Scalar(0);
+    J(1, 3) = Scalar(0);
+    J(1, 4) = Scalar(0);
+    J(1, 7) = Scalar(0);
+    J(2, 1) = Scalar(0);
+    J(2, 2) = Scalar(0);
+    J(2, 3) = Scalar(0);
+    J(2, 4) = Scalar(0);
+    J(2, 7) = Scalar(0);
+  }
+
+  /// J = dy/dq of the output right_ee_position
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_right_ee_position(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& J) noexcept {
+    output_jacobian_right_ee_position(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(J));
+  }
+
+  /// Jdot qd of the output right_ee_position: its acceleration at qdd = 0
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_right_ee_position([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& Jdot_qd) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, 1), "Jdot_qd: expected 3 x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && Jdot_qd.rows() == 3 && Jdot_qd.cols() == 1);
+    using std::sin; using std::cos;
+    const Scalar w0 = cos(q(1));
+    const Scalar w1 = q(6) + q(5);
+    const Scalar w2 = sin(w1);
+    const Scalar w3 = sin(q(5));
+    const Scalar w4 = sin(q(1));
+    const Scalar w5 = cos(q(5));
+    const Scalar w6 = cos(w1);
+    Jdot_qd(0) = (w0 * qd(6) * w2 * Scalar(3) + qd(5) * (w0 * w2 * Scalar(3) + w0 * Scalar(2) * w3) + qd(1) * (w4 * Scalar(2) * w5 + w4 * w6 * Scalar(3))) * qd(5) * Scalar(0.15) + qd(1) * (w4 * w6 * qd(6) * Scalar(9) + qd(1) * (w0 * w2 * Scalar(9) - w4 * Scalar(5) + Scalar(6) * w0 * w3) + qd(5) * (Scalar(6) * w4 * w5 + w4 * w6 * Scalar(9))) * Scalar(0.05) + (w0 * qd(5) * w2 + w0 * qd(6) * w2 + qd(1) * w4 * w6) * qd(6) * Scalar(0.45);
+    Jdot_qd(1) = qd(5) * (w4 * qd(6) * w2 * Scalar(3) - qd(1) * (w0 * w6 * Scalar(3) + w0 * Scalar(2) * w5) + qd(5) * (w4 * w2 * Scalar(3) + w4 * Scalar(2) * w3)) * Scalar(0.15) + (w4 * qd(5) * w2 - qd(1) * w0 * w6 + w4 * qd(6) * w2) * qd(6) * Scalar(0.45) + (qd(1) * (w4 * w2 * Scalar(9) + w0 * Scalar(5) + Scalar(6) * w4 * w3) - qd(5) * (w0 * w6 * Scalar(9) + Scalar(6) * w0 * w5) - w0 * w6 * qd(6) * Scalar(9)) * qd(1) * Scalar(0.05);
+    Jdot_qd(2) = qd(5) * Scalar(0.15) * (w6 * qd(6) * Scalar(3) + qd(5) * (Scalar(2) * w5 + w6 * Scalar(3))) + qd(6) * Scalar(0.45) * (w6 * qd(6) + qd(5) * w6);
+  }
+
+  /// Jdot qd of the output right_ee_position: its acceleration at qdd = 0
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_right_ee_position(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Parameters<typename DerivedQ::Scalar>& p, Out0&& Jdot_qd) noexcept {
+    output_bias_right_ee_position(t, q, qd, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(Jdot_qd));
+  }
+
+  /// J = dy/dq of the output right_ee_axis_1
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_right_ee_axis_1([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& J) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, nq), "J: expected 3 x nq");
+    eigen_assert(q.size() == nq && J.rows() == 3 && J.cols() == nq);
+    using std::sin; using std::cos;
+    const Scalar w0 = sin(q(1));
+    const Scalar w1 = cos(q(7));
+    const Scalar w2 = q(6) + q(5);
+    const Scalar w3 = cos(w2);
+    const Scalar w4 = cos(q(1));
+    const Scalar w5 = sin(q(7));
+    const Scalar w6 = sin(w2);
+    const Scalar w7 = -(w1 * w4 * w6);
+    const Scalar w8 = -(w0 * w1 * w6);
+    const Scalar w9 = -(w1 * w3);
+    J(0, 1) = -(w0 * w1 * w3 + w4 * w5);
+    J(0, 5) = w7;
+    J(0, 6) = w7;
+    J(0, 7) = -(w4 * w3 * w5 + w0 * w1);
+    J(1, 1) = w1 * w4 * w3 - w0 * w5;
+    J(1, 5) = w8;
+    J(1, 6) = w8;
+    J(1, 7) = -(w0 * w3 * w5 - w1 * w4);
+    J(2, 5) = w9;
+    J(2, 6) = w9;
+    J(2, 7) = w5 * w6;
+    J(0, 0) = Scalar(0);
+    J(0, 2) = Scalar(0);
+    J(0, 3) = Scalar(0);
+    J(0, 4) = Scalar(0);
+    J(1, 0) = Scalar(0);
+    J(1, 2) = Scalar(0);
+    J(1, 3) = Scalar(0);
+    J(1, 4) = Scalar(0);
+    J(2, 0) = Scalar(0);
+    J(2, 1) = Scalar(0);
+    J(2, 2) = Scalar(0);
+    J(2, 3) = Scalar(0);
+    J(2, 4) = Scalar(0);
+  }
+
+  /// J = dy/dq of the output right_ee_axis_1
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_right_ee_axis_1(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& J) noexcept {
+    output_jacobian_right_ee_axis_1(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(J));
+  }
+
+  /// Jdot qd of the output right_ee_axis_1: its acceleration at qdd = 0
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_right_ee_axis_1([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& Jdot_qd) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, 1), "Jdot_qd: expected 3 x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && Jdot_qd.rows() == 3 && Jdot_qd.cols() == 1);
+    using std::sin; using std::cos;
+    const Scalar w0 = cos(q(1));
+    const Scalar w1 = sin(q(7));
+    const Scalar w2 = q(6) + q(5);
+    const Scalar w3 = sin(w2);
+    const Scalar w4 = sin(q(1));
+    const Scalar w5 = cos(q(7));
+    const Scalar w6 = cos(w2);
+    const Scalar w7 = w5 * w0 * w6 - w4 * w1;
+    const Scalar w8 = w4 * w6 * w1 - w5 * w0;
+    const Scalar w9 = w0 * qd(7) * w1 * w3 + qd(1) * w4 * w5 * w3 - w5 * w0 * w6 * qd(6) - w5 * w0 * qd(5) * w6;
+    const Scalar w10 = w4 * w5 * qd(5) * w6 - w4 * qd(7) * w1 * w3 + qd(1) * w5 * w0 * w3 + w4 * w5 * w6 * qd(6);
+    const Scalar w11 = w0 * w6 * w1 + w4 * w5;
+    const Scalar w12 = w4 * w5 * w6 + w0 * w1;
+    const Scalar w13 = w5 * qd(6) * w3 + w5 * qd(5) * w3 + w6 * qd(7) * w1;
+    Jdot_qd(0) = qd(7) * (w0 * qd(6) * w1 * w3 - qd(7) * w7 + w8 * qd(1) + w0 * qd(5) * w1 * w3) + qd(6) * w9 - (qd(1) * w7 - w4 * w5 * qd(5) * w3 - w8 * qd(7) - w4 * w5 * qd(6) * w3) * qd(1) + qd(5) * w9;
+    Jdot_qd(1) = -(w10 * qd(5) - (w4 * qd(5) * w1 * w3 - qd(1) * w11 - w12 * qd(7) + w4 * qd(6) * w1 * w3) * qd(7) + w10 * qd(6) + qd(1) * (qd(1) * w12 + qd(7) * w11 + w5 * w0 * qd(6) * w3 + w5 * w0 * qd(5) * w3));
+    Jdot_qd(2) = (w5 * qd(7) * w3 + w6 * qd(6) * w1 + qd(5) * w6 * w1) * qd(7) + w13 * qd(6) + qd(5) * w13;
+  }
+
+  /// Jdot qd of the output right_ee_axis_1: its acceleration at qdd = 0
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_right_ee_axis_1(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Parameters<typename DerivedQ::Scalar>& p, Out0&& Jdot_qd) noexcept {
+    output_bias_right_ee_axis_1(t, q, qd, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(Jdot_qd));
+  }
+
+  /// J = dy/dq of the output right_ee_axis_2
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_right_ee_axis_2([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& J) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, nq), "J: expected 3 x nq");
+    eigen_assert(q.size() == nq && J.rows() == 3 && J.cols() == nq);
+    using std::sin; using std::cos;
+    const Scalar w0 = cos(q(7));
+    const Scalar w1 = cos(q(1));
+    const Scalar w2 = sin(q(1));
+    const Scalar w3 = q(6) + q(5);
+    const Scalar w4 = cos(w3);
+    const Scalar w5 = sin(q(7));
+    const Scalar w6 = sin(w3);
+    const Scalar w7 = w1 * w5 * w6;
+    const Scalar w8 = w2 * w5 * w6;
+    const Scalar w9 = w4 * w5;
+    J(0, 1) = w2 * w4 * w5 - w0 * w1;
+    J(0, 5) = w7;
+    J(0, 6) = w7;
+    J(0, 7) = -(w0 * w1 * w4 - w2 * w5);
+    J(1, 1) = -(w1 * w4 * w5 + w2 * w0);
+    J(1, 5) = w8;
+    J(1, 6) = w8;
+    J(1, 7) = -(w2 * w0 * w4 + w1 * w5);
+    J(2, 5) = w9;
+    J(2, 6) = w9;
+    J(2, 7) = w0 * w6;
+    J(0, 0) = Scalar(0);
+    J(0, 2) = Scalar(0);
+    J(0, 3) = Scalar(0);
+    J(0, 4) = Scalar(0);
+    J(1, 0) = Scalar(0);
+    J(1, 2) = Scalar(0);
+    J(1, 3) = Scalar(0);
+    J(1, 4) = Scalar(0);
+    J(2, 0) = Scalar(0);
+    J(2, 1) = Scalar(0);
+    J(2, 2) = Scalar(0);
+    J(2, 3) = Scalar(0);
+    J(2, 4) = Scalar(0);
+  }
+
+  /// J = dy/dq of the output right_ee_axis_2
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_right_ee_axis_2(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& J) noexcept {
+    output_jacobian_right_ee_axis_2(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(J));
+  }
+
+  /// Jdot qd of the output right_ee_axis_2: its acceleration at qdd = 0
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_right_ee_axis_2([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& Jdot_qd) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, 1), "Jdot_qd: expected 3 x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && Jdot_qd.rows() == 3 && Jdot_qd.cols() == 1);
+    using std::sin; using std::cos;
+    const Scalar w0 = cos(q(1));
+    const Scalar w1 = q(6) + q(5);
+    const Scalar w2 = cos(w1);
+    const Scalar w3 = sin(q(7));
+    const Scalar w4 = sin(q(1));
+    const Scalar w5 = cos(q(7));
+    const Scalar w6 = w0 * w2 * w3 + w4 * w5;
+    const Scalar w7 = sin(w1);
+    const Scalar w8 = w4 * w5 * w2 + w0 * w3;
+    const Scalar w9 = qd(1) * w4 * w3 * w7 - w0 * qd(5) * w2 * w3 - w5 * w0 * qd(7) * w7 - w0 * w2 * qd(6) * w3;
+    const Scalar w10 = qd(1) * w0 * w3 * w7 + w4 * qd(5) * w2 * w3 + w4 * w5 * qd(7) * w7 + w4 * w2 * qd(6) * w3;
+    const Scalar w11 = w5 * w0 * w2 - w4 * w3;
+    const Scalar w12 = w4 * w2 * w3 - w5 * w0;
+    const Scalar w13 = qd(5) * w3 * w7 - w5 * w2 * qd(7) + qd(6) * w3 * w7;
+    Jdot_qd(0) = -(qd(1) * (w4 * qd(5) * w3 * w7 - qd(1) * w6 - w8 * qd(7) + w4 * qd(6) * w3 * w7) - (qd(1) * w8 + qd(7) * w6 + w5 * w0 * qd(6) * w7 + w5 * w0 * qd(5) * w7) * qd(7) + qd(6) * w9 + qd(5) * w9);
+    Jdot_qd(1) = qd(5) * w10 - (qd(1) * w11 - w4 * w5 * qd(5) * w7 - w12 * qd(7) - w4 * w5 * qd(6) * w7) * qd(7) + qd(6) * w10 + qd(1) * (w0 * qd(6) * w3 * w7 - qd(7) * w11 + w12 * qd(1) + w0 * qd(5) * w3 * w7);
+    Jdot_qd(2) = -(qd(5) * w13 - (w5 * qd(5) * w2 - qd(7) * w3 * w7 + w5 * w2 * qd(6)) * qd(7) + qd(6) * w13);
+  }
+
+  /// Jdot qd of the output right_ee_axis_2: its acceleration at qdd = 0
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_right_ee_axis_2(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Parameters<typename DerivedQ::Scalar>& p, Out0&& Jdot_qd) noexcept {
+    output_bias_right_ee_axis_2(t, q, qd, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(Jdot_qd));
+  }
+
+  /// J = dy/dq of the output right_ee_axis_3
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_right_ee_axis_3([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& J) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, nq), "J: expected 3 x nq");
+    eigen_assert(q.size() == nq && J.rows() == 3 && J.cols() == nq);
+    using std::sin; using std::cos;
+    const Scalar w0 = sin(q(1));
+    const Scalar w1 = q(6) + q(5);
+    const Scalar w2 = sin(w1);
+    const Scalar w3 = cos(q(1));
+    const Scalar w4 = cos(w1);
+    const Scalar w5 = w3 * w4;
+    const Scalar w6 = w0 * w4;
+    const Scalar w7 = -w2;
+    J(0, 1) = -(w0 * w2);
+    J(0, 5) = w5;
+    J(0, 6) = w5;
+    J(1, 1) = w3 * w2;
+    J(1, 5) = w6;
+    J(1, 6) = w6;
+    J(2, 5) = w7;
+    J(2, 6) = w7;
+    J(0, 0) = Scalar(0);
+    J(0, 2) = Scalar(0);
+    J(0, 3) = Scalar(0);
+    J(0, 4) = Scalar(0);
+    J(0, 7) = Scalar(0);
+    J(1, 0) = Scalar(0);
+    J(1, 2) = Scalar(0);
+    J(1, 3) = Scalar(0);
+    J(1, 4) = Scalar(0);
+    J(1, 7) = Scalar(0);
+    J(2, 0) = Scalar(0);
+    J(2, 1) = Scalar(0);
+    J(2, 2) = Scalar(0);
+    J(2, 3) = Scalar(0);
+    J(2, 4) = Scalar(0);
+    J(2, 7) = Scalar(0);
+  }
+
+  /// J = dy/dq of the output right_ee_axis_3
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_right_ee_axis_3(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& J) noexcept {
+    output_jacobian_right_ee_axis_3(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(J));
+  }
+
+  /// Jdot qd of the output right_ee_axis_3: its acceleration at qdd = 0
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_right_ee_axis_3([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& Jdot_qd) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, 1), "Jdot_qd: expected 3 x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && Jdot_qd.rows() == 3 && Jdot_qd.cols() == 1);
+    using std::sin; using std::cos;
+    const Scalar w0 = cos(q(1));
+    const Scalar w1 = q(6) + q(5);
+    const Scalar w2 = sin(w1);
+    const Scalar w3 = sin(q(1));
+    const Scalar w4 = cos(w1);
+    const Scalar w5 = w0 * qd(5) * w2 + w0 * qd(6) * w2 + qd(1) * w3 * w4;
+    const Scalar w6 = w3 * qd(5) * w2 - qd(1) * w0 * w4 + w3 * qd(6) * w2;
+    const Scalar w7 = w4 * qd(6) + qd(5) * w4;
+    Jdot_qd(0) = -(w5 * qd(6) + qd(1) * (w3 * qd(5) * w4 + w3 * w4 * qd(6) + qd(1) * w0 * w2) + w5 * qd(5));
+    Jdot_qd(1) = -(w6 * qd(5) + w6 * qd(6) - qd(1) * (w0 * qd(5) * w4 + w0 * w4 * qd(6) - qd(1) * w3 * w2));
+    Jdot_qd(2) = -(qd(6) * w7 + qd(5) * w7);
+  }
+
+  /// Jdot qd of the output right_ee_axis_3: its acceleration at qdd = 0
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_right_ee_axis_3(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Parameters<typename DerivedQ::Scalar>& p, Out0&& Jdot_qd) noexcept {
+    output_bias_right_ee_axis_3(t, q, qd, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(Jdot_qd));
+  }
+
+  /// J = dy/dqd of the output right_ee_angular_velocity
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_right_ee_angular_velocity([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& J) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, nq), "J: expected 3 x nq");
+    eigen_assert(q.size() == nq && J.rows() == 3 && J.cols() == nq);
+    using std::sin; using std::cos;
+    const Scalar w0 = sin(q(1));
+    const Scalar w1 = -w0;
+    const Scalar w2 = cos(q(1));
+    const Scalar w3 = q(6) + q(5);
+    const Scalar w4 = sin(w3);
+    J(0, 5) = w1;
+    J(0, 6) = w1;
+    J(0, 7) = w2 * w4;
+    J(1, 5) = w2;
+    J(1, 6) = w2;
+    J(1, 7) = w0 * w4;
+    J(2, 1) = Scalar(1);
+    J(2, 7) = cos(w3);
+    J(0, 0) = Scalar(0);
+    J(0, 1) = Scalar(0);
+    J(0, 2) = Scalar(0);
+    J(0, 3) = Scalar(0);
+    J(0, 4) = Scalar(0);
+    J(1, 0) = Scalar(0);
+    J(1, 1) = Scalar(0);
+    J(1, 2) = Scalar(0);
+    J(1, 3) = Scalar(0);
+    J(1, 4) = Scalar(0);
+    J(2, 0) = Scalar(0);
+    J(2, 2) = Scalar(0);
+    J(2, 3) = Scalar(0);
+    J(2, 4) = Scalar(0);
+    J(2, 5) = Scalar(0);
+    J(2, 6) = Scalar(0);
+  }
+
+  /// J = dy/dqd of the output right_ee_angular_velocity
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_right_ee_angular_velocity(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& J) noexcept {
+    output_jacobian_right_ee_angular_velocity(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(J));
+  }
+
+  /// Jdot qd of the output right_ee_angular_velocity: its rate at qdd = 0
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_right_ee_angular_velocity([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& Jdot_qd) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, 1), "Jdot_qd: expected 3 x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && Jdot_qd.rows() == 3 && Jdot_qd.cols() == 1);
+    using std::sin; using std::cos;
+    const Scalar w0 = sin(q(1));
+    const Scalar w1 = q(6) + q(5);
+    const Scalar w2 = sin(w1);
+    const Scalar w3 = cos(q(1));
+    const Scalar w4 = cos(w1);
+    Jdot_qd(0) = w3 * qd(5) * w4 * qd(7) - (w0 * qd(7) * w2 + w3 * qd(6) + w3 * qd(5)) * qd(1) + w3 * w4 * qd(7) * qd(6);
+    Jdot_qd(1) = w0 * qd(5) * w4 * qd(7) + w0 * w4 * qd(7) * qd(6) - qd(1) * (w0 * qd(6) - w3 * qd(7) * w2 + w0 * qd(5));
+    Jdot_qd(2) = -(qd(7) * qd(6) * w2 + qd(5) * qd(7) * w2);
+  }
+
+  /// Jdot qd of the output right_ee_angular_velocity: its rate at qdd = 0
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_right_ee_angular_velocity(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Parameters<typename DerivedQ::Scalar>& p, Out0&& Jdot_qd) noexcept {
+    output_bias_right_ee_angular_velocity(t, q, qd, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(Jdot_qd));
+  }
+
+  /// Y with M qdd - F = Y pi + (the loads other than gravity, negated), pi the inertial parameters (inertial_parameter_names)
+  template <class DerivedQ, class DerivedQd, class DerivedQdd, class Out0>
+  static void regressor([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedQdd>& qdd, const Constants<typename DerivedQ::Scalar>& c, Out0&& Y) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<DerivedQdd>(nq, 1), "qdd: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(nq, npi), "Y: expected nq x npi");
+    eigen_assert(q.size() == nq && qd.size() == nq && qdd.size() == nq && Y.rows() == nq && Y.cols() == npi);
+    using std::sin; using std::cos;
+    const Scalar w0 = qdd(0) + c.p.g;
+    const Scalar w1 = sin(q(2));
+    const Scalar w2 = cos(q(2));
+    const Scalar w3 = w0 * w1 + qdd(1) * Scalar(0.25) * w2;
+    const Scalar w4 = w0 * w2 - qdd(1) * Scalar(0.25) * w1;
+    const Scalar w5 = qd(2) * qd(2);
+    const Scalar w6 = qd(1) * w2;
+    const Scalar w7 = w6 * w6;
+    const Scalar w8 = w5 + w7;
+    const Scalar w9 = qd(1) * w1;
+    const Scalar w10 = w9 * w6;
+    const Scalar w11 = w10 + qdd(2);
+    const Scalar w12 = w9 * qd(2);
+    const Scalar w13 = w12 - qdd(1) * w2;
+    const Scalar w14 = w12 - w13;
+    const Scalar w15 = w6 * qd(2);
+    const Scalar w16 = w15 + qdd(1) * w1;
+    const Scalar w17 = w16 - w15;
+    const Scalar w18 = w10 - qdd(2);
+    const Scalar w19 = w9 * w9;
+    const Scalar w20 = w19 + w5;
+    const Scalar w21 = sin(q(5));
+    const Scalar w22 = cos(q(5));
+    const Scalar w23 = w0 * w21 - qdd(1) * Scalar(0.25) * w22;
+    const Scalar w24 = w0 * w22 + qdd(1) * Scalar(0.25) * w21;
+    const Scalar w25 = qd(5) * qd(5);
+    const Scalar w26 = qd(1) * w22;
+    const Scalar w27 = w26 * w26;
+    const Scalar w28 = w25 + w27;
+    const Scalar w29 = qd(1) * w21;
+    const Scalar w30 = w26 * w29;
+    const Scalar w31 = w30 + qdd(5);
+    const Scalar w32 = qd(5) * w29;
+    const Scalar w33 = w32 - qdd(1) * w22;
+    const Scalar w34 = w32 - w33;
+    const Scalar w35 = qd(5) * w26;
+    const Scalar w36 = w35 + qdd(1) * w21;
+    const Scalar w37 = w35 - w36;
+    const Scalar w38 = w29 * w29;
+    const Scalar w39 = w38 + w25;
+    const Scalar w40 = w30 - qdd(5);
+    const Scalar w41 = cos(q(3));
+    const Scalar w42 = sin(q(3));
+    const Scalar w43 = w3 + Scalar(0.3) * qdd(2);
+    const Scalar w44 = Scalar(0.3) * w19 + Scalar(0.3) * w5;
+    const Scalar w45 = w9 * Scalar(0.3) * w6;
+    const Scalar w46 = w41 * w4 - w42 * w43 + w41 * w44 + w42 * w45;
+    const Scalar w47 = w41 * w46;
+    const Scalar w48 = w41 * w43 + w42 * w4 - (w41 * w45 - w44 * w42);
+    const Scalar w49 = w48 * w42;
+    const Scalar w50 = w47 + w49;
+    const Scalar w51 = w41 * w48 - w46 * w42;
+    const Scalar w52 = w41 * w6 - w9 * w42;
+    const Scalar w53 = w9 * w41 + w6 * w42;
+    const Scalar w54 = w52 * w53;
+    const Scalar w55 = qdd(3) + qdd(2);
+    const Scalar w56 = w54 + w55;
+    const Scalar w57 = w41 * w56;
+    const Scalar w58 = w52 * w52;
+    const Scalar w59 = qd(3) + qd(2);
+    const Scalar w60 = w59 * w59;
+    const Scalar w61 = w58 + w60;
+    const Scalar w62 = w57 - w42 * w61;
+    const Scalar w63 = w56 * w42;
+    const Scalar w64 = w41 * w61 + w63;
+    const Scalar w65 = w52 * qd(3) - (w42 * w13 - w41 * w16);
+    const Scalar w66 = w59 * w52;
+    const Scalar w67 = w66 - w65;
+    const Scalar w68 = w59 * w53;
+    const Scalar w69 = w16 * w42 + w41 * w13 + w53 * qd(3);
+    const Scalar w70 = w69 - w68;
+    const Scalar w71 = w70 * w42 - w67 * w41;
+    const Scalar w72 = w67 * w42 + w41 * w70;
+    const Scalar w73 = w53 * w53;
+    const Scalar w74 = w60 + w73;
+    const Scalar w75 = w54 - w55;
+    const Scalar w76 = w41 * w75;
+    const Scalar w77 = w42 * w74 + w76;
+    const Scalar w78 = w42 * w75;
+    const Scalar w79 = w41 * w74 - w78;
+    const Scalar w80 = sin(q(6));
+    const Scalar w81 = w23 + Scalar(0.3) * qdd(5);
+    const Scalar w82 = cos(q(6));
+    const Scalar w83 = Scalar(0.3) * w25 + w38 * Scalar(0.3);
+    const Scalar w84 = Scalar(0.3) * w26 * w29;
+    const Scalar w85 = w80 * w24 + w81 * w82 + w80 * w83 - w84 * w82;
+    const Scalar w86 = w24 * w82 - w80 * w81 + w83 * w82 + w80 * w84;
+    const Scalar w87 = w85 * w82 - w80 * w86;
+    const Scalar w88 = w82 * w86;
+    const Scalar w89 = w80 * w85;
+    const Scalar w90 = w88 + w89;
+    const Scalar w91 = w80 * w26 + w29 * w82;
+    const Scalar w92 = w80 * w29 - w26 * w82;
+    const Scalar w93 = w91 * w92;
+    const Scalar w94 = qdd(6) + qdd(5);
+    const Scalar w95 = w93 - w94;
+    const Scalar w96 = w80 * w95;
+    const Scalar w97 = w92 * w92;
+    const Scalar w98 = qd(5) + qd(6);
+    const Scalar w99 = w98 * w98;
+    const Scalar w100 = w97 + w99;
+    const Scalar w101 = w96 - w100 * w82;
+    const Scalar w102 = w95 * w82;
+    const Scalar w103 = w80 * w100 + w102;
+    const Scalar w104 = w80 * w33 - w82 * w36 + w92 * qd(6);
+    const Scalar w105 = w92 * w98;
+    const Scalar w106 = w104 - w105;
+    const Scalar w107 = w91 * w98;
+    const Scalar w108 = w80 * w36 + w33 * w82 + w91 * qd(6);
+    const Scalar w109 = w108 - w107;
+    const Scalar w110 = w80 * w106 + w82 * w109;
+    const Scalar w111 = w82 * w106 - w80 * w109;
+    const Scalar w112 = w91 * w91;
+    const Scalar w113 = w112 + w99;
+    const Scalar w114 = w93 + w94;
+    const Scalar w115 = w114 * w80;
+    const Scalar w116 = w113 * w82 + w115;
+    const Scalar w117 = w114 * w82;
+    const Scalar w118 = w80 * w113 - w117;
+    const Scalar w119 = cos(q(4));
+    const Scalar w120 = sin(q(4));
+    const Scalar w121 = w59 * w119 + w120 * w53;
+    const Scalar w122 = w121 * w121;
+    const Scalar w123 = w119 * w53 - w59 * w120;
+    const Scalar w124 = w123 * w123;
+    const Scalar w125 = Scalar(0.25) * w122 + Scalar(0.25) * w124 + w46;
+    const Scalar w126 = w119 * w65 - w120 * w55;
+    const Scalar w127 = Scalar(0.25) * qd(1) * qd(1);
+    const Scalar w128 = w16 * Scalar(0.3) + w127 + Scalar(0.3) * w6 * qd(2);
+    const Scalar w129 = w52 * Scalar(0.25) * w121 + w126 * Scalar(0.25) + w119 * w128 - w120 * w48;
+    const Scalar w130 = w119 * w55 + w120 * w65;
+    const Scalar w131 = w52 * Scalar(0.25) * w123 - Scalar(0.25) * w130 - w120 * w128 - w119 * w48;
+    const Scalar w132 = w120 * w129 + w119 * w131;
+    const Scalar w133 = w42 * w125 + w41 * w132;
+    const Scalar w134 = w42 * w132 - w41 * w125;
+    const Scalar w135 = w52 + qd(4);
+    const Scalar w136 = w135 * w135;
+    const Scalar w137 = w136 + w122;
+    const Scalar w138 = w123 * w121;
+    const Scalar w139 = w69 - qdd(4);
+    const Scalar w140 = w138 + w139;
+    const Scalar w141 = w120 * w140;
+    const Scalar w142 = w137 * w119 - w141;
+    const Scalar w143 = w123 * qd(4) + w130;
+    const Scalar w144 = w123 * w135;
+    const Scalar w145 = w143 + w144;
+    const Scalar w146 = w41 * w145 - w142 * w42;
+    const Scalar w147 = w142 * w41 + w42 * w145;
+    const Scalar w148 = w135 * w121;
+    const Scalar w149 = w126 - qd(4) * w121;
+    const Scalar w150 = w148 - w149;
+    const Scalar w151 = w136 + w124;
+    const Scalar w152 = -w139;
+    const Scalar w153 = w138 + w152;
+    const Scalar w154 = w119 * w153;
+    const Scalar w155 = w154 - w120 * w151;
+    const Scalar w156 = w150 * w41 + w155 * w42;
+    const Scalar w157 = w150 * w42 - w41 * w155;
+    const Scalar w158 = w148 + w149;
+    const Scalar w159 = w143 - w144;
+    const Scalar w160 = w120 * w158 - w159 * w119;
+    const Scalar w161 = w124 + w122;
+    const Scalar w162 = w41 * w161 - w42 * w160;
+    const Scalar w163 = w41 * w160 + w161 * w42;
+    const Scalar w164 = cos(q(7));
+    const Scalar w165 = sin(q(7));
+    const Scalar w166 = w98 * w165 - w91 * w164;
+    const Scalar w167 = Scalar(0.3) * w36 - w127 + Scalar(0.3) * qd(5) * w26;
+    const Scalar w168 = w104 * w165 - w164 * w94;
+    const Scalar w169 = Scalar(0.25) * w92 * w166 - w165 * w167 + Scalar(0.25) * w168 - w164 * w85;
+    const Scalar w170 = w164 * w104 + w94 * w165;
+    const Scalar w171 = w91 * w165 + w98 * w164;
+    const Scalar w172 = Scalar(0.25) * w170 - w164 * w167 + w165 * w85 + Scalar(0.25) * w92 * w171;
+    const Scalar w173 = w164 * w169 - w172 * w165;
+    const Scalar w174 = w166 * w166;
+    const Scalar w175 = w171 * w171;
+    const Scalar w176 = Scalar(0.25) * w174 + w175 * Scalar(0.25) + w86;
+    const Scalar w177 = w82 * w173 + w80 * w176;
+    const Scalar w178 = w176 * w82 - w80 * w173;
+    const Scalar w179 = w108 - qdd(7);
+    const Scalar w180 = w166 * w171;
+    const Scalar w181 = -w180;
+    const Scalar w182 = w179 + w181;
+    const Scalar w183 = w182 * w165;
+    const Scalar w184 = w92 - qd(7);
+    const Scalar w185 = w184 * w184;
+    const Scalar w186 = w175 + w185;
+    const Scalar w187 = w183 - w164 * w186;
+    const Scalar w188 = w184 * w166;
+    const Scalar w189 = w166 * qd(7) + w168;
+    const Scalar w190 = w188 - w189;
+    const Scalar w191 = w187 * w82 - w80 * w190;
+    const Scalar w192 = w80 * w187 + w190 * w82;
+    const Scalar w193 = qd(7) * w171 + w170;
+    const Scalar w194 = w184 * w171;
+    const Scalar w195 = w193 - w194;
+    const Scalar w196 = w174 + w185;
+    const Scalar w197 = w179 + w180;
+    const Scalar w198 = w164 * w197;
+    const Scalar w199 = w165 * w196 + w198;
+    const Scalar w200 = w195 * w82 - w80 * w199;
+    const Scalar w201 = w80 * w195 + w199 * w82;
+    const Scalar w202 = w188 + w189;
+    const Scalar w203 = w193 + w194;
+    const Scalar w204 = w164 * w202 - w203 * w165;
+    const Scalar w205 = w175 + w174;
+    const Scalar w206 = w205 * w82 - w80 * w204;
+    const Scalar w207 = w204 * w82 + w80 * w205;
+    const Scalar w208 = -(w1 * w4);
+    const Scalar w209 = w3 * w2;
+    const Scalar w210 = w1 * w11;
+    const Scalar w211 = w18 * w2;
+    const Scalar w212 = w12 * w2;
+    const Scalar w213 = w15 * w1;
+    const Scalar w214 = -w7;
+    const Scalar w215 = -(w21 * w24);
+    const Scalar w216 = w23 * w22;
+    const Scalar w217 = w31 * w21;
+    const Scalar w218 = w40 * w22;
+    const Scalar w219 = w32 * w22;
+    const Scalar w220 = w35 * w21;
+    const Scalar w221 = -w27;
+    const Scalar w222 = w51 * w2;
+    const Scalar w223 = w41 * w128;
+    const Scalar w224 = w128 * w42;
+    const Scalar w225 = w69 + w68;
+    const Scalar w226 = w66 + w65;
+    const Scalar w227 = w68 * w42;
+    const Scalar w228 = w41 * w68;
+    const Scalar w229 = -w73;
+    const Scalar w230 = w60 + w229;
+    const Scalar w231 = w41 * w66;
+    const Scalar w232 = w66 * w42;
+    const Scalar w233 = w58 - w60;
+    const Scalar w234 = w87 * w22;
+    const Scalar w235 = w167 * w82;
+    const Scalar w236 = w80 * w167;
+    const Scalar w237 = w108 + w107;
+    const Scalar w238 = w104 + w105;
+    const Scalar w239 = w80 * w107;
+    const Scalar w240 = w82 * w107;
+    const Scalar w241 = -w99;
+    const Scalar w242 = w112 + w241;
+    const Scalar w243 = w82 * w105;
+    const Scalar w244 = w80 * w105;
+    const Scalar w245 = w97 + w241;
+    const Scalar w246 = w120 * Scalar(0.25) * w131 - Scalar(0.25) * w119 * w129;
+    const Scalar w247 = -w125;
+    const Scalar w248 = w247 + w137 * Scalar(0.25);
+    const Scalar w249 = Scalar(0.25) * w119 * w140 + w120 * w248;
+    const Scalar w250 = w119 * w140;
+    const Scalar w251 = Scalar(0.25) * w151 + w247;
+    const Scalar w252 = w119 * w251 + w120 * Scalar(0.25) * w153;
+    const Scalar w253 = w120 * w153;
+    const Scalar w254 = Scalar(0.25) * w158 + w129;
+    const Scalar w255 = -w131;
+    const Scalar w256 = w255 + w159 * Scalar(0.25);
+    const Scalar w257 = w119 * w254 + w120 * w256;
+    const Scalar w258 = w138 * w42;
+    const Scalar w259 = w120 * w144;
+    const Scalar w260 = w259 - w149 * w119;
+    const Scalar w261 = w41 * w138;
+    const Scalar w262 = w120 * w150 - w119 * w145;
+    const Scalar w263 = -w122;
+    const Scalar w264 = w263 + w124;
+    const Scalar w265 = w148 * w119;
+    const Scalar w266 = w143 * w120 + w265;
+    const Scalar w267 = w136 - w124;
+    const Scalar w268 = w250 + w120 * w267;
+    const Scalar w269 = w263 + w136;
+    const Scalar w270 = w269 * w119 + w253;
+    const Scalar w271 = w259 - w265;
+    const Scalar w272 = Scalar(0.25) * w165 * w169 + Scalar(0.25) * w164 * w172;
+    const Scalar w273 = w176 - Scalar(0.25) * w186;
+    const Scalar w274 = w165 * w273 - w182 * Scalar(0.25) * w164;
+    const Scalar w275 = w182 * w164;
+    const Scalar w276 = Scalar(0.25) * w196 - w176;
+    const Scalar w277 = w164 * w276 - Scalar(0.25) * w165 * w197;
+    const Scalar w278 = w165 * w197;
+    const Scalar w279 = Scalar(0.25) * w202 + w169;
+    const Scalar w280 = Scalar(0.25) * w203 + w172;
+    const Scalar w281 = w279 * w165 + w164 * w280;
+    const Scalar w282 = w188 * w165;
+    const Scalar w283 = w193 * w164 + w282;
+    const Scalar w284 = w80 * w180;
+    const Scalar w285 = w180 * w82;
+    const Scalar w286 = w195 * w165 - w164 * w190;
+    const Scalar w287 = w175 - w174;
+    const Scalar w288 = w164 * w194;
+    const Scalar w289 = w165 * w189 + w288;
+    const Scalar w290 = -w185;
+    const Scalar w291 = w174 + w290;
+    const Scalar w292 = w165 * w291 - w275;
+    const Scalar w293 = w175 + w290;
+    const Scalar w294 = w164 * w293 + w278;
+    const Scalar w295 = w288 + w282;
+    const Scalar w296 = -w54;
+    const Scalar w297 = w58 + w229;
+    const Scalar w298 = -w70;
+    const Scalar w299 = Scalar(0.25) * w119 * w131 + w120 * Scalar(0.25) * w129;
+    const Scalar w300 = w119 * w248 - w120 * Scalar(0.25) * w140;
+    const Scalar w301 = Scalar(0.25) * w119 * w153 - w120 * w251;
+    const Scalar w302 = w120 * w254 - w119 * w256;
+    const Scalar w303 = w119 * w144;
+    const Scalar w304 = -(w303 + w120 * w149);
+    const Scalar w305 = w120 * w145 + w150 * w119;
+    const Scalar w306 = w148 * w120;
+    const Scalar w307 = -(w306 - w143 * w119);
+    const Scalar w308 = -(w141 - w119 * w267);
+    const Scalar w309 = w154 - w269 * w120;
+    const Scalar w310 = w306 + w303;
+    const Scalar w311 = -w85;
+    const Scalar w312 = w97 - w112;
+    const Scalar w313 = -w109;
+    const Scalar w314 = -w93;
+    const Scalar w315 = Scalar(0.25) * w164 * w169 - Scalar(0.25) * w172 * w165;
+    const Scalar w316 = w164 * w273 + w182 * Scalar(0.25) * w165;
+    const Scalar w317 = w165 * w276 + Scalar(0.25) * w164 * w197;
+    const Scalar w318 = w279 * w164 - w165 * w280;
+    const Scalar w319 = w188 * w164;
+    const Scalar w320 = -(w319 - w193 * w165);
+    const Scalar w321 = w165 * w190 + w195 * w164;
+    const Scalar w322 = w165 * w194;
+    const Scalar w323 = w322 - w164 * w189;
+    const Scalar w324 = -(w164 * w291 + w183);
+    const Scalar w325 = -(w198 - w293 * w165);
+    const Scalar w326 = -(w322 - w319);
+    Y(0, 0) = w0;
+    Y(0, 10) = w0;
+    Y(0, 20) = w3 * w1 + w4 * w2;
+    Y(0, 21) = w1 * w8 - w11 * w2;
+    Y(0, 22) = w14 * w1 - w17 * w2;
+    Y(0, 23) = -(w20 * w2 - w18 * w1);
+    Y(0, 30) = w23 * w21 + w24 * w22;
+    Y(0, 31) = w28 * w21 - w31 * w22;
+    Y(0, 32) = w34 * w21 + w22 * w37;
+    Y(0, 33) = -(w39 * w22 - w21 * w40);
+    Y(0, 40) = w50 * w2 + w1 * w51;
+    Y(0, 41) = w64 * w1 - w62 * w2;
+    Y(0, 42) = -(w71 * w2 + w72 * w1);
+    Y(0, 43) = w77 * w1 - w79 * w2;
+    Y(0, 50) = w87 * w21 + w90 * w22;
+    Y(0, 51) = -(w21 * w101 - w103 * w22);
+    Y(0, 52) = -(w21 * w110 - w111 * w22);
+    Y(0, 53) = -(w22 * w116 - w21 * w118);
+    Y(0, 60) = -(w1 * w133 + w134 * w2);
+    Y(0, 61) = -(w146 * w2 - w147 * w1);
+    Y(0, 62) = -(w157 * w1 - w2 * w156);
+    Y(0, 63) = w1 * w163 - w162 * w2;
+    Y(0, 70) = -(w21 * w177 - w178 * w22);
+    Y(0, 71) = -(w21 * w191 + w192 * w22);
+    Y(0, 72) = -(w201 * w21 - w200 * w22);
+    Y(0, 73) = w21 * w207 - w206 * w22;
+    Y(1, 19) = qdd(1);
+    Y(1, 20) = Scalar(0.25) * (w208 + w209);
+    Y(1, 21) = -(w127 * w2 - Scalar(0.25) * (w8 * w2 + w210));
+    Y(1, 22) = w208 + Scalar(0.25) * (w14 * w2 + w1 * w17) + w209;
+    Y(1, 23) = -(w1 * w127 - Scalar(0.25) * (w1 * w20 + w211));
+    Y(1, 24) = w212 + w16 * w1;
+    Y(1, 25) = -(w210 - (w19 - w5) * w2);
+    Y(1, 26) = w213 - w212;
+    Y(1, 27) = -((w16 + w15) * w2 - (w12 + w13) * w1);
+    Y(1, 28) = -(w211 + (w214 + w5) * w1);
+    Y(1, 29) = -(w213 + w13 * w2);
+    Y(1, 30) = -((w215 + w216) * Scalar(0.25));
+    Y(1, 31) = -(Scalar(0.25) * (w217 + w28 * w22) - w127 * w22);
+    Y(1, 32) = w215 + w216 + Scalar(0.25) * (w21 * w37 - w34 * w22);
+    Y(1, 33) = w21 * w127 - Scalar(0.25) * (w218 + w21 * w39);
+    Y(1, 34) = w21 * w36 + w219;
+    Y(1, 35) = -(w217 - (w38 - w25) * w22);
+    Y(1, 36) = w220 - w219;
+    Y(1, 37) = -((w35 + w36) * w22 - w21 * (w32 + w33));
+    Y(1, 38) = -((w221 + w25) * w21 + w218);
+    Y(1, 39) = -(w33 * w22 + w220);
+    Y(1, 40) = Scalar(0.3) * w1 * w128 + Scalar(0.25) * (w222 - w50 * w1);
+    Y(1, 41) = w1 * (w224 + Scalar(0.3) * w225) - w223 * w2 + Scalar(0.25) * (w62 * w1 + w64 * w2);
+    Y(1, 42) = Scalar(0.25) * (w1 * w71 - w72 * w2) + w222 - (w47 + w49 - Scalar(0.3) * (w58 + w73)) * w1;
+    Y(1, 43) = -(w1 * (w223 + Scalar(0.3) * w226) + w224 * w2 - Scalar(0.25) * (w79 * w1 + w77 * w2));
+    Y(1, 44) = w1 * (w41 * w65 - w227) + (w228 + w65 * w42) * w2;
+    Y(1, 45) = -((w63 + w41 * w230) * w2 - (w42 * w230 - w57) * w1);
+    Y(1, 46) = -((w228 - w232) * w2 - (w231 + w227) * w1);
+    Y(1, 47) = -((w41 * w226 - w42 * w225) * w2 - w1 * (w41 * w225 + w226 * w42));
+    Y(1, 48) = w1 * (w78 + w41 * w233) + (w42 * w233 - w76) * w2;
+    Y(1, 49) = -((w231 - w69 * w42) * w1 + (w69 * w41 + w232) * w2);
+    Y(1, 50) = Scalar(0.25) * (w90 * w21 - w234) + Scalar(0.3) * w21 * w167;
+    Y(1, 51) = -(w235 * w22 - Scalar(0.25) * (w101 * w22 + w21 * w103) - (w236 + Scalar(0.3) * w237) * w21);
+    Y(1, 52) = Scalar(0.25) * (w110 * w22 + w111 * w21) + w21 * (Scalar(0.3) * (w97 + w112) - w88 - w89) + w234;
+    Y(1, 53) = -(w236 * w22 + w21 * (w235 - Scalar(0.3) * w238) + Scalar(0.25) * (w21 * w116 + w118 * w22));
+    Y(1, 54) = (w240 - w80 * w104) * w22 - (w239 + w104 * w82) * w21;
+    Y(1, 55) = w21 * (w102 - w80 * w242) + (w96 + w242 * w82) * w22;
+    Y(1, 56) = -(w21 * (w243 - w239) + w22 * (w244 + w240));
+    Y(1, 57) = w21 * (w82 * w237 - w80 * w238) + w22 * (w82 * w238 + w80 * w237);
+    Y(1, 58) = w22 * (w80 * w245 + w117) - (w115 - w82 * w245) * w21;
+    Y(1, 59) = (w243 + w80 * w108) * w21 + (w244 - w108 * w82) * w22;
+    Y(1, 60) = Scalar(0.25) * (w1 * w134 - w133 * w2) - w246 * w42 * w2 - w1 * (Scalar(0.3) * (w120 * w131 - w119 * w129) + w41 * w246);
+    Y(1, 61) = Scalar(0.25) * (w146 * w1 + w147 * w2) - (w41 * w129 - w42 * w249) * w2 + ((w250 + w120 * w137) * Scalar(0.3) + w42 * w129 + w41 * w249) * w1;
+    Y(1, 62) = -(Scalar(0.25) * (w1 * w156 + w157 * w2) + (w41 * w131 - w252 * w42) * w2 - (w131 * w42 + Scalar(0.3) * (w119 * w151 + w253) + w41 * w252) * w1);
+    Y(1, 63) = Scalar(0.25) * (w163 * w2 + w1 * w162) - (w41 * w257 + Scalar(0.3) * (w119 * w158 + w120 * w159)) * w1 - w257 * w42 * w2;
+    Y(1, 64) = (w261 - w42 * w260) * w2 - w1 * (w258 + w41 * w260);
+    Y(1, 65) = -((w264 * w42 - w41 * w262) * w1 - (w41 * w264 + w262 * w42) * w2);
+    Y(1, 66) = w1 * (w41 * w266 + w258) - (w261 - w42 * w266) * w2;
+    Y(1, 67) = (w42 * w268 - w41 * w158) * w2 + w1 * (w41 * w268 + w158 * w42);
+    Y(1, 68) = (w41 * w270 - w159 * w42) * w1 + (w42 * w270 + w41 * w159) * w2;
+    Y(1, 69) = (w139 * w42 + w41 * w271) * w1 - (w41 * w139 - w42 * w271) * w2;
+    Y(1, 70) = -(w21 * (w272 * w82 + Scalar(0.3) * (w164 * w172 + w165 * w169)) - (w178 * w21 + w177 * w22) * Scalar(0.25) + w22 * w80 * w272);
+    Y(1, 71) = -(Scalar(0.25) * (w192 * w21 - w22 * w191) - (w172 * w82 - w80 * w274) * w22 + w21 * (w274 * w82 - Scalar(0.3) * (w275 + w165 * w186) + w80 * w172));
+    Y(1, 72) = -((w82 * w169 - w80 * w277) * w22 - Scalar(0.25) * (w201 * w22 + w200 * w21) - w21 * (Scalar(0.3) * (w164 * w196 - w278) + w277 * w82 + w80 * w169));
+    Y(1, 73) = w80 * w281 * w22 - Scalar(0.25) * (w207 * w22 + w206 * w21) + ((w164 * w203 + w202 * w165) * Scalar(0.3) + w281 * w82) * w21;
+    Y(1, 74) = -(w21 * (w283 * w82 - w284) + w22 * (w80 * w283 + w285));
+    Y(1, 75) = (w286 * w82 + w287 * w80) * w21 + (w80 * w286 - w287 * w82) * w22;
+    Y(1, 76) = -((w80 * w289 - w285) * w22 + (w289 * w82 + w284) * w21);
+    Y(1, 77) = -((w80 * w292 - w203 * w82) * w22 + (w292 * w82 + w80 * w203) * w21);
+    Y(1, 78) = -((w294 * w82 - w80 * w202) * w21 + (w80 * w294 + w202 * w82) * w22);
+    Y(1, 79) = (w80 * w295 - w179 * w82) * w22 + w21 * (w295 * w82 + w179 * w80);
+    Y(2, 21) = -w4;
+    Y(2, 23) = -w3;
+    Y(2, 24) = -w10;
+    Y(2, 25) = -w17;
+    Y(2, 26) = qdd(2);
+    Y(2, 27) = -(w214 + w19);
+    Y(2, 28) = w14;
+    Y(2, 29) = w10;
+    Y(2, 40) = Scalar(0.3) * w51;
+    Y(2, 41) = -(w46 - w64 * Scalar(0.3));
+    Y(2, 42) = -(w72 * Scalar(0.3));
+    Y(2, 43) = -(w48 - w77 * Scalar(0.3));
+    Y(2, 44) = w296;
+    Y(2, 45) = w67;
+    Y(2, 46) = w55;
+    Y(2, 47) = w297;
+    Y(2, 48) = w298;
+    Y(2, 49) = w54;
+    Y(2, 60) = -(Scalar(0.3) * w133 + w299);
+    Y(2, 61) = Scalar(0.3) * w147 + w300;
+    Y(2, 62) = -(w157 * Scalar(0.3) - w301);
+    Y(2, 63) = w302 + Scalar(0.3) * w163;
+    Y(2, 64) = w304;
+    Y(2, 65) = w305;
+    Y(2, 66) = w307;
+    Y(2, 67) = w308;
+    Y(2, 68) = w309;
+    Y(2, 69) = w310;
+    Y(3, 41) = -w46;
+    Y(3, 43) = -w48;
+    Y(3, 44) = w296;
+    Y(3, 45) = w67;
+    Y(3, 46) = w55;
+    Y(3, 47) = w297;
+    Y(3, 48) = w298;
+    Y(3, 49) = w54;
+    Y(3, 60) = -w299;
+    Y(3, 61) = w300;
+    Y(3, 62) = w301;
+    Y(3, 63) = w302;
+    Y(3, 64) = w304;
+    Y(3, 65) = w305;
+    Y(3, 66) = w307;
+    Y(3, 67) = w308;
+    Y(3, 68) = w309;
+    Y(3, 69) = w310;
+    Y(4, 61) = -w129;
+    Y(4, 62) = w255;
+    Y(4, 64) = w138;
+    Y(4, 65) = w264;
+    Y(4, 66) = -w138;
+    Y(4, 67) = -w158;
+    Y(4, 68) = w159;
+    Y(4, 69) = w152;
+    Y(5, 31) = -w24;
+    Y(5, 33) = -w23;
+    Y(5, 34) = -w30;
+    Y(5, 35) = w37;
+    Y(5, 36) = qdd(5);
+    Y(5, 37) = -(w38 + w221);
+    Y(5, 38) = w34;
+    Y(5, 39) = w30;
+    Y(5, 50) = w87 * Scalar(0.3);
+    Y(5, 51) = -(Scalar(0.3) * w101 + w86);
+    Y(5, 52) = -(Scalar(0.3) * w110);
+    Y(5, 53) = Scalar(0.3) * w118 + w311;
+    Y(5, 54) = w93;
+    Y(5, 55) = w106;
+    Y(5, 56) = w94;
+    Y(5, 57) = w312;
+    Y(5, 58) = w313;
+    Y(5, 59) = w314;
+    Y(5, 70) = -(Scalar(0.3) * w177 + w315);
+    Y(5, 71) = -(Scalar(0.3) * w191 + w316);
+    Y(5, 72) = -(w317 + Scalar(0.3) * w201);
+    Y(5, 73) = w318 + Scalar(0.3) * w207;
+    Y(5, 74) = w320;
+    Y(5, 75) = w321;
+    Y(5, 76) = w323;
+    Y(5, 77) = w324;
+    Y(5, 78) = w325;
+    Y(5, 79) = w326;
+    Y(6, 51) = -w86;
+    Y(6, 53) = w311;
+    Y(6, 54) = w93;
+    Y(6, 55) = w106;
+    Y(6, 56) = w94;
+    Y(6, 57) = w312;
+    Y(6, 58) = w313;
+    Y(6, 59) = w314;
+    Y(6, 70) = -w315;
+    Y(6, 71) = -w316;
+    Y(6, 72) = -w317;
+    Y(6, 73) = w318;
+    Y(6, 74) = w320;
+    Y(6, 75) = w321;
+    Y(6, 76) = w323;
+    Y(6, 77) = w324;
+    Y(6, 78) = w325;
+    Y(6, 79) = w326;
+    Y(7, 71) = w172;
+    Y(7, 72) = -w169;
+    Y(7, 74) = w181;
+    Y(7, 75) = -w287;
+    Y(7, 76) = w180;
+    Y(7, 77) = w203;
+    Y(7, 78) = -w202;
+    Y(7, 79) = -w179;
+    Y(0, 1) = Scalar(0);
+    Y(0, 2) = Scalar(0);
+    Y(0, 3) = Scalar(0);
+    Y(0, 4) = Scalar(0);
+    Y(0, 5) = Scalar(0);
+    Y(0, 6) = Scalar(0);
+    Y(0, 7) = Scalar(0);
+    Y(0, 8) = Scalar(0);
+    Y(0, 9) = Scalar(0);
+    Y(0, 11) = Scalar(0);
+    Y(0, 12) = Scalar(0);
+    Y(0, 13) = Scalar(0);
+    Y(0, 14) = Scalar(0);
+    Y(0, 15) = Scalar(0);
+    Y(0, 16) = Scalar(0);
+    Y(0, 17) = Scalar(0);
+    Y(0, 18) = Scalar(0);
+    Y(0, 19) = Scalar(0);
+    Y(0, 24) = Scalar(0);
+    Y(0, 25) = Scalar(0);
+    Y(0, 26) = Scalar(0);
+    Y(0, 27) = Scalar(0);
+    Y(0, 28) = Scalar(0);
+    Y(0, 29) = Scalar(0);
+    Y(0, 34) = Scalar(0);
+    Y(0, 35) = Scalar(0);
+    Y(0, 36) = Scalar(0);
+    Y(0, 37) = Scalar(0);
+    Y(0, 38) = Scalar(0);
+    Y(0, 39) = Scalar(0);
+    Y(0, 44) = Scalar(0);
+    Y(0, 45) = Scalar(0);
+    Y(0, 46) = Scalar(0);
+    Y(0, 47) = Scalar(0);
+    Y(0, 48) = Scalar(0);
+    Y(0, 49) = Scalar(0);
+    Y(0, 54) = Scalar(0);
+    Y(0, 55) = Scalar(0);
+    Y(0, 56) = Scalar(0);
+    Y(0, 57) = Scalar(0);
+    Y(0, 58) = Scalar(0);
+    Y(0, 59) = Scalar(0);
+    Y(0, 64) = Scalar(0);
+    Y(0, 65) = Scalar(0);
+    Y(0, 66) = Scalar(0);
+    Y(0, 67) = Scalar(0);
+    Y(0, 68) = Scalar(0);
+    Y(0, 69) = Scalar(0);
+    Y(0, 74) = Scalar(0);
+    Y(0, 75) = Scalar(0);
+    Y(0, 76) = Scalar(0);
+    Y(0, 77) = Scalar(0);
+    Y(0, 78) = Scalar(0);
+    Y(0, 79) = Scalar(0);
+    Y(1, 0) = Scalar(0);
+    Y(1, 1) = Scalar(0);
+    Y(1, 2) = Scalar(0);
+    Y(1, 3) = Scalar(0);
+    Y(1, 4) = Scalar(0);
+    Y(1, 5) = Scalar(0);
+    Y(1, 6) = Scalar(0);
+    Y(1, 7) = Scalar(0);
+    Y(1, 8) = Scalar(0);
+    Y(1, 9) = Scalar(0);
+    Y(1, 10) = Scalar(0);
+    Y(1, 11) = Scalar(0);
+    Y(1, 12) = Scalar(0);
+    Y(1, 13) = Scalar(0);
+    Y(1, 14) = Scalar(0);
+    Y(1, 15) = Scalar(0);
+    Y(1, 16) = Scalar(0);
+    Y(1, 17) = Scalar(0);
+    Y(1, 18) = Scalar(0);
+    Y(2, 0) = Scalar(0);
+    Y(2, 1) = Scalar(0);
+    Y(2, 2) = Scalar(0);
+    Y(2, 3) = Scalar(0);
+    Y(2, 4) = Scalar(0);
+    Y(2, 5) = Scalar(0);
+    Y(2, 6) = Scalar(0);
+    Y(2, 7) = Scalar(0);
+    Y(2, 8) = Scalar(0);
+    Y(2, 9) = Scalar(0);
+    Y(2, 10) = Scalar(0);
+    Y(2, 11) = Scalar(0);
+    Y(2, 12) = Scalar(0);
+    Y(2, 13) = Scalar(0);
+    Y(2, 14) = Scalar(0);
+    Y(2, 15) = Scalar(0);
+    Y(2, 16) = Scalar(0);
+    Y(2, 17) = Scalar(0);
+    Y(2, 18) = Scalar(0);
+    Y(2, 19) = Scalar(0);
+    Y(2, 20) = Scalar(0);
+    Y(2, 22) = Scalar(0);
+    Y(2, 30) = Scalar(0);
+    Y(2, 31) = Scalar(0);
+    Y(2, 32) = Scalar(0);
+    Y(2, 33) = Scalar(0);
+    Y(2, 34) = Scalar(0);
+    Y(2, 35) = Scalar(0);
+    Y(2, 36) = Scalar(0);
+    Y(2, 37) = Scalar(0);
+    Y(2, 38) = Scalar(0);
+    Y(2, 39) = Scalar(0);
+    Y(2, 50) = Scalar(0);
+    Y(2, 51) = Scalar(0);
+    Y(2, 52) = Scalar(0);
+    Y(2, 53) = Scalar(0);
+    Y(2, 54) = Scalar(0);
+    Y(2, 55) = Scalar(0);
+    Y(2, 56) = Scalar(0);
+    Y(2, 57) = Scalar(0);
+    Y(2, 58) = Scalar(0);
+    Y(2, 59) = Scalar(0);
+    Y(2, 70) = Scalar(0);
+    Y(2, 71) = Scalar(0);
+    Y(2, 72) = Scalar(0);
+    Y(2, 73) = Scalar(0);
+    Y(2, 74) = Scalar(0);
+    Y(2, 75) = Scalar(0);
+    Y(2, 76) = Scalar(0);
+    Y(2, 77) = Scalar(0);
+    Y(2, 78) = Scalar(0);
+    Y(2, 79) = Scalar(0);
+    Y(3, 0) = Scalar(0);
+    Y(3, 1) = Scalar(0);
+    Y(3, 2) = Scalar(0);
+    Y(3, 3) = Scalar(0);
+    Y(3, 4) = Scalar(0);
+    Y(3, 5) = Scalar(0);
+    Y(3, 6) = Scalar(0);
+    Y(3, 7) = Scalar(0);
+    Y(3, 8) = Scalar(0);
+    Y(3, 9) = Scalar(0);
+    Y(3, 10) = Scalar(0);
+    Y(3, 11) = Scalar(0);
+    Y(3, 12) = Scalar(0);
+    Y(3, 13) = Scalar(0);
+    Y(3, 14) = Scalar(0);
+    Y(3, 15) = Scalar(0);
+    Y(3, 16) = Scalar(0);
+    Y(3, 17) = Scalar(0);
+    Y(3, 18) = Scalar(0);
+    Y(3, 19) = Scalar(0);
+    Y(3, 20) = Scalar(0);
+    Y(3, 21) = Scalar(0);
+    Y(3, 22) = Scalar(0);
+    Y(3, 23) = Scalar(0);
+    Y(3, 24) = Scalar(0);
+    Y(3, 25) = Scalar(0);
+    Y(3, 26) = Scalar(0);
+    Y(3, 27) = Scalar(0);
+    Y(3, 28) = Scalar(0);
+    Y(3, 29) = Scalar(0);
+    Y(3, 30) = Scalar(0);
+    Y(3, 31) = Scalar(0);
+    Y(3, 32) = Scalar(0);
+    Y(3, 33) = Scalar(0);
+    Y(3, 34) = Scalar(0);
+    Y(3, 35) = Scalar(0);
+    Y(3, 36) = Scalar(0);
+    Y(3, 37) = Scalar(0);
+    Y(3, 38) = Scalar(0);
+    Y(3, 39) = Scalar(0);
+    Y(3, 40) = Scalar(0);
+    Y(3, 42) = Scalar(0);
+    Y(3, 50) = Scalar(0);
+    Y(3, 51) = Scalar(0);
+    Y(3, 52) = Scalar(0);
+    Y(3, 53) = Scalar(0);
+    Y(3, 54) = Scalar(0);
+    Y(3, 55) = Scalar(0);
+    Y(3, 56) = Scalar(0);
+    Y(3, 57) = Scalar(0);
+    Y(3, 58) = Scalar(0);
+    Y(3, 59) = Scalar(0);
+    Y(3, 70) = Scalar(0);
+    Y(3, 71) = Scalar(0);
+    Y(3, 72) = Scalar(0);
+    Y(3, 73) = Scalar(0);
+    Y(3, 74) = Scalar(0);
+    Y(3, 75) = Scalar(0);
+    Y(3, 76) = Scalar(0);
+    Y(3, 77) = Scalar(0);
+    Y(3, 78) = Scalar(0);
+    Y(3, 79) = Scalar(0);
+    Y(4, 0) = Scalar(0);
+    Y(4, 1) = Scalar(0);
+    Y(4, 2) = Scalar(0);
+    Y(4, 3) = Scalar(0);
+    Y(4, 4) = Scalar(0);
+    Y(4, 5) = Scalar(0);
+    Y(4, 6) = Scalar(0);
+    Y(4, 7) = Scalar(0);
+    Y(4, 8) = Scalar(0);
+    Y(4, 9) = Scalar(0);
+    Y(4, 10) = Scalar(0);
+    Y(4, 11) = Scalar(0);
+    Y(4, 12) = Scalar(0);
+    Y(4, 13) = Scalar(0);
+    Y(4, 14) = Scalar(0);
+    Y(4, 15) = Scalar(0);
+    Y(4, 16) = Scalar(0);
+    Y(4, 17) = Scalar(0);
+    Y(4, 18) = Scalar(0);
+    Y(4, 19) = Scalar(0);
+    Y(4, 20) = Scalar(0);
+    Y(4, 21) = Scalar(0);
+    Y(4, 22) = Scalar(0);
+    Y(4, 23) = Scalar(0);
+    Y(4, 24) = Scalar(0);
+    Y(4, 25) = Scalar(0);
+    Y(4, 26) = Scalar(0);
+    Y(4, 27) = Scalar(0);
+    Y(4, 28) = Scalar(0);
+    Y(4, 29) = Scalar(0);
+    Y(4, 30) = Scalar(0);
+    Y(4, 31) = Scalar(0);
+    Y(4, 32) = Scalar(0);
+    Y(4, 33) = Scalar(0);
+    Y(4, 34) = Scalar(0);
+    Y(4, 35) = Scalar(0);
+    Y(4, 36) = Scalar(0);
+    Y(4, 37) = Scalar(0);
+    Y(4, 38) = Scalar(0);
+    Y(4, 39) = Scalar(0);
+    Y(4, 40) = Scalar(0);
+    Y(4, 41) = Scalar(0);
+    Y(4, 42) = Scalar(0);
+    Y(4, 43) = Scalar(0);
+    Y(4, 44) = Scalar(0);
+    Y(4, 45) = Scalar(0);
+    Y(4, 46) = Scalar(0);
+    Y(4, 47) = Scalar(0);
+    Y(4, 48) = Scalar(0);
+    Y(4, 49) = Scalar(0);
+    Y(4, 50) = Scalar(0);
+    Y(4, 51) = Scalar(0);
+    Y(4, 52) = Scalar(0);
+    Y(4, 53) = Scalar(0);
+    Y(4, 54) = Scalar(0);
+    Y(4, 55) = Scalar(0);
+    Y(4, 56) = Scalar(0);
+    Y(4, 57) = Scalar(0);
+    Y(4, 58) = Scalar(0);
+    Y(4, 59) = Scalar(0);
+    Y(4, 60) = Scalar(0);
+    Y(4, 63) = Scalar(0);
+    Y(4, 70) = Scalar(0);
+    Y(4, 71) = Scalar(0);
+    Y(4, 72) = Scalar(0);
+    Y(4, 73) = Scalar(0);
+    Y(4, 74) = Scalar(0);
+    Y(4, 75) = Scalar(0);
+    Y(4, 76) = Scalar(0);
+    Y(4, 77) = Scalar(0);
+    Y(4, 78) = Scalar(0);
+    Y(4, 79) = Scalar(0);
+    Y(5, 0) = Scalar(0);
+    Y(5, 1) = Scalar(0);
+    Y(5, 2) = Scalar(0);
+    Y(5, 3) = Scalar(0);
+    Y(5, 4) = Scalar(0);
+    Y(5, 5) = Scalar(0);
+    Y(5, 6) = Scalar(0);
+    Y(5, 7) = Scalar(0);
+    Y(5, 8) = Scalar(0);
+    Y(5, 9) = Scalar(0);
+    Y(5, 10) = Scalar(0);
+    Y(5, 11) = Scalar(0);
+    Y(5, 12) = Scalar(0);
+    Y(5, 13) = Scalar(0);
+    Y(5, 14) = Scalar(0);
+    Y(5, 15) = Scalar(0);
+    Y(5, 16) = Scalar(0);
+    Y(5, 17) = Scalar(0);
+    Y(5, 18) = Scalar(0);
+    Y(5, 19) = Scalar(0);
+    Y(5, 20) = Scalar(0);
+    Y(5, 21) = Scalar(0);
+    Y(5, 22) = Scalar(0);
+    Y(5, 23) = Scalar(0);
+    Y(5, 24) = Scalar(0);
+    Y(5, 25) = Scalar(0);
+    Y(5, 26) = Scalar(0);
+    Y(5, 27) = Scalar(0);
+    Y(5, 28) = Scalar(0);
+    Y(5, 29) = Scalar(0);
+    Y(5, 30) = Scalar(0);
+    Y(5, 32) = Scalar(0);
+    Y(5, 40) = Scalar(0);
+    Y(5, 41) = Scalar(0);
+    Y(5, 42) = Scalar(0);
+    Y(5, 43) = Scalar(0);
+    Y(5, 44) = Scalar(0);
+    Y(5, 45) = Scalar(0);
+    Y(5, 46) = Scalar(0);
+    Y(5, 47) = Scalar(0);
+    Y(5, 48) = Scalar(0);
+    Y(5, 49) = Scalar(0);
+    Y(5, 60) = Scalar(0);
+    Y(5, 61) = Scalar(0);
+    Y(5, 62) = Scalar(0);
+    Y(5, 63) = Scalar(0);
+    Y(5, 64) = Scalar(0);
+    Y(5, 65) = Scalar(0);
+    Y(5, 66) = Scalar(0);
+    Y(5, 67) = Scalar(0);
+    Y(5, 68) = Scalar(0);
+    Y(5, 69) = Scalar(0);
+    Y(6, 0) = Scalar(0);
+    Y(6, 1) = Scalar(0);
+    Y(6, 2) = Scalar(0);
+    Y(6, 3) = Scalar(0);
+    Y(6, 4) = Scalar(0);
+    Y(6, 5) = Scalar(0);
+    Y(6, 6) = Scalar(0);
+    Y(6, 7) = Scalar(0);
+    Y(6, 8) = Scalar(0);
+    Y(6, 9) = Scalar(0);
+    Y(6, 10) = Scalar(0);
+    Y(6, 11) = Scalar(0);
+    Y(6, 12) = Scalar(0);
+    Y(6, 13) = Scalar(0);
+    Y(6, 14) = Scalar(0);
+    Y(6, 15) = Scalar(0);
+    Y(6, 16) = Scalar(0);
+    Y(6, 17) = Scalar(0);
+    Y(6, 18) = Scalar(0);
+    Y(6, 19) = Scalar(0);
+    Y(6, 20) = Scalar(0);
+    Y(6, 21) = Scalar(0);
+    Y(6, 22) = Scalar(0);
+    Y(6, 23) = Scalar(0);
+    Y(6, 24) = Scalar(0);
+    Y(6, 25) = Scalar(0);
+    Y(6, 26) = Scalar(0);
+    Y(6, 27) = Scalar(0);
+    Y(6, 28) = Scalar(0);
+    Y(6, 29) = Scalar(0);
+    Y(6, 30) = Scalar(0);
+    Y(6, 31) = Scalar(0);
+    Y(6, 32) = Scalar(0);
+    Y(6, 33) = Scalar(0);
+    Y(6, 34) = Scalar(0);
+    Y(6, 35) = Scalar(0);
+    Y(6, 36) = Scalar(0);
+    Y(6, 37) = Scalar(0);
+    Y(6, 38) = Scalar(0);
+    Y(6, 39) = Scalar(0);
+    Y(6, 40) = Scalar(0);
+    Y(6, 41) = Scalar(0);
+    Y(6, 42) = Scalar(0);
+    Y(6, 43) = Scalar(0);
+    Y(6, 44) = Scalar(0);
+    Y(6, 45) = Scalar(0);
+    Y(6, 46) = Scalar(0);
+    Y(6, 47) = Scalar(0);
+    Y(6, 48) = Scalar(0);
+    Y(6, 49) = Scalar(0);
+    Y(6, 50) = Scalar(0);
+    Y(6, 52) = Scalar(0);
+    Y(6, 60) = Scalar(0);
+    Y(6, 61) = Scalar(0);
+    Y(6, 62) = Scalar(0);
+    Y(6, 63) = Scalar(0);
+    Y(6, 64) = Scalar(0);
+    Y(6, 65) = Scalar(0);
+    Y(6, 66) = Scalar(0);
+    Y(6, 67) = Scalar(0);
+    Y(6, 68) = Scalar(0);
+    Y(6, 69) = Scalar(0);
+    Y(7, 0) = Scalar(0);
+    Y(7, 1) = Scalar(0);
+    Y(7, 2) = Scalar(0);
+    Y(7, 3) = Scalar(0);
+    Y(7, 4) = Scalar(0);
+    Y(7, 5) = Scalar(0);
+    Y(7, 6) = Scalar(0);
+    Y(7, 7) = Scalar(0);
+    Y(7, 8) = Scalar(0);
+    Y(7, 9) = Scalar(0);
+    Y(7, 10) = Scalar(0);
+    Y(7, 11) = Scalar(0);
+    Y(7, 12) = Scalar(0);
+    Y(7, 13) = Scalar(0);
+    Y(7, 14) = Scalar(0);
+    Y(7, 15) = Scalar(0);
+    Y(7, 16) = Scalar(0);
+    Y(7, 17) = Scalar(0);
+    Y(7, 18) = Scalar(0);
+    Y(7, 19) = Scalar(0);
+    Y(7, 20) = Scalar(0);
+    Y(7, 21) = Scalar(0);
+    Y(7, 22) = Scalar(0);
+    Y(7, 23) = Scalar(0);
+    Y(7, 24) = Scalar(0);
+    Y(7, 25) = Scalar(0);
+    Y(7, 26) = Scalar(0);
+    Y(7, 27) = Scalar(0);
+    Y(7, 28) = Scalar(0);
+    Y(7, 29) = Scalar(0);
+    Y(7, 30) = Scalar(0);
+    Y(7, 31) = Scalar(0);
+    Y(7, 32) = Scalar(0);
+    Y(7, 33) = Scalar(0);
+    Y(7, 34) = Scalar(0);
+    Y(7, 35) = Scalar(0);
+    Y(7, 36) = Scalar(0);
+    Y(7, 37) = Scalar(0);
+    Y(7, 38) = Scalar(0);
+    Y(7, 39) = Scalar(0);
+    Y(7, 40) = Scalar(0);
+    Y(7, 41) = Scalar(0);
+    Y(7, 42) = Scalar(0);
+    Y(7, 43) = Scalar(0);
+    Y(7, 44) = Scalar(0);
+    Y(7, 45) = Scalar(0);
+    Y(7, 46) = Scalar(0);
+    Y(7, 47) = Scalar(0);
+    Y(7, 48) = Scalar(0);
+    Y(7, 49) = Scalar(0);
+    Y(7, 50) = Scalar(0);
+    Y(7, 51) = Scalar(0);
+    Y(7, 52) = Scalar(0);
+    Y(7, 53) = Scalar(0);
+    Y(7, 54) = Scalar(0);
+    Y(7, 55) = Scalar(0);
+    Y(7, 56) = Scalar(0);
+    Y(7, 57) = Scalar(0);
+    Y(7, 58) = Scalar(0);
+    Y(7, 59) = Scalar(0);
+    Y(7, 60) = Scalar(0);
+    Y(7, 61) = Scalar(0);
+    Y(7, 62) = Scalar(0);
+    Y(7, 63) = Scalar(0);
+    Y(7, 64) = Scalar(0);
+    Y(7, 65) = Scalar(0);
+    Y(7, 66) = Scalar(0);
+    Y(7, 67) = Scalar(0);
+    Y(7, 68) = Scalar(0);
+    Y(7, 69) = Scalar(0);
+    Y(7, 70) = Scalar(0);
+    Y(7, 73) = Scalar(0);
+  }
+
+  /// Y with M qdd - F = Y pi + (the loads other than gravity, negated), pi the inertial parameters (inertial_parameter_names)
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class DerivedQd, class DerivedQdd, class Out0>
+  static void regressor(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedQdd>& qdd, const Parameters<typename DerivedQ::Scalar>& p, Out0&& Y) noexcept {
+    regressor(t, q, qd, qdd, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(Y));
+  }
+
+  /// pi of the model's parameters: every body's m, m c and inertia about its origin, in its frame
+  template <class Scalar, class Out0>
+  static void inertial_parameters(const Constants<Scalar>& c, Out0&& pi) noexcept {
+    static_assert(fits<std::decay_t<Out0>>(npi, 1), "pi: expected npi x 1");
+    eigen_assert(pi.rows() == npi && pi.cols() == 1);
+    pi(0) = c.p.lift_link_mass;
+    pi(3) = c.k68;
+    pi(4) = c.k69;
+    pi(6) = c.k70;
+    pi(9) = c.p.lift_link_izz;
+    pi(10) = c.p.torso_mass;
+    pi(13) = c.k71;
+    pi(14) = c.k72;
+    pi(15) = c.p.torso_ixy;
+    pi(16) = c.k73;
+    pi(17) = c.p.torso_ixz;
+    pi(18) = c.p.torso_iyz;
+    pi(19) = c.p.torso_izz;
+    pi(20) = c.p.left_upper_arm_mass;
+    pi(23) = c.k2;
+    pi(24) = c.k20;
+    pi(26) = c.k29;
+    pi(27) = c.k74;
+    pi(29) = c.k22;
+    pi(30) = c.p.right_upper_arm_mass;
+    pi(33) = c.k5;
+    pi(34) = c.k12;
+    pi(36) = c.k32;
+    pi(37) = c.k75;
+    pi(39) = c.k13;
+    pi(40) = c.p.left_forearm_mass;
+    pi(43) = c.k41;
+    pi(44) = c.k18;
+    pi(46) = c.k28;
+    pi(49) = c.p.left_forearm_izz;
+    pi(50) = c.p.right_forearm_mass;
+    pi(53) = c.k40;
+    pi(54) = c.k9;
+    pi(56) = c.k31;
+    pi(59) = c.p.right_forearm_izz;
+    pi(60) = c.p.left_hand_mass;
+    pi(63) = c.k35;
+    pi(64) = c.k42;
+    pi(65) = c.k25;
+    pi(66) = c.k43;
+    pi(69) = c.p.left_hand_izz;
+    pi(70) = c.p.right_hand_mass;
+    pi(73) = c.k34;
+    pi(74) = c.k38;
+    pi(75) = c.k26;
+    pi(76) = c.k39;
+    pi(79) = c.p.right_hand_izz;
+    pi(1) = Scalar(0);
+    pi(2) = Scalar(0);
+    pi(5) = Scalar(0);
+    pi(7) = Scalar(0);
+    pi(8) = Scalar(0);
+    pi(11) = Scalar(0);
+    pi(12) = Scalar(0);
+    pi(21) = Scalar(0);
+    pi(22) = Scalar(0);
+    pi(25) = Scalar(0);
+    pi(28) = Scalar(0);
+    pi(31) = Scalar(0);
+    pi(32) = Scalar(0);
+    pi(35) = Scalar(0);
+    pi(38) = Scalar(0);
+    pi(41) = Scalar(0);
+    pi(42) = Scalar(0);
+    pi(45) = Scalar(0);
+    pi(47) = Scalar(0);
+    pi(48) = Scalar(0);
+    pi(51) = Scalar(0);
+    pi(52) = Scalar(0);
+    pi(55) = Scalar(0);
+    pi(57) = Scalar(0);
+    pi(58) = Scalar(0);
+    pi(61) = Scalar(0);
+    pi(62) = Scalar(0);
+    pi(67) = Scalar(0);
+    pi(68) = Scalar(0);
+    pi(71) = Scalar(0);
+    pi(72) = Scalar(0);
+    pi(77) = Scalar(0);
+    pi(78) = Scalar(0);
+  }
+
+  /// pi of the model's parameters: every body's m, m c and inertia about its origin, in its frame
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar, class Out0>
+  static void inertial_parameters(const Parameters<Scalar>& p, Out0&& pi) noexcept {
+    inertial_parameters(Constants<Scalar>(p), std::forward<Out0>(pi));
   }
 };
 

@@ -7,6 +7,8 @@
 
 #include <array>
 #include <cmath>
+#include <type_traits>
+#include <utility>
 
 namespace eomgen_models {
 namespace ur5 {
@@ -17,12 +19,12 @@ struct Model {
   static constexpr int nc = 0;  // constraints (rows of Xi)
   static constexpr int nh = 0;  // holonomic constraints (rows of phi)
   static constexpr int np = 36;  // parameters
-  static constexpr int ny = 12;  // output components
+  static constexpr int ny = 15;  // output components
   static constexpr int ni = 0;  // independent speeds declared in the model (0: none, null space from QR of Xi)
   static constexpr const char* name = "ur5";
   static constexpr const char* description = "ur5 (imported from ur5.urdf)";
   static constexpr const char* generator_version = "0.1.0";
-  static constexpr const char* model_hash = "f22c31657380bf7f";
+  static constexpr const char* model_hash = "516ef286936d421a";
   static constexpr std::array<const char*, nq> coordinate_names{{"shoulder_pan_joint", "shoulder_lift_joint", "elbow_joint", "wrist_1_joint", "wrist_2_joint", "wrist_3_joint"}};
   static constexpr std::array<const char*, nu> input_names{{"shoulder_pan_joint_torque", "shoulder_lift_joint_torque", "elbow_joint_torque", "wrist_1_joint_torque", "wrist_2_joint_torque", "wrist_3_joint_torque"}};
   static constexpr std::array<const char*, np> parameter_names{{"g", "shoulder_link_mass", "shoulder_link_com_y", "shoulder_link_com_z", "shoulder_link_ixx", "shoulder_link_iyy", "shoulder_link_izz", "upper_arm_link_mass", "upper_arm_link_com_x", "upper_arm_link_com_z", "upper_arm_link_ixx", "upper_arm_link_iyy", "upper_arm_link_izz", "forearm_link_mass", "forearm_link_com_x", "forearm_link_com_z", "forearm_link_ixx", "forearm_link_iyy", "forearm_link_izz", "wrist_1_link_mass", "wrist_1_link_com_y", "wrist_1_link_com_z", "wrist_1_link_ixx", "wrist_1_link_iyy", "wrist_1_link_izz", "wrist_2_link_mass", "wrist_2_link_com_y", "wrist_2_link_com_z", "wrist_2_link_ixx", "wrist_2_link_iyy", "wrist_2_link_izz", "wrist_3_link_mass", "wrist_3_link_com_z", "wrist_3_link_ixx", "wrist_3_link_iyy", "wrist_3_link_izz"}};
@@ -30,7 +32,9 @@ struct Model {
   static constexpr std::array<const char*, nc> constraint_names{{}};
   static constexpr std::array<int, nh> holonomic_rows{{}};  // row of Xi of each entry of phi
   static constexpr std::array<int, ni> independent_speeds{{}};  // their coordinate indices
-  static constexpr std::array<const char*, ny> output_names{{"tool0_position_1", "tool0_position_2", "tool0_position_3", "tool0_axis_1_1", "tool0_axis_1_2", "tool0_axis_1_3", "tool0_axis_2_1", "tool0_axis_2_2", "tool0_axis_2_3", "tool0_axis_3_1", "tool0_axis_3_2", "tool0_axis_3_3"}};
+  static constexpr std::array<const char*, ny> output_names{{"tool0_position_1", "tool0_position_2", "tool0_position_3", "tool0_axis_1_1", "tool0_axis_1_2", "tool0_axis_1_3", "tool0_axis_2_1", "tool0_axis_2_2", "tool0_axis_2_3", "tool0_axis_3_1", "tool0_axis_3_2", "tool0_axis_3_3", "tool0_angular_velocity_1", "tool0_angular_velocity_2", "tool0_angular_velocity_3"}};
+  static constexpr int npi = 60;  // inertial parameters: 10 per body (regressor)
+  static constexpr std::array<const char*, npi> inertial_parameter_names{{"shoulder_link_body.m", "shoulder_link_body.mx", "shoulder_link_body.my", "shoulder_link_body.mz", "shoulder_link_body.Ixx", "shoulder_link_body.Ixy", "shoulder_link_body.Iyy", "shoulder_link_body.Ixz", "shoulder_link_body.Iyz", "shoulder_link_body.Izz", "upper_arm_link_body.m", "upper_arm_link_body.mx", "upper_arm_link_body.my", "upper_arm_link_body.mz", "upper_arm_link_body.Ixx", "upper_arm_link_body.Ixy", "upper_arm_link_body.Iyy", "upper_arm_link_body.Ixz", "upper_arm_link_body.Iyz", "upper_arm_link_body.Izz", "forearm_link_body.m", "forearm_link_body.mx", "forearm_link_body.my", "forearm_link_body.mz", "forearm_link_body.Ixx", "forearm_link_body.Ixy", "forearm_link_body.Iyy", "forearm_link_body.Ixz", "forearm_link_body.Iyz", "forearm_link_body.Izz", "wrist_1_link_body.m", "wrist_1_link_body.mx", "wrist_1_link_body.my", "wrist_1_link_body.mz", "wrist_1_link_body.Ixx", "wrist_1_link_body.Ixy", "wrist_1_link_body.Iyy", "wrist_1_link_body.Ixz", "wrist_1_link_body.Iyz", "wrist_1_link_body.Izz", "wrist_2_link_body.m", "wrist_2_link_body.mx", "wrist_2_link_body.my", "wrist_2_link_body.mz", "wrist_2_link_body.Ixx", "wrist_2_link_body.Ixy", "wrist_2_link_body.Iyy", "wrist_2_link_body.Ixz", "wrist_2_link_body.Iyz", "wrist_2_link_body.Izz", "wrist_3_link_body.m", "wrist_3_link_body.mx", "wrist_3_link_body.my", "wrist_3_link_body.mz", "wrist_3_link_body.Ixx", "wrist_3_link_body.Ixy", "wrist_3_link_body.Iyy", "wrist_3_link_body.Ixz", "wrist_3_link_body.Iyz", "wrist_3_link_body.Izz"}};
   static constexpr bool has_forward_dynamics = true;  // forward_dynamics(), without M
   static constexpr bool prefers_forward_dynamics = true;  // fewer operations than M, F and their Cholesky solve
 
@@ -41,6 +45,14 @@ struct Model {
   template <class Scalar> using ConstraintVector = Eigen::Matrix<Scalar, nc, 1>;
   template <class Scalar> using HolonomicVector = Eigen::Matrix<Scalar, nh, 1>;
   template <class Scalar> using OutputVector = Eigen::Matrix<Scalar, ny, 1>;
+
+  /// Whether an Eigen expression of type Derived can be rows x cols: its sizes fixed to those,
+  /// or dynamic (then eigen_assert tests them).
+  template <class Derived>
+  static constexpr bool fits(int rows, int cols) noexcept {
+    return (int(Derived::RowsAtCompileTime) == Eigen::Dynamic || int(Derived::RowsAtCompileTime) == rows) &&
+           (int(Derived::ColsAtCompileTime) == Eigen::Dynamic || int(Derived::ColsAtCompileTime) == cols);
+  }
 
   /// Parameters, defaulted to the model's values.
   template <class Scalar>
@@ -92,9 +104,6 @@ struct Model {
    public:
     /// Computes every constant from a copy of the parameters.
     explicit Constants(const Parameters<Scalar>& parameters) noexcept : p(parameters) {
-      using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-      using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-      using std::log; using std::abs; using std::pow;
       const Scalar w0 = p.wrist_2_link_com_y * p.wrist_2_link_mass;
       const Scalar w1 = p.wrist_3_link_mass * p.wrist_3_link_com_z;
       const Scalar w2 = p.wrist_3_link_mass * Scalar(0.0823) + w1;
@@ -129,10 +138,14 @@ struct Model {
       const Scalar w31 = p.upper_arm_link_com_x * p.upper_arm_link_com_x;
       const Scalar w32 = (w30 + w31) * p.upper_arm_link_mass;
       const Scalar w33 = w30 * p.upper_arm_link_mass;
-      const Scalar w34 = p.wrist_1_link_com_z * p.wrist_1_link_mass * p.wrist_1_link_com_y;
-      const Scalar w35 = p.wrist_1_link_mass * w23;
-      const Scalar w36 = p.forearm_link_mass * w25;
-      const Scalar w37 = p.upper_arm_link_mass * w31;
+      const Scalar w34 = p.shoulder_link_com_y * p.shoulder_link_com_y;
+      const Scalar w35 = p.upper_arm_link_com_z * p.upper_arm_link_mass * p.upper_arm_link_com_x;
+      const Scalar w36 = p.wrist_1_link_com_z * p.wrist_1_link_mass * p.wrist_1_link_com_y;
+      const Scalar w37 = p.forearm_link_mass * p.forearm_link_com_z * p.forearm_link_com_x;
+      const Scalar w38 = p.wrist_1_link_mass * w23;
+      const Scalar w39 = p.forearm_link_mass * w25;
+      const Scalar w40 = p.upper_arm_link_mass * w31;
+      const Scalar w41 = p.shoulder_link_com_z * p.shoulder_link_com_z;
       k0 = Scalar(0.09465) * w3 + w4;
       k1 = w11 - w9;
       k2 = w9;
@@ -154,30 +167,30 @@ struct Model {
       k18 = -(Scalar(0.425) * (p.forearm_link_mass + w27));
       k19 = -w32 - p.upper_arm_link_iyy;
       k20 = w33 + p.upper_arm_link_izz;
-      k21 = p.shoulder_link_com_y * p.shoulder_link_com_y * p.shoulder_link_mass + p.shoulder_link_izz;
+      k21 = w34 * p.shoulder_link_mass + p.shoulder_link_izz;
       k22 = p.forearm_link_mass * p.forearm_link_com_z;
-      k23 = -w34;
-      k24 = p.forearm_link_mass * p.forearm_link_com_z * p.forearm_link_com_x;
-      k25 = p.upper_arm_link_com_z * p.upper_arm_link_mass * p.upper_arm_link_com_x;
-      k26 = w35 + p.wrist_1_link_izz;
-      k27 = p.forearm_link_ixx + w36;
-      k28 = -p.upper_arm_link_ixx - w37;
-      k29 = w37 + p.upper_arm_link_iyy + w33;
+      k23 = -w36;
+      k24 = w37;
+      k25 = w35;
+      k26 = w38 + p.wrist_1_link_izz;
+      k27 = p.forearm_link_ixx + w39;
+      k28 = -p.upper_arm_link_ixx - w40;
+      k29 = w40 + p.upper_arm_link_iyy + w33;
       k30 = w24;
       k31 = w16;
       k32 = w0;
       k33 = w1;
       k34 = w29;
-      k35 = w34;
+      k35 = w36;
       k36 = w4;
       k37 = p.wrist_2_link_iyy + w22;
       k38 = w10;
       k39 = w8;
-      k40 = p.wrist_1_link_ixx + w35 + w15;
+      k40 = p.wrist_1_link_ixx + w38 + w15;
       k41 = w13 + p.wrist_2_link_ixx + w22;
       k42 = p.upper_arm_link_com_z * p.upper_arm_link_mass;
-      k43 = p.upper_arm_link_ixx + w37;
-      k44 = p.forearm_link_iyy + w36 + w28;
+      k43 = p.upper_arm_link_ixx + w40;
+      k44 = p.forearm_link_iyy + w39 + w28;
       k45 = w32 + p.upper_arm_link_iyy;
       k46 = p.upper_arm_link_mass * p.upper_arm_link_com_x;
       k47 = Scalar(0.5) * p.upper_arm_link_mass;
@@ -193,6 +206,14 @@ struct Model {
       k57 = p.g * p.wrist_3_link_mass;
       k58 = p.g * (Scalar(0.089159) + p.shoulder_link_com_z) * p.shoulder_link_mass;
       k59 = Scalar(1) / p.wrist_3_link_izz;
+      k60 = p.shoulder_link_com_y * p.shoulder_link_mass;
+      k61 = p.shoulder_link_com_z * p.shoulder_link_mass;
+      k62 = p.shoulder_link_ixx + (w41 + w34) * p.shoulder_link_mass;
+      k63 = w41 * p.shoulder_link_mass + p.shoulder_link_iyy;
+      k64 = -(p.shoulder_link_com_y * p.shoulder_link_com_z * p.shoulder_link_mass);
+      k65 = -w35;
+      k66 = -w37;
+      k67 = -w4;
     }
     /// The parameters these constants were computed from.
     const Parameters<Scalar>& parameters() const noexcept { return p; }
@@ -206,14 +227,17 @@ struct Model {
     Scalar k30, k31, k32, k33, k34, k35, k36, k37, k38, k39;
     Scalar k40, k41, k42, k43, k44, k45, k46, k47, k48, k49;
     Scalar k50, k51, k52, k53, k54, k55, k56, k57, k58, k59;
+    Scalar k60, k61, k62, k63, k64, k65, k66, k67;
   };
 
   /// M(q, t), symmetric positive (semi)definite
-  template <class Scalar>
-  static void mass_matrix([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] MassMatrix<Scalar>& M) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class Out0>
+  static void mass_matrix([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Constants<typename DerivedQ::Scalar>& c, Out0&& M) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(nq, nq), "M: expected nq x nq");
+    eigen_assert(q.size() == nq && M.rows() == nq && M.cols() == nq);
+    using std::sin; using std::cos;
     const Scalar w0 = sin(q(4));
     const Scalar w1 = cos(q(4));
     const Scalar w2 = sin(q(5));
@@ -329,17 +353,21 @@ struct Model {
   /// M(q, t), symmetric positive (semi)definite
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static void mass_matrix([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] MassMatrix<Scalar>& M) noexcept {
-    mass_matrix(t, q, Constants<Scalar>(p), M);
+  template <class DerivedQ, class Out0>
+  static void mass_matrix(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& M) noexcept {
+    mass_matrix(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(M));
   }
 
   /// F(q, qd, t, u): everything of Lagrange's equations except M qdd
-  template <class Scalar>
-  static void forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] Vector<Scalar>& F) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class DerivedQd, class DerivedU, class Out0>
+  static void forcing([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedU>& u, const Constants<typename DerivedQ::Scalar>& c, Out0&& F) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<DerivedU>(nu, 1), "u: expected a column of nu entries");
+    static_assert(fits<std::decay_t<Out0>>(nq, 1), "F: expected nq x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && u.size() == nu && F.rows() == nq && F.cols() == 1);
+    using std::sin; using std::cos;
     const Scalar w0 = sin(q(1));
     const Scalar w1 = w0 * qd(0);
     const Scalar w2 = qd(1) * w1;
@@ -457,17 +485,22 @@ struct Model {
   /// F(q, qd, t, u): everything of Lagrange's equations except M qdd
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static void forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] Vector<Scalar>& F) noexcept {
-    forcing(t, q, qd, u, Constants<Scalar>(p), F);
+  template <class DerivedQ, class DerivedQd, class DerivedU, class Out0>
+  static void forcing(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedU>& u, const Parameters<typename DerivedQ::Scalar>& p, Out0&& F) noexcept {
+    forcing(t, q, qd, u, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(F));
   }
 
   /// M and F together, sharing their common subexpressions
-  template <class Scalar>
-  static void mass_matrix_and_forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] MassMatrix<Scalar>& M, [[maybe_unused]] Vector<Scalar>& F) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class DerivedQd, class DerivedU, class Out0, class Out1>
+  static void mass_matrix_and_forcing([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedU>& u, const Constants<typename DerivedQ::Scalar>& c, Out0&& M, Out1&& F) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<DerivedU>(nu, 1), "u: expected a column of nu entries");
+    static_assert(fits<std::decay_t<Out0>>(nq, nq), "M: expected nq x nq");
+    static_assert(fits<std::decay_t<Out1>>(nq, 1), "F: expected nq x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && u.size() == nu && M.rows() == nq && M.cols() == nq && F.rows() == nq && F.cols() == 1);
+    using std::sin; using std::cos;
     const Scalar w0 = sin(q(4));
     const Scalar w1 = cos(q(4));
     const Scalar w2 = sin(q(5));
@@ -686,81 +719,84 @@ struct Model {
   /// M and F together, sharing their common subexpressions
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static void mass_matrix_and_forcing([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] MassMatrix<Scalar>& M, [[maybe_unused]] Vector<Scalar>& F) noexcept {
-    mass_matrix_and_forcing(t, q, qd, u, Constants<Scalar>(p), M, F);
+  template <class DerivedQ, class DerivedQd, class DerivedU, class Out0, class Out1>
+  static void mass_matrix_and_forcing(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedU>& u, const Parameters<typename DerivedQ::Scalar>& p, Out0&& M, Out1&& F) noexcept {
+    mass_matrix_and_forcing(t, q, qd, u, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(M), std::forward<Out1>(F));
   }
 
   /// Xi(q, t) of the Pfaffian constraints Xi qd + Xi_t = 0
-  template <class Scalar>
-  static void constraint_jacobian([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] ConstraintJacobian<Scalar>& Xi) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class Out0>
+  static void constraint_jacobian([[maybe_unused]] const typename DerivedQ::Scalar& t, [[maybe_unused]] const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, [[maybe_unused]] Out0&& Xi) noexcept {
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(nc, nq), "Xi: expected nc x nq");
+    eigen_assert(q.size() == nq && Xi.rows() == nc && Xi.cols() == nq);
   }
 
   /// Xi(q, t) of the Pfaffian constraints Xi qd + Xi_t = 0
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static void constraint_jacobian([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintJacobian<Scalar>& Xi) noexcept {
-    constraint_jacobian(t, q, Constants<Scalar>(p), Xi);
+  template <class DerivedQ, class Out0>
+  static void constraint_jacobian(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& Xi) noexcept {
+    constraint_jacobian(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(Xi));
   }
 
   /// Xi_t(q, t)
-  template <class Scalar>
-  static void constraint_rate_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] ConstraintVector<Scalar>& Xi_t) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class Out0>
+  static void constraint_rate_term([[maybe_unused]] const typename DerivedQ::Scalar& t, [[maybe_unused]] const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, [[maybe_unused]] Out0&& Xi_t) noexcept {
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(nc, 1), "Xi_t: expected nc x 1");
+    eigen_assert(q.size() == nq && Xi_t.rows() == nc && Xi_t.cols() == 1);
   }
 
   /// Xi_t(q, t)
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static void constraint_rate_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintVector<Scalar>& Xi_t) noexcept {
-    constraint_rate_term(t, q, Constants<Scalar>(p), Xi_t);
+  template <class DerivedQ, class Out0>
+  static void constraint_rate_term(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& Xi_t) noexcept {
+    constraint_rate_term(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(Xi_t));
   }
 
   /// dXi/dt qd + dXi_t/dt, so that Xi qdd + b = 0
-  template <class Scalar>
-  static void constraint_acceleration_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] ConstraintVector<Scalar>& b) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void constraint_acceleration_term([[maybe_unused]] const typename DerivedQ::Scalar& t, [[maybe_unused]] const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Eigen::MatrixBase<DerivedQd>& qd, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, [[maybe_unused]] Out0&& b) noexcept {
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(nc, 1), "b: expected nc x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && b.rows() == nc && b.cols() == 1);
   }
 
   /// dXi/dt qd + dXi_t/dt, so that Xi qdd + b = 0
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static void constraint_acceleration_term([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] ConstraintVector<Scalar>& b) noexcept {
-    constraint_acceleration_term(t, q, qd, Constants<Scalar>(p), b);
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void constraint_acceleration_term(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Parameters<typename DerivedQ::Scalar>& p, Out0&& b) noexcept {
+    constraint_acceleration_term(t, q, qd, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(b));
   }
 
   /// phi(q, t) of the holonomic constraints
-  template <class Scalar>
-  static void holonomic_residuals([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] HolonomicVector<Scalar>& phi) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class Out0>
+  static void holonomic_residuals([[maybe_unused]] const typename DerivedQ::Scalar& t, [[maybe_unused]] const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, [[maybe_unused]] Out0&& phi) noexcept {
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(nh, 1), "phi: expected nh x 1");
+    eigen_assert(q.size() == nq && phi.rows() == nh && phi.cols() == 1);
   }
 
   /// phi(q, t) of the holonomic constraints
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static void holonomic_residuals([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] HolonomicVector<Scalar>& phi) noexcept {
-    holonomic_residuals(t, q, Constants<Scalar>(p), phi);
+  template <class DerivedQ, class Out0>
+  static void holonomic_residuals(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& phi) noexcept {
+    holonomic_residuals(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(phi));
   }
 
   /// T(q, qd, t)
-  template <class Scalar>
-  static Scalar kinetic_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Constants<Scalar>& c) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class DerivedQd>
+  static typename DerivedQ::Scalar kinetic_energy([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Constants<typename DerivedQ::Scalar>& c) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    eigen_assert(q.size() == nq && qd.size() == nq);
+    using std::sin; using std::cos;
     Scalar T = Scalar(0);
     const Scalar w0 = cos(q(1));
     const Scalar w1 = w0 * qd(0);
@@ -845,17 +881,18 @@ struct Model {
   /// T(q, qd, t)
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static Scalar kinetic_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Parameters<Scalar>& p) noexcept {
-    return kinetic_energy(t, q, qd, Constants<Scalar>(p));
+  template <class DerivedQ, class DerivedQd>
+  static typename DerivedQ::Scalar kinetic_energy(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Parameters<typename DerivedQ::Scalar>& p) noexcept {
+    return kinetic_energy(t, q, qd, Constants<typename DerivedQ::Scalar>(p));
   }
 
   /// V(q, t)
-  template <class Scalar>
-  static Scalar potential_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Constants<Scalar>& c) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ>
+  static typename DerivedQ::Scalar potential_energy([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Constants<typename DerivedQ::Scalar>& c) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    eigen_assert(q.size() == nq);
+    using std::sin; using std::cos;
     Scalar V = Scalar(0);
     const Scalar w0 = sin(q(1));
     const Scalar w1 = cos(q(2));
@@ -877,17 +914,21 @@ struct Model {
   /// V(q, t)
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static Scalar potential_energy([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Parameters<Scalar>& p) noexcept {
-    return potential_energy(t, q, Constants<Scalar>(p));
+  template <class DerivedQ>
+  static typename DerivedQ::Scalar potential_energy(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p) noexcept {
+    return potential_energy(t, q, Constants<typename DerivedQ::Scalar>(p));
   }
 
   /// the model's named outputs, in the order of output_names
-  template <class Scalar>
-  static void outputs([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] OutputVector<Scalar>& y) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class DerivedQd, class DerivedU, class Out0>
+  static void outputs([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, [[maybe_unused]] const Eigen::MatrixBase<DerivedU>& u, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& y) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<DerivedU>(nu, 1), "u: expected a column of nu entries");
+    static_assert(fits<std::decay_t<Out0>>(ny, 1), "y: expected ny x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && u.size() == nu && y.rows() == ny && y.cols() == 1);
+    using std::sin; using std::cos;
     const Scalar w0 = q(0) + Scalar(3.141592653589793);
     const Scalar w1 = cos(w0);
     const Scalar w2 = q(1) + q(2);
@@ -903,6 +944,8 @@ struct Model {
     const Scalar w12 = w1 * w5 * w8 + w4 * w6;
     const Scalar w13 = cos(q(5));
     const Scalar w14 = w4 * w5 * w8 - w6 * w1;
+    const Scalar w15 = w4 * w5 - w6 * w1 * w8;
+    const Scalar w16 = w4 * w6 * w8 + w1 * w5;
     y(0) = w4 * w5 * Scalar(0.0823) - w1 * Scalar(0.39225) * w3 + w4 * Scalar(0.10915) - w6 * w1 * Scalar(0.0823) * w8 - w1 * w9 * Scalar(0.425) + w1 * w10 * Scalar(0.09465);
     y(1) = -(w1 * w5 * Scalar(0.0823) - w4 * w10 * Scalar(0.09465) + w4 * w9 * Scalar(0.425) + w4 * w6 * Scalar(0.0823) * w8 + w4 * Scalar(0.39225) * w3 + w1 * Scalar(0.10915));
     y(2) = -(w6 * w10 * Scalar(0.0823) + Scalar(0.09465) * w8 + Scalar(0.39225) * sin(w2) - Scalar(0.089159) + sin(q(1)) * Scalar(0.425));
@@ -912,25 +955,32 @@ struct Model {
     y(6) = -(w12 * w11 + w1 * w10 * w13);
     y(7) = -(w14 * w11 + w4 * w10 * w13);
     y(8) = w13 * w8 - w10 * w5 * w11;
-    y(9) = w4 * w5 - w6 * w1 * w8;
-    y(10) = -(w4 * w6 * w8 + w1 * w5);
+    y(9) = w15;
+    y(10) = -w16;
     y(11) = -(w6 * w10);
+    y(12) = w4 * qd(1) + w1 * w10 * qd(4) + qd(5) * w15 + w4 * qd(2) + w4 * qd(3);
+    y(13) = -(w1 * qd(2) + w1 * qd(3) - w4 * w10 * qd(4) + w16 * qd(5) + w1 * qd(1));
+    y(14) = qd(0) - w6 * w10 * qd(5) - qd(4) * w8;
   }
 
   /// the model's named outputs, in the order of output_names
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static void outputs([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] OutputVector<Scalar>& y) noexcept {
-    outputs(t, q, qd, u, Constants<Scalar>(p), y);
+  template <class DerivedQ, class DerivedQd, class DerivedU, class Out0>
+  static void outputs(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedU>& u, const Parameters<typename DerivedQ::Scalar>& p, Out0&& y) noexcept {
+    outputs(t, q, qd, u, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(y));
   }
 
   /// qdd of M qdd = F by the composite-body M and F and M's LDL^T factors; false if M is not positive definite (a pivot is not positive) or qdd is not finite
-  template <class Scalar>
-  static bool forward_dynamics([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Constants<Scalar>& c, [[maybe_unused]] Vector<Scalar>& qdd) noexcept {
-    using std::sin; using std::cos; using std::tan; using std::asin; using std::acos; using std::atan;
-    using std::atan2; using std::sinh; using std::cosh; using std::tanh; using std::sqrt; using std::exp;
-    using std::log; using std::abs; using std::pow;
+  template <class DerivedQ, class DerivedQd, class DerivedU, class Out0>
+  static bool forward_dynamics([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedU>& u, const Constants<typename DerivedQ::Scalar>& c, Out0&& qdd) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<DerivedU>(nu, 1), "u: expected a column of nu entries");
+    static_assert(fits<std::decay_t<Out0>>(nq, 1), "qdd: expected nq x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && u.size() == nu && qdd.rows() == nq && qdd.cols() == 1);
+    using std::sin; using std::cos;
     Eigen::Matrix<Scalar, 6, 1> pivot;
     const Scalar w0 = sin(q(5));
     const Scalar w1 = c.k1 * w0 * w0;
@@ -1164,9 +1214,1872 @@ struct Model {
   /// qdd of M qdd = F by the composite-body M and F and M's LDL^T factors; false if M is not positive definite (a pivot is not positive) or qdd is not finite
   /// From the parameters: computes their Constants for this call alone (to evaluate
   /// repeatedly, build the Constants once and call the overload above).
-  template <class Scalar>
-  static bool forward_dynamics([[maybe_unused]] const Scalar& t, [[maybe_unused]] const Vector<Scalar>& q, [[maybe_unused]] const Vector<Scalar>& qd, [[maybe_unused]] const Inputs<Scalar>& u, [[maybe_unused]] const Parameters<Scalar>& p, [[maybe_unused]] Vector<Scalar>& qdd) noexcept {
-    return forward_dynamics(t, q, qd, u, Constants<Scalar>(p), qdd);
+  template <class DerivedQ, class DerivedQd, class DerivedU, class Out0>
+  static bool forward_dynamics(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedU>& u, const Parameters<typename DerivedQ::Scalar>& p, Out0&& qdd) noexcept {
+    return forward_dynamics(t, q, qd, u, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(qdd));
+  }
+
+  /// tau = M qdd - F: the generalized forces to add to produce qdd, by the Newton-Euler recursion
+  template <class DerivedQ, class DerivedQd, class DerivedQdd, class DerivedU, class Out0>
+  static void inverse_dynamics([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedQdd>& qdd, const Eigen::MatrixBase<DerivedU>& u, const Constants<typename DerivedQ::Scalar>& c, Out0&& tau) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<DerivedQdd>(nq, 1), "qdd: expected a column of nq entries");
+    static_assert(fits<DerivedU>(nu, 1), "u: expected a column of nu entries");
+    static_assert(fits<std::decay_t<Out0>>(nq, 1), "tau: expected nq x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && qdd.size() == nq && u.size() == nu && tau.rows() == nq && tau.cols() == 1);
+    using std::sin; using std::cos;
+    const Scalar w0 = sin(q(1));
+    const Scalar w1 = c.p.g * w0;
+    const Scalar w2 = sin(q(2));
+    const Scalar w3 = w0 * qd(0);
+    const Scalar w4 = cos(q(1));
+    const Scalar w5 = w4 * qd(0);
+    const Scalar w6 = cos(q(2));
+    const Scalar w7 = w3 * w2 - w5 * w6;
+    const Scalar w8 = w7 * c.k15;
+    const Scalar w9 = qd(1) + qd(2);
+    const Scalar w10 = cos(q(3));
+    const Scalar w11 = qd(1) * w3 - qdd(0) * w4;
+    const Scalar w12 = qd(1) * w5 + qdd(0) * w0;
+    const Scalar w13 = w7 * qd(2) + w2 * w11 - w12 * w6;
+    const Scalar w14 = w5 * Scalar(0.425) * w3;
+    const Scalar w15 = Scalar(0.425) * qd(1) * qd(1) + w5 * w5 * Scalar(0.425);
+    const Scalar w16 = c.p.g * w4;
+    const Scalar w17 = qdd(1) * Scalar(0.425) - w16;
+    const Scalar w18 = w14 * w6 + w15 * w2 + w1 * w2 + w17 * w6;
+    const Scalar w19 = qdd(1) + qdd(2);
+    const Scalar w20 = w18 - Scalar(0.10915) * w13 + Scalar(0.39225) * w19;
+    const Scalar w21 = sin(q(3));
+    const Scalar w22 = w5 * w2 + w3 * w6;
+    const Scalar w23 = Scalar(0.10915) * w22 + Scalar(0.39225) * w9;
+    const Scalar w24 = w7 * w7;
+    const Scalar w25 = w23 * w9 + Scalar(0.39225) * w24;
+    const Scalar w26 = Scalar(0.39225) * w7 * w22 - w7 * Scalar(0.10915) * w9;
+    const Scalar w27 = w22 * qd(2) + w6 * w11 + w12 * w2;
+    const Scalar w28 = w1 * w6 - w2 * w17 + w15 * w6 - w2 * w14;
+    const Scalar w29 = Scalar(0.10915) * w27 - w28;
+    const Scalar w30 = w20 * w10 + w21 * w25 - w10 * w26 - w21 * w29;
+    const Scalar w31 = cos(q(4));
+    const Scalar w32 = qd(3) + w9;
+    const Scalar w33 = sin(q(4));
+    const Scalar w34 = w7 * w21 - w10 * w22;
+    const Scalar w35 = w31 * w32 + w33 * w34;
+    const Scalar w36 = w34 * w31 - w33 * w32;
+    const Scalar w37 = w30 - (Scalar(0.09465) * w35 * w35 + Scalar(0.09465) * w36 * w36);
+    const Scalar w38 = cos(q(5));
+    const Scalar w39 = sin(q(5));
+    const Scalar w40 = w20 * w21 - (w10 * w25 + w26 * w21) + w10 * w29;
+    const Scalar w41 = qd(1) * Scalar(0.425) * w3 + Scalar(0.425) * w11;
+    const Scalar w42 = Scalar(0.10915) * w24 + w22 * w23 + Scalar(0.39225) * w27 + w41;
+    const Scalar w43 = w21 * w22 + w10 * w7;
+    const Scalar w44 = qd(3) * w43 + w21 * w27 + w10 * w13;
+    const Scalar w45 = qdd(3) + w19;
+    const Scalar w46 = w33 * w44 + w31 * w45;
+    const Scalar w47 = w31 * w40 + w33 * w42 - Scalar(0.09465) * w46 + Scalar(0.09465) * w36 * w43;
+    const Scalar w48 = qd(4) + w43;
+    const Scalar w49 = w48 * w38 - w39 * w36;
+    const Scalar w50 = w31 * w44 - w33 * w45;
+    const Scalar w51 = w35 * qd(4) - w50;
+    const Scalar w52 = w10 * w27 - w13 * w21 - w34 * qd(3);
+    const Scalar w53 = w52 + qdd(4);
+    const Scalar w54 = w39 * w53 - w38 * w51;
+    const Scalar w55 = w37 * w38 - w39 * w47 + w35 * Scalar(0.0823) * w49 - w54 * Scalar(0.0823);
+    const Scalar w56 = w35 + qd(5);
+    const Scalar w57 = c.p.wrist_3_link_com_z * w49;
+    const Scalar w58 = w54 + qd(5) * w49;
+    const Scalar w59 = w55 * c.p.wrist_3_link_mass + w56 * c.p.wrist_3_link_mass * w57 - c.k33 * w58;
+    const Scalar w60 = w36 * w38 + w48 * w39;
+    const Scalar w61 = w60 * c.p.wrist_3_link_com_z;
+    const Scalar w62 = w53 * w38 + w39 * w51;
+    const Scalar w63 = w60 * qd(5) - w62;
+    const Scalar w64 = w60 * w35 * Scalar(0.0823) + w39 * w37 + w38 * w47 + w62 * Scalar(0.0823);
+    const Scalar w65 = w56 * c.p.wrist_3_link_mass * w61 - w63 * c.k33 + c.p.wrist_3_link_mass * w64;
+    const Scalar w66 = w36 * c.p.wrist_2_link_com_z;
+    const Scalar w67 = c.p.wrist_2_link_com_y * w48 - w35 * c.p.wrist_2_link_com_z;
+    const Scalar w68 = w34 * c.p.wrist_1_link_com_y;
+    const Scalar w69 = c.p.wrist_1_link_com_z * w43 + w32 * c.p.wrist_1_link_com_y;
+    const Scalar w70 = c.k13 * w44 - (w59 * w38 + w37 * c.p.wrist_2_link_mass + c.k32 * w51 + w65 * w39 - (w36 * w66 - w35 * w67) * c.p.wrist_2_link_mass) - w30 * c.p.wrist_1_link_mass - c.p.wrist_1_link_mass * (w34 * w68 + w69 * w32);
+    const Scalar w71 = w36 * qd(4) + w46;
+    const Scalar w72 = c.p.wrist_2_link_com_y * w36;
+    const Scalar w73 = w39 * w59 + c.k31 * w71 - (w72 * w35 + w48 * w66) * c.p.wrist_2_link_mass - w47 * c.p.wrist_2_link_mass - c.k32 * w53 - w65 * w38;
+    const Scalar w74 = c.p.wrist_1_link_com_z * w34;
+    const Scalar w75 = Scalar(0.09465) * w50 - w31 * w42 + w35 * Scalar(0.09465) * w43 + w33 * w40;
+    const Scalar w76 = c.p.wrist_3_link_mass * (w75 - (w49 * w49 * Scalar(0.0823) + w60 * w60 * Scalar(0.0823))) - c.p.wrist_3_link_mass * (w57 * w49 + w60 * w61) - c.k31 * w51 + w75 * c.p.wrist_2_link_mass - (w48 * w67 + w72 * w36) * c.p.wrist_2_link_mass;
+    const Scalar w77 = c.k30 * w45 + c.p.wrist_1_link_mass * w40 - w31 * w73 + c.p.wrist_1_link_mass * (w32 * w74 - w43 * w68) + w33 * w76 + c.k13 * w52;
+    const Scalar w78 = w10 * w70 - w21 * w77;
+    const Scalar w79 = c.k27 * w9 - c.k24 * w22;
+    const Scalar w80 = c.k4 * w43 + c.k35 * w32;
+    const Scalar w81 = w35 * c.k37 - c.k36 * w48;
+    const Scalar w82 = w60 * c.k38;
+    const Scalar w83 = c.p.wrist_3_link_izz * w56;
+    const Scalar w84 = w56 * w82 + c.k33 * w64 - w63 * c.k39 - w60 * w83 + w65 * Scalar(0.0823);
+    const Scalar w85 = c.k39 * w49;
+    const Scalar w86 = w59 * Scalar(0.0823) - (w49 * w83 - w55 * c.k33 + w58 * c.k38 - w85 * w56);
+    const Scalar w87 = w48 * c.k3 - w35 * c.k36;
+    const Scalar w88 = Scalar(0.09465) * w76 - (c.k32 * w37 + c.k41 * w51 - w48 * w81 + w84 * w39 + w86 * w38 + w87 * w35 - w75 * c.k31);
+    const Scalar w89 = c.k26 * w32 + c.k35 * w43;
+    const Scalar w90 = c.p.wrist_3_link_izz * (qdd(5) + w71) - w82 * w49 + w60 * w85;
+    const Scalar w91 = c.k6 * w36;
+    const Scalar w92 = c.k37 * w71 - c.k36 * w53 + w90 - w48 * w91 - c.k31 * w47 + w87 * w36 + Scalar(0.09465) * w73;
+    const Scalar w93 = c.k40 * w44 - w80 * w32 + c.k30 * w42 + w31 * w88 + w89 * w43 - w30 * c.k13 + w33 * w92;
+    const Scalar w94 = c.k9 * w34;
+    const Scalar w95 = w36 * w81 - w84 * w38 + w86 * w39 - w53 * c.k3 + c.k36 * w71 - c.k32 * w47 - w35 * w91;
+    const Scalar w96 = c.k13 * w40 - w34 * w89 + w52 * c.k4 + w32 * w94 - w95 + c.k35 * w45;
+    const Scalar w97 = w8 * w9 - Scalar(0.10915) * w78 - c.k24 * w19 - w7 * w79 - w10 * w93 - c.k16 * w13 + c.k22 * w18 + w96 * w21;
+    const Scalar w98 = c.p.forearm_link_com_x * w9 - c.p.forearm_link_com_z * w22;
+    const Scalar w99 = w7 * c.p.forearm_link_com_z;
+    const Scalar w100 = w33 * w73 - c.k30 * w44 + w31 * w76 - (w34 * w74 + w69 * w43) * c.p.wrist_1_link_mass - c.p.wrist_1_link_mass * w42;
+    const Scalar w101 = c.k25 * qd(1) - c.k20 * w3;
+    const Scalar w102 = c.k24 * w9 - c.k16 * w22;
+    const Scalar w103 = w10 * w77 + w70 * w21;
+    const Scalar w104 = w93 * w21 - w41 * c.k34 - c.k22 * w28 - Scalar(0.39225) * w100 + w102 * w9 + w96 * w10 + c.k44 * w27 + w79 * w22 + w103 * Scalar(0.10915);
+    const Scalar w105 = qd(1) * c.k43 - c.k25 * w3;
+    const Scalar w106 = w5 * c.k45;
+    const Scalar w107 = -(c.k30 * w40 + c.k35 * w52 - w33 * w88 + c.k26 * w45 + w31 * w92 + w80 * w34 - w94 * w43);
+    const Scalar w108 = w8 * w22 - c.k27 * w19 + Scalar(0.39225) * w78 + w102 * w7 - c.k24 * w13 + w107 + c.k34 * w18;
+    const Scalar w109 = w7 * c.p.forearm_link_com_x;
+    tau(0) = qdd(0) * c.k21 + (c.k42 * w1 + w2 * w97 - Scalar(0.425) * (w41 * c.p.forearm_link_mass - c.k34 * w27 + c.p.forearm_link_mass * (w7 * w99 - w98 * w22) - w100) - qd(1) * w101 - c.k29 * w11 - w104 * w6 - w105 * w3) * w4 + w0 * (w105 * w5 - c.k42 * w16 - qd(1) * w106 + w97 * w6 + w2 * w104 - c.k25 * qdd(1) + w12 * c.k20) - u(0);
+    tau(1) = w3 * w106 - w108 + Scalar(0.425) * ((c.p.forearm_link_mass * (w22 * w109 + w99 * w9) - w78 - c.k34 * w19 - c.k22 * w13 + c.p.forearm_link_mass * w18) * w6 + (w103 + (w98 * w9 + w7 * w109) * c.p.forearm_link_mass + c.k22 * w27 - c.p.forearm_link_mass * w28) * w2) + w5 * w101 + qdd(1) * c.k43 - c.k25 * w12 + c.k46 * w16 - u(1);
+    tau(2) = -(w108 + u(2));
+    tau(3) = -(u(3) + w107);
+    tau(4) = -(w95 + u(4));
+    tau(5) = w90 - u(5);
+  }
+
+  /// tau = M qdd - F: the generalized forces to add to produce qdd, by the Newton-Euler recursion
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class DerivedQd, class DerivedQdd, class DerivedU, class Out0>
+  static void inverse_dynamics(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedQdd>& qdd, const Eigen::MatrixBase<DerivedU>& u, const Parameters<typename DerivedQ::Scalar>& p, Out0&& tau) noexcept {
+    inverse_dynamics(t, q, qd, qdd, u, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(tau));
+  }
+
+  /// G(q) = dV/dq: the generalized forces of gravity and springs, with C qd + G = -F at zero input and no other loads
+  template <class DerivedQ, class Out0>
+  static void gravity_forces(const Eigen::MatrixBase<DerivedQ>& q, const Constants<typename DerivedQ::Scalar>& c, Out0&& G) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(nq, 1), "G: expected nq x 1");
+    eigen_assert(q.size() == nq && G.rows() == nq && G.cols() == 1);
+    using std::sin; using std::cos;
+    const Scalar w0 = cos(q(1));
+    const Scalar w1 = sin(q(1));
+    const Scalar w2 = sin(q(2));
+    const Scalar w3 = cos(q(2));
+    const Scalar w4 = w1 * w2 - w0 * w3;
+    const Scalar w5 = w4 * c.p.forearm_link_com_x;
+    const Scalar w6 = w0 * Scalar(0.425);
+    const Scalar w7 = w1 * w3 + w0 * w2;
+    const Scalar w8 = cos(q(3));
+    const Scalar w9 = sin(q(3));
+    const Scalar w10 = w7 * w8 - w4 * w9;
+    const Scalar w11 = Scalar(0.09465) * w10;
+    const Scalar w12 = w4 * Scalar(0.39225);
+    const Scalar w13 = w12 - w6;
+    const Scalar w14 = w11 + w13;
+    const Scalar w15 = w10 * c.p.wrist_2_link_com_z;
+    const Scalar w16 = sin(q(4)) * (w7 * w9 + w4 * w8);
+    const Scalar w17 = w16 * c.p.wrist_2_link_com_y;
+    const Scalar w18 = w16 * c.p.wrist_3_link_com_z;
+    const Scalar w19 = w16 * Scalar(0.0823);
+    const Scalar w20 = c.p.wrist_1_link_com_y * w10;
+    const Scalar w21 = w11 + w12;
+    const Scalar w22 = cos(q(4)) * w10;
+    G(1) = -((w5 + w6) * c.k54 - c.k53 * w0 * c.p.upper_arm_link_com_x - c.k56 * (w14 + w15 + w17) - c.k57 * (w18 + w14 + w19) + c.k55 * (w20 - w13));
+    G(2) = c.k55 * (w12 - w20) - c.k54 * w5 + c.k56 * (w15 + w21 + w17) + c.k57 * (w21 + w19 + w18);
+    G(3) = c.k57 * (w18 + w11 + w19) - c.k55 * w20 + c.k56 * (w15 + w11 + w17);
+    G(4) = -(c.k56 * w22 * c.p.wrist_2_link_com_y + c.k57 * (w22 * c.p.wrist_3_link_com_z + w22 * Scalar(0.0823)));
+    G(0) = Scalar(0);
+    G(5) = Scalar(0);
+  }
+
+  /// G(q) = dV/dq: the generalized forces of gravity and springs, with C qd + G = -F at zero input and no other loads
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class Out0>
+  static void gravity_forces(const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& G) noexcept {
+    gravity_forces(q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(G));
+  }
+
+  /// C(q, qd) from the Christoffel symbols of M: dM/dt - 2 C is skew-symmetric
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void coriolis_matrix(const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Constants<typename DerivedQ::Scalar>& c, Out0&& C) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(nq, nq), "C: expected nq x nq");
+    eigen_assert(q.size() == nq && qd.size() == nq && C.rows() == nq && C.cols() == nq);
+    using std::sin; using std::cos;
+    const Scalar w0 = sin(q(5));
+    const Scalar w1 = w0 * w0;
+    const Scalar w2 = cos(q(5));
+    const Scalar w3 = c.k1 * (w1 - w2 * w2);
+    const Scalar w4 = cos(q(4));
+    const Scalar w5 = w3 * w4;
+    const Scalar w6 = cos(q(3));
+    const Scalar w7 = sin(q(3));
+    const Scalar w8 = w6 * w7;
+    const Scalar w9 = c.k1 * Scalar(2) * w0 * w2;
+    const Scalar w10 = -w9;
+    const Scalar w11 = sin(q(4));
+    const Scalar w12 = w11 * w11;
+    const Scalar w13 = w12 * w9;
+    const Scalar w14 = w10 + w13;
+    const Scalar w15 = w14 + w10;
+    const Scalar w16 = w7 * w7;
+    const Scalar w17 = w8 * w15 + Scalar(2) * w16 * w5 - w5;
+    const Scalar w18 = sin(q(2));
+    const Scalar w19 = cos(q(2));
+    const Scalar w20 = w18 * w19;
+    const Scalar w21 = w18 * w18;
+    const Scalar w22 = w16 * w15 - Scalar(2) * w8 * w5;
+    const Scalar w23 = -(w14 - w22);
+    const Scalar w24 = w9 + w22;
+    const Scalar w25 = w23 + w24;
+    const Scalar w26 = w17 * Scalar(2) * w20 - w21 * w25;
+    const Scalar w27 = w26 + w24;
+    const Scalar w28 = sin(q(1));
+    const Scalar w29 = w28 * w28;
+    const Scalar w30 = cos(q(1));
+    const Scalar w31 = w28 * w30;
+    const Scalar w32 = Scalar(2) * (w17 - (w25 * w20 + w17 * w21 * Scalar(2))) * w31 - (w26 + w23 + w27) * w29 + w27;
+    const Scalar w33 = w11 * c.k10;
+    const Scalar w34 = w6 * w33;
+    const Scalar w35 = c.k11 * w7 + w34;
+    const Scalar w36 = w33 * w7;
+    const Scalar w37 = w36 - c.k11 * w6;
+    const Scalar w38 = w37 * w19;
+    const Scalar w39 = w18 * w35 + w38;
+    const Scalar w40 = w16 - w6 * w6;
+    const Scalar w41 = c.k1 * w0 * w2;
+    const Scalar w42 = w4 * w41 - w11 * c.k0;
+    const Scalar w43 = w6 * Scalar(2) * w7;
+    const Scalar w44 = c.k1 * w1;
+    const Scalar w45 = c.k3 + w44 + c.k2;
+    const Scalar w46 = c.k4 + w45;
+    const Scalar w47 = c.k7 + c.k6 - (w44 + c.k5);
+    const Scalar w48 = c.k8 - w47;
+    const Scalar w49 = c.k9 + w12 * w48 + w47;
+    const Scalar w50 = w46 - w49;
+    const Scalar w51 = w40 * Scalar(2) * w42 + w43 * w50;
+    const Scalar w52 = w51 + Scalar(0.7845) * w37;
+    const Scalar w53 = w52 + w51;
+    const Scalar w54 = Scalar(0.39225) * w35;
+    const Scalar w55 = w43 * Scalar(2) * w42 - w40 * w50 + w54;
+    const Scalar w56 = w21 * w53 - w55 * Scalar(2) * w20;
+    const Scalar w57 = Scalar(0.85) * w39 - (w56 - w52);
+    const Scalar w58 = w18 * w37;
+    const Scalar w59 = w57 - (w29 * (w57 - (w56 - w51)) + (Scalar(0.425) * (w58 - w35 * w19) - (w55 - (w55 * w21 * Scalar(2) + w53 * w20))) * Scalar(2) * w31);
+    const Scalar w60 = Scalar(0.39225) * w37;
+    const Scalar w61 = Scalar(2) * w16 * w42 + w50 * w8 - w42 + w60;
+    const Scalar w62 = w21 - w19 * w19;
+    const Scalar w63 = w50 * w16 - Scalar(2) * w8 * w42;
+    const Scalar w64 = c.k12 + w35;
+    const Scalar w65 = w4 * c.k10;
+    const Scalar w66 = c.k13 + w65;
+    const Scalar w67 = w66 * Scalar(0.10915);
+    const Scalar w68 = w66 + c.k14;
+    const Scalar w69 = w68 * Scalar(0.10915);
+    const Scalar w70 = c.k15 + w46 - w63 + Scalar(0.39225) * w64 + w67 + w69 + w54;
+    const Scalar w71 = c.k16 + w49 + w63 + w67 + w69;
+    const Scalar w72 = w70 - w71;
+    const Scalar w73 = Scalar(2) * w18 * w19;
+    const Scalar w74 = w72 * w73 - w61 * w62 * Scalar(2);
+    const Scalar w75 = c.k17 + w64;
+    const Scalar w76 = w75 * w18 + w38;
+    const Scalar w77 = w74 + Scalar(0.85) * w76;
+    const Scalar w78 = w58 - w75 * w19;
+    const Scalar w79 = Scalar(0.425) * w78;
+    const Scalar w80 = w77 - (Scalar(2) * (w72 * w62 + w61 * Scalar(2) * w73 + w79) * w31 + w29 * (w77 + w74));
+    const Scalar w81 = w61 * Scalar(2) * w20 + w72 * w21;
+    const Scalar w82 = (w29 - w30 * w30) * (w61 + w72 * w20 - w61 * w21 * Scalar(2) + Scalar(0.425) * w76) + Scalar(0.5) * w28 * w30 * Scalar(2) * (w79 - (w70 - w81) + (w78 + c.k18) * Scalar(0.425) + c.k19 + w71 + w81 + c.k20);
+    const Scalar w83 = w65 * w7;
+    const Scalar w84 = w4 * c.k0 + w11 * w41;
+    const Scalar w85 = w11 * Scalar(2) * w4 * w48;
+    const Scalar w86 = Scalar(0.39225) * w83 - (Scalar(2) * w84 * w16 + w85 * w8 - w84);
+    const Scalar w87 = Scalar(2) * w84 * w8 - w85 * w16;
+    const Scalar w88 = w33 * Scalar(0.2183);
+    const Scalar w89 = w87 + w85 - w88;
+    const Scalar w90 = w6 * w65;
+    const Scalar w91 = -(w90 * Scalar(0.7845));
+    const Scalar w92 = w87 + w88 + w91;
+    const Scalar w93 = w89 + w92;
+    const Scalar w94 = -(w21 * w93 - Scalar(2) * w86 * w20);
+    const Scalar w95 = w83 * w18 - w90 * w19;
+    const Scalar w96 = Scalar(0.85) * w95;
+    const Scalar w97 = w94 + w92 + w96;
+    const Scalar w98 = w97 - (w29 * (w94 + w89 + w97) - Scalar(2) * (w86 - (w21 * Scalar(2) * w86 + w93 * w20) + Scalar(0.425) * (w83 * w19 + w90 * w18)) * w31);
+    const Scalar w99 = Scalar(0.10915) * w37;
+    const Scalar w100 = w84 + c.k23;
+    const Scalar w101 = w6 * w100;
+    const Scalar w102 = w11 * w4;
+    const Scalar w103 = w102 * w48;
+    const Scalar w104 = -(w103 * w7);
+    const Scalar w105 = w99 + w101 + w104;
+    const Scalar w106 = w105 * w18;
+    const Scalar w107 = w103 * w6;
+    const Scalar w108 = w7 * w100;
+    const Scalar w109 = w107 + w108;
+    const Scalar w110 = w109 - w66 * Scalar(0.39225) - Scalar(0.10915) * w64 + c.k24;
+    const Scalar w111 = w106 + w110 * w19;
+    const Scalar w112 = -(w105 * w19);
+    const Scalar w113 = -(w28 * (w18 * w110 + w112));
+    const Scalar w114 = w30 * w111 + w113;
+    const Scalar w115 = -(Scalar(0.5) * w114 * qd(2));
+    const Scalar w116 = w102 * w9;
+    const Scalar w117 = w11 * w3;
+    const Scalar w118 = w6 * w116 - w117 * w7;
+    const Scalar w119 = w6 * w117 + w7 * w116;
+    const Scalar w120 = w28 * (w118 * w19 - w18 * w119) + w30 * (w118 * w18 + w119 * w19);
+    const Scalar w121 = qd(5) * Scalar(0.5) * w120;
+    const Scalar w122 = -w121;
+    const Scalar w123 = qd(0) * w82;
+    const Scalar w124 = -(Scalar(0.10915) * w35);
+    const Scalar w125 = w109 + w124;
+    const Scalar w126 = w28 * (w112 + w18 * w125) - w30 * (w106 + w125 * w19);
+    const Scalar w127 = w126 * Scalar(0.5) * qd(3);
+    const Scalar w128 = w99 + w101 + w104;
+    const Scalar w129 = w124 + w107 + w108;
+    const Scalar w130 = w30 * (w18 * w128 + w129 * w19) - w28 * (w18 * w129 - w128 * w19);
+    const Scalar w131 = Scalar(0.5) * w130 * qd(3);
+    const Scalar w132 = -w131;
+    const Scalar w133 = w90 * Scalar(0.10915);
+    const Scalar w134 = w7 * w42;
+    const Scalar w135 = Scalar(0.39225) * w33;
+    const Scalar w136 = w6 * w45;
+    const Scalar w137 = w133 + w134 + w135 + w136;
+    const Scalar w138 = w6 * w42;
+    const Scalar w139 = w83 * Scalar(0.10915);
+    const Scalar w140 = w138 - w139 - w7 * w45;
+    const Scalar w141 = w140 * w19;
+    const Scalar w142 = w30 * (w137 * w18 - w141);
+    const Scalar w143 = w137 * w19;
+    const Scalar w144 = w140 * w18;
+    const Scalar w145 = w33 * Scalar(0.425);
+    const Scalar w146 = w142 + w28 * (w143 + w144 + w145);
+    const Scalar w147 = Scalar(0.5) * w146 * qd(4);
+    const Scalar w148 = (w12 - w4 * w4) * w48;
+    const Scalar w149 = w6 * w148;
+    const Scalar w150 = w133 - (w134 - w149) - w135;
+    const Scalar w151 = w148 * w7;
+    const Scalar w152 = w139 + w138 + w151;
+    const Scalar w153 = w152 * w18 - w150 * w19;
+    const Scalar w154 = w30 * (w150 * w18 + w152 * w19);
+    const Scalar w155 = w154 - w28 * (w153 + w145);
+    const Scalar w156 = w155 * Scalar(0.5) * qd(4);
+    const Scalar w157 = c.p.wrist_3_link_izz * w11;
+    const Scalar w158 = w157 * w7;
+    const Scalar w159 = w6 * w157;
+    const Scalar w160 = (w158 * w19 + w159 * w18) * w28 + (w18 * w158 - w159 * w19) * w30;
+    const Scalar w161 = qd(5) * Scalar(0.5) * w160;
+    const Scalar w162 = Scalar(0.5) * qd(0) * w80;
+    const Scalar w163 = qd(1) * Scalar(0.5) * w114;
+    const Scalar w164 = (w143 + w144) * w28 + w142;
+    const Scalar w165 = -(w164 * Scalar(0.5) * qd(4));
+    const Scalar w166 = w28 * w153 - w154;
+    const Scalar w167 = Scalar(0.5) * w166 * qd(4);
+    const Scalar w168 = -w127;
+    const Scalar w169 = -w161;
+    const Scalar w170 = w133 - w134 + w149;
+    const Scalar w171 = w138 + w151 + w139;
+    const Scalar w172 = (w18 * w170 + w171 * w19) * w30 + w28 * (w170 * w19 - w171 * w18);
+    const Scalar w173 = -(w172 * Scalar(0.5) * qd(4));
+    const Scalar w174 = qd(1) * w126 * Scalar(0.5);
+    const Scalar w175 = qd(1) * Scalar(0.5) * w130;
+    const Scalar w176 = w59 * Scalar(0.5) * qd(0);
+    const Scalar w177 = w126 * Scalar(0.5) * qd(2);
+    const Scalar w178 = Scalar(0.5) * w130 * qd(2);
+    const Scalar w179 = w133 + w134 + w136;
+    const Scalar w180 = (w141 - w179 * w18) * w30 - w28 * (w179 * w19 + w144);
+    const Scalar w181 = Scalar(0.5) * qd(4) * w180;
+    const Scalar w182 = w155 * qd(1) * Scalar(0.5);
+    const Scalar w183 = -(Scalar(0.5) * w166 * qd(2));
+    const Scalar w184 = w172 * Scalar(0.5) * qd(3);
+    const Scalar w185 = Scalar(0.5) * w180 * qd(3);
+    const Scalar w186 = w164 * Scalar(0.5) * qd(2);
+    const Scalar w187 = qd(1) * Scalar(0.5) * w146;
+    const Scalar w188 = w36 * Scalar(0.10915) - w6 * w84;
+    const Scalar w189 = Scalar(0.39225) * w65 - w84 * w7 - w34 * Scalar(0.10915);
+    const Scalar w190 = c.p.wrist_3_link_izz * w4;
+    const Scalar w191 = w190 * w7;
+    const Scalar w192 = w6 * w190;
+    const Scalar w193 = (w191 * w19 + w192 * w18) * w30 + w28 * (w192 * w19 - w18 * w191);
+    const Scalar w194 = -(qd(5) * Scalar(0.5) * w193);
+    const Scalar w195 = w7 * w9 + w6 * w5;
+    const Scalar w196 = w6 * w9 - w7 * w5;
+    const Scalar w197 = w30 * (w196 * w19 - w195 * w18) - (w196 * w18 + w195 * w19) * w28;
+    const Scalar w198 = qd(5) * Scalar(0.5) * w197;
+    const Scalar w199 = -(Scalar(0.5) * qd(0) * w98);
+    const Scalar w200 = Scalar(0.5) * qd(4) * w197;
+    const Scalar w201 = Scalar(0.5) * w160 * qd(2);
+    const Scalar w202 = Scalar(0.5) * qd(3) * w120;
+    const Scalar w203 = -(Scalar(0.5) * w193 * qd(4));
+    const Scalar w204 = Scalar(0.5) * qd(2) * w120;
+    const Scalar w205 = qd(1) * Scalar(0.5) * w160;
+    const Scalar w206 = qd(1) * Scalar(0.5) * w120;
+    const Scalar w207 = w32 * Scalar(0.5) * qd(0);
+    const Scalar w208 = Scalar(0.5) * w160 * qd(3);
+    const Scalar w209 = Scalar(0.425) * w39 + w60;
+    const Scalar w210 = qd(3) * w209;
+    const Scalar w211 = qd(5) * Scalar(0.5) * w13;
+    const Scalar w212 = Scalar(0.425) * w76 * qd(2);
+    const Scalar w213 = w85 + w91;
+    const Scalar w214 = w213 + w96;
+    const Scalar w215 = Scalar(0.425) * w95;
+    const Scalar w216 = w213 + w215;
+    const Scalar w217 = w216 * Scalar(0.5) * qd(4);
+    const Scalar w218 = w60 + Scalar(0.2125) * w39;
+    const Scalar w219 = qd(3) * w218;
+    const Scalar w220 = qd(1) * Scalar(0.425) * w76;
+    const Scalar w221 = Scalar(0.2125) * w95 * qd(4);
+    const Scalar w222 = Scalar(0.2125) * w39 * qd(3);
+    const Scalar w223 = qd(1) * w209;
+    const Scalar w224 = w126 * Scalar(0.5) * qd(0);
+    const Scalar w225 = -w224;
+    const Scalar w226 = w90 * Scalar(0.39225) - w85;
+    const Scalar w227 = w226 - w215;
+    const Scalar w228 = w227 * Scalar(0.5) * qd(4);
+    const Scalar w229 = Scalar(0.5) * qd(0) * w130;
+    const Scalar w230 = -w229;
+    const Scalar w231 = Scalar(0.2125) * w95 - w90 * Scalar(0.196125);
+    const Scalar w232 = qd(4) * w231;
+    const Scalar w233 = w218 * qd(2);
+    const Scalar w234 = Scalar(0.2125) * w39 * qd(2);
+    const Scalar w235 = qd(3) * w231;
+    const Scalar w236 = qd(5) * Scalar(0.5) * w117;
+    const Scalar w237 = -w236;
+    const Scalar w238 = Scalar(0.5) * w146 * qd(0);
+    const Scalar w239 = w155 * Scalar(0.5) * qd(0);
+    const Scalar w240 = w216 * Scalar(0.5) * qd(2);
+    const Scalar w241 = Scalar(0.2125) * w95 * qd(2);
+    const Scalar w242 = qd(1) * w214 * Scalar(0.5);
+    const Scalar w243 = w36 * Scalar(0.39225) + w42;
+    const Scalar w244 = w227 * Scalar(0.5) * qd(3);
+    const Scalar w245 = qd(5) * Scalar(0.5) * w157;
+    const Scalar w246 = Scalar(0.5) * w117 * qd(4);
+    const Scalar w247 = Scalar(0.5) * w157 * qd(4);
+    const Scalar w248 = Scalar(0.5) * qd(0) * w160;
+    const Scalar w249 = Scalar(0.5) * w13 * qd(3);
+    const Scalar w250 = qd(1) * Scalar(0.5) * w13;
+    const Scalar w251 = Scalar(0.5) * qd(0) * w120;
+    const Scalar w252 = Scalar(0.5) * w13 * qd(2);
+    const Scalar w253 = -(w247 - w246 + w248 + w249 + w250 + w251 + w252);
+    const Scalar w254 = Scalar(0.39225) * qd(3) * w37;
+    const Scalar w255 = qd(1) * Scalar(0.2125) * w39;
+    const Scalar w256 = -(qd(1) * w218);
+    const Scalar w257 = w90 * qd(4) * Scalar(0.196125);
+    const Scalar w258 = Scalar(0.5) * w226 * qd(4);
+    const Scalar w259 = -w211;
+    const Scalar w260 = -(Scalar(0.39225) * w37 * qd(2));
+    const Scalar w261 = Scalar(0.5) * w226 * qd(3);
+    const Scalar w262 = -w245;
+    const Scalar w263 = w90 * qd(3) * Scalar(0.196125);
+    const Scalar w264 = -(qd(1) * w216 * Scalar(0.5));
+    const Scalar w265 = -(w164 * Scalar(0.5) * qd(0));
+    const Scalar w266 = -(Scalar(0.5) * qd(0) * w166);
+    const Scalar w267 = -(w213 * Scalar(0.5) * qd(2));
+    const Scalar w268 = qd(1) * Scalar(0.2125) * w95;
+    const Scalar w269 = qd(1) * w231;
+    const Scalar w270 = Scalar(0.5) * w226 * qd(2);
+    const Scalar w271 = Scalar(0.5) * qd(0) * w180;
+    const Scalar w272 = qd(1) * w227 * Scalar(0.5);
+    const Scalar w273 = -(Scalar(0.5) * w85 * qd(3));
+    const Scalar w274 = w172 * Scalar(0.5) * qd(0);
+    const Scalar w275 = -(w90 * Scalar(0.196125) * qd(2));
+    const Scalar w276 = qd(1) * Scalar(0.5) * w117 + Scalar(0.5) * qd(4) * w9 + Scalar(0.5) * w157 * qd(3) + Scalar(0.5) * qd(0) * w193 + Scalar(0.5) * w157 * qd(2) + qd(1) * Scalar(0.5) * w157 + Scalar(0.5) * w117 * qd(2) - Scalar(0.5) * qd(0) * w197 + Scalar(0.5) * w117 * qd(3);
+    const Scalar w277 = -(w247 - w248 - w251 - w252 - w249 + w246 - w250);
+    C(0, 0) = -(w59 * Scalar(0.5) * qd(3) - qd(5) * w32 * Scalar(0.5) + Scalar(0.5) * qd(2) * w80 - qd(1) * w82 + Scalar(0.5) * qd(4) * w98);
+    C(0, 1) = w115 + w115 + w122 + w123 + w127 - qd(1) * (w113 + (c.k25 + w111 - Scalar(0.425) * (c.k22 + w68)) * w30) + w132 + w147 + w156 + w161;
+    C(0, 2) = -(w162 + w163 + w163 + w165 + w121 + w167 + w168 + w114 * qd(2) + w169 + w131);
+    C(0, 3) = -(w173 - w174 + w175 + w176 - w177 + w178 + w121 + w181 + w130 * qd(3) + w169);
+    C(0, 4) = w182 + w183 + w184 - w185 + w186 + w187 - ((Scalar(0.425) * w65 + w18 * w188 + w189 * w19) * w30 - w28 * (w18 * w189 - w188 * w19)) * qd(4) + w194 - w198 + w199;
+    C(0, 5) = w201 - w200 - w202 + w203 - w204 + w205 - w206 + w207 + w208;
+    C(1, 0) = -(w123 - w156 + w121 + w132 + w147 + w168 + w161);
+    C(1, 1) = -(w210 + w211 + w212 + w214 * Scalar(0.5) * qd(4));
+    C(1, 2) = -(w217 + w219 + w220 + w221 + w211 + w212 + w222);
+    C(1, 3) = -(w223 + w225 + w210 + w211 - w228 + w230 + w232 + w233 + w234);
+    C(1, 4) = -(w235 + w237 + w238 - w239 + w240 + w241 + w242 + (w243 + Scalar(0.425) * (w36 * w19 + w34 * w18)) * qd(4) - w244 + w245);
+    C(1, 5) = w253;
+    C(2, 0) = w162 + w122 + w127 + w165 - w167 + w169 + w131;
+    C(2, 1) = -(w217 - w222 + w219 - w221 + w211 - w220);
+    C(2, 2) = -(w213 * Scalar(0.5) * qd(4) + w211 + w254);
+    C(2, 3) = w255 - w254 + w224 + w256 + w229 + w257 + w258 + w259 + w260;
+    C(2, 4) = w261 + w262 + w263 + w264 + w265 + w266 + w236 + w267 - w243 * qd(4) + w268;
+    C(2, 5) = w253;
+    C(3, 0) = -(w173 + w175 + w178 + w121 + w174 - w176 + w161 - w181 + w177);
+    C(3, 1) = w223 + w225 + w228 - w234 + w230 + w232 + w233 + w259;
+    C(3, 2) = -(w255 + w224 + w256 + w229 + w257 + w211 + w260 - w258);
+    C(3, 3) = -(w211 + Scalar(0.5) * w85 * qd(4));
+    C(3, 4) = w269 + w262 + w270 + w271 + w272 + w236 + w273 - qd(4) * w42 + w274 + w275;
+    C(3, 5) = w253;
+    C(4, 0) = -(w182 + w183 + w184 + w198 - w186 - w187 + w194 + w199 + w185);
+    C(4, 1) = -(w262 + w235 + w237 - w238 - w240 - w242 + w239 + w241 + w244);
+    C(4, 2) = -(w261 + w262 + w237 + w264 - w263 + w265 + w266 + w267 + w268);
+    C(4, 3) = -(w269 + w262 + w237 + w270 + w271 + w272 + w273 + w274 + w275);
+    C(4, 4) = qd(5) * Scalar(0.5) * w9;
+    C(4, 5) = w276;
+    C(5, 0) = w201 - w207 + w202 + w203 + w205 + w204 + w206 + w208 + w200;
+    C(5, 1) = w277;
+    C(5, 2) = w277;
+    C(5, 3) = w277;
+    C(5, 4) = -w276;
+    C(5, 5) = Scalar(0);
+  }
+
+  /// C(q, qd) from the Christoffel symbols of M: dM/dt - 2 C is skew-symmetric
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void coriolis_matrix(const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Parameters<typename DerivedQ::Scalar>& p, Out0&& C) noexcept {
+    coriolis_matrix(q, qd, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(C));
+  }
+
+  /// J = dy/dq of the output tool0_position
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_tool0_position([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& J) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, nq), "J: expected 3 x nq");
+    eigen_assert(q.size() == nq && J.rows() == 3 && J.cols() == nq);
+    using std::sin; using std::cos;
+    const Scalar w0 = q(0) + Scalar(3.141592653589793);
+    const Scalar w1 = sin(w0);
+    const Scalar w2 = q(1) + q(2) + q(3);
+    const Scalar w3 = sin(w2);
+    const Scalar w4 = cos(w0);
+    const Scalar w5 = cos(q(4));
+    const Scalar w6 = cos(q(1));
+    const Scalar w7 = sin(q(4));
+    const Scalar w8 = cos(w2);
+    const Scalar w9 = q(1) + q(2);
+    const Scalar w10 = cos(w9);
+    const Scalar w11 = sin(q(1));
+    const Scalar w12 = w4 * Scalar(0.09465) * w8;
+    const Scalar w13 = sin(w9);
+    const Scalar w14 = w4 * Scalar(0.39225) * w13;
+    const Scalar w15 = w7 * w4 * w3 * Scalar(0.0823);
+    const Scalar w16 = w1 * Scalar(0.09465) * w8;
+    const Scalar w17 = w1 * Scalar(0.39225) * w13;
+    const Scalar w18 = w1 * w7 * w3 * Scalar(0.0823);
+    const Scalar w19 = w7 * Scalar(0.0823) * w8;
+    const Scalar w20 = Scalar(0.39225) * w10;
+    const Scalar w21 = -(w3 * Scalar(0.09465));
+    J(0, 0) = w4 * w5 * Scalar(0.0823) - w1 * w3 * Scalar(0.09465) + w1 * w6 * Scalar(0.425) + w1 * w7 * Scalar(0.0823) * w8 + w1 * Scalar(0.39225) * w10 + w4 * Scalar(0.10915);
+    J(0, 1) = w4 * w11 * Scalar(0.425) + w12 + w14 + w15;
+    J(0, 2) = w12 + w14 + w15;
+    J(0, 3) = w12 + w15;
+    J(0, 4) = -(w1 * w7 * Scalar(0.0823) + w4 * w5 * Scalar(0.0823) * w8);
+    J(1, 0) = w1 * w5 * Scalar(0.0823) - w4 * Scalar(0.39225) * w10 + w1 * Scalar(0.10915) - w7 * w4 * Scalar(0.0823) * w8 - w4 * w6 * Scalar(0.425) + w4 * w3 * Scalar(0.09465);
+    J(1, 1) = w16 + w1 * w11 * Scalar(0.425) + w17 + w18;
+    J(1, 2) = w16 + w17 + w18;
+    J(1, 3) = w16 + w18;
+    J(1, 4) = -(w1 * w5 * Scalar(0.0823) * w8 - w7 * w4 * Scalar(0.0823));
+    J(2, 1) = -(w19 + w20 + w21 + w6 * Scalar(0.425));
+    J(2, 2) = -(w19 + w20 + w21);
+    J(2, 3) = -(w19 + w21);
+    J(2, 4) = -(w3 * w5 * Scalar(0.0823));
+    J(0, 5) = Scalar(0);
+    J(1, 5) = Scalar(0);
+    J(2, 0) = Scalar(0);
+    J(2, 5) = Scalar(0);
+  }
+
+  /// J = dy/dq of the output tool0_position
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_tool0_position(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& J) noexcept {
+    output_jacobian_tool0_position(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(J));
+  }
+
+  /// Jdot qd of the output tool0_position: its acceleration at qdd = 0
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_tool0_position([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& Jdot_qd) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, 1), "Jdot_qd: expected 3 x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && Jdot_qd.rows() == 3 && Jdot_qd.cols() == 1);
+    using std::sin; using std::cos;
+    const Scalar w0 = q(0) + Scalar(3.141592653589793);
+    const Scalar w1 = cos(w0);
+    const Scalar w2 = q(1) + q(2) + q(3);
+    const Scalar w3 = sin(w2);
+    const Scalar w4 = w1 * w3 * Scalar(0.09465);
+    const Scalar w5 = -w4;
+    const Scalar w6 = cos(q(1));
+    const Scalar w7 = w1 * w6 * Scalar(0.425);
+    const Scalar w8 = sin(q(4));
+    const Scalar w9 = cos(w2);
+    const Scalar w10 = w8 * w1 * Scalar(0.0823) * w9;
+    const Scalar w11 = q(1) + q(2);
+    const Scalar w12 = cos(w11);
+    const Scalar w13 = w1 * Scalar(0.39225) * w12;
+    const Scalar w14 = qd(1) * qd(1);
+    const Scalar w15 = qd(2) * qd(2);
+    const Scalar w16 = sin(w0);
+    const Scalar w17 = cos(q(4));
+    const Scalar w18 = w8 * w1 * Scalar(0.1646) * w9;
+    const Scalar w19 = w1 * w3 * Scalar(0.1893);
+    const Scalar w20 = w19 - w18;
+    const Scalar w21 = qd(3) * qd(2);
+    const Scalar w22 = qd(3) * qd(3);
+    const Scalar w23 = qd(1) * qd(2);
+    const Scalar w24 = qd(1) * qd(3);
+    const Scalar w25 = qd(0) * qd(0);
+    const Scalar w26 = qd(0) * qd(3);
+    const Scalar w27 = w16 * Scalar(0.1893) * w9;
+    const Scalar w28 = w16 * w8 * w3 * Scalar(0.1646);
+    const Scalar w29 = qd(4) * qd(4);
+    const Scalar w30 = sin(q(1));
+    const Scalar w31 = sin(w11);
+    const Scalar w32 = w16 * Scalar(0.7845) * w31;
+    const Scalar w33 = qd(1) * qd(0);
+    const Scalar w34 = qd(0) * qd(2);
+    const Scalar w35 = w16 * w8 * Scalar(0.0823) * w9;
+    const Scalar w36 = -w35;
+    const Scalar w37 = w16 * w3 * Scalar(0.09465);
+    const Scalar w38 = w16 * Scalar(0.39225) * w12;
+    const Scalar w39 = -w38;
+    const Scalar w40 = w16 * w3 * Scalar(0.1893);
+    const Scalar w41 = -(w16 * w8 * Scalar(0.1646) * w9);
+    const Scalar w42 = w1 * Scalar(0.7845) * w31;
+    const Scalar w43 = w1 * Scalar(0.1893) * w9;
+    const Scalar w44 = w8 * w1 * w3 * Scalar(0.1646);
+    const Scalar w45 = w40 + w41;
+    const Scalar w46 = w16 * w6 * Scalar(0.425);
+    const Scalar w47 = w8 * w3 * Scalar(1646);
+    const Scalar w48 = Scalar(1893) * w9;
+    const Scalar w49 = w47 + w48;
+    const Scalar w50 = qd(3) * w49;
+    const Scalar w51 = -(Scalar(1646) * w17 * qd(4) * w9);
+    const Scalar w52 = Scalar(7845) * w31;
+    const Scalar w53 = w47 + w48 + w52;
+    const Scalar w54 = w53 * qd(2);
+    Jdot_qd(0) = -(w20 * w21 - (w5 + w7 + w10 + w13) * w14 - (w5 + w10 + w13) * w15 - (w16 * w17 * w9 - w8 * w1) * qd(0) * qd(4) * Scalar(0.1646) - w1 * w3 * w17 * qd(4) * Scalar(0.1646) * qd(2) - w22 * (w5 + w10) - (w1 * Scalar(0.7845) * w12 + w18 - w19) * w23 + w20 * w24 - w1 * qd(1) * w3 * w17 * qd(4) * Scalar(0.1646) - w1 * w3 * w17 * qd(4) * Scalar(0.1646) * qd(3) + w25 * (w16 * w17 * Scalar(0.0823) - w13 + w16 * Scalar(0.10915) - w10 - w7 + w4) + w26 * (w27 + w28) + w29 * (w16 * w17 - w8 * w1 * w9) * Scalar(0.0823) + (w27 + w28 + w16 * w30 * Scalar(0.85) + w32) * w33 + w34 * (w27 + w28 + w32));
+    Jdot_qd(1) = -((w36 + w37 + w39) * w15 + w23 * (w40 - w16 * Scalar(0.7845) * w12 + w41) - w16 * qd(1) * w3 * w17 * qd(4) * Scalar(0.1646) - (w1 * w30 * Scalar(0.85) + w42 + w43 + w44) * w33 - (w16 * w8 * w9 + w1 * w17) * w29 * Scalar(0.0823) + (w1 * w17 * w9 + w16 * w8) * qd(0) * qd(4) * Scalar(0.1646) + w45 * w21 - w25 * (w1 * w17 * Scalar(0.0823) - w37 + w46 + w35 + w38 + w1 * Scalar(0.10915)) + w22 * (w36 + w37) + w14 * (w36 - w46 + w37 + w39) - w34 * (w42 + w43 + w44) - w16 * w3 * w17 * qd(4) * Scalar(0.1646) * qd(3) + w24 * w45 - (w43 + w44) * w26 - w16 * w3 * w17 * qd(4) * Scalar(0.1646) * qd(2));
+    Jdot_qd(2) = Scalar(5e-05) * (qd(1) * w49 + w50 + w51 + w49 * qd(2)) * qd(3) + qd(1) * (qd(1) * (w47 + w48 + w30 * Scalar(8500) + w52) + w50 + w51 + w54) * Scalar(5e-05) - (qd(1) * w17 * w9 + w17 * qd(3) * w9 + w17 * w9 * qd(2) - w8 * w3 * qd(4)) * qd(4) * Scalar(0.0823) + Scalar(5e-05) * (qd(1) * w53 + w50 + w51 + w54) * qd(2);
+  }
+
+  /// Jdot qd of the output tool0_position: its acceleration at qdd = 0
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_tool0_position(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Parameters<typename DerivedQ::Scalar>& p, Out0&& Jdot_qd) noexcept {
+    output_bias_tool0_position(t, q, qd, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(Jdot_qd));
+  }
+
+  /// J = dy/dq of the output tool0_axis_1
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_tool0_axis_1([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& J) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, nq), "J: expected 3 x nq");
+    eigen_assert(q.size() == nq && J.rows() == 3 && J.cols() == nq);
+    using std::sin; using std::cos;
+    const Scalar w0 = q(0) + Scalar(3.141592653589793);
+    const Scalar w1 = sin(w0);
+    const Scalar w2 = cos(q(4));
+    const Scalar w3 = q(1) + q(2) + q(3);
+    const Scalar w4 = cos(w3);
+    const Scalar w5 = sin(q(4));
+    const Scalar w6 = cos(w0);
+    const Scalar w7 = w1 * w2 * w4 - w5 * w6;
+    const Scalar w8 = cos(q(5));
+    const Scalar w9 = sin(w3);
+    const Scalar w10 = sin(q(5));
+    const Scalar w11 = -(w6 * w9 * w2 * w8 + w6 * w10 * w4);
+    const Scalar w12 = w6 * w2 * w4 + w1 * w5;
+    const Scalar w13 = -(w1 * w9 * w2 * w8 + w1 * w10 * w4);
+    const Scalar w14 = w2 * w8 * w4 - w9 * w10;
+    J(0, 0) = -(w7 * w8 - w1 * w9 * w10);
+    J(0, 1) = w11;
+    J(0, 2) = w11;
+    J(0, 3) = w11;
+    J(0, 4) = (w1 * w2 - w5 * w6 * w4) * w8;
+    J(0, 5) = -(w12 * w10 + w6 * w9 * w8);
+    J(1, 0) = -(w6 * w9 * w10 - w12 * w8);
+    J(1, 1) = w13;
+    J(1, 2) = w13;
+    J(1, 3) = w13;
+    J(1, 4) = -((w1 * w5 * w4 + w6 * w2) * w8);
+    J(1, 5) = -(w7 * w10 + w1 * w9 * w8);
+    J(2, 1) = w14;
+    J(2, 2) = w14;
+    J(2, 3) = w14;
+    J(2, 4) = -(w5 * w9 * w8);
+    J(2, 5) = w8 * w4 - w9 * w2 * w10;
+    J(2, 0) = Scalar(0);
+  }
+
+  /// J = dy/dq of the output tool0_axis_1
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_tool0_axis_1(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& J) noexcept {
+    output_jacobian_tool0_axis_1(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(J));
+  }
+
+  /// Jdot qd of the output tool0_axis_1: its acceleration at qdd = 0
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_tool0_axis_1([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& Jdot_qd) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, 1), "Jdot_qd: expected 3 x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && Jdot_qd.rows() == 3 && Jdot_qd.cols() == 1);
+    using std::sin; using std::cos;
+    const Scalar w0 = qd(3) * qd(3);
+    const Scalar w1 = q(0) + Scalar(3.141592653589793);
+    const Scalar w2 = cos(w1);
+    const Scalar w3 = cos(q(4));
+    const Scalar w4 = cos(q(5));
+    const Scalar w5 = q(1) + q(2) + q(3);
+    const Scalar w6 = cos(w5);
+    const Scalar w7 = sin(w5);
+    const Scalar w8 = sin(q(5));
+    const Scalar w9 = w2 * w7 * w8;
+    const Scalar w10 = w9 - w2 * w3 * w4 * w6;
+    const Scalar w11 = sin(q(4));
+    const Scalar w12 = sin(w1);
+    const Scalar w13 = w12 * w3 - w11 * w2 * w6;
+    const Scalar w14 = qd(2) * qd(2);
+    const Scalar w15 = w12 * w11 * w6 + w2 * w3;
+    const Scalar w16 = w12 * w3 * w6 - w11 * w2;
+    const Scalar w17 = w2 * w4 * w6 - w2 * w7 * w3 * w8;
+    const Scalar w18 = w12 * w7 * w3 * w4 + w12 * w8 * w6;
+    const Scalar w19 = qd(5) * qd(5);
+    const Scalar w20 = w2 * w3 * w6 + w12 * w11;
+    const Scalar w21 = w9 - w20 * w4;
+    const Scalar w22 = qd(0) * qd(0);
+    const Scalar w23 = qd(4) * qd(4);
+    const Scalar w24 = qd(1) * qd(1);
+    const Scalar w25 = -(w12 * w7 * w8);
+    const Scalar w26 = w12 * w3 * w4 * w6 + w25;
+    const Scalar w27 = w2 * w7 * w3 * w4 + w2 * w8 * w6;
+    const Scalar w28 = w16 * w4 + w25;
+    const Scalar w29 = w12 * w4 * w6 - w12 * w7 * w3 * w8;
+    const Scalar w30 = w7 * w3 * w4 + w8 * w6;
+    const Scalar w31 = w7 * w4 + w3 * w8 * w6;
+    Jdot_qd(0) = w0 * w10 - qd(5) * Scalar(2) * w8 * qd(4) * w13 + w10 * w14 + w10 * Scalar(2) * qd(3) * qd(2) + w15 * Scalar(2) * qd(0) * qd(4) * w4 + (w16 * w8 + w12 * w7 * w4) * qd(5) * Scalar(2) * qd(0) + w11 * w2 * qd(1) * w7 * Scalar(2) * qd(4) * w4 - qd(5) * Scalar(2) * w17 * qd(2) + qd(1) * w10 * Scalar(2) * qd(2) + w18 * qd(1) * Scalar(2) * qd(0) + w19 * w21 + w22 * w21 + w18 * Scalar(2) * qd(0) * qd(3) + w11 * w2 * w7 * Scalar(2) * qd(4) * qd(3) * w4 - qd(1) * qd(5) * Scalar(2) * w17 - w20 * w23 * w4 + qd(1) * w10 * Scalar(2) * qd(3) + w11 * w2 * w7 * Scalar(2) * qd(4) * w4 * qd(2) + w10 * w24 - qd(5) * Scalar(2) * w17 * qd(3) + w18 * Scalar(2) * qd(0) * qd(2);
+    Jdot_qd(1) = -(w0 * w26 + qd(1) * Scalar(2) * qd(0) * w27 + qd(1) * Scalar(2) * w26 * qd(2) - w15 * qd(5) * Scalar(2) * w8 * qd(4) + qd(1) * Scalar(2) * w26 * qd(3) + qd(5) * Scalar(2) * (w20 * w8 + w2 * w7 * w4) * qd(0) + w28 * w19 + qd(1) * qd(5) * Scalar(2) * w29 + Scalar(2) * qd(0) * w27 * qd(2) - w12 * w11 * w7 * Scalar(2) * qd(4) * w4 * qd(2) + qd(5) * Scalar(2) * qd(3) * w29 - Scalar(2) * qd(0) * qd(4) * w13 * w4 + w26 * w24 + w16 * w23 * w4 - w12 * w11 * w7 * Scalar(2) * qd(4) * qd(3) * w4 + w28 * w22 + qd(5) * Scalar(2) * w29 * qd(2) + Scalar(2) * qd(0) * qd(3) * w27 - w12 * w11 * qd(1) * w7 * Scalar(2) * qd(4) * w4 + Scalar(2) * w26 * qd(3) * qd(2) + w26 * w14);
+    Jdot_qd(2) = -(w19 * w30 + qd(5) * Scalar(2) * w31 * qd(2) + w11 * Scalar(2) * qd(4) * qd(3) * w4 * w6 - w11 * w7 * qd(5) * Scalar(2) * w8 * qd(4) + qd(1) * Scalar(2) * w30 * qd(3) + w30 * w24 + qd(5) * Scalar(2) * qd(3) * w31 + w7 * w3 * w23 * w4 + w11 * qd(1) * Scalar(2) * qd(4) * w4 * w6 + qd(1) * Scalar(2) * w30 * qd(2) + w11 * Scalar(2) * qd(4) * w4 * w6 * qd(2) + w0 * w30 + qd(1) * qd(5) * Scalar(2) * w31 + Scalar(2) * w30 * qd(3) * qd(2) + w30 * w14);
+  }
+
+  /// Jdot qd of the output tool0_axis_1: its acceleration at qdd = 0
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_tool0_axis_1(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Parameters<typename DerivedQ::Scalar>& p, Out0&& Jdot_qd) noexcept {
+    output_bias_tool0_axis_1(t, q, qd, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(Jdot_qd));
+  }
+
+  /// J = dy/dq of the output tool0_axis_2
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_tool0_axis_2([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& J) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, nq), "J: expected 3 x nq");
+    eigen_assert(q.size() == nq && J.rows() == 3 && J.cols() == nq);
+    using std::sin; using std::cos;
+    const Scalar w0 = q(0) + Scalar(3.141592653589793);
+    const Scalar w1 = sin(w0);
+    const Scalar w2 = cos(q(4));
+    const Scalar w3 = q(1) + q(2) + q(3);
+    const Scalar w4 = cos(w3);
+    const Scalar w5 = sin(q(4));
+    const Scalar w6 = cos(w0);
+    const Scalar w7 = w1 * w2 * w4 - w5 * w6;
+    const Scalar w8 = sin(q(5));
+    const Scalar w9 = sin(w3);
+    const Scalar w10 = cos(q(5));
+    const Scalar w11 = -(w6 * w10 * w4 - w6 * w9 * w2 * w8);
+    const Scalar w12 = w6 * w2 * w4 + w1 * w5;
+    const Scalar w13 = -(w1 * w10 * w4 - w1 * w9 * w2 * w8);
+    const Scalar w14 = -(w9 * w10 + w2 * w8 * w4);
+    J(0, 0) = w7 * w8 + w1 * w9 * w10;
+    J(0, 1) = w11;
+    J(0, 2) = w11;
+    J(0, 3) = w11;
+    J(0, 4) = -(w8 * (w1 * w2 - w5 * w6 * w4));
+    J(0, 5) = w6 * w9 * w8 - w12 * w10;
+    J(1, 0) = -(w12 * w8 + w6 * w9 * w10);
+    J(1, 1) = w13;
+    J(1, 2) = w13;
+    J(1, 3) = w13;
+    J(1, 4) = (w1 * w5 * w4 + w6 * w2) * w8;
+    J(1, 5) = -(w7 * w10 - w1 * w9 * w8);
+    J(2, 1) = w14;
+    J(2, 2) = w14;
+    J(2, 3) = w14;
+    J(2, 4) = w5 * w9 * w8;
+    J(2, 5) = -(w9 * w2 * w10 + w8 * w4);
+    J(2, 0) = Scalar(0);
+  }
+
+  /// J = dy/dq of the output tool0_axis_2
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_tool0_axis_2(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& J) noexcept {
+    output_jacobian_tool0_axis_2(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(J));
+  }
+
+  /// Jdot qd of the output tool0_axis_2: its acceleration at qdd = 0
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_tool0_axis_2([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& Jdot_qd) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, 1), "Jdot_qd: expected 3 x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && Jdot_qd.rows() == 3 && Jdot_qd.cols() == 1);
+    using std::sin; using std::cos;
+    const Scalar w0 = q(0) + Scalar(3.141592653589793);
+    const Scalar w1 = cos(w0);
+    const Scalar w2 = cos(q(4));
+    const Scalar w3 = sin(q(5));
+    const Scalar w4 = q(1) + q(2) + q(3);
+    const Scalar w5 = cos(w4);
+    const Scalar w6 = sin(w4);
+    const Scalar w7 = cos(q(5));
+    const Scalar w8 = w1 * w6 * w7;
+    const Scalar w9 = w1 * w2 * w3 * w5 + w8;
+    const Scalar w10 = qd(2) * qd(2);
+    const Scalar w11 = sin(w0);
+    const Scalar w12 = w11 * w7 * w5 - w11 * w6 * w2 * w3;
+    const Scalar w13 = w1 * w6 * w2 * w7 + w1 * w3 * w5;
+    const Scalar w14 = sin(q(4));
+    const Scalar w15 = w11 * w2 - w14 * w1 * w5;
+    const Scalar w16 = qd(3) * qd(3);
+    const Scalar w17 = w1 * w2 * w5 + w11 * w14;
+    const Scalar w18 = qd(4) * qd(4);
+    const Scalar w19 = w11 * w2 * w5 - w14 * w1;
+    const Scalar w20 = qd(1) * qd(1);
+    const Scalar w21 = w11 * w14 * w5 + w1 * w2;
+    const Scalar w22 = qd(5) * qd(5);
+    const Scalar w23 = w17 * w3 + w8;
+    const Scalar w24 = qd(0) * qd(0);
+    const Scalar w25 = w11 * w6 * w7;
+    const Scalar w26 = w19 * w3 + w25;
+    const Scalar w27 = w1 * w7 * w5 - w1 * w6 * w2 * w3;
+    const Scalar w28 = w11 * w2 * w3 * w5 + w25;
+    const Scalar w29 = w11 * w6 * w2 * w7 + w11 * w3 * w5;
+    const Scalar w30 = w2 * w7 * w5 - w6 * w3;
+    const Scalar w31 = w7 * w5 - w6 * w2 * w3;
+    Jdot_qd(0) = w9 * w10 + Scalar(2) * qd(0) * w12 * qd(2) + qd(5) * Scalar(2) * w13 * qd(2) - qd(5) * Scalar(2) * qd(4) * w15 * w7 + qd(1) * qd(5) * Scalar(2) * w13 + Scalar(2) * qd(0) * qd(3) * w12 + qd(1) * Scalar(2) * w9 * qd(3) + qd(5) * Scalar(2) * qd(3) * w13 + Scalar(2) * w9 * qd(3) * qd(2) + w16 * w9 + qd(1) * Scalar(2) * w9 * qd(2) + w17 * w3 * w18 - w14 * w1 * w6 * Scalar(2) * w3 * qd(4) * qd(3) - w14 * w1 * qd(1) * w6 * Scalar(2) * w3 * qd(4) + (w19 * w7 - w11 * w6 * w3) * qd(5) * Scalar(2) * qd(0) + qd(1) * Scalar(2) * qd(0) * w12 + w9 * w20 - w14 * w1 * w6 * Scalar(2) * w3 * qd(4) * qd(2) - w21 * Scalar(2) * w3 * qd(0) * qd(4) + w22 * w23 + w24 * w23;
+    Jdot_qd(1) = w26 * w24 - w11 * w14 * w6 * Scalar(2) * w3 * qd(4) * qd(3) - qd(1) * Scalar(2) * qd(0) * w27 - Scalar(2) * w3 * qd(0) * qd(4) * w15 + w28 * w20 - w11 * w14 * w6 * Scalar(2) * w3 * qd(4) * qd(2) + w29 * qd(5) * Scalar(2) * qd(2) + qd(5) * Scalar(2) * qd(0) * (w1 * w6 * w3 - w17 * w7) + qd(1) * w28 * Scalar(2) * qd(3) + w19 * w3 * w18 + w28 * Scalar(2) * qd(3) * qd(2) + w16 * w28 + qd(1) * w28 * Scalar(2) * qd(2) - Scalar(2) * qd(0) * w27 * qd(3) - Scalar(2) * qd(0) * w27 * qd(2) + w28 * w10 + w21 * qd(5) * Scalar(2) * qd(4) * w7 - w11 * w14 * qd(1) * w6 * Scalar(2) * w3 * qd(4) + w29 * qd(5) * Scalar(2) * qd(3) + w29 * qd(1) * qd(5) * Scalar(2) + w26 * w22;
+    Jdot_qd(2) = -(w30 * qd(5) * Scalar(2) * qd(3) + w16 * w31 + w10 * w31 - w14 * w6 * qd(5) * Scalar(2) * qd(4) * w7 - w14 * Scalar(2) * w3 * qd(4) * w5 * qd(2) - w14 * Scalar(2) * w3 * qd(4) * qd(3) * w5 + qd(1) * Scalar(2) * w31 * qd(3) + w31 * w20 + w30 * qd(5) * Scalar(2) * qd(2) + qd(1) * Scalar(2) * w31 * qd(2) - w14 * qd(1) * Scalar(2) * w3 * qd(4) * w5 + w30 * qd(1) * qd(5) * Scalar(2) - w6 * w2 * w3 * w18 + Scalar(2) * w31 * qd(3) * qd(2) + w22 * w31);
+  }
+
+  /// Jdot qd of the output tool0_axis_2: its acceleration at qdd = 0
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_tool0_axis_2(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Parameters<typename DerivedQ::Scalar>& p, Out0&& Jdot_qd) noexcept {
+    output_bias_tool0_axis_2(t, q, qd, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(Jdot_qd));
+  }
+
+  /// J = dy/dq of the output tool0_axis_3
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_tool0_axis_3([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& J) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, nq), "J: expected 3 x nq");
+    eigen_assert(q.size() == nq && J.rows() == 3 && J.cols() == nq);
+    using std::sin; using std::cos;
+    const Scalar w0 = q(0) + Scalar(3.141592653589793);
+    const Scalar w1 = sin(w0);
+    const Scalar w2 = sin(q(4));
+    const Scalar w3 = q(1) + q(2) + q(3);
+    const Scalar w4 = cos(w3);
+    const Scalar w5 = cos(w0);
+    const Scalar w6 = cos(q(4));
+    const Scalar w7 = sin(w3);
+    const Scalar w8 = w2 * w5 * w7;
+    const Scalar w9 = w1 * w2 * w7;
+    const Scalar w10 = -(w2 * w4);
+    J(0, 0) = w1 * w2 * w4 + w5 * w6;
+    J(0, 1) = w8;
+    J(0, 2) = w8;
+    J(0, 3) = w8;
+    J(0, 4) = -(w5 * w6 * w4 + w1 * w2);
+    J(1, 0) = w1 * w6 - w2 * w5 * w4;
+    J(1, 1) = w9;
+    J(1, 2) = w9;
+    J(1, 3) = w9;
+    J(1, 4) = -(w1 * w6 * w4 - w2 * w5);
+    J(2, 1) = w10;
+    J(2, 2) = w10;
+    J(2, 3) = w10;
+    J(2, 4) = -(w7 * w6);
+    J(0, 5) = Scalar(0);
+    J(1, 5) = Scalar(0);
+    J(2, 0) = Scalar(0);
+    J(2, 5) = Scalar(0);
+  }
+
+  /// J = dy/dq of the output tool0_axis_3
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_tool0_axis_3(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& J) noexcept {
+    output_jacobian_tool0_axis_3(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(J));
+  }
+
+  /// Jdot qd of the output tool0_axis_3: its acceleration at qdd = 0
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_tool0_axis_3([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& Jdot_qd) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, 1), "Jdot_qd: expected 3 x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && Jdot_qd.rows() == 3 && Jdot_qd.cols() == 1);
+    using std::sin; using std::cos;
+    const Scalar w0 = q(0) + Scalar(3.141592653589793);
+    const Scalar w1 = sin(w0);
+    const Scalar w2 = sin(q(4));
+    const Scalar w3 = q(1) + q(2) + q(3);
+    const Scalar w4 = sin(w3);
+    const Scalar w5 = cos(w0);
+    const Scalar w6 = cos(q(4));
+    const Scalar w7 = qd(1) * qd(1);
+    const Scalar w8 = cos(w3);
+    const Scalar w9 = qd(2) * qd(2);
+    const Scalar w10 = qd(4) * qd(4);
+    const Scalar w11 = w1 * w6 - w2 * w5 * w8;
+    const Scalar w12 = qd(3) * qd(3);
+    const Scalar w13 = qd(0) * qd(0);
+    const Scalar w14 = w1 * w2 * w8 + w5 * w6;
+    const Scalar w15 = w2 * qd(1) * w4 + w2 * w4 * qd(3) + w2 * w4 * qd(2) - w6 * qd(4) * w8;
+    Jdot_qd(0) = w5 * w4 * Scalar(2) * w6 * qd(4) * qd(2) - w1 * w2 * w4 * Scalar(2) * qd(0) * qd(2) + w5 * qd(1) * w4 * Scalar(2) * w6 * qd(4) + w2 * w5 * w7 * w8 - w1 * w2 * qd(1) * w4 * Scalar(2) * qd(0) + w2 * w5 * w9 * w8 - w10 * w11 - w1 * w2 * w4 * Scalar(2) * qd(0) * qd(3) + w5 * w4 * Scalar(2) * w6 * qd(4) * qd(3) + w2 * w5 * Scalar(2) * qd(3) * w8 * qd(2) + w2 * w5 * w12 * w8 + w2 * w5 * qd(1) * Scalar(2) * qd(3) * w8 + w2 * w5 * qd(1) * Scalar(2) * w8 * qd(2) + Scalar(2) * (w1 * w6 * w8 - w2 * w5) * qd(0) * qd(4) - w13 * w11;
+    Jdot_qd(1) = w14 * w10 + w2 * w5 * w4 * Scalar(2) * qd(0) * qd(3) + w1 * w4 * Scalar(2) * w6 * qd(4) * qd(3) - (w5 * w6 * w8 + w1 * w2) * Scalar(2) * qd(0) * qd(4) + w1 * w2 * qd(1) * Scalar(2) * w8 * qd(2) + w1 * w2 * Scalar(2) * qd(3) * w8 * qd(2) + w1 * qd(1) * w4 * Scalar(2) * w6 * qd(4) + w1 * w2 * w9 * w8 + w2 * w5 * w4 * Scalar(2) * qd(0) * qd(2) + w1 * w4 * Scalar(2) * w6 * qd(4) * qd(2) + w2 * w5 * qd(1) * w4 * Scalar(2) * qd(0) + w1 * w2 * w7 * w8 + w1 * w2 * qd(1) * Scalar(2) * qd(3) * w8 + w1 * w2 * w12 * w8 + w14 * w13;
+    Jdot_qd(2) = qd(3) * w15 - (qd(1) * w6 * w8 + w6 * qd(3) * w8 + w6 * w8 * qd(2) - w2 * w4 * qd(4)) * qd(4) + w15 * qd(2) + qd(1) * w15;
+  }
+
+  /// Jdot qd of the output tool0_axis_3: its acceleration at qdd = 0
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_tool0_axis_3(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Parameters<typename DerivedQ::Scalar>& p, Out0&& Jdot_qd) noexcept {
+    output_bias_tool0_axis_3(t, q, qd, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(Jdot_qd));
+  }
+
+  /// J = dy/dqd of the output tool0_angular_velocity
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_tool0_angular_velocity([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& J) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, nq), "J: expected 3 x nq");
+    eigen_assert(q.size() == nq && J.rows() == 3 && J.cols() == nq);
+    using std::sin; using std::cos;
+    const Scalar w0 = q(0) + Scalar(3.141592653589793);
+    const Scalar w1 = sin(w0);
+    const Scalar w2 = cos(w0);
+    const Scalar w3 = q(1) + q(2) + q(3);
+    const Scalar w4 = sin(w3);
+    const Scalar w5 = sin(q(4));
+    const Scalar w6 = cos(w3);
+    const Scalar w7 = cos(q(4));
+    const Scalar w8 = -w2;
+    J(0, 1) = w1;
+    J(0, 2) = w1;
+    J(0, 3) = w1;
+    J(0, 4) = w2 * w4;
+    J(0, 5) = w1 * w7 - w5 * w2 * w6;
+    J(1, 1) = w8;
+    J(1, 2) = w8;
+    J(1, 3) = w8;
+    J(1, 4) = w1 * w4;
+    J(1, 5) = -(w1 * w5 * w6 + w2 * w7);
+    J(2, 0) = Scalar(1);
+    J(2, 4) = -w6;
+    J(2, 5) = -(w5 * w4);
+    J(0, 0) = Scalar(0);
+    J(1, 0) = Scalar(0);
+    J(2, 1) = Scalar(0);
+    J(2, 2) = Scalar(0);
+    J(2, 3) = Scalar(0);
+  }
+
+  /// J = dy/dqd of the output tool0_angular_velocity
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class Out0>
+  static void output_jacobian_tool0_angular_velocity(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Parameters<typename DerivedQ::Scalar>& p, Out0&& J) noexcept {
+    output_jacobian_tool0_angular_velocity(t, q, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(J));
+  }
+
+  /// Jdot qd of the output tool0_angular_velocity: its rate at qdd = 0
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_tool0_angular_velocity([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& Jdot_qd) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(3, 1), "Jdot_qd: expected 3 x 1");
+    eigen_assert(q.size() == nq && qd.size() == nq && Jdot_qd.rows() == 3 && Jdot_qd.cols() == 1);
+    using std::sin; using std::cos;
+    const Scalar w0 = q(0) + Scalar(3.141592653589793);
+    const Scalar w1 = cos(w0);
+    const Scalar w2 = q(1) + q(2) + q(3);
+    const Scalar w3 = cos(w2);
+    const Scalar w4 = sin(q(4));
+    const Scalar w5 = sin(w2);
+    const Scalar w6 = w1 * qd(4) * w3 + w4 * w1 * w5 * qd(5);
+    const Scalar w7 = sin(w0);
+    const Scalar w8 = cos(q(4));
+    const Scalar w9 = w7 * qd(4) * w3 + w7 * w4 * w5 * qd(5);
+    const Scalar w10 = w5 * qd(4) - w4 * qd(5) * w3;
+    Jdot_qd(0) = w6 * qd(1) + w6 * qd(3) + (w1 * qd(2) + w1 * qd(3) - w7 * w5 * qd(4) + (w7 * w4 * w3 + w1 * w8) * qd(5) + w1 * qd(1)) * qd(0) + w6 * qd(2) - (w1 * w8 * w3 + w7 * w4) * qd(5) * qd(4);
+    Jdot_qd(1) = w9 * qd(1) + w9 * qd(3) + w9 * qd(2) + (w7 * qd(1) + w1 * w5 * qd(4) + qd(5) * (w7 * w8 - w4 * w1 * w3) + w7 * qd(2) + w7 * qd(3)) * qd(0) - qd(5) * (w7 * w8 * w3 - w4 * w1) * qd(4);
+    Jdot_qd(2) = w10 * qd(1) + w10 * qd(3) - w5 * qd(5) * w8 * qd(4) + w10 * qd(2);
+  }
+
+  /// Jdot qd of the output tool0_angular_velocity: its rate at qdd = 0
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class DerivedQd, class Out0>
+  static void output_bias_tool0_angular_velocity(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Parameters<typename DerivedQ::Scalar>& p, Out0&& Jdot_qd) noexcept {
+    output_bias_tool0_angular_velocity(t, q, qd, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(Jdot_qd));
+  }
+
+  /// Y with M qdd - F = Y pi + (the loads other than gravity, negated), pi the inertial parameters (inertial_parameter_names)
+  template <class DerivedQ, class DerivedQd, class DerivedQdd, class Out0>
+  static void regressor([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedQdd>& qdd, const Constants<typename DerivedQ::Scalar>& c, Out0&& Y) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
+    static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
+    static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
+    static_assert(fits<DerivedQdd>(nq, 1), "qdd: expected a column of nq entries");
+    static_assert(fits<std::decay_t<Out0>>(nq, npi), "Y: expected nq x npi");
+    eigen_assert(q.size() == nq && qd.size() == nq && qdd.size() == nq && Y.rows() == nq && Y.cols() == npi);
+    using std::sin; using std::cos;
+    const Scalar w0 = sin(q(1));
+    const Scalar w1 = cos(q(1));
+    const Scalar w2 = c.p.g * w1;
+    const Scalar w3 = c.p.g * w0;
+    const Scalar w4 = w0 * qd(0);
+    const Scalar w5 = qd(1) * w4;
+    const Scalar w6 = w5 * w1;
+    const Scalar w7 = w1 * qd(0);
+    const Scalar w8 = qd(1) * w7;
+    const Scalar w9 = w8 + qdd(0) * w0;
+    const Scalar w10 = w5 - qdd(0) * w1;
+    const Scalar w11 = w8 * w0;
+    const Scalar w12 = w7 * w4;
+    const Scalar w13 = w4 * w4;
+    const Scalar w14 = qd(1) * qd(1);
+    const Scalar w15 = -w14;
+    const Scalar w16 = -w12;
+    const Scalar w17 = w7 * w7;
+    const Scalar w18 = qd(1) * Scalar(0.425) * w4 + Scalar(0.425) * w10;
+    const Scalar w19 = sin(q(2));
+    const Scalar w20 = w18 * w19;
+    const Scalar w21 = cos(q(2));
+    const Scalar w22 = w18 * w21;
+    const Scalar w23 = w7 * w19 + w4 * w21;
+    const Scalar w24 = qd(1) + qd(2);
+    const Scalar w25 = w23 * w24;
+    const Scalar w26 = w23 * qd(2) + w21 * w10 + w9 * w19;
+    const Scalar w27 = w25 + w26;
+    const Scalar w28 = w4 * w19 - w7 * w21;
+    const Scalar w29 = w28 * w24;
+    const Scalar w30 = w28 * qd(2) + w19 * w10 - w9 * w21;
+    const Scalar w31 = w29 + w30;
+    const Scalar w32 = qdd(1) * Scalar(0.425) - w2;
+    const Scalar w33 = Scalar(0.425) * w14 + w17 * Scalar(0.425);
+    const Scalar w34 = w7 * Scalar(0.425) * w4;
+    const Scalar w35 = w3 * w21 - w19 * w32 + w33 * w21 - w19 * w34;
+    const Scalar w36 = w34 * w21 + w33 * w19 + w3 * w19 + w32 * w21;
+    const Scalar w37 = w19 * w35 - w36 * w21;
+    const Scalar w38 = w23 * w23;
+    const Scalar w39 = w28 * w28;
+    const Scalar w40 = w19 * w25;
+    const Scalar w41 = w25 * w21;
+    const Scalar w42 = w29 * w21;
+    const Scalar w43 = w29 * w19;
+    const Scalar w44 = w28 * w23;
+    const Scalar w45 = -w44;
+    const Scalar w46 = qdd(1) + qdd(2);
+    const Scalar w47 = w45 + w46;
+    const Scalar w48 = w47 * w21;
+    const Scalar w49 = w24 * w24;
+    const Scalar w50 = w38 - w49;
+    const Scalar w51 = w46 + w44;
+    const Scalar w52 = -w39;
+    const Scalar w53 = w52 + w49;
+    const Scalar w54 = w51 * w19;
+    const Scalar w55 = w36 - Scalar(0.10915) * w30 + Scalar(0.39225) * w46;
+    const Scalar w56 = cos(q(3));
+    const Scalar w57 = sin(q(3));
+    const Scalar w58 = Scalar(0.10915) * w23 + Scalar(0.39225) * w24;
+    const Scalar w59 = w58 * w24 + Scalar(0.39225) * w39;
+    const Scalar w60 = Scalar(0.39225) * w28 * w23 - w28 * Scalar(0.10915) * w24;
+    const Scalar w61 = -w35;
+    const Scalar w62 = Scalar(0.10915) * w26 + w61;
+    const Scalar w63 = w55 * w56 + w57 * w59 - w56 * w60 - w57 * w62;
+    const Scalar w64 = w63 * w57;
+    const Scalar w65 = w55 * w57 - (w56 * w59 + w60 * w57) + w56 * w62;
+    const Scalar w66 = -(w56 * w65);
+    const Scalar w67 = w64 + w66;
+    const Scalar w68 = Scalar(0.10915) * w39 + w23 * w58 + Scalar(0.39225) * w26 + w18;
+    const Scalar w69 = w67 * Scalar(0.10915) - Scalar(0.39225) * w68;
+    const Scalar w70 = w57 * w65;
+    const Scalar w71 = w63 * w56;
+    const Scalar w72 = w70 + w71;
+    const Scalar w73 = w57 * w23 + w56 * w28;
+    const Scalar w74 = w73 * w73;
+    const Scalar w75 = qd(3) + w24;
+    const Scalar w76 = w75 * w75;
+    const Scalar w77 = w74 + w76;
+    const Scalar w78 = qdd(3) + w46;
+    const Scalar w79 = w28 * w57 - w56 * w23;
+    const Scalar w80 = w79 * w73;
+    const Scalar w81 = w78 + w80;
+    const Scalar w82 = w81 * w57;
+    const Scalar w83 = w56 * w77 + w82;
+    const Scalar w84 = w56 * w26 - w30 * w57 - w79 * qd(3);
+    const Scalar w85 = w79 * w75;
+    const Scalar w86 = w85 - w84;
+    const Scalar w87 = -(w56 * w68);
+    const Scalar w88 = Scalar(0.10915) * w83 + Scalar(0.39225) * w86 + w87;
+    const Scalar w89 = w57 * w68;
+    const Scalar w90 = w56 * w81;
+    const Scalar w91 = w90 - w57 * w77;
+    const Scalar w92 = w89 + Scalar(0.10915) * w91;
+    const Scalar w93 = -w80;
+    const Scalar w94 = w93 + w78;
+    const Scalar w95 = w94 * w57;
+    const Scalar w96 = w79 * w79;
+    const Scalar w97 = w96 + w76;
+    const Scalar w98 = w95 + w56 * w97;
+    const Scalar w99 = w98 * Scalar(0.10915) + w87;
+    const Scalar w100 = w75 * w73;
+    const Scalar w101 = qd(3) * w73 + w57 * w26 + w56 * w30;
+    const Scalar w102 = w100 + w101;
+    const Scalar w103 = w56 * w94;
+    const Scalar w104 = w97 * w57 - w103;
+    const Scalar w105 = w89 + Scalar(0.39225) * w102 - Scalar(0.10915) * w104;
+    const Scalar w106 = w74 + w96;
+    const Scalar w107 = w100 - w101;
+    const Scalar w108 = w85 + w84;
+    const Scalar w109 = w107 * w57 - w56 * w108;
+    const Scalar w110 = w64 + w109 * Scalar(0.10915) - Scalar(0.39225) * w106 + w66;
+    const Scalar w111 = w107 * w56 + w108 * w57;
+    const Scalar w112 = w70 + w71 + w111 * Scalar(0.10915);
+    const Scalar w113 = w85 * w57;
+    const Scalar w114 = w56 * w101 - w113;
+    const Scalar w115 = w56 * w85;
+    const Scalar w116 = w57 * w101 + w115;
+    const Scalar w117 = w57 * w102 + w56 * w86;
+    const Scalar w118 = w86 * w57 - w56 * w102;
+    const Scalar w119 = w57 * w100;
+    const Scalar w120 = w56 * w84 - w119;
+    const Scalar w121 = w56 * w100;
+    const Scalar w122 = w121 + w57 * w84;
+    const Scalar w123 = -w76;
+    const Scalar w124 = w96 + w123;
+    const Scalar w125 = w90 + w124 * w57;
+    const Scalar w126 = w56 * w124 - w82;
+    const Scalar w127 = w74 + w123;
+    const Scalar w128 = w56 * w127 - w95;
+    const Scalar w129 = w127 * w57 + w103;
+    const Scalar w130 = w119 - w115;
+    const Scalar w131 = w121 + w113;
+    const Scalar w132 = sin(q(4));
+    const Scalar w133 = cos(q(4));
+    const Scalar w134 = w133 * w101 - w132 * w78;
+    const Scalar w135 = w133 * w75 + w132 * w79;
+    const Scalar w136 = Scalar(0.09465) * w134 - w133 * w68 + w135 * Scalar(0.09465) * w73 + w132 * w65;
+    const Scalar w137 = w132 * w101 + w133 * w78;
+    const Scalar w138 = w79 * w133 - w132 * w75;
+    const Scalar w139 = w133 * w65 + w132 * w68 - Scalar(0.09465) * w137 + Scalar(0.09465) * w138 * w73;
+    const Scalar w140 = w132 * w136 + w133 * w139;
+    const Scalar w141 = w135 * w135;
+    const Scalar w142 = w138 * w138;
+    const Scalar w143 = w63 - (Scalar(0.09465) * w141 + Scalar(0.09465) * w142);
+    const Scalar w144 = w140 * w57 + w56 * w143;
+    const Scalar w145 = w132 * Scalar(0.09465) * w139 - Scalar(0.09465) * w133 * w136;
+    const Scalar w146 = w144 * Scalar(0.10915) + w56 * w145;
+    const Scalar w147 = w57 * w143 - w56 * w140;
+    const Scalar w148 = w132 * w139 - w133 * w136;
+    const Scalar w149 = w145 * w57 + w147 * Scalar(0.10915) - Scalar(0.39225) * w148;
+    const Scalar w150 = w135 * w138;
+    const Scalar w151 = w84 + qdd(4);
+    const Scalar w152 = w150 - w151;
+    const Scalar w153 = w132 * w152;
+    const Scalar w154 = qd(4) + w73;
+    const Scalar w155 = w154 * w154;
+    const Scalar w156 = w141 + w155;
+    const Scalar w157 = w153 - w156 * w133;
+    const Scalar w158 = w154 * w138;
+    const Scalar w159 = w138 * qd(4) + w137;
+    const Scalar w160 = w158 + w159;
+    const Scalar w161 = w160 * w57 - w56 * w157;
+    const Scalar w162 = w156 * Scalar(0.09465) + w143;
+    const Scalar w163 = Scalar(0.09465) * w133 * w152 + w132 * w162;
+    const Scalar w164 = w133 * w152;
+    const Scalar w165 = w132 * w156 + w164;
+    const Scalar w166 = Scalar(0.10915) * w161 - w57 * w163 + w56 * w136 + Scalar(0.39225) * w165;
+    const Scalar w167 = w56 * w160 + w157 * w57;
+    const Scalar w168 = w57 * w136 - w167 * Scalar(0.10915) + w56 * w163;
+    const Scalar w169 = w150 + w151;
+    const Scalar w170 = w132 * w169;
+    const Scalar w171 = w155 + w142;
+    const Scalar w172 = w170 + w171 * w133;
+    const Scalar w173 = w143 + Scalar(0.09465) * w171;
+    const Scalar w174 = w133 * w173 + w132 * Scalar(0.09465) * w169;
+    const Scalar w175 = w135 * w154;
+    const Scalar w176 = w135 * qd(4) - w134;
+    const Scalar w177 = w175 + w176;
+    const Scalar w178 = w133 * w169;
+    const Scalar w179 = w132 * w171 - w178;
+    const Scalar w180 = w56 * w177 - w57 * w179;
+    const Scalar w181 = w174 * w56 + w180 * Scalar(0.10915) + w57 * w139;
+    const Scalar w182 = w177 * w57 + w56 * w179;
+    const Scalar w183 = w56 * w139 - w182 * Scalar(0.10915) - w174 * w57 + Scalar(0.39225) * w172;
+    const Scalar w184 = w175 - w176;
+    const Scalar w185 = w136 + Scalar(0.09465) * w184;
+    const Scalar w186 = w158 - w159;
+    const Scalar w187 = Scalar(0.09465) * w186 + w139;
+    const Scalar w188 = w185 * w133 - w132 * w187;
+    const Scalar w189 = w141 + w142;
+    const Scalar w190 = w133 * w186 + w132 * w184;
+    const Scalar w191 = w189 * w57 + w56 * w190;
+    const Scalar w192 = w133 * w184 - w132 * w186;
+    const Scalar w193 = Scalar(0.39225) * w192 - w188 * w57 - w191 * Scalar(0.10915);
+    const Scalar w194 = w56 * w189 - w190 * w57;
+    const Scalar w195 = Scalar(0.10915) * w194 + w56 * w188;
+    const Scalar w196 = w150 * w57;
+    const Scalar w197 = w132 * w158;
+    const Scalar w198 = w133 * w176 + w197;
+    const Scalar w199 = w196 + w56 * w198;
+    const Scalar w200 = w150 * w56;
+    const Scalar w201 = w200 - w57 * w198;
+    const Scalar w202 = -w142;
+    const Scalar w203 = w141 + w202;
+    const Scalar w204 = w132 * w177 - w133 * w160;
+    const Scalar w205 = w203 * w57 + w56 * w204;
+    const Scalar w206 = w204 * w57 - w56 * w203;
+    const Scalar w207 = w133 * w175;
+    const Scalar w208 = w132 * w159 + w207;
+    const Scalar w209 = w200 - w208 * w57;
+    const Scalar w210 = w196 + w56 * w208;
+    const Scalar w211 = w202 + w155;
+    const Scalar w212 = w132 * w211 + w164;
+    const Scalar w213 = w56 * w212 + w57 * w184;
+    const Scalar w214 = w56 * w184 - w57 * w212;
+    const Scalar w215 = w141 - w155;
+    const Scalar w216 = w215 * w133 - w170;
+    const Scalar w217 = w186 * w57 - w56 * w216;
+    const Scalar w218 = w216 * w57 + w56 * w186;
+    const Scalar w219 = w207 - w197;
+    const Scalar w220 = w56 * w151 - w57 * w219;
+    const Scalar w221 = w57 * w151 + w56 * w219;
+    const Scalar w222 = cos(q(5));
+    const Scalar w223 = sin(q(5));
+    const Scalar w224 = w138 * w222 + w154 * w223;
+    const Scalar w225 = w151 * w222 + w223 * w176;
+    const Scalar w226 = w224 * w135 * Scalar(0.0823) + w223 * w143 + w222 * w139 + w225 * Scalar(0.0823);
+    const Scalar w227 = w154 * w222 - w223 * w138;
+    const Scalar w228 = w223 * w151 - w222 * w176;
+    const Scalar w229 = w143 * w222 - w223 * w139 + w135 * Scalar(0.0823) * w227 - w228 * Scalar(0.0823);
+    const Scalar w230 = Scalar(0.0823) * w222 * w226 - w229 * w223 * Scalar(0.0823);
+    const Scalar w231 = w227 * w227;
+    const Scalar w232 = w224 * w224;
+    const Scalar w233 = w136 - (w231 * Scalar(0.0823) + w232 * Scalar(0.0823));
+    const Scalar w234 = w229 * w223 - w222 * w226;
+    const Scalar w235 = w133 * w234 - w132 * w233;
+    const Scalar w236 = w229 * w222 + w223 * w226;
+    const Scalar w237 = w235 * w57 - w56 * w236;
+    const Scalar w238 = w223 * Scalar(0.0823) * w226 + w229 * Scalar(0.0823) * w222 - Scalar(0.09465) * w233;
+    const Scalar w239 = w132 * Scalar(0.09465) * w234 - w133 * w238;
+    const Scalar w240 = w57 * w230 - w237 * Scalar(0.10915) - w56 * w239;
+    const Scalar w241 = w235 * w56 + w236 * w57;
+    const Scalar w242 = w132 * w234 + w133 * w233;
+    const Scalar w243 = Scalar(0.10915) * w241 + Scalar(0.39225) * w242 - w57 * w239 - w56 * w230;
+    const Scalar w244 = w224 * w227;
+    const Scalar w245 = qdd(5) + w159;
+    const Scalar w246 = w244 + w245;
+    const Scalar w247 = w135 + qd(5);
+    const Scalar w248 = w247 * w247;
+    const Scalar w249 = w231 + w248;
+    const Scalar w250 = w249 * Scalar(0.0823) + w233;
+    const Scalar w251 = w246 * w223 * Scalar(0.0823) + w222 * w250;
+    const Scalar w252 = w246 * w222;
+    const Scalar w253 = w223 * w249 - w252;
+    const Scalar w254 = w224 * qd(5) - w225;
+    const Scalar w255 = w224 * w247;
+    const Scalar w256 = w254 + w255;
+    const Scalar w257 = w246 * w223;
+    const Scalar w258 = w257 + w249 * w222;
+    const Scalar w259 = w132 * w256 - w133 * w258;
+    const Scalar w260 = w57 * w253 + w56 * w259;
+    const Scalar w261 = w229 + Scalar(0.09465) * w258;
+    const Scalar w262 = w223 * w250 - w246 * Scalar(0.0823) * w222 + w256 * Scalar(0.09465);
+    const Scalar w263 = w132 * w261 + w262 * w133;
+    const Scalar w264 = w256 * w133 + w132 * w258;
+    const Scalar w265 = Scalar(0.10915) * w260 - w251 * w56 + w263 * w57 - Scalar(0.39225) * w264;
+    const Scalar w266 = w259 * w57 - w56 * w253;
+    const Scalar w267 = w56 * w263 - Scalar(0.10915) * w266 + w251 * w57;
+    const Scalar w268 = w232 + w248;
+    const Scalar w269 = w244 - w245;
+    const Scalar w270 = w269 * w222;
+    const Scalar w271 = w268 * w223 + w270;
+    const Scalar w272 = w247 * w227;
+    const Scalar w273 = w228 + qd(5) * w227;
+    const Scalar w274 = w272 + w273;
+    const Scalar w275 = w133 * w274 - w132 * w271;
+    const Scalar w276 = w133 * w271 + w132 * w274;
+    const Scalar w277 = w269 * w223;
+    const Scalar w278 = w268 * w222 - w277;
+    const Scalar w279 = w56 * w276 + w278 * w57;
+    const Scalar w280 = Scalar(0.09465) * w271 + w226;
+    const Scalar w281 = w268 * Scalar(0.0823) + w233;
+    const Scalar w282 = Scalar(0.09465) * w274 + w222 * w281 - w269 * w223 * Scalar(0.0823);
+    const Scalar w283 = w132 * w280 - w282 * w133;
+    const Scalar w284 = w269 * Scalar(0.0823) * w222 + w223 * w281;
+    const Scalar w285 = w279 * Scalar(0.10915) - Scalar(0.39225) * w275 - w57 * w283 + w284 * w56;
+    const Scalar w286 = w56 * w278 - w276 * w57;
+    const Scalar w287 = w284 * w57 - Scalar(0.10915) * w286 + w56 * w283;
+    const Scalar w288 = w232 + w231;
+    const Scalar w289 = w254 - w255;
+    const Scalar w290 = w272 - w273;
+    const Scalar w291 = w222 * w289 + w290 * w223;
+    const Scalar w292 = w132 * w291 - w133 * w288;
+    const Scalar w293 = w229 + w290 * Scalar(0.0823);
+    const Scalar w294 = Scalar(0.0823) * w289 - w226;
+    const Scalar w295 = Scalar(0.09465) * w288 + w293 * w222 - w223 * w294;
+    const Scalar w296 = w132 * Scalar(0.09465) * w291 - w133 * w295;
+    const Scalar w297 = w294 * w222 + w293 * w223;
+    const Scalar w298 = w290 * w222 - w223 * w289;
+    const Scalar w299 = w132 * w288 + w133 * w291;
+    const Scalar w300 = w57 * w298 + w299 * w56;
+    const Scalar w301 = w57 * w296 - Scalar(0.39225) * w292 - w56 * w297 - Scalar(0.10915) * w300;
+    const Scalar w302 = w56 * w298 - w299 * w57;
+    const Scalar w303 = w56 * w296 - Scalar(0.10915) * w302 + w297 * w57;
+    const Scalar w304 = w255 * w222;
+    const Scalar w305 = w223 * w273 + w304;
+    const Scalar w306 = w244 * w132;
+    const Scalar w307 = w223 * w255;
+    const Scalar w308 = w307 - w273 * w222;
+    const Scalar w309 = w306 + w133 * w308;
+    const Scalar w310 = w57 * w305 + w56 * w309;
+    const Scalar w311 = w309 * w57 - w56 * w305;
+    const Scalar w312 = w256 * w223 - w274 * w222;
+    const Scalar w313 = w232 - w231;
+    const Scalar w314 = w223 * w274 + w256 * w222;
+    const Scalar w315 = w132 * w313 - w133 * w314;
+    const Scalar w316 = w57 * w312 + w56 * w315;
+    const Scalar w317 = w315 * w57 - w56 * w312;
+    const Scalar w318 = w272 * w223;
+    const Scalar w319 = w318 + w254 * w222;
+    const Scalar w320 = w272 * w222;
+    const Scalar w321 = w254 * w223 - w320;
+    const Scalar w322 = w321 * w133 + w306;
+    const Scalar w323 = w56 * w319 - w322 * w57;
+    const Scalar w324 = w56 * w322 + w319 * w57;
+    const Scalar w325 = -w248;
+    const Scalar w326 = w232 + w325;
+    const Scalar w327 = w326 * w222 - w257;
+    const Scalar w328 = w223 * w326 + w252;
+    const Scalar w329 = w133 * w328 - w132 * w290;
+    const Scalar w330 = w56 * w327 - w329 * w57;
+    const Scalar w331 = w56 * w329 + w327 * w57;
+    const Scalar w332 = w231 + w325;
+    const Scalar w333 = w222 * w332 + w277;
+    const Scalar w334 = w132 * w289 - w133 * w333;
+    const Scalar w335 = w223 * w332 - w270;
+    const Scalar w336 = w56 * w334 + w57 * w335;
+    const Scalar w337 = w56 * w335 - w334 * w57;
+    const Scalar w338 = w318 - w304;
+    const Scalar w339 = w307 + w320;
+    const Scalar w340 = w133 * w339 + w132 * w245;
+    const Scalar w341 = w338 * w57 - w56 * w340;
+    const Scalar w342 = w340 * w57 + w338 * w56;
+    const Scalar w343 = w29 - w30;
+    const Scalar w344 = w25 - w26;
+    const Scalar w345 = w52 + w38;
+    const Scalar w346 = Scalar(0.39225) * w72;
+    const Scalar w347 = w63 + Scalar(0.39225) * w91;
+    const Scalar w348 = w65 + Scalar(0.39225) * w98;
+    const Scalar w349 = w111 * Scalar(0.39225);
+    const Scalar w350 = -(w74 - w96);
+    const Scalar w351 = -w108;
+    const Scalar w352 = -(w132 * Scalar(0.09465) * w136 + Scalar(0.09465) * w133 * w139);
+    const Scalar w353 = w352 + Scalar(0.39225) * w144;
+    const Scalar w354 = w133 * w162 - w132 * Scalar(0.09465) * w152;
+    const Scalar w355 = w354 + Scalar(0.39225) * w167;
+    const Scalar w356 = w132 * w173 - Scalar(0.09465) * w133 * w169;
+    const Scalar w357 = Scalar(0.39225) * w180 + w356;
+    const Scalar w358 = w132 * w185 + w133 * w187;
+    const Scalar w359 = Scalar(0.39225) * w194 + w358;
+    const Scalar w360 = w158 * w133;
+    const Scalar w361 = w132 * w176 - w360;
+    const Scalar w362 = w132 * w160 + w133 * w177;
+    const Scalar w363 = w132 * w175;
+    const Scalar w364 = -(w363 - w133 * w159);
+    const Scalar w365 = -(w153 - w211 * w133);
+    const Scalar w366 = w132 * w215 + w178;
+    const Scalar w367 = w360 + w363;
+    const Scalar w368 = w132 * w238 + Scalar(0.09465) * w133 * w234;
+    const Scalar w369 = w237 * Scalar(0.39225) - w368;
+    const Scalar w370 = w132 * w262 - w133 * w261;
+    const Scalar w371 = w370 - Scalar(0.39225) * w266;
+    const Scalar w372 = w133 * w280 + w132 * w282;
+    const Scalar w373 = Scalar(0.39225) * w286 + w372;
+    const Scalar w374 = Scalar(0.09465) * w133 * w291 + w132 * w295;
+    const Scalar w375 = w374 + Scalar(0.39225) * w302;
+    const Scalar w376 = w244 * w133;
+    const Scalar w377 = -(w376 - w132 * w308);
+    const Scalar w378 = w133 * w313 + w132 * w314;
+    const Scalar w379 = -(w132 * w321 - w376);
+    const Scalar w380 = w132 * w328 + w133 * w290;
+    const Scalar w381 = w133 * w289 + w132 * w333;
+    const Scalar w382 = w133 * w245 - w132 * w339;
+    Y(0, 9) = qdd(0);
+    Y(0, 13) = -(w0 * w2 - w3 * w1);
+    Y(0, 14) = w6 + w0 * w9;
+    Y(0, 15) = -(w0 * (w5 + w10) - w1 * (w8 + w9));
+    Y(0, 16) = -(w1 * w10 + w11);
+    Y(0, 17) = -((w13 + w15) * w1 - w0 * (qdd(1) + w12));
+    Y(0, 18) = w1 * (qdd(1) + w16) + (w17 + w15) * w0;
+    Y(0, 19) = w11 - w6;
+    Y(0, 20) = -(w18 * w1 * Scalar(0.425));
+    Y(0, 21) = -(w0 * w20 - w1 * (w22 + Scalar(0.425) * w27));
+    Y(0, 22) = -(w0 * w22 + (w20 + Scalar(0.425) * w31) * w1);
+    Y(0, 23) = -(w0 * w37 + (Scalar(0.425) * (w38 + w39) - w35 * w21 - w36 * w19) * w1);
+    Y(0, 24) = -(w0 * (w40 + w30 * w21) + w1 * (w19 * w30 - w41));
+    Y(0, 25) = -((w31 * w21 + w19 * w27) * w1 - w0 * (w19 * w31 - w27 * w21));
+    Y(0, 26) = -(w1 * (w26 * w21 - w43) - w0 * (w19 * w26 + w42));
+    Y(0, 27) = w0 * (w48 + w50 * w19) - w1 * (w50 * w21 - w47 * w19);
+    Y(0, 28) = w1 * (w51 * w21 - w53 * w19) - w0 * (w53 * w21 + w54);
+    Y(0, 29) = w0 * (w40 - w42) - (w41 + w43) * w1;
+    Y(0, 30) = -((w19 * w69 - Scalar(0.10915) * w72 * w21) * w0 + (Scalar(0.425) * w68 - w19 * Scalar(0.10915) * w72 - w69 * w21) * w1);
+    Y(0, 31) = -(w0 * (w21 * w92 - w88 * w19) + (w88 * w21 + Scalar(0.425) * w86 + w19 * w92) * w1);
+    Y(0, 32) = w0 * (w99 * w21 + w105 * w19) + (w19 * w99 - w105 * w21 - Scalar(0.425) * w102) * w1;
+    Y(0, 33) = -(w0 * (w110 * w19 - w112 * w21) - w1 * (w110 * w21 - Scalar(0.425) * w106 + w19 * w112));
+    Y(0, 34) = -((w19 * w114 + w116 * w21) * w1 + (w114 * w21 - w19 * w116) * w0);
+    Y(0, 35) = w1 * (w19 * w117 + w118 * w21) - w0 * (w118 * w19 - w117 * w21);
+    Y(0, 36) = (w122 * w21 + w120 * w19) * w0 - w1 * (w120 * w21 - w19 * w122);
+    Y(0, 37) = (w125 * w21 + w126 * w19) * w0 + (w19 * w125 - w126 * w21) * w1;
+    Y(0, 38) = (w19 * w128 + w129 * w21) * w1 - w0 * (w129 * w19 - w128 * w21);
+    Y(0, 39) = -(w0 * (w131 * w21 - w130 * w19) + w1 * (w19 * w131 + w130 * w21));
+    Y(0, 40) = -(w0 * (w19 * w149 - w146 * w21) - w1 * (w146 * w19 + w149 * w21 - Scalar(0.425) * w148));
+    Y(0, 41) = w0 * (w166 * w19 + w168 * w21) - w1 * (Scalar(0.425) * w165 - w168 * w19 + w166 * w21);
+    Y(0, 42) = (w19 * w181 - Scalar(0.425) * w172 - w183 * w21) * w1 + w0 * (w183 * w19 + w181 * w21);
+    Y(0, 43) = w1 * (w193 * w21 - w19 * w195 + w192 * Scalar(0.425)) - w0 * (w195 * w21 + w19 * w193);
+    Y(0, 44) = w0 * (w199 * w21 + w201 * w19) - w1 * (w201 * w21 - w199 * w19);
+    Y(0, 45) = -(w1 * (w206 * w21 + w205 * w19) - w0 * (w19 * w206 - w205 * w21));
+    Y(0, 46) = -(w0 * (w209 * w19 + w210 * w21) - w1 * (w209 * w21 - w210 * w19));
+    Y(0, 47) = -((w213 * w21 + w214 * w19) * w0 - w1 * (w214 * w21 - w213 * w19));
+    Y(0, 48) = -(w1 * (w217 * w19 - w218 * w21) + w0 * (w19 * w218 + w217 * w21));
+    Y(0, 49) = -((w220 * w21 - w221 * w19) * w1 - w0 * (w220 * w19 + w221 * w21));
+    Y(0, 50) = w1 * (w19 * w240 + w243 * w21 + w242 * Scalar(0.425)) - w0 * (w19 * w243 - w240 * w21);
+    Y(0, 51) = -(w1 * (w264 * Scalar(0.425) - w265 * w21 - w19 * w267) + w0 * (w265 * w19 - w267 * w21));
+    Y(0, 52) = w1 * (w285 * w21 - w287 * w19 - Scalar(0.425) * w275) - w0 * (w287 * w21 + w19 * w285);
+    Y(0, 53) = -(w0 * (w303 * w21 - w19 * w301) - w1 * (Scalar(0.425) * w292 - w301 * w21 - w303 * w19));
+    Y(0, 54) = w0 * (w310 * w21 - w19 * w311) + w1 * (w19 * w310 + w311 * w21);
+    Y(0, 55) = -(w0 * (w316 * w21 - w19 * w317) + (w317 * w21 + w316 * w19) * w1);
+    Y(0, 56) = -((w323 * w19 + w324 * w21) * w0 + w1 * (w19 * w324 - w323 * w21));
+    Y(0, 57) = w0 * (w330 * w19 + w331 * w21) + w1 * (w331 * w19 - w330 * w21);
+    Y(0, 58) = -(w1 * (w336 * w19 - w337 * w21) + w0 * (w336 * w21 + w19 * w337));
+    Y(0, 59) = w0 * (w341 * w21 + w342 * w19) + w1 * (w341 * w19 - w342 * w21);
+    Y(1, 11) = w2;
+    Y(1, 12) = -w3;
+    Y(1, 14) = w16;
+    Y(1, 15) = w13 - w17;
+    Y(1, 16) = w12;
+    Y(1, 17) = -(w8 - w9);
+    Y(1, 18) = w5 - w10;
+    Y(1, 19) = qdd(1);
+    Y(1, 20) = -(Scalar(0.425) * w37);
+    Y(1, 21) = -(Scalar(0.425) * (w48 - (w49 + w39) * w19) + w36);
+    Y(1, 22) = -(w35 - Scalar(0.425) * ((w38 + w49) * w21 + w54));
+    Y(1, 23) = Scalar(0.425) * (w343 * w21 - w19 * w344);
+    Y(1, 24) = w44;
+    Y(1, 25) = w345;
+    Y(1, 26) = w45;
+    Y(1, 27) = w343;
+    Y(1, 28) = w344;
+    Y(1, 29) = w46;
+    Y(1, 30) = w346 + Scalar(0.425) * (w72 * w21 - w67 * w19);
+    Y(1, 31) = -((w91 * w21 - w19 * w83) * Scalar(0.425) + w347);
+    Y(1, 32) = w348 - Scalar(0.425) * (w19 * w104 - w98 * w21);
+    Y(1, 33) = w349 + Scalar(0.425) * (w111 * w21 - w109 * w19);
+    Y(1, 34) = w93;
+    Y(1, 35) = w350;
+    Y(1, 36) = w80;
+    Y(1, 37) = w107;
+    Y(1, 38) = w351;
+    Y(1, 39) = w78;
+    Y(1, 40) = w353 - Scalar(0.425) * (w147 * w19 - w144 * w21);
+    Y(1, 41) = -(w355 + (w167 * w21 - w19 * w161) * Scalar(0.425));
+    Y(1, 42) = (w180 * w21 - w182 * w19) * Scalar(0.425) + w357;
+    Y(1, 43) = -(w359 - Scalar(0.425) * (w191 * w19 - w194 * w21));
+    Y(1, 44) = w361;
+    Y(1, 45) = w362;
+    Y(1, 46) = w364;
+    Y(1, 47) = w365;
+    Y(1, 48) = w366;
+    Y(1, 49) = w367;
+    Y(1, 50) = -(Scalar(0.425) * (w237 * w21 + w19 * w241) + w369);
+    Y(1, 51) = w371 - Scalar(0.425) * (w266 * w21 + w19 * w260);
+    Y(1, 52) = -(Scalar(0.425) * (w279 * w19 - w286 * w21) - w373);
+    Y(1, 53) = Scalar(0.425) * (w302 * w21 - w19 * w300) + w375;
+    Y(1, 54) = w377;
+    Y(1, 55) = w378;
+    Y(1, 56) = w379;
+    Y(1, 57) = w380;
+    Y(1, 58) = w381;
+    Y(1, 59) = w382;
+    Y(2, 21) = -w36;
+    Y(2, 22) = w61;
+    Y(2, 24) = w44;
+    Y(2, 25) = w345;
+    Y(2, 26) = w45;
+    Y(2, 27) = w343;
+    Y(2, 28) = w344;
+    Y(2, 29) = w46;
+    Y(2, 30) = w346;
+    Y(2, 31) = -w347;
+    Y(2, 32) = w348;
+    Y(2, 33) = w349;
+    Y(2, 34) = w93;
+    Y(2, 35) = w350;
+    Y(2, 36) = w80;
+    Y(2, 37) = w107;
+    Y(2, 38) = w351;
+    Y(2, 39) = w78;
+    Y(2, 40) = w353;
+    Y(2, 41) = -w355;
+    Y(2, 42) = w357;
+    Y(2, 43) = -w359;
+    Y(2, 44) = w361;
+    Y(2, 45) = w362;
+    Y(2, 46) = w364;
+    Y(2, 47) = w365;
+    Y(2, 48) = w366;
+    Y(2, 49) = w367;
+    Y(2, 50) = -w369;
+    Y(2, 51) = w371;
+    Y(2, 52) = w373;
+    Y(2, 53) = w375;
+    Y(2, 54) = w377;
+    Y(2, 55) = w378;
+    Y(2, 56) = w379;
+    Y(2, 57) = w380;
+    Y(2, 58) = w381;
+    Y(2, 59) = w382;
+    Y(3, 31) = -w63;
+    Y(3, 32) = w65;
+    Y(3, 34) = w93;
+    Y(3, 35) = w350;
+    Y(3, 36) = w80;
+    Y(3, 37) = w107;
+    Y(3, 38) = w351;
+    Y(3, 39) = w78;
+    Y(3, 40) = w352;
+    Y(3, 41) = -w354;
+    Y(3, 42) = w356;
+    Y(3, 43) = -w358;
+    Y(3, 44) = w361;
+    Y(3, 45) = w362;
+    Y(3, 46) = w364;
+    Y(3, 47) = w365;
+    Y(3, 48) = w366;
+    Y(3, 49) = w367;
+    Y(3, 50) = w368;
+    Y(3, 51) = w370;
+    Y(3, 52) = w372;
+    Y(3, 53) = w374;
+    Y(3, 54) = w377;
+    Y(3, 55) = w378;
+    Y(3, 56) = w379;
+    Y(3, 57) = w380;
+    Y(3, 58) = w381;
+    Y(3, 59) = w382;
+    Y(4, 41) = w136;
+    Y(4, 42) = w139;
+    Y(4, 44) = w150;
+    Y(4, 45) = -w203;
+    Y(4, 46) = -w150;
+    Y(4, 47) = -w184;
+    Y(4, 48) = -w186;
+    Y(4, 49) = w151;
+    Y(4, 50) = w230;
+    Y(4, 51) = w251;
+    Y(4, 52) = -w284;
+    Y(4, 53) = -w297;
+    Y(4, 54) = w305;
+    Y(4, 55) = -w312;
+    Y(4, 56) = -w319;
+    Y(4, 57) = w327;
+    Y(4, 58) = -w335;
+    Y(4, 59) = w338;
+    Y(5, 51) = -w229;
+    Y(5, 52) = w226;
+    Y(5, 54) = -w244;
+    Y(5, 55) = w313;
+    Y(5, 56) = w244;
+    Y(5, 57) = w290;
+    Y(5, 58) = w289;
+    Y(5, 59) = w245;
+    Y(0, 0) = Scalar(0);
+    Y(0, 1) = Scalar(0);
+    Y(0, 2) = Scalar(0);
+    Y(0, 3) = Scalar(0);
+    Y(0, 4) = Scalar(0);
+    Y(0, 5) = Scalar(0);
+    Y(0, 6) = Scalar(0);
+    Y(0, 7) = Scalar(0);
+    Y(0, 8) = Scalar(0);
+    Y(0, 10) = Scalar(0);
+    Y(0, 11) = Scalar(0);
+    Y(0, 12) = Scalar(0);
+    Y(1, 0) = Scalar(0);
+    Y(1, 1) = Scalar(0);
+    Y(1, 2) = Scalar(0);
+    Y(1, 3) = Scalar(0);
+    Y(1, 4) = Scalar(0);
+    Y(1, 5) = Scalar(0);
+    Y(1, 6) = Scalar(0);
+    Y(1, 7) = Scalar(0);
+    Y(1, 8) = Scalar(0);
+    Y(1, 9) = Scalar(0);
+    Y(1, 10) = Scalar(0);
+    Y(1, 13) = Scalar(0);
+    Y(2, 0) = Scalar(0);
+    Y(2, 1) = Scalar(0);
+    Y(2, 2) = Scalar(0);
+    Y(2, 3) = Scalar(0);
+    Y(2, 4) = Scalar(0);
+    Y(2, 5) = Scalar(0);
+    Y(2, 6) = Scalar(0);
+    Y(2, 7) = Scalar(0);
+    Y(2, 8) = Scalar(0);
+    Y(2, 9) = Scalar(0);
+    Y(2, 10) = Scalar(0);
+    Y(2, 11) = Scalar(0);
+    Y(2, 12) = Scalar(0);
+    Y(2, 13) = Scalar(0);
+    Y(2, 14) = Scalar(0);
+    Y(2, 15) = Scalar(0);
+    Y(2, 16) = Scalar(0);
+    Y(2, 17) = Scalar(0);
+    Y(2, 18) = Scalar(0);
+    Y(2, 19) = Scalar(0);
+    Y(2, 20) = Scalar(0);
+    Y(2, 23) = Scalar(0);
+    Y(3, 0) = Scalar(0);
+    Y(3, 1) = Scalar(0);
+    Y(3, 2) = Scalar(0);
+    Y(3, 3) = Scalar(0);
+    Y(3, 4) = Scalar(0);
+    Y(3, 5) = Scalar(0);
+    Y(3, 6) = Scalar(0);
+    Y(3, 7) = Scalar(0);
+    Y(3, 8) = Scalar(0);
+    Y(3, 9) = Scalar(0);
+    Y(3, 10) = Scalar(0);
+    Y(3, 11) = Scalar(0);
+    Y(3, 12) = Scalar(0);
+    Y(3, 13) = Scalar(0);
+    Y(3, 14) = Scalar(0);
+    Y(3, 15) = Scalar(0);
+    Y(3, 16) = Scalar(0);
+    Y(3, 17) = Scalar(0);
+    Y(3, 18) = Scalar(0);
+    Y(3, 19) = Scalar(0);
+    Y(3, 20) = Scalar(0);
+    Y(3, 21) = Scalar(0);
+    Y(3, 22) = Scalar(0);
+    Y(3, 23) = Scalar(0);
+    Y(3, 24) = Scalar(0);
+    Y(3, 25) = Scalar(0);
+    Y(3, 26) = Scalar(0);
+    Y(3, 27) = Scalar(0);
+    Y(3, 28) = Scalar(0);
+    Y(3, 29) = Scalar(0);
+    Y(3, 30) = Scalar(0);
+    Y(3, 33) = Scalar(0);
+    Y(4, 0) = Scalar(0);
+    Y(4, 1) = Scalar(0);
+    Y(4, 2) = Scalar(0);
+    Y(4, 3) = Scalar(0);
+    Y(4, 4) = Scalar(0);
+    Y(4, 5) = Scalar(0);
+    Y(4, 6) = Scalar(0);
+    Y(4, 7) = Scalar(0);
+    Y(4, 8) = Scalar(0);
+    Y(4, 9) = Scalar(0);
+    Y(4, 10) = Scalar(0);
+    Y(4, 11) = Scalar(0);
+    Y(4, 12) = Scalar(0);
+    Y(4, 13) = Scalar(0);
+    Y(4, 14) = Scalar(0);
+    Y(4, 15) = Scalar(0);
+    Y(4, 16) = Scalar(0);
+    Y(4, 17) = Scalar(0);
+    Y(4, 18) = Scalar(0);
+    Y(4, 19) = Scalar(0);
+    Y(4, 20) = Scalar(0);
+    Y(4, 21) = Scalar(0);
+    Y(4, 22) = Scalar(0);
+    Y(4, 23) = Scalar(0);
+    Y(4, 24) = Scalar(0);
+    Y(4, 25) = Scalar(0);
+    Y(4, 26) = Scalar(0);
+    Y(4, 27) = Scalar(0);
+    Y(4, 28) = Scalar(0);
+    Y(4, 29) = Scalar(0);
+    Y(4, 30) = Scalar(0);
+    Y(4, 31) = Scalar(0);
+    Y(4, 32) = Scalar(0);
+    Y(4, 33) = Scalar(0);
+    Y(4, 34) = Scalar(0);
+    Y(4, 35) = Scalar(0);
+    Y(4, 36) = Scalar(0);
+    Y(4, 37) = Scalar(0);
+    Y(4, 38) = Scalar(0);
+    Y(4, 39) = Scalar(0);
+    Y(4, 40) = Scalar(0);
+    Y(4, 43) = Scalar(0);
+    Y(5, 0) = Scalar(0);
+    Y(5, 1) = Scalar(0);
+    Y(5, 2) = Scalar(0);
+    Y(5, 3) = Scalar(0);
+    Y(5, 4) = Scalar(0);
+    Y(5, 5) = Scalar(0);
+    Y(5, 6) = Scalar(0);
+    Y(5, 7) = Scalar(0);
+    Y(5, 8) = Scalar(0);
+    Y(5, 9) = Scalar(0);
+    Y(5, 10) = Scalar(0);
+    Y(5, 11) = Scalar(0);
+    Y(5, 12) = Scalar(0);
+    Y(5, 13) = Scalar(0);
+    Y(5, 14) = Scalar(0);
+    Y(5, 15) = Scalar(0);
+    Y(5, 16) = Scalar(0);
+    Y(5, 17) = Scalar(0);
+    Y(5, 18) = Scalar(0);
+    Y(5, 19) = Scalar(0);
+    Y(5, 20) = Scalar(0);
+    Y(5, 21) = Scalar(0);
+    Y(5, 22) = Scalar(0);
+    Y(5, 23) = Scalar(0);
+    Y(5, 24) = Scalar(0);
+    Y(5, 25) = Scalar(0);
+    Y(5, 26) = Scalar(0);
+    Y(5, 27) = Scalar(0);
+    Y(5, 28) = Scalar(0);
+    Y(5, 29) = Scalar(0);
+    Y(5, 30) = Scalar(0);
+    Y(5, 31) = Scalar(0);
+    Y(5, 32) = Scalar(0);
+    Y(5, 33) = Scalar(0);
+    Y(5, 34) = Scalar(0);
+    Y(5, 35) = Scalar(0);
+    Y(5, 36) = Scalar(0);
+    Y(5, 37) = Scalar(0);
+    Y(5, 38) = Scalar(0);
+    Y(5, 39) = Scalar(0);
+    Y(5, 40) = Scalar(0);
+    Y(5, 41) = Scalar(0);
+    Y(5, 42) = Scalar(0);
+    Y(5, 43) = Scalar(0);
+    Y(5, 44) = Scalar(0);
+    Y(5, 45) = Scalar(0);
+    Y(5, 46) = Scalar(0);
+    Y(5, 47) = Scalar(0);
+    Y(5, 48) = Scalar(0);
+    Y(5, 49) = Scalar(0);
+    Y(5, 50) = Scalar(0);
+    Y(5, 53) = Scalar(0);
+  }
+
+  /// Y with M qdd - F = Y pi + (the loads other than gravity, negated), pi the inertial parameters (inertial_parameter_names)
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class DerivedQ, class DerivedQd, class DerivedQdd, class Out0>
+  static void regressor(const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedQdd>& qdd, const Parameters<typename DerivedQ::Scalar>& p, Out0&& Y) noexcept {
+    regressor(t, q, qd, qdd, Constants<typename DerivedQ::Scalar>(p), std::forward<Out0>(Y));
+  }
+
+  /// pi of the model's parameters: every body's m, m c and inertia about its origin, in its frame
+  template <class Scalar, class Out0>
+  static void inertial_parameters(const Constants<Scalar>& c, Out0&& pi) noexcept {
+    static_assert(fits<std::decay_t<Out0>>(npi, 1), "pi: expected npi x 1");
+    eigen_assert(pi.rows() == npi && pi.cols() == 1);
+    pi(0) = c.p.shoulder_link_mass;
+    pi(2) = c.k60;
+    pi(3) = c.k61;
+    pi(4) = c.k62;
+    pi(6) = c.k63;
+    pi(8) = c.k64;
+    pi(9) = c.k21;
+    pi(10) = c.p.upper_arm_link_mass;
+    pi(11) = c.k46;
+    pi(13) = c.k42;
+    pi(14) = c.k20;
+    pi(16) = c.k45;
+    pi(17) = c.k65;
+    pi(19) = c.k43;
+    pi(20) = c.p.forearm_link_mass;
+    pi(21) = c.k34;
+    pi(23) = c.k22;
+    pi(24) = c.k16;
+    pi(26) = c.k15;
+    pi(27) = c.k66;
+    pi(29) = c.k27;
+    pi(30) = c.p.wrist_1_link_mass;
+    pi(32) = c.k30;
+    pi(33) = c.k13;
+    pi(34) = c.k9;
+    pi(36) = c.k4;
+    pi(38) = c.k23;
+    pi(39) = c.k26;
+    pi(40) = c.p.wrist_2_link_mass;
+    pi(42) = c.k32;
+    pi(43) = c.k31;
+    pi(44) = c.k6;
+    pi(46) = c.k37;
+    pi(48) = c.k67;
+    pi(49) = c.k3;
+    pi(50) = c.p.wrist_3_link_mass;
+    pi(53) = c.k33;
+    pi(54) = c.k38;
+    pi(56) = c.k39;
+    pi(59) = c.p.wrist_3_link_izz;
+    pi(1) = Scalar(0);
+    pi(5) = Scalar(0);
+    pi(7) = Scalar(0);
+    pi(12) = Scalar(0);
+    pi(15) = Scalar(0);
+    pi(18) = Scalar(0);
+    pi(22) = Scalar(0);
+    pi(25) = Scalar(0);
+    pi(28) = Scalar(0);
+    pi(31) = Scalar(0);
+    pi(35) = Scalar(0);
+    pi(37) = Scalar(0);
+    pi(41) = Scalar(0);
+    pi(45) = Scalar(0);
+    pi(47) = Scalar(0);
+    pi(51) = Scalar(0);
+    pi(52) = Scalar(0);
+    pi(55) = Scalar(0);
+    pi(57) = Scalar(0);
+    pi(58) = Scalar(0);
+  }
+
+  /// pi of the model's parameters: every body's m, m c and inertia about its origin, in its frame
+  /// From the parameters: computes their Constants for this call alone (to evaluate
+  /// repeatedly, build the Constants once and call the overload above).
+  template <class Scalar, class Out0>
+  static void inertial_parameters(const Parameters<Scalar>& p, Out0&& pi) noexcept {
+    inertial_parameters(Constants<Scalar>(p), std::forward<Out0>(pi));
   }
 };
 

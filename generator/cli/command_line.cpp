@@ -107,8 +107,13 @@ CLI::App* add_derive_command(CLI::App& app, Options& o) {
   derive->add_option("-f,--format", o.format, "Output format")
       ->check(CLI::IsMember({"text", "latex", "markdown"}))
       ->capture_default_str();
-  derive->add_option("--only", o.only, "Parts to print, comma-separated: M,F,Xi,Xi_t,b,phi,T,V,outputs")
+  derive->add_option("--only", o.only, "Parts to print, comma-separated: M,F,Xi,Xi_t,b,phi,T,V,outputs; for "
+                     "controllers (only when named) tau,g,C,J,regressor")
       ->type_name("PARTS");
+  derive->add_option("--regressor", o.regressor, "With --only regressor: full, or base (the identifiable base "
+                     "parameters and their combinations)")
+      ->check(CLI::IsMember({"full", "base"}))
+      ->capture_default_str();
   CLI::Option* shared = derive->add_flag("--intermediates", o.shared,
                                          "Print in terms of shared intermediates, then their definitions");
   derive->add_flag("--expand", o.expand, "Write intermediates out even for a large system (may be slow)")
@@ -146,6 +151,11 @@ CLI::App* add_generate_command(CLI::App& app, Options& o) {
   generate->add_flag("--linearization", o.emit_linearization,
                      "Also emit linearization_terms, the exact derivatives from which eomrt::linearization "
                      "gives A and B about any operating point (for gain scheduling)");
+  generate->add_option("--regressor", o.regressor,
+                       "full: the regressor on ten inertial parameters per body; base: on the identifiable base "
+                       "parameters, their combinations found at generation (derive --only regressor prints them)")
+      ->check(CLI::IsMember({"full", "base"}))
+      ->capture_default_str();
   return generate;
 }
 

@@ -28,6 +28,7 @@ struct Options {
   bool stats = false;
   bool no_cse = false;
   bool emit_linearization = false;
+  std::string regressor = "full";  // generate, derive: full (ten per body) or base
   // linearize
   bool drop_cyclic = false;
   bool find_equilibrium = false;

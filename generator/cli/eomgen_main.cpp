@@ -23,6 +23,7 @@
 #include <iostream>
 #include <limits>
 #include <map>
+#include <optional>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <string>
@@ -36,6 +37,7 @@
 #include "eomgen/derivation/linearization.hpp"
 #include "eomgen/derivation/model_equations.hpp"
 #include "eomgen/language/model_file.hpp"
+#include "eomgen/derivation/header_functions.hpp"
 #include "eomgen/derivation/numeric_evaluation.hpp"
 #include "eomgen/base/version.hpp"
 #include "eomgen/symbolic/double_evaluator.hpp"
@@ -154,7 +156,13 @@ void run_derive(const Options& o) {
   const eomgen::Model model = load(o);
   const eomgen::ModelEquations eom = eomgen::derive_equations(model);
   // render completely before writing anything, so an error leaves no output behind
-  const std::string text = eomgen::format_equations(model, eom, print);
+  std::optional<eomgen::HeaderFunctions> functions;
+  if (print.parts.needs_header_functions()) {
+    eomgen::HeaderOptions header;
+    header.base_regressor = o.regressor == "base";
+    functions = eomgen::derive_header_functions(model, eom, nullptr, header);
+  }
+  const std::string text = eomgen::format_equations(model, eom, print, functions ? &*functions : nullptr);
   if (o.output_path.empty())
     std::cout << text << std::flush;
   else
@@ -219,9 +227,12 @@ void run_generate(const Options& o) {
   emit.share_subexpressions = !o.no_cse;
   // the file name only: a path would make the header differ between checkouts
   emit.source_name = std::filesystem::path(o.model_path).filename().string();
-  const eomgen::EmittedModel emitted =
-      o.emit_linearization ? eomgen::emit_model(model, eom, eomgen::linearize_symbolic(model, eom), emit)
-                           : eomgen::emit_model(model, eom, emit);
+  std::optional<eomgen::SymbolicLinearization> linearization;
+  if (o.emit_linearization) linearization = eomgen::linearize_symbolic(model, eom);
+  eomgen::HeaderOptions header;
+  header.base_regressor = o.regressor == "base";
+  const eomgen::EmittedModel emitted = eomgen::emit_model(
+      model, eomgen::derive_header_functions(model, eom, linearization ? &*linearization : nullptr, header), emit);
   // wall times inside the process (what a build step or a benchmark against an in-process
   // peer should compare), not the program's start-up
   const std::string stats =
@@ -291,6 +302,10 @@ void run_eval(const Options& o) {
     constraints.push_back(c.name);
     lambda.emplace_back(c.name, sol.lambda(static_cast<Eigen::Index>(lambda.size())));
   }
+  // the functions for controllers at this state, the regressor at the accelerations above
+  const eomgen::HeaderFunctions functions = eomgen::derive_header_functions(model, eom);
+  const eomgen::NumericControllerFunctions controller =
+      eomgen::evaluate_controller_functions(model, eom, functions, values, sol.qdd);
 
   if (o.format == "json") {
     using json = nlohmann::ordered_json;  // keys in a fixed, readable order
@@ -318,6 +333,21 @@ void run_eval(const Options& o) {
     j["qdd"] = column(sol.qdd);
     j["lambda"] = column(sol.lambda);
     j["outputs"] = object(eq.outputs);
+    if (controller.gravity_forces.size() > 0) {
+      j["G"] = column(controller.gravity_forces);
+      j["C"] = json_rows(controller.coriolis_matrix);
+    }
+    json jacobians = json::object();
+    for (const auto& jac : controller.output_jacobians)
+      jacobians[jac.output] = json{{"J", json_rows(jac.jacobian)}, {"Jdot_qd", column(jac.bias)}};
+    j["output_jacobians"] = jacobians;
+    if (controller.regressor.size() > 0) {
+      j["Y"] = json_rows(controller.regressor);
+      json pi = json::object();
+      for (std::size_t k = 0; k < functions.inertial_parameter_names.size(); ++k)
+        pi[functions.inertial_parameter_names[k]] = controller.inertial_parameters(static_cast<Eigen::Index>(k));
+      j["pi"] = pi;
+    }
     std::cout << json_document(j);
     return;
   }
@@ -338,6 +368,21 @@ void run_eval(const Options& o) {
   print_named("Outputs", eq.outputs);
   print_named("Accelerations qdd", qdd);
   if (!constraints.empty()) print_named("Multipliers lambda", lambda);
+  if (controller.gravity_forces.size() > 0) {
+    print_matrix("G = dV/dq", controller.gravity_forces);
+    print_matrix("C (Coriolis matrix)", controller.coriolis_matrix);
+  }
+  for (const auto& jac : controller.output_jacobians) {
+    print_matrix("J of " + jac.output, jac.jacobian);
+    print_matrix("Jdot qd of " + jac.output, jac.bias);
+  }
+  if (controller.regressor.size() > 0) {
+    print_matrix("Y (regressor, at qdd above)", controller.regressor);
+    std::vector<std::pair<std::string, double>> pi;
+    for (std::size_t k = 0; k < functions.inertial_parameter_names.size(); ++k)
+      pi.emplace_back(functions.inertial_parameter_names[k], controller.inertial_parameters(static_cast<Eigen::Index>(k)));
+    print_named("Inertial parameters pi", pi);
+  }
 }
 
 // ---- simulate ----

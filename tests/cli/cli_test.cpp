@@ -356,6 +356,35 @@ TEST_F(Cli, EvalJsonIsParseableAndSolvesTheKktSystem) {
   EXPECT_NEAR(j["V"].get<double>(), -m * g * x, 1e-12);
 }
 
+// the functions for controllers: printed only when named, and reported by eval with their keys
+TEST_F(Cli, DeriveAndEvalShowTheFunctionsForControllers) {
+  const std::string path = model("dp.eom", double_pendulum);
+  const Outcome derived = eomgen("derive " + quote(path) + " --only C,g,J,regressor");
+  ASSERT_EQ(derived.status, 0) << derived.err;
+  for (const char* text : {"Coriolis matrix C (2 x 2)", "  C[2,2] = 0\n", "Gravity forces g = dV/dq (2 x 1)",
+                           "Jacobian of output tip (3 x 2): J = dy/dq", "  J_tip[1,2] = -l2*sin(q1 + q2)\n",
+                           "Bias of output tip", "Regressor Y (2 x 20)", "bob2.m"})
+    EXPECT_THAT(derived.out, HasSubstr(text));
+  EXPECT_THAT(derived.out, Not(HasSubstr("M[1,1]")));
+  EXPECT_THAT(eomgen("derive " + quote(path)).out, Not(HasSubstr("Coriolis")));  // only when named
+  EXPECT_THAT(eomgen("derive " + quote(path) + " --only tau -f latex").out, HasSubstr("\\tau_{1} &="));
+
+  const double q1 = 0.1, q2 = 0.2, g = 9.81;
+  const Outcome run = eomgen("eval " + quote(path) + " --at q1=0.1,q2=0.2,q1_dot=0.3 -f json");
+  ASSERT_EQ(run.status, 0) << run.err;
+  const nlohmann::json j = nlohmann::json::parse(run.out);
+  // V = -(m1 + m2) g l1 cos(q1) - m2 g l2 cos(q1 + q2), unit masses and lengths
+  EXPECT_NEAR(j["G"][0].get<double>(), 2 * g * std::sin(q1) + g * std::sin(q1 + q2), 1e-12);
+  EXPECT_NEAR(j["G"][1].get<double>(), g * std::sin(q1 + q2), 1e-12);
+  EXPECT_EQ(j["C"].size(), 2u);
+  // tip = (l1 cos(q1) + l2 cos(q1 + q2), l1 sin(q1) + l2 sin(q1 + q2), 0)
+  EXPECT_NEAR(j["output_jacobians"]["tip"]["J"][1][0].get<double>(), std::cos(q1) + std::cos(q1 + q2), 1e-12);
+  EXPECT_EQ(j["output_jacobians"]["tip"]["Jdot_qd"].size(), 3u);
+  EXPECT_EQ(j["Y"][0].size(), 20u);
+  EXPECT_EQ(j["pi"]["bob1.m"].get<double>(), 1.0);
+  EXPECT_THAT(eomgen("eval " + quote(path)).out, HasSubstr("G = dV/dq"));
+}
+
 TEST_F(Cli, EvalTextAndEvaluationErrors) {
   const std::string path = model("dp.eom", double_pendulum);
   const Outcome run = eomgen("eval " + quote(path) + " --at q1=0.1,q2=0.2,q1_dot=0.3,t=0");
@@ -476,8 +505,8 @@ TEST_F(Cli, GenerateLinearizationAddsTheFunctionsOnlyWhenAsked) {
   // a constrained model gets the KKT form, with the multipliers among the terms' arguments
   const Outcome constrained = eomgen("generate --linearization " + quote(cp));
   ASSERT_EQ(constrained.status, 0) << constrained.err;
-  EXPECT_THAT(constrained.out, HasSubstr("const ConstraintVector<Scalar>& lambda"));
-  EXPECT_THAT(constrained.out, HasSubstr("ConstraintJacobian<Scalar>& S_qd"));
+  EXPECT_THAT(constrained.out, HasSubstr("const Eigen::MatrixBase<DerivedLambda>& lambda"));
+  EXPECT_THAT(constrained.out, HasSubstr("static_assert(fits<std::decay_t<Out4>>(nc, nq), \"S_qd: expected nc x nq\");"));
   EXPECT_THAT(constrained.out, Not(HasSubstr("second_order_linearization")));
 }
 

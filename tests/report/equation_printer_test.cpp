@@ -170,11 +170,11 @@ TEST(PartSelection, PrintsOnlyTheNamedParts) {
 
 TEST(PartSelection, UnknownOrEmptyListIsAnErrorListingTheKeys) {
   EXPECT_THROW_MESSAGE(parse_equation_parts("M,Q"), Error,
-                       "selecting parts to print: unknown part 'Q'; accepted: M, F, Xi, Xi_t, b, phi, T, V, outputs");
+                       "selecting parts to print: unknown part 'Q'; accepted: M, F, Xi, Xi_t, b, phi, T, V, outputs, tau, g, C, J, regressor");
   EXPECT_THROW_MESSAGE(parse_equation_parts(""), Error,
-                       "selecting parts to print: the list is empty; accepted: M, F, Xi, Xi_t, b, phi, T, V, outputs");
+                       "selecting parts to print: the list is empty; accepted: M, F, Xi, Xi_t, b, phi, T, V, outputs, tau, g, C, J, regressor");
   EXPECT_THROW_MESSAGE(parse_equation_parts("M,,F"), Error,
-                       "selecting parts to print: unknown part ''; accepted: M, F, Xi, Xi_t, b, phi, T, V, outputs");
+                       "selecting parts to print: unknown part ''; accepted: M, F, Xi, Xi_t, b, phi, T, V, outputs, tau, g, C, J, regressor");
 }
 
 TEST(SharedForm, ListsEveryUsedIntermediateOnceInOrder) {

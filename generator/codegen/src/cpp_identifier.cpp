@@ -53,7 +53,11 @@ std::set<std::string> generated_code_names() {
       "DerivedParameters", "derived_parameters",
       "mass_matrix", "forcing", "mass_matrix_and_forcing", "constraint_jacobian", "constraint_rate_term",
       "constraint_acceleration_term", "holonomic_residuals", "kinetic_energy", "potential_energy", "outputs",
-      "forward_dynamics", "linearization_terms",
+      "forward_dynamics", "linearization_terms", "inverse_dynamics", "gravity_forces", "coriolis_matrix", "regressor",
+      "inertial_parameters", "npi", "inertial_parameter_names", "fits",
+      // the template parameters of the functions, their locals, and the standard names they use
+      "DerivedQ", "DerivedQd", "DerivedU", "DerivedQdd", "DerivedLambda", "Out0", "Out1", "Out2", "Out3", "Out4",
+      "total", "decay_t", "forward", "eigen_assert", "Derived", "rows", "cols",
       // the template parameter, an attribute, the locals of forward_dynamics and its finiteness test
       "Scalar", "maybe_unused", "regular", "isfinite",
       // macros the generated code must never meet as names, whatever the headers included
@@ -66,13 +70,18 @@ std::set<std::string> generated_code_names() {
   return names;
 }
 
+// the prefixes of the functions named after outputs (function_table.cpp)
+bool has_generated_prefix(const std::string& name) {
+  return name.rfind("output_jacobian_", 0) == 0 || name.rfind("output_bias_", 0) == 0;
+}
+
 bool is_reserved(const std::string& name) {
   static const std::set<std::string> words = [] {
     std::set<std::string> all = keywords();
     all.merge(generated_code_names());
     return all;
   }();
-  return words.count(name) > 0 || is_header_macro(name);
+  return words.count(name) > 0 || has_generated_prefix(name) || is_header_macro(name);
 }
 
 // A letter, then letters, digits and single '_' between them: an identifier that no rule of

@@ -158,6 +158,14 @@ const char* cpp_array_name(ir::Array array) {
     case ir::Array::input_matrix: return "B_u";
     case ir::Array::acceleration_constraint_by_q: return "S_q";
     case ir::Array::acceleration_constraint_by_qd: return "S_qd";
+    case ir::Array::generalized_forces: return "tau";
+    case ir::Array::gravity_forces: return "G";
+    case ir::Array::coriolis_matrix: return "C";
+    case ir::Array::output_jacobian: return "J";
+    case ir::Array::output_bias: return "Jdot_qd";
+    case ir::Array::regressor: return "Y";
+    case ir::Array::inertial_parameters: return "pi";
+    case ir::Array::multipliers: return "lambda";
     case ir::Array::constants: return "k";
     case ir::Array::accelerations: return "qdd";
     case ir::Array::pivots: return "pivot";

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cassert>
+#include <initializer_list>
 #include <iterator>
 #include <set>
 
@@ -17,96 +18,176 @@ namespace {
 using ir::Array;
 using ir::VariableKind;
 
-// the type alias of the generated Model that holds an array
-const char* array_type(Array array) {
-  switch (array) {
-    case Array::mass_matrix:
-    case Array::stiffness:
-    case Array::damping:
-      return "MassMatrix";
-    case Array::forcing:
-    case Array::accelerations:
-      return "Vector";
-    case Array::pivots: EOMGEN_UNREACHABLE("the pivots are local to forward_dynamics, never an argument");
-    case Array::constraint_jacobian:
-    case Array::acceleration_constraint_by_q:
-    case Array::acceleration_constraint_by_qd:
-      return "ConstraintJacobian";
-    case Array::constraint_rate_term:
-    case Array::constraint_acceleration_term:
-      return "ConstraintVector";
-    case Array::holonomic_residuals: return "HolonomicVector";
-    case Array::outputs: return "OutputVector";
-    case Array::input_matrix: return "InputMatrix";
-    case Array::kinetic_energy:
-    case Array::potential_energy:
-      return "Scalar";
-    case Array::constants:
-    case Array::derived_parameters:
-      break;  // members of the Constants, never an argument
-  }
-  EOMGEN_UNREACHABLE("an ir::Array value that is not an enumerator");
-}
-
-// the declaration of the argument holding the variables of a kind
-std::string input_declaration(VariableKind kind) {
-  const char* name = cpp_argument_name(kind);
+// the template parameter of a vector input's type, empty for the others
+const char* template_parameter(VariableKind kind) {
   switch (kind) {
-    case VariableKind::time: return fmt::format("const Scalar& {}", name);
-    case VariableKind::parameter: return fmt::format("const Parameters<Scalar>& {}", name);
-    case VariableKind::input: return fmt::format("const Inputs<Scalar>& {}", name);
-    case VariableKind::multiplier: return fmt::format("const ConstraintVector<Scalar>& {}", name);
+    case VariableKind::coordinate: return "DerivedQ";
+    case VariableKind::rate: return "DerivedQd";
+    case VariableKind::input: return "DerivedU";
+    case VariableKind::acceleration: return "DerivedQdd";
+    case VariableKind::multiplier: return "DerivedLambda";
+    case VariableKind::time:
+    case VariableKind::parameter:
+    case VariableKind::constant:
+      return "";
     case VariableKind::derived_parameter:
       EOMGEN_UNREACHABLE("the derived parameters are read through the Constants, never an argument");
-    case VariableKind::constant: return fmt::format("const Constants<Scalar>& {}", name);
-    case VariableKind::coordinate:
-    case VariableKind::rate:
-    case VariableKind::acceleration:
-      return fmt::format("const Vector<Scalar>& {}", name);
   }
   EOMGEN_UNREACHABLE("an ir::VariableKind value that is not an enumerator");
 }
 
-// every argument may go unused in a particular model (M of a pendulum ignores t); `parameters`
-// is how the function takes the parameters: as Parameters (p) or as their Constants (c)
-std::string signature(const FunctionSpec& f, VariableKind parameters) {
-  assert(std::is_sorted(f.reads.begin(), f.reads.end()));  // t, q, qd, u, p, qdd, lambda
-  std::vector<std::string> declarations;
+// the C++ constant of the number of entries of a vector input
+const char* input_size(VariableKind kind) {
+  switch (kind) {
+    case VariableKind::coordinate:
+    case VariableKind::rate:
+    case VariableKind::acceleration:
+      return "nq";
+    case VariableKind::input: return "nu";
+    case VariableKind::multiplier: return "nc";
+    case VariableKind::time:
+    case VariableKind::parameter:
+    case VariableKind::constant:
+    case VariableKind::derived_parameter:
+      break;
+  }
+  EOMGEN_UNREACHABLE("the size of an input that is not a vector");
+}
+
+// the template parameter of the type of output argument k
+std::string output_parameter(std::size_t k) { return fmt::format("Out{}", k); }
+
+// What a function's text needs to know besides its table entry: whether the scalar type comes
+// from a vector input (its first) or from the Parameters and Constants (a function of the
+// parameters alone), and which arguments its statements read.
+struct Arguments {
+  std::string scalar_source;  // the template parameter whose ::Scalar is Scalar, or empty
+  std::set<VariableKind> read;
+  std::set<Array> written;
+};
+
+Arguments arguments_of(const FunctionSpec& f, const ir::Program& program) {
+  Arguments a;
   for (VariableKind kind : f.reads)
-    declarations.push_back(input_declaration(kind == VariableKind::parameter ? parameters : kind));
+    if (a.scalar_source.empty() && *template_parameter(kind)) a.scalar_source = template_parameter(kind);
+  for (const ir::Instruction& in : program.instructions)
+    if (in.op == ir::Op::variable) {
+      VariableKind kind = in.variable.kind;
+      // the parameters, the derived parameters and the constants are all read through c
+      if (kind == VariableKind::parameter || kind == VariableKind::derived_parameter) kind = VariableKind::constant;
+      a.read.insert(kind);
+    }
+  for (const LoweringTarget& t : f.targets) a.written.insert(t.target.array);
+  if (f.splits_constraint_forces) a.written.insert(Array::multipliers);
+  return a;
+}
+
+// `template <class DerivedQ, ..., class Out0, ...>`
+std::string template_header(const FunctionSpec& f, const Arguments& a) {
+  std::vector<std::string> parameters;
+  if (a.scalar_source.empty()) parameters.push_back("class Scalar");
+  for (VariableKind kind : f.reads)
+    if (*template_parameter(kind)) parameters.push_back(fmt::format("class {}", template_parameter(kind)));
   if (!returns_scalar(f))
-    for (Array array : f.writes) declarations.push_back(fmt::format("{}<Scalar>& {}", array_type(array), cpp_array_name(array)));
+    for (std::size_t k = 0; k < f.writes.size(); ++k) parameters.push_back("class " + output_parameter(k));
   std::string s;
-  for (std::size_t k = 0; k < declarations.size(); ++k) s += (k ? ", " : "") + std::string("[[maybe_unused]] ") + declarations[k];
+  for (const std::string& p : parameters) s += (s.empty() ? "" : ", ") + p;
+  return "  template <" + s + ">\n";
+}
+
+// the scalar type as the signature spells it (before `using Scalar` is in scope)
+std::string scalar_type(const Arguments& a) {
+  return a.scalar_source.empty() ? "Scalar" : fmt::format("typename {}::Scalar", a.scalar_source);
+}
+
+// Inputs take any Eigen expression of the right size (a block, a Map over a plain array,
+// Inputs::Zero()) and outputs any writable one (a forwarding reference, so that a temporary
+// block binds too); `parameters` is how the function takes the parameters: as Parameters (p)
+// or as their Constants (c). Only an argument the statements do not read is [[maybe_unused]].
+std::string signature(const FunctionSpec& f, const Arguments& a, VariableKind parameters, bool mark_unused) {
+  const std::string scalar = scalar_type(a);
+  std::vector<std::string> declarations;
+  for (VariableKind kind : f.reads) {
+    const VariableKind as = kind == VariableKind::parameter ? parameters : kind;
+    const char* name = cpp_argument_name(as);
+    std::string d;
+    if (*template_parameter(kind))
+      d = fmt::format("const Eigen::MatrixBase<{}>& {}", template_parameter(kind), name);
+    else if (as == VariableKind::time)
+      d = fmt::format("const {}& {}", scalar, name);
+    else
+      d = fmt::format("const {}<{}>& {}", as == VariableKind::constant ? "Constants" : "Parameters", scalar, name);
+    const VariableKind read_as = kind == VariableKind::parameter ? VariableKind::constant : kind;
+    declarations.push_back((mark_unused && !a.read.count(read_as) ? "[[maybe_unused]] " : "") + d);
+  }
+  if (!returns_scalar(f))
+    for (std::size_t k = 0; k < f.writes.size(); ++k)
+      declarations.push_back(fmt::format("{}{}&& {}", mark_unused && !a.written.count(f.writes[k]) ? "[[maybe_unused]] " : "",
+                                         output_parameter(k), cpp_array_name(f.writes[k])));
+  std::string s;
+  for (std::size_t k = 0; k < declarations.size(); ++k) s += (k ? ", " : "") + declarations[k];
   return s;
 }
 
-// `using std::sin; ...` for every call op, six to a line, so that unqualified calls find the
-// <cmath> overloads, and argument-dependent lookup those of a user's scalar type
-std::string math_using_declarations(const std::string& indent) {
+// `using Scalar = ...;` and a test of the size of every vector and matrix argument: at compile
+// time where the expression's size is fixed, else by eigen_assert
+std::string argument_checks(const FunctionSpec& f, const Arguments& a, bool alias_scalar, const std::string& indent) {
   std::string s;
-  const std::size_t count = std::size(ir::call_ops);
-  for (std::size_t i = 0; i < count; ++i)
-    s += fmt::format("{}using std::{};{}", i % 6 == 0 ? indent : " ", ir::call_ops[i].cpp_name,
-                     i % 6 == 5 || i + 1 == count ? "\n" : "");
+  if (alias_scalar && !a.scalar_source.empty()) s += fmt::format("{}using Scalar = typename {}::Scalar;\n", indent, a.scalar_source);
+  for (VariableKind kind : f.reads)
+    if (*template_parameter(kind))
+      s += fmt::format("{}static_assert(fits<{}>({}, 1), \"{}: expected a column of {} entries\");\n", indent,
+                       template_parameter(kind), input_size(kind), cpp_argument_name(kind), input_size(kind));
+  if (!returns_scalar(f))
+    for (std::size_t k = 0; k < f.writes.size(); ++k)
+      s += fmt::format("{}static_assert(fits<std::decay_t<{}>>({}, {}), \"{}: expected {} x {}\");\n", indent,
+                       output_parameter(k), f.shapes[k].rows, f.shapes[k].cols, cpp_array_name(f.writes[k]),
+                       f.shapes[k].rows, f.shapes[k].cols);
+  std::string sizes;
+  for (VariableKind kind : f.reads)
+    if (*template_parameter(kind))
+      sizes += fmt::format("{}{}.size() == {}", sizes.empty() ? "" : " && ", cpp_argument_name(kind), input_size(kind));
+  if (!returns_scalar(f))
+    for (std::size_t k = 0; k < f.writes.size(); ++k)
+      sizes += fmt::format("{}{}.rows() == {} && {}.cols() == {}", sizes.empty() ? "" : " && ",
+                           cpp_array_name(f.writes[k]), f.shapes[k].rows, cpp_array_name(f.writes[k]), f.shapes[k].cols);
+  if (!sizes.empty()) s += fmt::format("{}eigen_assert({});\n", indent, sizes);
+  return s;
+}
+
+// `using std::sin; ...` for the calls a program makes, six to a line, so that unqualified calls
+// find the <cmath> overloads, and argument-dependent lookup those of a user's scalar type
+std::string math_using_declarations(std::initializer_list<const ir::Program*> programs, const std::string& indent) {
+  std::set<ir::Op> used;
+  for (const ir::Program* program : programs)
+    for (const ir::Instruction& in : program->instructions)
+      if (ir::is_call(in.op)) used.insert(in.op);
+  std::vector<const char*> names;
+  for (const ir::CallOp& call : ir::call_ops)
+    if (used.count(call.op)) names.push_back(call.cpp_name);
+  std::string s;
+  for (std::size_t i = 0; i < names.size(); ++i)
+    s += fmt::format("{}using std::{};{}", i % 6 == 0 ? indent : " ", names[i],
+                     i % 6 == 5 || i + 1 == names.size() ? "\n" : "");
   return s;
 }
 
 // the overload taking Parameters: it builds their Constants for this one call
-std::string forwarding_source(const FunctionSpec& f, const CppPrintOptions& print) {
+std::string forwarding_source(const FunctionSpec& f, const Arguments& a, const CppPrintOptions& print) {
   const bool scalar = returns_scalar(f), returns = scalar || f.returns_regularity;
   std::string arguments;
   for (VariableKind kind : f.reads)
     arguments += std::string(arguments.empty() ? "" : ", ") +
-                 (kind == VariableKind::parameter ? "Constants<Scalar>(p)" : cpp_argument_name(kind));
+                 (kind == VariableKind::parameter ? fmt::format("Constants<{}>(p)", scalar_type(a)) : cpp_argument_name(kind));
   if (!scalar)
-    for (Array array : f.writes) arguments += std::string(", ") + cpp_array_name(array);
+    for (std::size_t k = 0; k < f.writes.size(); ++k)
+      arguments += fmt::format(", std::forward<{}>({})", output_parameter(k), cpp_array_name(f.writes[k]));
   return fmt::format(
       "\n  /// {}\n  /// From the parameters: computes their Constants for this call alone (to evaluate\n"
-      "  /// repeatedly, build the Constants once and call the overload above).\n  template <class Scalar>\n"
+      "  /// repeatedly, build the Constants once and call the overload above).\n{}"
       "  static {} {}({}) noexcept {{\n{}{}{}({});\n  }}\n",
-      f.doc, scalar ? "Scalar" : f.returns_regularity ? "bool" : "void", f.name, signature(f, VariableKind::parameter),
-      print.indent, returns ? "return " : "", f.name, arguments);
+      f.doc, template_header(f, a), scalar ? scalar_type(a) : f.returns_regularity ? "bool" : "void", f.name,
+      signature(f, a, VariableKind::parameter, false), print.indent, returns ? "return " : "", f.name, arguments);
 }
 
 // `Scalar k0, k1, ...;`, ten to a line
@@ -151,7 +232,7 @@ std::string constants_source(const ir::Program& derived_parameters, const ir::Pr
   } else {
     CppPrintOptions body = print;
     body.indent += "  ";
-    s += "\n" + math_using_declarations(body.indent);
+    s += "\n" + math_using_declarations({&derived_parameters, &constants}, body.indent);
     if (!derived_parameters.outputs.empty()) {
       // each as written: a tree reading the parameters and the derived parameters before it
       CppPrintOptions written = body;
@@ -171,16 +252,29 @@ std::string constants_source(const ir::Program& derived_parameters, const ir::Pr
   return s + constant_members(constants.outputs.size()) + "  };\n";
 }
 
+// With constraints: tau = M qdd - F (the targets) is split into Xi^T lambda and the rest, the
+// least tau, by lambda = (Xi Xi^T)^-1 Xi tau; a redundant set gives a lambda of the LDL^T solve
+std::string constraint_force_split(const std::string& indent) {
+  return fmt::format(
+      "{0}const Eigen::Matrix<Scalar, nq, 1> total = tau;\n"
+      "{0}lambda = (Xi * Xi.transpose()).ldlt().solve(Xi * total);\n"
+      "{0}tau = total - Xi.transpose() * lambda;\n",
+      indent);
+}
+
 std::string function_source(const FunctionSpec& f, const ir::Program& program, const CppPrintOptions& print) {
   const bool scalar = returns_scalar(f);
+  const Arguments arguments = arguments_of(f, program);
   const std::string result = scalar ? cpp_target(f.targets.front().target) : std::string();
-  std::string code = fmt::format("\n  /// {}\n  template <class Scalar>\n  static {} {}({}) noexcept {{\n", f.doc,
-                                 scalar ? "Scalar" : f.returns_regularity ? "bool" : "void", f.name,
-                                 signature(f, VariableKind::constant));
-  code += math_using_declarations(print.indent);
+  std::string code = fmt::format("\n  /// {}\n{}  static {} {}({}) noexcept {{\n", f.doc, template_header(f, arguments),
+                                 scalar ? scalar_type(arguments) : f.returns_regularity ? "bool" : "void", f.name,
+                                 signature(f, arguments, VariableKind::constant, true));
+  const std::size_t checks = code.size();
+  code += math_using_declarations({&program}, print.indent);
   if (scalar) code += fmt::format("{}Scalar {} = Scalar(0);\n", print.indent, result);
   const std::size_t pivots = pivot_count(f);
   if (pivots > 0) code += fmt::format("{}Eigen::Matrix<Scalar, {}, 1> pivot;\n", print.indent, pivots);
+  if (f.splits_constraint_forces) code += fmt::format("{}Eigen::Matrix<Scalar, nc, nq> Xi;\n", print.indent);
   code += print_cpp(program, print);
   // structural zeros are written as zeros, not computed
   std::set<ir::Target> computed;
@@ -191,9 +285,13 @@ std::string function_source(const FunctionSpec& f, const ir::Program& program, c
   for (const auto& [target, source] : f.mirrors)
     code += fmt::format("{}{} = {};\n", print.indent, cpp_target(target),
                         computed.count(source) ? cpp_target(source) : "Scalar(0)");
+  if (f.splits_constraint_forces) code += constraint_force_split(print.indent);
   if (scalar) code += fmt::format("{}return {};\n", print.indent, result);
   if (f.returns_regularity) code += regularity_check(f, pivots, print.indent);
-  return code + "  }\n" + forwarding_source(f, print);
+  // `using Scalar` only where the statements name it: an unused alias is a warning
+  const bool names_scalar = code.find("Scalar", checks) != std::string::npos;
+  code.insert(checks, argument_checks(f, arguments, names_scalar, print.indent));
+  return code + "  }\n" + forwarding_source(f, arguments, print);
 }
 
 EmittedFunctions emit_functions(const std::vector<FunctionSpec>& table,

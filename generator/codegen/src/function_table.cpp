@@ -2,8 +2,7 @@
 
 #include <fmt/format.h>
 
-#include "eomgen/derivation/articulated_body.hpp"
-#include "eomgen/derivation/composite_body.hpp"
+#include "eomgen/codegen/cpp_identifier.hpp"
 #include "eomgen/derivation/linearization.hpp"
 
 namespace eomgen {
@@ -36,8 +35,50 @@ void add_mass_matrix(FunctionSpec& f, const GiNaC::matrix& mass_matrix) {
     for (unsigned j = i + 1; j < n; ++j) f.mirrors.push_back({{Array::mass_matrix, j, i}, {Array::mass_matrix, i, j}});
 }
 
+// the size of an output argument of a fixed size
+ArgumentShape shape_of(Array array) {
+  switch (array) {
+    case Array::mass_matrix:
+    case Array::stiffness:
+    case Array::damping:
+    case Array::coriolis_matrix:
+      return {"nq", "nq"};
+    case Array::forcing:
+    case Array::accelerations:
+    case Array::generalized_forces:
+    case Array::gravity_forces:
+      return {"nq", "1"};
+    case Array::constraint_jacobian:
+    case Array::acceleration_constraint_by_q:
+    case Array::acceleration_constraint_by_qd:
+      return {"nc", "nq"};
+    case Array::constraint_rate_term:
+    case Array::constraint_acceleration_term:
+    case Array::multipliers:
+      return {"nc", "1"};
+    case Array::holonomic_residuals: return {"nh", "1"};
+    case Array::outputs: return {"ny", "1"};
+    case Array::input_matrix: return {"nq", "nu"};
+    case Array::regressor: return {"nq", "npi"};
+    case Array::inertial_parameters: return {"npi", "1"};
+    case Array::kinetic_energy:
+    case Array::potential_energy:
+      return {"1", "1"};
+    case Array::output_jacobian:
+    case Array::output_bias:
+      EOMGEN_UNREACHABLE("an output's Jacobian has the size of its output, given by the table");
+    case Array::pivots:
+    case Array::constants:
+    case Array::derived_parameters:
+      EOMGEN_UNREACHABLE("a local array or a member of the Constants, never an argument");
+  }
+  EOMGEN_UNREACHABLE("an ir::Array value that is not an enumerator");
+}
+
 FunctionSpec function(std::string name, std::string doc, std::vector<VariableKind> reads, std::vector<Array> writes) {
-  return FunctionSpec{std::move(name), std::move(doc), std::move(reads), std::move(writes), {}, {}};
+  FunctionSpec f{std::move(name), std::move(doc), std::move(reads), std::move(writes), {}, {}, {}};
+  for (Array a : f.writes) f.shapes.push_back(shape_of(a));
+  return f;
 }
 
 // the mass matrix and the forcing, alone and together (one pass over their shared terms)
@@ -115,24 +156,137 @@ FunctionSpec linearization_terms(const SymbolicLinearization& linearization, boo
   if (constrained) {
     f.reads.push_back(VariableKind::multiplier);
     f.writes.insert(f.writes.end(), {Array::acceleration_constraint_by_q, Array::acceleration_constraint_by_qd});
+    f.shapes.insert(f.shapes.end(), {shape_of(Array::acceleration_constraint_by_q), shape_of(Array::acceleration_constraint_by_qd)});
     add_matrix(f, Array::acceleration_constraint_by_q, linearization.S_q);
     add_matrix(f, Array::acceleration_constraint_by_qd, linearization.S_qd);
   }
   return f;
 }
 
+const std::vector<VariableKind> with_accelerations = {VariableKind::time,         VariableKind::coordinate,
+                                                      VariableKind::rate,         VariableKind::acceleration,
+                                                      VariableKind::input,        VariableKind::parameter};
+
+// tau = M qdd - F; with constraints also Xi, to split tau (FunctionSpec::splits_constraint_forces)
+FunctionSpec inverse_dynamics(const HeaderFunctions& h) {
+  const bool constrained = h.equations->constraint_count > 0;
+  const char* how = nullptr;
+  switch (h.inverse_dynamics_form.form) {
+    case FunctionForm::closed_form: how = "from M and F"; break;
+    case FunctionForm::recursions: how = "by the Newton-Euler recursion"; break;
+  }
+  FunctionSpec f = function(
+      "inverse_dynamics",
+      constrained ? fmt::format("tau and lambda with M qdd = F + Xi^T lambda + tau for a qdd that satisfies the "
+                                "constraints, tau the least (orthogonal to every row of Xi); M qdd - F {}", how)
+                  : fmt::format("tau = M qdd - F: the generalized forces to add to produce qdd, {}", how),
+      with_accelerations, {Array::generalized_forces});
+  add_vector(f, Array::generalized_forces, h.inverse_dynamics);
+  if (constrained) {
+    f.writes.push_back(Array::multipliers);
+    f.shapes.push_back({"nc", "1"});
+    add_matrix(f, Array::constraint_jacobian, h.equations->constraint_jacobian);
+    f.splits_constraint_forces = true;
+  }
+  return f;
+}
+
+// g = dV/dq and C of the Christoffel symbols
+void add_coriolis_and_gravity(std::vector<FunctionSpec>& table, const HeaderFunctions& h) {
+  if (!h.gravity_forces || !h.coriolis_matrix) return;
+  FunctionSpec g = function("gravity_forces", "G(q) = dV/dq: the generalized forces of gravity and springs, "
+                            "with C qd + G = -F at zero input and no other loads",
+                            {VariableKind::coordinate, VariableKind::parameter}, {Array::gravity_forces});
+  add_vector(g, Array::gravity_forces, *h.gravity_forces);
+  FunctionSpec C = function("coriolis_matrix", "C(q, qd) from the Christoffel symbols of M: dM/dt - 2 C is "
+                            "skew-symmetric",
+                            {VariableKind::coordinate, VariableKind::rate, VariableKind::parameter},
+                            {Array::coriolis_matrix});
+  add_matrix(C, Array::coriolis_matrix, *h.coriolis_matrix);
+  table.insert(table.end(), {g, C});
+}
+
+// J and Jdot qd of every output that is a position or a velocity
+void add_output_jacobians(std::vector<FunctionSpec>& table, const Model& model, const HeaderFunctions& h) {
+  for (const OutputJacobian& jac : h.output_jacobians) {
+    const Output& output = model.outputs[jac.output];
+    const std::string rows = std::to_string(output.components.size());
+    bool velocity = false;
+    switch (jac.level) {
+      case OutputJacobian::Level::position: velocity = false; break;
+      case OutputJacobian::Level::velocity: velocity = true; break;
+    }
+    FunctionSpec J = function(output_jacobian_name(output),
+                              fmt::format("J = {} of the output {}", velocity ? "dy/dqd" : "dy/dq",
+                                          cpp_comment_text(output.name)),
+                              positions, {});
+    J.writes.push_back(Array::output_jacobian);
+    J.shapes.push_back({rows, "nq"});
+    add_matrix(J, Array::output_jacobian, jac.jacobian);
+    FunctionSpec b = function(output_bias_name(output),
+                              fmt::format("Jdot qd of the output {}: its {} at qdd = 0",
+                                          cpp_comment_text(output.name), velocity ? "rate" : "acceleration"),
+                              states, {});
+    b.writes.push_back(Array::output_bias);
+    b.shapes.push_back({rows, "1"});
+    add_vector(b, Array::output_bias, jac.bias);
+    table.insert(table.end(), {J, b});
+  }
+}
+
+void add_regressor(std::vector<FunctionSpec>& table, const HeaderFunctions& h) {
+  if (!h.regressor) return;
+  const BaseParameters* base = h.base_parameters ? &*h.base_parameters : nullptr;
+  FunctionSpec Y = function("regressor",
+                            base ? "Y with M qdd - F = Y pi + (the loads other than gravity, negated), pi the "
+                                   "identifiable base parameters (inertial_parameter_names)"
+                                 : "Y with M qdd - F = Y pi + (the loads other than gravity, negated), pi the "
+                                   "inertial parameters (inertial_parameter_names)",
+                            {VariableKind::time, VariableKind::coordinate, VariableKind::rate,
+                             VariableKind::acceleration, VariableKind::parameter},
+                            {Array::regressor});
+  FunctionSpec pi = function("inertial_parameters",
+                             base ? "pi of the model's parameters: each base parameter's combination of the bodies' "
+                                    "m, m c and inertia about their origins"
+                                  : "pi of the model's parameters: every body's m, m c and inertia about its "
+                                    "origin, in its frame",
+                             {VariableKind::parameter}, {Array::inertial_parameters});
+  if (!base) {
+    add_matrix(Y, Array::regressor, *h.regressor);
+    add_vector(pi, Array::inertial_parameters, h.inertial_parameters);
+  } else {
+    // the kept columns of Y; each base parameter its column's own plus its combination's
+    for (unsigned i = 0; i < h.regressor->rows(); ++i)
+      for (std::size_t k = 0; k < base->independent.size(); ++k)
+        Y.targets.push_back({{Array::regressor, i, k}, (*h.regressor)(i, static_cast<unsigned>(base->independent[k]))});
+    for (std::size_t k = 0; k < base->independent.size(); ++k) {
+      GiNaC::ex value = 0;
+      for (Eigen::Index j = 0; j < base->combination.cols(); ++j)
+        if (const double c = base->combination(static_cast<Eigen::Index>(k), j); c != 0)
+          value += GiNaC::numeric(c) * h.inertial_parameters(static_cast<unsigned>(j), 0);
+      pi.targets.push_back({{Array::inertial_parameters, k, 0}, value});
+    }
+  }
+  table.insert(table.end(), {Y, pi});
+}
+
 }  // namespace
 
-std::vector<FunctionSpec> function_table(const ModelEquations& eom, const FunctionTableParts& parts) {
+std::string output_jacobian_name(const Output& output) { return "output_jacobian_" + cpp_identifier(output.name); }
+std::string output_bias_name(const Output& output) { return "output_bias_" + cpp_identifier(output.name); }
+
+std::vector<FunctionSpec> function_table(const Model& model, const HeaderFunctions& h) {
+  const ModelEquations& eom = *h.equations;
   std::vector<FunctionSpec> table;
-  if (const CompositeBodyEquations* recursive = parts.recursive_mass_matrix)
-    add_dynamics(table, recursive->mass_matrix, recursive->forcing);
-  else
-    add_dynamics(table, eom.mass_matrix, eom.forcing);
+  add_dynamics(table, h.mass_matrix, h.forcing);
   add_constraints(table, eom);
   add_energies_and_outputs(table, eom);
-  if (parts.forward_dynamics) table.push_back(forward_dynamics(*parts.forward_dynamics));
-  if (parts.linearization) table.push_back(linearization_terms(*parts.linearization, eom.constraint_count > 0));
+  if (h.forward_dynamics) table.push_back(forward_dynamics(*h.forward_dynamics));
+  if (h.controller_functions) table.push_back(inverse_dynamics(h));
+  add_coriolis_and_gravity(table, h);
+  add_output_jacobians(table, model, h);
+  add_regressor(table, h);
+  if (h.linearization) table.push_back(linearization_terms(*h.linearization, eom.constraint_count > 0));
   return table;
 }
 

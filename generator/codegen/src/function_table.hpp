@@ -1,28 +1,33 @@
 #pragma once
 // The function table: which functions a generated model has, what each reads and writes, and
-// the value of every entry it writes. Everything here is symbolic; function_source.hpp spells it.
+// the value of every entry it writes, as derive_header_functions chose them. Everything here
+// is symbolic; function_source.hpp spells it.
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "eomgen/codegen/ir.hpp"
 #include "eomgen/codegen/lower.hpp"
-#include "eomgen/derivation/model_equations.hpp"
+#include "eomgen/derivation/header_functions.hpp"
 
 namespace eomgen {
 
-struct SymbolicLinearization;
-struct ForwardDynamics;
-struct CompositeBodyEquations;
+/// The size of an argument a function writes, as constant expressions of the generated Model
+/// ("nq", "3", ...).
+struct ArgumentShape {
+  std::string rows, cols;
+};
 
 /// One generated function (a static member of the generated Model).
 struct FunctionSpec {
   std::string name;  ///< of the member function, e.g. "mass_matrix"
   std::string doc;   ///< one line of documentation
-  /// its inputs, as arguments, sorted in the order of VariableKind (t, q and p always)
+  /// its inputs, in the order of its arguments
   std::vector<ir::VariableKind> reads;
   /// its outputs, as arguments after the inputs; a single scalar (T, V) is returned instead
   std::vector<ir::Array> writes;
+  /// the size of each output, in the order of `writes`
+  std::vector<ArgumentShape> shapes;
   /// every entry it writes, structural zeros included, in the order they are computed
   std::vector<LoweringTarget> targets;
   /// entries copied after the body (first = second): the lower triangle of M
@@ -30,20 +35,20 @@ struct FunctionSpec {
   /// returns whether every entry of Array::pivots among the targets (held in a local array) is
   /// positive and every entry it writes finite: forward_dynamics
   bool returns_regularity = false;
+  /// inverse_dynamics of a model with constraints: the targets give tau = M qdd - F and Xi (a
+  /// local array); the function then splits tau into the constraint forces Xi^T lambda and the
+  /// rest, orthogonal to them (the least tau that gives qdd)
+  bool splits_constraint_forces = false;
 };
 
-/// Optional parts of a model's function table, each derived from the same model.
-struct FunctionTableParts {
-  /// linearize_symbolic of the same model and equations: adds linearization_terms
-  const SymbolicLinearization* linearization = nullptr;
-  /// derive_forward_dynamics: adds forward_dynamics
-  const ForwardDynamics* forward_dynamics = nullptr;
-  /// derive_composite_body_equations: M and F from it instead of from the equations
-  const CompositeBodyEquations* recursive_mass_matrix = nullptr;
-};
+/// M, F, the constraint terms, T, V, the outputs, then forward_dynamics, inverse_dynamics, the
+/// gravity forces and the Coriolis matrix, the output Jacobians, the regressor and
+/// linearization_terms, as `functions` has them.
+std::vector<FunctionSpec> function_table(const Model& model, const HeaderFunctions& functions);
 
-/// The functions of every model, then forward_dynamics, then linearization_terms, as `parts` has them.
-std::vector<FunctionSpec> function_table(const ModelEquations& equations, const FunctionTableParts& parts = {});
+/// The name of the Jacobian function of an output, and of its bias.
+std::string output_jacobian_name(const Output& output);
+std::string output_bias_name(const Output& output);
 
 /// True if the function returns its single scalar output instead of writing arguments.
 bool returns_scalar(const FunctionSpec& function);

@@ -14,16 +14,9 @@ namespace eomgen {
 std::uint64_t model_fingerprint(const Model& model, const std::vector<FunctionSpec>& table,
                                 const std::string& functions);
 
-/// Whether the functions include forward_dynamics(), and whether the runtime should take it
-/// rather than M, F and a Cholesky solve.
-struct ForwardDynamicsChoice {
-  bool emitted = false, preferred = false;
-};
-
 /// The header: banner, includes, namespaces, and the Model struct with its metadata, type
-/// aliases, Parameters and `functions` (the member functions' source).
-std::string assemble_header(const Model& model, const ModelEquations& equations, const std::string& functions,
-                            std::uint64_t model_hash, bool linearized, ForwardDynamicsChoice forward_dynamics,
-                            const EmitOptions& options);
+/// aliases, Parameters and `source` (the member functions' text) of `functions`.
+std::string assemble_header(const Model& model, const HeaderFunctions& functions, const std::string& source,
+                            std::uint64_t model_hash, const EmitOptions& options);
 
 }  // namespace eomgen

@@ -68,6 +68,11 @@ std::size_t rank(Array array) {
     case Array::constraint_acceleration_term:
     case Array::holonomic_residuals:
     case Array::outputs:
+    case Array::generalized_forces:
+    case Array::gravity_forces:
+    case Array::output_bias:
+    case Array::inertial_parameters:
+    case Array::multipliers:
     case Array::constants:
     case Array::accelerations:
     case Array::pivots:
@@ -80,6 +85,9 @@ std::size_t rank(Array array) {
     case Array::input_matrix:
     case Array::acceleration_constraint_by_q:
     case Array::acceleration_constraint_by_qd:
+    case Array::coriolis_matrix:
+    case Array::output_jacobian:
+    case Array::regressor:
       return 2;
   }
   EOMGEN_UNREACHABLE("an ir::Array value that is not an enumerator");

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstring>
 #include <iterator>
+#include <map>
 #include <optional>
 #include <tuple>
 #include <unordered_map>
@@ -152,6 +153,22 @@ class Lowering {
       return with_sign(negative, intern(Node{op, std::move(args), 0.0, {}, {}}));
     }
     if (op == Op::add) {
+      // x and -x cancel: terms that are distinct GiNaC nodes can lower to one value (a quantity
+      // derived both in the equations' intermediates and in the recursions'), and left in the
+      // sum they cost operations and tie the choice of its orientation below
+      std::map<std::size_t, long> net;  // magnitude -> number of times added, less subtracted
+      for (std::size_t a : args) net[magnitude(a)] += negated(a) ? -1 : 1;
+      if (net.size() < args.size()) {
+        std::vector<std::size_t> kept;
+        for (std::size_t a : args) {
+          long& count = net[magnitude(a)];
+          if (count > 0 && !negated(a)) kept.push_back(a), --count;
+          else if (count < 0 && negated(a)) kept.push_back(a), ++count;
+        }
+        if (kept.empty()) return number(0.0);
+        if (kept.size() == 1) return kept[0];
+        args = std::move(kept);
+      }
       // the term whose magnitude sorts first decides the orientation of the sum
       const auto first = std::min_element(args.begin(), args.end(), [&](std::size_t a, std::size_t b) {
         return std::tie(nodes_[magnitude(a)].signature, a) < std::tie(nodes_[magnitude(b)].signature, b);

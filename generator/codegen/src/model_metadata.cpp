@@ -69,7 +69,8 @@ std::string sizes_source(const Model& model, const ModelEquations& eom, const Na
 
 std::string independent_speed_list(const Model& model) { return comma_list(model.independent_speeds); }
 
-std::string metadata_source(const Model& model, const ModelEquations& eom, std::uint64_t model_hash) {
+std::string metadata_source(const Model& model, const HeaderFunctions& functions, std::uint64_t model_hash) {
+  const ModelEquations& eom = *functions.equations;
   const Names names = names_of(model);
   std::string defaults;
   for (const Parameter& p : model.system.variables().parameters())
@@ -89,6 +90,17 @@ std::string metadata_source(const Model& model, const ModelEquations& eom, std::
   s += fmt::format("  static constexpr std::array<int, ni> independent_speeds{{{{{}}}}};  // their coordinate indices\n",
                    independent_speed_list(model));
   s += fmt::format("  static constexpr std::array<const char*, ny> output_names{{{{{}}}}};\n", name_list(names.outputs));
+  if (functions.regressor && functions.base_parameters) {
+    s += fmt::format("  static constexpr int npi = {};  // identifiable base parameters (regressor)\n",
+                     functions.base_parameters->names.size());
+    s += fmt::format("  static constexpr std::array<const char*, npi> inertial_parameter_names{{{{{}}}}};\n",
+                     name_list(functions.base_parameters->names));
+  } else if (functions.regressor) {
+    s += fmt::format("  static constexpr int npi = {};  // inertial parameters: 10 per body (regressor)\n",
+                     functions.inertial_parameter_names.size());
+    s += fmt::format("  static constexpr std::array<const char*, npi> inertial_parameter_names{{{{{}}}}};\n",
+                     name_list(functions.inertial_parameter_names));
+  }
   return s;
 }
 

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <string>
 
+#include "eomgen/derivation/header_functions.hpp"
 #include "eomgen/derivation/model_equations.hpp"
 
 namespace eomgen {
@@ -11,7 +12,7 @@ namespace eomgen {
 /// The `static constexpr` members: nq, nu, nc, nh, np, ny, ni, the name, description,
 /// generator version and `model_hash`, and the arrays of names, defaults, holonomic rows and
 /// independent speeds.
-std::string metadata_source(const Model& model, const ModelEquations& equations, std::uint64_t model_hash);
+std::string metadata_source(const Model& model, const HeaderFunctions& functions, std::uint64_t model_hash);
 
 /// The Parameters struct: one field per parameter, defaulted to its value, and fields() in the
 /// order of parameter_names; then, for a model with derived parameters, DerivedParameters.

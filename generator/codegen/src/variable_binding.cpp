@@ -23,10 +23,10 @@ VariableNames bind_variables(const Model& model, const SymbolicLinearization* li
     bind(vars.parameters()[k].symbol, VariableKind::parameter, k);
   for (std::size_t k = 0; k < vars.derived_parameters().size(); ++k)
     bind(vars.derived_parameters()[k].symbol, VariableKind::derived_parameter, k);
-  // the linearization's derivatives are taken at given accelerations and multipliers
+  // the inverse dynamics and the regressor read accelerations, and the linearization's
+  // derivatives are taken at given accelerations and multipliers
+  for (std::size_t k = 0; k < vars.coordinate_count(); ++k) bind(vars.coordinates()[k].qdd, VariableKind::acceleration, k);
   if (linearization) {
-    for (std::size_t k = 0; k < vars.coordinate_count(); ++k)
-      bind(vars.coordinates()[k].qdd, VariableKind::acceleration, k);
     for (std::size_t r = 0; r < linearization->lambda.size(); ++r)
       bind(linearization->lambda[r], VariableKind::multiplier, r);
   }

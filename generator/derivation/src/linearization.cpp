@@ -13,6 +13,7 @@
 
 #include "eomgen/base/error.hpp"
 #include "eomgen/mechanics/variables.hpp"
+#include "chain_rule.hpp"
 #include "linearization_program.hpp"
 #include "tangent_space.hpp"
 #include "eomrt/linearization.hpp"
@@ -24,72 +25,6 @@ using GiNaC::ex_to;
 using GiNaC::symbol;
 
 namespace {
-
-/// Derivatives of the derivation's intermediates with respect to a list of variables, bound
-/// as intermediates of their own: dz_i/dv = d value_i/dv + sum_j d value_i/dz_j dz_j/dv.
-/// A derivative that is structurally zero stays the number 0, which is how cyclic
-/// coordinates show. Each intermediate's derivatives are taken when first needed: many serve
-/// only the energies and outputs, which the linearization does not differentiate.
-class ChainRule {
- public:
-  ChainRule(const Subexpressions& z, std::vector<ex> variables, Subexpressions& out)
-      : z_(z), variables_(std::move(variables)), out_(out), derivative_(z.size()) {
-    for (std::size_t k = 0; k < variables_.size(); ++k) variable_index_.emplace(variables_[k], k);
-    const auto& defs = z.definitions();
-    for (std::size_t i = 0; i < defs.size(); ++i) index_.emplace(defs[i].symbol, i);
-  }
-
-  /// d e / d v for every variable v, e referring to model symbols and intermediates. Each
-  /// partial derivative of e is taken once and reused along every variable: differentiating
-  /// a large expression (a row of M qdd - F) is the expensive step, not the accumulation.
-  std::vector<ex> total(const ex& e) const {
-    std::vector<ex> d(variables_.size(), 0);
-    for (const ex& s : symbols_of(e)) {
-      if (const auto v = variable_index_.find(s); v != variable_index_.end()) {
-        d[v->second] += eomgen::derivative(e, ex_to<symbol>(s));
-        continue;
-      }
-      const auto it = index_.find(s);
-      if (it == index_.end()) continue;
-      const std::vector<ex>& dz = derivative(it->second);
-      if (std::all_of(dz.begin(), dz.end(), [](const ex& x) { return x.is_zero(); })) continue;
-      const ex partial = eomgen::derivative(e, ex_to<symbol>(s));
-      for (std::size_t k = 0; k < dz.size(); ++k)
-        if (!dz[k].is_zero()) d[k] += partial * dz[k];
-    }
-    return d;
-  }
-
- private:
-  const std::vector<ex>& derivative(std::size_t i) const {
-    if (derivative_[i]) return *derivative_[i];
-    // the intermediates i depends on and lacking derivatives, taken in the order of their
-    // definitions: each then finds its own dependencies done, and the recursion stays one
-    // level deep however long the chain of definitions
-    std::set<std::size_t> pending{i};
-    std::vector<std::size_t> stack{i};
-    while (!stack.empty()) {
-      const std::size_t j = stack.back();
-      stack.pop_back();
-      for (const ex& s : symbols_of(z_.definitions()[j].value))
-        if (const auto it = index_.find(s); it != index_.end() && !derivative_[it->second] && pending.insert(it->second).second)
-          stack.push_back(it->second);
-    }
-    for (std::size_t j : pending) {
-      std::vector<ex> gradient = total(z_.definitions()[j].value);
-      for (ex& g : gradient) g = out_.bind(g);
-      derivative_[j] = std::move(gradient);
-    }
-    return *derivative_[i];
-  }
-
-  const Subexpressions& z_;
-  std::vector<ex> variables_;
-  Subexpressions& out_;
-  std::map<ex, std::size_t, GiNaC::ex_is_less> variable_index_;
-  std::map<ex, std::size_t, GiNaC::ex_is_less> index_;
-  mutable std::vector<std::optional<std::vector<ex>>> derivative_;  // filled on demand
-};
 
 /// An evaluator at the state `point` that also knows the accelerations and multipliers the
 /// derivatives were taken at, and every derivative intermediate: the terms of `symbolic` can

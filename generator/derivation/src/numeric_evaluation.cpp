@@ -141,4 +141,32 @@ AccelerationSolution solve_accelerations(const NumericEquations& eq) {
   return {llt.solve(eq.forcing), Eigen::VectorXd(0)};
 }
 
+NumericControllerFunctions evaluate_controller_functions(const Model& model, const ModelEquations& eom,
+                                                         const HeaderFunctions& functions, const NamedValues& values,
+                                                         const Eigen::VectorXd& qdd) {
+  DoubleEvaluator eval = evaluator_at(model, eom, values);
+  const auto& coordinates = model.system.variables().coordinates();
+  for (std::size_t k = 0; k < coordinates.size(); ++k) eval.set(coordinates[k].qdd, qdd(static_cast<Eigen::Index>(k)));
+  // the intermediates beyond the equations' own, in order (the linearization's are not needed)
+  for (const auto& z : functions.owned)
+    for (const auto& d : z->definitions()) eval.set(d.symbol, eval.value(d.value, "intermediate " + d.symbol.get_name()));
+  if (functions.forward_dynamics)
+    for (const auto& d : functions.forward_dynamics->subexpressions.definitions())
+      eval.set(d.symbol, eval.value(d.value, "intermediate " + d.symbol.get_name()));
+  NumericControllerFunctions out;
+  out.inverse_dynamics = evaluate_matrix(functions.inverse_dynamics, eval, "inverse dynamics");
+  if (functions.gravity_forces) out.gravity_forces = evaluate_matrix(*functions.gravity_forces, eval, "G");
+  if (functions.coriolis_matrix) out.coriolis_matrix = evaluate_matrix(*functions.coriolis_matrix, eval, "C");
+  for (const OutputJacobian& jac : functions.output_jacobians) {
+    const std::string& name = model.outputs[jac.output].name;
+    out.output_jacobians.push_back({name, evaluate_matrix(jac.jacobian, eval, "the Jacobian of " + name),
+                                    evaluate_matrix(jac.bias, eval, "the bias of " + name)});
+  }
+  if (functions.regressor) {
+    out.regressor = evaluate_matrix(*functions.regressor, eval, "Y");
+    out.inertial_parameters = evaluate_matrix(functions.inertial_parameters, eval, "pi");
+  }
+  return out;
+}
+
 }  // namespace eomgen

@@ -23,8 +23,9 @@ bool is_minus_one(const ex& e) {
 
 class Estimate {
  public:
-  Estimate(const Subexpressions& intermediates, const Variables& variables) : variables_(variables) {
-    for (const auto& d : intermediates.definitions()) definitions_.emplace(d.symbol, &d.value);
+  Estimate(const std::vector<const Subexpressions*>& intermediates, const Variables& variables) : variables_(variables) {
+    for (const Subexpressions* z : intermediates)
+      for (const auto& d : z->definitions()) definitions_.emplace(d.symbol, &d.value);
   }
 
   double of(const ex& e) { return count(e); }
@@ -112,12 +113,20 @@ class Estimate {
 
 double estimated_operations(const GiNaC::matrix& mass_matrix, const GiNaC::matrix& forcing,
                             const Subexpressions& intermediates, const Variables& variables) {
-  Estimate estimate(intermediates, variables);
+  Estimate estimate({&intermediates}, variables);
   double operations = 0;
   for (unsigned j = 0; j < mass_matrix.rows(); ++j) {
     for (unsigned k = j; k < mass_matrix.cols(); ++k) operations += estimate.of(mass_matrix(j, k));
     operations += estimate.of(forcing(j, 0));
   }
+  return operations;
+}
+
+double estimated_operations(const GiNaC::exvector& entries, const std::vector<const Subexpressions*>& intermediates,
+                            const Variables& variables) {
+  Estimate estimate(intermediates, variables);
+  double operations = 0;
+  for (const ex& e : entries) operations += estimate.of(e);
   return operations;
 }
 

@@ -6,6 +6,8 @@
 // or sqrt weighted as the multiplications it costs.
 #include <ginac/ginac.h>
 
+#include <vector>
+
 #include "eomgen/mechanics/variables.hpp"
 #include "eomgen/symbolic/subexpressions.hpp"
 
@@ -14,5 +16,9 @@ namespace eomgen {
 /// Operations of the upper triangle of M and of F, the intermediates they use included once each.
 double estimated_operations(const GiNaC::matrix& mass_matrix, const GiNaC::matrix& forcing,
                             const Subexpressions& intermediates, const Variables& variables);
+
+/// Operations of every entry together, the intermediates of every set they use included once.
+double estimated_operations(const GiNaC::exvector& entries, const std::vector<const Subexpressions*>& intermediates,
+                            const Variables& variables);
 
 }  // namespace eomgen

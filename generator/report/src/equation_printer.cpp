@@ -47,7 +47,9 @@ constexpr PartKey part_keys[] = {
     {"Xi", &EquationParts::constraint_jacobian}, {"Xi_t", &EquationParts::constraint_rate_term},
     {"b", &EquationParts::constraint_acceleration_term}, {"phi", &EquationParts::holonomic_residuals},
     {"T", &EquationParts::kinetic_energy},       {"V", &EquationParts::potential_energy},
-    {"outputs", &EquationParts::outputs},
+    {"outputs", &EquationParts::outputs},        {"tau", &EquationParts::inverse_dynamics},
+    {"g", &EquationParts::gravity_forces},       {"C", &EquationParts::coriolis_matrix},
+    {"J", &EquationParts::output_jacobians},     {"regressor", &EquationParts::regressor},
 };
 
 std::string join(const std::vector<std::string>& items, const std::string& separator) {
@@ -106,6 +108,78 @@ std::vector<Entry> matrix_entries(const GiNaC::matrix& m, const std::string& nam
 }
 
 // the selected parts as given by the derivation (possibly referring to intermediates)
+// the selected functions for controllers, their terms referred to the merged intermediates by `renamed`
+void function_sections(std::vector<Section>& out, const Model& model, const HeaderFunctions& h,
+                       const EquationParts& parts, const GiNaC::exmap& renamed) {
+  const auto referred = [&](const GiNaC::matrix& m) {
+    GiNaC::matrix r(m.rows(), m.cols());
+    for (unsigned i = 0; i < m.rows(); ++i)
+      for (unsigned j = 0; j < m.cols(); ++j) r(i, j) = substitute(m(i, j), renamed);
+    return r;
+  };
+  const unsigned n = h.mass_matrix.rows();
+  if (parts.inverse_dynamics)
+    out.push_back({fmt::format("Inverse dynamics tau = M qdd - F ({} x 1, {})", n, to_string(h.inverse_dynamics_form.form)),
+                   fmt::format("Inverse dynamics $\\tau = M \\ddot{{q}} - F$ (${} \\times 1$)", n), "",
+                   matrix_entries(referred(h.inverse_dynamics), "tau", "\\tau", true)});
+  if (parts.gravity_forces && h.gravity_forces)
+    out.push_back({fmt::format("Gravity forces g = dV/dq ({} x 1)", n),
+                   fmt::format("Gravity forces $g = \\partial V / \\partial q$ (${} \\times 1$)", n), "",
+                   matrix_entries(referred(*h.gravity_forces), "g", "g", true)});
+  if (parts.coriolis_matrix && h.coriolis_matrix)
+    out.push_back({fmt::format("Coriolis matrix C ({0} x {0}), with dM/dt - 2 C skew-symmetric", n),
+                   fmt::format("Coriolis matrix $C$ (${0} \\times {0}$), with $\\dot{{M}} - 2 C$ skew-symmetric", n), "",
+                   matrix_entries(referred(*h.coriolis_matrix), "C", "C", false)});
+  if ((parts.gravity_forces || parts.coriolis_matrix) && !h.gravity_forces)
+    out.push_back({"Gravity forces and Coriolis matrix: none", "Gravity forces and Coriolis matrix: none",
+                   h.no_coriolis_and_gravity, {}});
+  if (parts.output_jacobians)
+    for (const OutputJacobian& j : h.output_jacobians) {
+      const std::string& name = model.outputs[j.output].name;
+      bool velocity = false;
+      switch (j.level) {
+        case OutputJacobian::Level::position: velocity = false; break;
+        case OutputJacobian::Level::velocity: velocity = true; break;
+      }
+      const std::string tex = "\\text{" + tex_escape(name) + "}";
+      out.push_back({fmt::format("Jacobian of output {} ({} x {}): J = {}", name, j.jacobian.rows(), n,
+                                 velocity ? "dy/dqd" : "dy/dq"),
+                     fmt::format("Jacobian of output {} (${} \\times {}$)", tex_escape(name), j.jacobian.rows(), n), "",
+                     matrix_entries(referred(j.jacobian), "J_" + name, "J^{" + tex + "}", false)});
+      out.push_back({fmt::format("Bias of output {}: Jdot qd, its {} at qdd = 0", name, velocity ? "rate" : "acceleration"),
+                     fmt::format("Bias of output {}: $\\dot{{J}} \\dot{{q}}$", tex_escape(name)), "",
+                     matrix_entries(referred(j.bias), "Jdot_qd_" + name, "(\\dot{J}\\dot{q})^{" + tex + "}", true)});
+    }
+  if (parts.regressor && h.regressor) {
+    out.push_back({fmt::format("Regressor Y ({} x {}), with M qdd - F = Y pi + (loads other than gravity)", n,
+                               h.regressor->cols()),
+                   fmt::format("Regressor $Y$ (${} \\times {}$), with $M \\ddot{{q}} - F = Y \\pi + \\ldots$", n,
+                               h.regressor->cols()),
+                   "", matrix_entries(referred(*h.regressor), "Y", "Y", false)});
+    Section pi{"Inertial parameters pi (mass, first moment, inertia about the origin, in the body's frame)",
+               "Inertial parameters $\\pi$", "", {}};
+    for (std::size_t k = 0; k < h.inertial_parameter_names.size(); ++k)
+      pi.entries.push_back({h.inertial_parameter_names[k], "\\text{" + tex_escape(h.inertial_parameter_names[k]) + "}",
+                            substitute(h.inertial_parameters(unsigned(k), 0), renamed)});
+    out.push_back(std::move(pi));
+    if (const BaseParameters* base = h.base_parameters ? &*h.base_parameters : nullptr) {
+      Section kept{fmt::format("Base parameters ({} of {}): Y pi = Y_base pi_base, Y_base the columns of Y named "
+                               "first in each", base->names.size(), h.inertial_parameter_names.size()),
+                   "Base parameters", "", {}};
+      for (std::size_t k = 0; k < base->names.size(); ++k) {
+        GiNaC::ex value = 0;
+        for (Eigen::Index j = 0; j < base->combination.cols(); ++j)
+          if (const double c = base->combination(static_cast<Eigen::Index>(k), j); c != 0)
+            value += GiNaC::numeric(c) * substitute(h.inertial_parameters(static_cast<unsigned>(j), 0), renamed);
+        kept.entries.push_back({base->names[k], "\\text{" + tex_escape(base->names[k]) + "}", value});
+      }
+      out.push_back(std::move(kept));
+    }
+  } else if (parts.regressor) {
+    out.push_back({"Regressor: none", "Regressor: none", h.no_regressor, {}});
+  }
+}
+
 std::vector<Section> raw_sections(const Model& model, const ModelEquations& eom, const EquationParts& parts) {
   const std::size_t n = eom.coordinate_count, m = eom.constraint_count;
   const std::string rows = row_note(constraint_names(model.system, false));
@@ -377,6 +451,19 @@ void print_latex(std::ostream& out, const Model& model, const ModelEquations& eo
   out << "\n\\end{document}\n";
 }
 
+// whether the sections print in terms of the intermediates (PrintOptions)
+bool shared_form(const std::vector<Section>& sections, const ModelEquations& eom, const PrintOptions& options) {
+  switch (options.intermediates) {
+    case IntermediateForm::written_out: return false;
+    case IntermediateForm::shared: return true;
+    case IntermediateForm::automatic:
+      return eom.subexpressions.size() > options.max_intermediates ||
+             sections_size(sections, eom) > options.max_written_out_size ||
+             sections_expanded_size(sections, eom) > options.max_multiplied_out_size;
+  }
+  EOMGEN_UNREACHABLE("shared_form: an IntermediateForm outside its enumerators");
+}
+
 }  // namespace
 
 EquationParts parse_equation_parts(const std::string& list) {
@@ -408,27 +495,30 @@ double multiplied_out_size(const Model& model, const ModelEquations& eom, const 
 }
 
 bool uses_shared_form(const Model& model, const ModelEquations& eom, const PrintOptions& options) {
-  switch (options.intermediates) {
-    case IntermediateForm::written_out: return false;
-    case IntermediateForm::shared: return true;
-    case IntermediateForm::automatic:
-      return eom.subexpressions.size() > options.max_intermediates ||
-             written_out_size(model, eom, options.parts) > options.max_written_out_size ||
-             multiplied_out_size(model, eom, options.parts) > options.max_multiplied_out_size;
-  }
-  EOMGEN_UNREACHABLE("uses_shared_form: an IntermediateForm outside its enumerators");
+  return shared_form(raw_sections(model, eom, options.parts), eom, options);
 }
 
-void print_equations(std::ostream& out, const Model& model, const ModelEquations& eom,
-                     const PrintOptions& options) {
+void print_equations(std::ostream& out, const Model& model, const ModelEquations& equations,
+                     const PrintOptions& options, const HeaderFunctions* functions) {
+  // the functions for controllers refer to intermediates of their own: printed with the
+  // equations' in one list
+  std::optional<ModelEquations> merged;
+  GiNaC::exmap renamed;
+  if (options.parts.needs_header_functions()) {
+    if (!functions)
+      throw Error("printing the functions for controllers (tau, g, C, J, regressor) needs derive_header_functions");
+    merged = with_function_intermediates(equations, *functions, renamed);
+  }
+  const ModelEquations& eom = merged ? *merged : equations;
   std::vector<Section> sections = raw_sections(model, eom, options.parts);
+  if (functions && merged) function_sections(sections, model, *functions, options.parts, renamed);
   // each derived parameter written out in the parameters, in order (when asked for)
   GiNaC::exmap derived;
   if (options.expand_derived_parameters)
     for (const DerivedParameter& d : model.system.variables().derived_parameters())
       derived[d.symbol] = d.definition.subs(derived, GiNaC::subs_options::no_pattern);
   const auto written_out = [&](const ex& e) { return derived.empty() ? e : substitute(e, derived); };
-  if (uses_shared_form(model, eom, options)) {
+  if (shared_form(sections, eom, options)) {
     Section where = where_section(sections, eom.subexpressions);
     if (!where.entries.empty()) sections.push_back(std::move(where));
     for (Section& s : sections)
@@ -445,9 +535,10 @@ void print_equations(std::ostream& out, const Model& model, const ModelEquations
   }
 }
 
-std::string format_equations(const Model& model, const ModelEquations& eom, const PrintOptions& options) {
+std::string format_equations(const Model& model, const ModelEquations& eom, const PrintOptions& options,
+                             const HeaderFunctions* functions) {
   std::ostringstream out;
-  print_equations(out, model, eom, options);
+  print_equations(out, model, eom, options, functions);
   return out.str();
 }
 

@@ -288,7 +288,7 @@ class Writer {
     }
     for (const Link& l : robot_.links)
       if (children_.count(l.name) == 0)
-        for (const char* o : {"_position", "_axis_1", "_axis_2", "_axis_3"})
+        for (const char* o : {"_position", "_axis_1", "_axis_2", "_axis_3", "_angular_velocity"})
           claim(link_id_[l.name] + o, fmt::format("the outputs of link '{}'", printable(l.name)), l.location);
   }
 
@@ -686,12 +686,14 @@ class Writer {
   }
 
   void outputs() {
-    line("# the pose of every leaf link (the tool frames): its origin, and its axes in a");
+    line("# the pose of every leaf link (the tool frames): its origin, its axes in a, and its angular");
+    line("# velocity in a (the header's output_jacobian_* of these are the tool's task-space Jacobians)");
     for (const Link& l : robot_.links) {
       if (children_.count(l.name) != 0 || &l == root_) continue;
       const std::string& id = link_id_[l.name];
       line(fmt::format("output {0}_position = position({0}_origin)", id));
       for (int i = 1; i <= 3; ++i) line(fmt::format("output {0}_axis_{1} = {0}.{1}", id, i));
+      line(fmt::format("output {0}_angular_velocity = angular_velocity({0})", id));
     }
   }
 

@@ -6,6 +6,7 @@
 #include "eomgen/codegen/cpp_identifier.hpp"  // the spelling of the model's names in the header
 #include "eomgen/codegen/ir.hpp"
 #include "eomgen/derivation/equations_of_motion.hpp"
+#include "eomgen/derivation/header_functions.hpp"
 #include "eomgen/derivation/model_equations.hpp"
 
 namespace eomgen {
@@ -35,9 +36,10 @@ struct EmittedModel {
   std::vector<FunctionStatistics> statistics;
   /// why the header has no forward_dynamics() (constraints, not a tree), empty if it has one
   std::string no_forward_dynamics;
-  /// With forward_dynamics(): its operations per call, those of M and F together with the
-  /// runtime's Cholesky path instead (its measured cost as operations: 120 + 14 n^2), and whether
-  /// the header tells the runtime to prefer it (prefers_forward_dynamics: it takes fewer).
+  /// With forward_dynamics(): its estimated operations per call, those of M and F together with
+  /// the runtime's Cholesky path instead (its measured cost as operations: 120 + 14 n^2), and
+  /// whether the header tells the runtime to prefer it (prefers_forward_dynamics: it takes
+  /// fewer); derive_header_functions chose, this reports it.
   double forward_dynamics_operations = 0, mass_matrix_path_operations = 0;
   bool prefers_forward_dynamics = false;
   /// Where the emitted M and F come from: Kane's closed form of the equations, or the
@@ -48,16 +50,17 @@ struct EmittedModel {
   double estimated_operations_recursions = 0;
 };
 
-/// The header of a model: its metadata and the functions of its equations (M, F, Xi, Xi_t, b,
-/// phi, T, V and the outputs), and forward_dynamics() when derive_forward_dynamics gives one.
-/// M and F are those of `equations` or, for a tree where they are smaller, the recursive ones.
+/// The header of a model: its metadata and every function of `functions`, lowered and printed;
+/// which functions and in which form is derive_header_functions' choice, not this one's.
 /// \throws EmitError if an expression cannot be printed, or if model.independent_speeds is neither
 ///         empty nor nq - nc distinct coordinate indices.
+EmittedModel emit_model(const Model& model, const HeaderFunctions& functions, const EmitOptions& options = {});
+
+/// emit_model of derive_header_functions(model, equations): the header's functions derived, then printed.
 EmittedModel emit_model(const Model& model, const ModelEquations& equations, const EmitOptions& options = {});
 
-/// The same header with linearization_terms() and linearization() besides: A and B about any
-/// operating point, from exact derivatives (for gain scheduling). `linearization` is
-/// linearize_symbolic(model, equations).
+/// The same header with linearization_terms() besides: A and B about any operating point, from
+/// exact derivatives (for gain scheduling). `linearization` is linearize_symbolic(model, equations).
 /// \throws EmitError as the overload without a linearization.
 EmittedModel emit_model(const Model& model, const ModelEquations& equations,
                         const SymbolicLinearization& linearization, const EmitOptions& options = {});

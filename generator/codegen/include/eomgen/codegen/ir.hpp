@@ -116,6 +116,14 @@ enum class Array {
   input_matrix,                   // B_u = dF/du
   acceleration_constraint_by_q,   // S_q = dS/dq of S = Xi qdd + b
   acceleration_constraint_by_qd,  // S_qd = dS/dqd
+  generalized_forces,             // tau = M qdd - F of the inverse dynamics (less Xi^T lambda with constraints)
+  gravity_forces,                 // G = dV/dq
+  coriolis_matrix,                // C(q, qd) of the Christoffel symbols
+  output_jacobian,                // J of one output
+  output_bias,                    // Jdot qd of one output: its acceleration (or rate) at qdd = 0
+  regressor,                      // Y of M qdd - F = Y pi + ...
+  inertial_parameters,            // pi, the bodies' inertial parameters
+  multipliers,                    // lambda of the inverse dynamics with constraints (solved, never a target)
   constants,                      // the per-parameter-set constants, computed once by Constants
   accelerations,                  // qdd of the generated forward dynamics
   pivots,                         // the forward dynamics' pivots: a local array, checked, not returned

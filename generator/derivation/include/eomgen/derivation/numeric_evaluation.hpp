@@ -11,6 +11,7 @@
 
 #include "eomgen/symbolic/double_evaluator.hpp"
 #include "eomgen/derivation/equations_of_motion.hpp"
+#include "eomgen/derivation/header_functions.hpp"
 #include "eomgen/derivation/model_equations.hpp"
 #include "eomrt/kkt_system.hpp"
 
@@ -34,6 +35,27 @@ struct NumericEquations {
   /// (label, value) of every output component, in the model's order ("tip_1", "tip_2", ...).
   std::vector<std::pair<std::string, double>> outputs;
 };
+
+/// The functions for controllers (header_functions.hpp) in numbers at one state and accelerations.
+struct NumericControllerFunctions {
+  Eigen::VectorXd inverse_dynamics;           ///< M qdd - F, n
+  Eigen::MatrixXd gravity_forces, coriolis_matrix;  ///< G (n) and C (n x n); empty where the model has none
+  struct OutputJacobian {
+    std::string output;  ///< the output's name
+    Eigen::MatrixXd jacobian;
+    Eigen::VectorXd bias;
+  };
+  std::vector<OutputJacobian> output_jacobians;
+  Eigen::MatrixXd regressor;           ///< Y, n x npi; empty where the model has none
+  Eigen::VectorXd inertial_parameters;  ///< pi
+};
+
+/// Evaluates `functions` (derive_header_functions of the same model and equations) at the state
+/// `values` and the accelerations `qdd`.
+/// \throws Error as evaluate_equations.
+NumericControllerFunctions evaluate_controller_functions(const Model& model, const ModelEquations& eom,
+                                                         const HeaderFunctions& functions, const NamedValues& values,
+                                                         const Eigen::VectorXd& qdd);
 
 /// Accelerations and multipliers of M qdd = F + Xi^T lambda, Xi qdd + (dXi/dt qd + dXi_t/dt) = 0.
 struct AccelerationSolution {

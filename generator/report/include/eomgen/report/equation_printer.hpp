@@ -8,6 +8,7 @@
 #include <string>
 
 #include "eomgen/derivation/equations_of_motion.hpp"
+#include "eomgen/derivation/header_functions.hpp"
 #include "eomgen/derivation/model_equations.hpp"
 
 namespace eomgen {
@@ -26,6 +27,16 @@ struct EquationParts {
   bool kinetic_energy = true;        ///< "T"
   bool potential_energy = true;      ///< "V"
   bool outputs = true;               ///< "outputs"
+  // the functions for controllers (header_functions.hpp), printed only when selected
+  bool inverse_dynamics = false;     ///< "tau": M qdd - F
+  bool gravity_forces = false;       ///< "g": dV/dq
+  bool coriolis_matrix = false;      ///< "C"
+  bool output_jacobians = false;     ///< "J": every output Jacobian and its bias
+  bool regressor = false;            ///< "regressor": Y and the inertial parameters pi
+  /// Whether a part needs derive_header_functions (print_equations' `functions`).
+  bool needs_header_functions() const {
+    return inverse_dynamics || gravity_forces || coriolis_matrix || output_jacobians || regressor;
+  }
 };
 
 /// Parses a comma-separated selection such as "M,F,b"; only the named parts are set.
@@ -74,12 +85,15 @@ bool uses_shared_form(const Model& model, const ModelEquations& eom, const Print
 /// Writes the selected parts of `eom` (derived from model.system) to `out`, preceded by a
 /// summary of the model (coordinates, parameters with defaults and units, inputs,
 /// constraints). M is symmetric: only its upper triangle is printed. LaTeX output is a
-/// complete document needing only amsmath. Deterministic for a given model.
+/// complete document needing only amsmath. Deterministic for a given model. The functions for
+/// controllers (EquationParts::needs_header_functions) are printed from `functions`,
+/// derive_header_functions(model, eom), which those parts require.
+/// \throws Error if a part of the functions is selected and `functions` is null.
 void print_equations(std::ostream& out, const Model& model, const ModelEquations& eom,
-                     const PrintOptions& options = {});
+                     const PrintOptions& options = {}, const HeaderFunctions* functions = nullptr);
 
 /// print_equations into a string.
 std::string format_equations(const Model& model, const ModelEquations& eom,
-                             const PrintOptions& options = {});
+                             const PrintOptions& options = {}, const HeaderFunctions* functions = nullptr);
 
 }  // namespace eomgen

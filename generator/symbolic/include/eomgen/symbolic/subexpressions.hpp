@@ -27,6 +27,9 @@ class Subexpressions {
   /// a symbol, a number times a symbol, a function of a symbol). Equal values share a symbol.
   /// A value that is a large tree is shared first (share()), so no definition is one.
   GiNaC::ex bind(const GiNaC::ex& value);
+  /// A symbol standing for `value` as it is, its subexpressions not shared: for a definition of
+  /// another Subexpressions taken over in its order (equal values still share a symbol).
+  GiNaC::ex adopt(const GiNaC::ex& value) { return bind_as_is(value); }
   /// bind() applied to every entry.
   GiNaC::matrix bind(const GiNaC::matrix& value);
 
