@@ -167,6 +167,11 @@ CLI::App* add_linearize_command(CLI::App& app, Options& o) {
       ->delimiter(',')
       ->type_name("NAME=VALUE,...");
   add_parameter_option(linearize, o.set, "Override a parameter's default: NAME=VALUE (repeatable)");
+  linearize->add_option("--guess", o.guesses,
+                        "Starting values for the coordinates and rates solved from the constraints: the point is "
+                        "the consistent one nearest them (which assembly of a loop)")
+      ->delimiter(',')
+      ->type_name("NAME=VALUE,...");
   linearize->add_flag("--equilibrium", o.find_equilibrium,
                       "Take --at as a guess: find the equilibrium (coordinates; rates held) by Newton's method first");
   linearize->add_flag("--drop-cyclic", o.drop_cyclic,
@@ -199,6 +204,11 @@ CLI::App* add_simulate_command(CLI::App& app, Options& o) {
       ->check(positive_finite);
   add_parameter_option(simulate, o.set, "Override a parameter: NAME=VALUE (repeatable)");
   simulate->add_option("--init", o.init, "Initial coordinate or rate: q=VALUE, q_dot=VALUE (others 0)")
+      ->delimiter(',')
+      ->type_name("NAME=VALUE");
+  simulate->add_option("--guess", o.guesses,
+                       "Starting values for the coordinates and rates solved from the constraints (not kept: the "
+                       "start is the consistent state nearest them and the --init values)")
       ->delimiter(',')
       ->type_name("NAME=VALUE");
   simulate->add_option("--input", o.inputs, "Constant input: NAME=VALUE (others 0)")

@@ -23,6 +23,8 @@ struct Options {
   std::string output_path;
   // eval
   std::vector<std::string> at, set;
+  // linearize, simulate: starting values of the coordinates and rates the constraints determine
+  std::vector<std::string> guesses;
   // generate
   std::string outer_namespace = "eomgen_models";
   bool stats = false;

@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+
 #include <charconv>
 #include <cmath>
 
@@ -95,6 +97,23 @@ NamedValues state_and_parameters(const std::vector<std::string>& at_items, const
       throw Error("--set: " + not_a_parameter(model, name, "--at", "--at"));
   }
   return values;
+}
+
+NamedValues state_guesses(const std::vector<std::string>& items, const NamedValues& given,
+                          const std::string& given_option, const Model& model) {
+  const std::map<std::string, double> guesses = parse_assignments(items, "--guess");
+  std::vector<std::string> names;
+  for (const auto& c : model.system.variables().coordinates()) names.insert(names.end(), {c.name, c.name + "_dot"});
+  for (const auto& [name, value] : guesses) {
+    if (std::find(names.begin(), names.end(), name) == names.end())
+      throw UsageError(fmt::format("--guess: '{}' is not a coordinate or rate of {}; expected one of {}", name,
+                                   model.name, join(names)));
+    if (given.count(name))
+      throw UsageError(fmt::format("--guess: '{}' is also given in {}; a given value is kept, a guess only starts "
+                                   "the solve: give it once",
+                                   name, given_option));
+  }
+  return guesses;
 }
 
 std::string matrix_text(const std::string& title, const Eigen::MatrixXd& a) {

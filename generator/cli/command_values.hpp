@@ -34,6 +34,12 @@ std::string not_a_parameter(const Model& model, const std::string& name, const s
 NamedValues state_and_parameters(const std::vector<std::string>& at, const std::vector<std::string>& set,
                                  const Model& model);
 
+/// --guess: starting values of coordinates and rates (NAME, NAME_dot), none of them in `given`
+/// \throws UsageError for a malformed item, another name, or a name also in `given` (via
+///   `given_option`)
+NamedValues state_guesses(const std::vector<std::string>& items, const NamedValues& given,
+                          const std::string& given_option, const Model& model);
+
 /// "TITLE (r x c):" and the rows, columns aligned
 std::string matrix_text(const std::string& title, const Eigen::MatrixXd& a);
 

@@ -39,6 +39,7 @@
 #include "eomgen/language/model_file.hpp"
 #include "eomgen/derivation/header_functions.hpp"
 #include "eomgen/derivation/numeric_evaluation.hpp"
+#include "eomgen/derivation/operating_point.hpp"
 #include "eomgen/base/version.hpp"
 #include "eomgen/symbolic/double_evaluator.hpp"
 #include "eomgen/urdf/urdf_import.hpp"
@@ -259,6 +260,44 @@ void print_named(const std::string& title, const std::vector<std::pair<std::stri
   for (const auto& [name, value] : values) std::cout << "  " << name << " = " << number(value) << "\n";
 }
 
+/// eval evaluates where it is told, on the constraints or not; where not, it says which
+/// constraint the state violates and by how much (relative to the size of the row's terms, as
+/// assembly measures it), since M, F and qdd there belong to no motion of the model.
+void warn_of_violated_constraints(const eomgen::Model& model, const eomgen::NumericEquations& eq,
+                                  const eomgen::NamedValues& values) {
+  const auto& constraints = model.system.constraints();
+  const auto& coordinates = model.system.variables().coordinates();
+  Eigen::VectorXd q(static_cast<Eigen::Index>(coordinates.size())), qd(q.size());
+  for (std::size_t j = 0; j < coordinates.size(); ++j) {
+    const auto at = [&](const std::string& name) {
+      const auto it = values.find(name);
+      return it == values.end() ? 0.0 : it->second;
+    };
+    q(static_cast<Eigen::Index>(j)) = at(coordinates[j].name);
+    qd(static_cast<Eigen::Index>(j)) = at(coordinates[j].name + "_dot");
+  }
+  Eigen::Index h = 0;
+  for (std::size_t r = 0; r < constraints.size(); ++r) {
+    const auto row = static_cast<Eigen::Index>(r);
+    const Eigen::RowVectorXd xi = eq.constraint_jacobian.row(row);
+    if (constraints[r].kind == eomgen::Constraint::Kind::holonomic) {
+      const double phi = eq.holonomic_residuals(h++);
+      if (std::abs(phi) > eomgen::operating_point_tolerance * (1 + xi.cwiseAbs().dot((q.cwiseAbs().array() + 1).matrix())))
+        std::cerr << fmt::format("eomgen: warning: the state violates the constraint '{}': phi = {:.3g}; the values "
+                                 "below belong to no motion of {} (linearize and simulate bring a state onto the "
+                                 "constraints first)\n",
+                                 constraints[r].name, phi, model.name);
+    }
+    const double rate = xi.dot(qd) + eq.constraint_rate_term(row);
+    if (std::abs(rate) > eomgen::operating_point_tolerance *
+                             (1 + xi.cwiseAbs().dot(qd.cwiseAbs()) + std::abs(eq.constraint_rate_term(row))))
+      std::cerr << fmt::format("eomgen: warning: the state violates the constraint '{}': Xi qd + Xi_t = {:.3g}; the "
+                               "values below belong to no motion of {} (linearize and simulate bring a state onto the "
+                               "constraints first)\n",
+                               constraints[r].name, rate, model.name);
+  }
+}
+
 void run_eval(const Options& o) {
   if (o.format != "text" && o.format != "json") throw UsageError("--format: eval prints 'text' or 'json'");
   const eomgen::Model model = load(o);
@@ -266,10 +305,13 @@ void run_eval(const Options& o) {
   const eomgen::Variables& v = model.system.variables();
   const eomgen::ModelEquations eom = eomgen::derive_equations(model);
   const eomgen::NumericEquations eq = eomgen::evaluate_equations(model, eom, values);
+  warn_of_violated_constraints(model, eq, values);
   eomgen::AccelerationSolution sol;
   try {
     sol = eomgen::solve_accelerations(eq);
   } catch (const eomgen::Error& e) {
+    if (model.system.constraints().empty())
+      throw eomgen::Error("solving M qdd = F: " + eomgen::explain_singular_mass_matrix(model, eom, values, eq.mass_matrix));
     // the usual cause is a state off the constraints (the all-zero default for a quaternion)
     if (eq.holonomic_residuals.size() == 0 || eq.holonomic_residuals.norm() < 1e-9) throw;
     throw eomgen::Error(fmt::format("{}; note that the state violates the holonomic constraints: "
@@ -393,6 +435,7 @@ int run_simulate(Options& o) {
   r.model_path = o.model_path;
   r.parameters = parse_assignments(o.set, "--set");
   r.initial = parse_assignments(o.init, "--init");
+  r.guesses = eomgen::tools::state_guesses(o.guesses, r.initial, "--init", model);
   r.inputs = parse_assignments(o.inputs, "--input");
   r.plot = !o.no_plot;
   return eomgen::tools::run_simulate(model, r);

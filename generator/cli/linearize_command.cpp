@@ -89,6 +89,10 @@ std::string point_text(const Model& model, const NamedValues& given, const Linea
   out += fmt::format("Linearization of {} about {} (others 0, parameters at their defaults)\n", model.name,
                      given.empty() ? std::string("the origin") : assignments(given, names_of(given)));
   if (!lin.solved.empty()) out += fmt::format("Solved from the constraints: {}\n", assignments(lin.point, lin.solved));
+  if (!lin.moved.empty())
+    out += fmt::format("Moved onto the constraints (the given values admit no consistent state; each moved the least "
+                       "it must): {}\n",
+                       describe_moved(lin.moved));
   std::vector<std::string> a;
   for (Eigen::Index i = 0; i < lin.qdd0.size(); ++i) a.push_back(number(lin.qdd0(i)));
   out += fmt::format("Accelerations at the point: [{}]{}\n", join(a),
@@ -122,6 +126,9 @@ std::string point_json(const Model& model, const LinearModel& lin, const Stabili
   for (const auto& [name, value] : lin.point) point[name] = value;
   j["point"] = point;
   j["solved"] = lin.solved;
+  json moved = json::array();
+  for (const MovedValue& m : lin.moved) moved.push_back({{"name", m.name}, {"given", m.requested}, {"used", m.used}});
+  j["moved"] = moved;
   j["qdd0"] = std::vector<double>(lin.qdd0.data(), lin.qdd0.data() + lin.qdd0.size());
   j["equilibrium"] = equilibrium;
   j["states"] = lin.state_names;
@@ -340,12 +347,15 @@ int run_linearize(const Options& o) {
   const SymbolicLinearization symbolic = linearize_symbolic(model, eom);
   LinearizeOptions options;
   options.drop_cyclic = o.drop_cyclic;
+  options.guesses = state_guesses(o.guesses, given, "--at", model);
   if (!o.sweep.empty()) return run_sweep(o, model, eom, symbolic, given, range, options);
 
   NamedValues at = given;
   std::string found;
   if (o.find_equilibrium) {
-    const Equilibrium eq = find_equilibrium(model, eom, symbolic, given);
+    NamedValues guess = given;
+    guess.insert(options.guesses.begin(), options.guesses.end());
+    const Equilibrium eq = find_equilibrium(model, eom, symbolic, guess);
     at = eq.point;
     std::vector<std::string> q;
     for (const auto& c : model.system.variables().coordinates()) q.push_back(fmt::format("{} = {}", c.name, number(at.at(c.name))));

@@ -379,6 +379,7 @@ int run_simulate(const Model& model, const SimulateRequest& r) {
   if (r.sample > 0) cmd.insert(cmd.end(), {"--sample", exact(r.sample)});
   for (const auto& [name, value] : r.parameters) cmd.insert(cmd.end(), {"--set", name + "=" + exact(value)});
   for (const auto& [name, value] : r.initial) cmd.insert(cmd.end(), {"--init", name + "=" + exact(value)});
+  for (const auto& [name, value] : r.guesses) cmd.insert(cmd.end(), {"--guess", name + "=" + exact(value)});
   for (const auto& [name, value] : r.inputs) cmd.insert(cmd.end(), {"--input", name + "=" + exact(value)});
   if (::isatty(STDERR_FILENO)) cmd.push_back("--progress");
 

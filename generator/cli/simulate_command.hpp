@@ -30,6 +30,7 @@ struct SimulateRequest {
   std::string stabilization = "projection";
   std::map<std::string, double> parameters;  ///< --set
   std::map<std::string, double> initial;     ///< --init (coordinates and NAME_dot rates)
+  std::map<std::string, double> guesses;     ///< --guess (starting values of the assembly, not kept)
   std::map<std::string, double> inputs;      ///< --input (constant inputs)
   std::string csv_path;                      ///< empty: <model>.csv
   std::string plot_path;                     ///< empty: <model>.svg

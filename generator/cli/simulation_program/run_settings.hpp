@@ -3,7 +3,8 @@
 // `eomgen simulate` writes (generator/cli/simulate_command.cpp):
 //
 //   program --t-end T --method NAME --solver S --stabilization S [--dt H] [--rtol R]
-//           [--atol A] [--sample S] [--set p=v]... [--init q=v | q_dot=v]... [--input u=v]...
+//           [--atol A] [--sample S] [--set p=v]... [--init q=v | q_dot=v]...
+//           [--guess q=v | q_dot=v]... [--input u=v]...
 //           --csv FILE [--scene-first K [--scene FILE]] [--progress]
 //
 // eomgen has checked every value and name against the model and the integrator registry
@@ -18,6 +19,7 @@
 #include <string>
 #include <utility>
 
+#include "eomrt/assembly.hpp"
 #include "eomrt/integrators.hpp"
 #include "eomrt/simulate.hpp"
 
@@ -37,6 +39,9 @@ struct RunSettings {
   eomrt::SimulationOptions<double> options;
   typename Types::Parameters p;
   typename Types::State x0 = Types::State::Zero();
+  /// the entries of x0 given by --init, which assembly keeps (the others, --guess or 0, it
+  /// solves from the constraints)
+  eomrt::HeldEntries<Model> held = eomrt::HeldEntries<Model>::Constant(false);
   /// the inputs, held constant
   typename Types::Inputs u = Types::Inputs::Zero();
   std::string csv_path;
@@ -98,9 +103,10 @@ void set_named(RunSettings<Model>& run, const std::string& option, const std::st
   if (option == "--set") {
     k = index_of(Model::parameter_names, name);
     if (k >= 0) *run.p.fields()[static_cast<std::size_t>(k)] = v;
-  } else if (option == "--init") {
+  } else if (option == "--init" || option == "--guess") {
     k = state_index<Model>(name);
     if (k >= 0) run.x0(k) = v;
+    if (k >= 0 && option == "--init") run.held(k) = true;
   } else {
     k = index_of(Model::input_names, name);
     if (k >= 0) run.u(k) = v;
@@ -134,7 +140,7 @@ bool apply_option(RunSettings<Model>& run, const std::string& option, const std:
     o.stabilization = eomrt::Stabilization::baumgarte;
   } else if (option == "--stabilization" && value == "none") {
     o.stabilization = eomrt::Stabilization::none;
-  } else if (option == "--set" || option == "--init" || option == "--input") {
+  } else if (option == "--set" || option == "--init" || option == "--guess" || option == "--input") {
     set_named(run, option, value);
   } else if (option == "--csv") {
     run.csv_path = value;

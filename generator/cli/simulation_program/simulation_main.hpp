@@ -24,6 +24,7 @@
 #include <cstring>
 #include <exception>
 
+#include "eomrt/assembly.hpp"
 #include "eomrt/integrators.hpp"
 #include "eomrt/simulate.hpp"
 #include "run_settings.hpp"
@@ -57,6 +58,49 @@ void report_failure(const RunSettings<Model>& run, const eomrt::SimulationResult
   }
 }
 
+/// Brings run.x0 onto the constraints (eomrt::assemble: the --init values kept, the rest solved
+/// nearest their guesses) and says on stderr what the start became wherever it differs from
+/// the request. \return false, with the reason on stderr, if no start near the request exists.
+template <class Model>
+bool assemble_start(RunSettings<Model>& run) {
+  if constexpr (Model::nc == 0) {
+    return true;
+  } else {
+    constexpr int nq = Model::nq;
+    const typename RunSettings<Model>::Types::State request = run.x0;
+    const eomrt::AssemblyReport<double> report = eomrt::assemble<Model>(run.p, run.options.t0, run.x0, run.held);
+    switch (report.status) {
+      case eomrt::AssemblyStatus::ok:
+      case eomrt::AssemblyStatus::held_values_moved:
+        break;
+      case eomrt::AssemblyStatus::unreachable:
+        std::fprintf(stderr,
+                     "error: no start near the request satisfies the constraint '%s': the nearest the search came "
+                     "leaves %s = %.3g; give --init values (and --guess values) near an assembly\n",
+                     Model::constraint_names[static_cast<std::size_t>(report.worst_row)],
+                     report.worst_is_position ? "phi" : "Xi qd + Xi_t", report.worst_residual);
+        return false;
+      case eomrt::AssemblyStatus::non_finite:
+        std::fprintf(stderr, "error: the constraints' terms are not finite numbers near the requested start\n");
+        return false;
+    }
+    bool any = false;
+    for (int k = 0; k < 2 * nq; ++k) {
+      if (run.x0(k) == request(k)) continue;
+      if (!any)
+        std::fprintf(stderr, "note: the start was brought onto the constraints (docs/conventions.md, Assembly):\n");
+      any = true;
+      const char* name = Model::coordinate_names[static_cast<std::size_t>(k % nq)];
+      std::fprintf(stderr, "  %s%s = %.17g (%s %.17g, moved by %.3g)\n", name, k < nq ? "" : "_dot", run.x0(k),
+                   run.held(k) ? "given" : "guess", request(k), run.x0(k) - request(k));
+    }
+    if (report.status == eomrt::AssemblyStatus::held_values_moved)
+      std::fprintf(stderr, "  the given %s admit no consistent start: they moved too, each the least it must\n",
+                   report.positions_released ? "coordinates" : "rates");
+    return true;
+  }
+}
+
 /// Prints what was simulated, with which method and at what cost, and the invariants' drift.
 template <class Model>
 void report_summary(const RunSettings<Model>& run, const eomrt::SimulationResult<Model, double>& r,
@@ -85,7 +129,8 @@ template <class Model, class Methods = eomrt::AllMethods>
 int simulation_main(int argc, char** argv) {
   using Types = eomrt::ModelTypes<Model, double>;
   try {
-    const RunSettings<Model> run = parse_arguments<Model>(argc, argv);
+    RunSettings<Model> run = parse_arguments<Model>(argc, argv);
+    if (!assemble_start(run)) return 1;
     std::FILE* csv = std::fopen(run.csv_path.c_str(), "w");
     if (csv == nullptr) {
       std::fprintf(stderr, "error: cannot write '%s': %s\n", run.csv_path.c_str(), std::strerror(errno));

@@ -1,4 +1,6 @@
 #include "eomgen/derivation/linearization.hpp"
+
+#include "eomgen/derivation/operating_point.hpp"
 #include "eomgen/symbolic/graph_calculus.hpp"
 
 #include <fmt/format.h>
@@ -230,9 +232,11 @@ void linearize_constrained(const Model& model, const SymbolicLinearization& symb
                            const NamedValues& point, const LinearizeOptions& options, LinearModel& lin) {
   try {
     ConstrainedPoint completed = satisfy_constraints(
-        model, [&](const NamedValues& at) { return PointEvaluation(model, *symbolic.program, at).equations(); }, point);
+        model, [&](const NamedValues& at) { return PointEvaluation(model, *symbolic.program, at).equations(); }, point,
+        options.guesses);
     lin.point = std::move(completed.point);
     lin.solved = std::move(completed.solved);
+    lin.moved = std::move(completed.moved);
   } catch (const Error& e) {
     throw Error(fmt::format("linearizing {}: {}", model.name, e.what()));
   }
@@ -252,7 +256,7 @@ void linearize_constrained(const Model& model, const SymbolicLinearization& symb
 }
 
 /// The linear model of an unconstrained system (see the header).
-void linearize_unconstrained(const Model& model, const SymbolicLinearization& symbolic,
+void linearize_unconstrained(const Model& model, const ModelEquations& eom, const SymbolicLinearization& symbolic,
                              const NamedValues& point, const LinearizeOptions& options, LinearModel& lin) {
   const auto& coordinates = model.system.variables().coordinates();
   const Eigen::Index n = static_cast<Eigen::Index>(coordinates.size());
@@ -261,7 +265,7 @@ void linearize_unconstrained(const Model& model, const SymbolicLinearization& sy
   lin.M = at.mass_matrix;
   const Eigen::LLT<Eigen::MatrixXd> llt(lin.M);
   if (!eomrt::cholesky_is_regular(llt, eomrt::default_singular_rcond<double>()))
-    throw Error(fmt::format("linearizing {}: the mass matrix is singular at the operating point", model.name));
+    throw Error(fmt::format("linearizing {}: {}", model.name, explain_singular_mass_matrix(model, eom, point, lin.M)));
   lin.qdd0 = llt.solve(at.forcing);
   run.set_accelerations(lin.qdd0, Eigen::VectorXd());
   const eomrt::LinearizationTerms<double> terms = run.terms();
@@ -295,10 +299,13 @@ LinearModel linearize(const Model& model, const ModelEquations& eom, const Symbo
   EOMGEN_DEMAND(symbolic.program != nullptr, "linearize: a SymbolicLinearization without its compiled program");
   LinearModel lin;
   for (const Input& u : model.system.variables().inputs()) lin.input_names.push_back(u.name);
-  if (eom.constraint_count > 0)
+  if (eom.constraint_count > 0) {
     linearize_constrained(model, symbolic, point, options, lin);
-  else
-    linearize_unconstrained(model, symbolic, point, options, lin);
+  } else {
+    NamedValues at = point;  // without constraints a guess is the value
+    for (const auto& [name, value] : options.guesses) at.emplace(name, value);
+    linearize_unconstrained(model, eom, symbolic, at, options, lin);
+  }
   clear_negative_zeros({&lin.A, &lin.B, &lin.K, &lin.D, &lin.B_u, &lin.A_full, &lin.B_full});
   return lin;
 }
@@ -317,9 +324,27 @@ Equilibrium find_equilibrium(const Model& model, const ModelEquations& eom, cons
     for (Eigen::Index j = 0; j < n; ++j) eq.point[vars.coordinates()[static_cast<std::size_t>(j)].name] = q(j);
   };
   Eigen::VectorXd q(n);
+  if (nh > 0) {
+    // the guess's coordinates first onto the closure, nearest the guess (assembly): Newton's
+    // method below then starts where phi = 0, and an unreachable closure is named as such
+    NamedValues held, guesses;
+    for (const auto& [name, value] : guess) {
+      const bool coordinate = std::any_of(vars.coordinates().begin(), vars.coordinates().end(),
+                                          [&](const Coordinate& c) { return c.name == name; });
+      (coordinate ? guesses : held)[name] = value;
+    }
+    try {
+      const ConstrainedPoint assembled = satisfy_constraints(model, eom, held, guesses);
+      for (const Coordinate& c : vars.coordinates())
+        if (const auto it = assembled.point.find(c.name); it != assembled.point.end()) eq.point[c.name] = it->second;
+    } catch (const Error& e) {
+      throw Error(fmt::format("finding an equilibrium of {}: the guess cannot be brought onto the constraints: {}",
+                              model.name, e.what()));
+    }
+  }
   for (Eigen::Index j = 0; j < n; ++j) {
-    const auto it = guess.find(vars.coordinates()[static_cast<std::size_t>(j)].name);
-    q(j) = it == guess.end() ? 0.0 : it->second;
+    const auto it = eq.point.find(vars.coordinates()[static_cast<std::size_t>(j)].name);
+    q(j) = it == eq.point.end() ? 0.0 : it->second;
   }
   // residual [F + Xi^T lambda; phi] at q, with lambda the least-squares fit when asked for
   const auto residual = [&](const Eigen::VectorXd& at_q, Eigen::VectorXd& lambda, bool fit_lambda, NumericEquations& e) {
@@ -368,10 +393,21 @@ Equilibrium find_equilibrium(const Model& model, const ModelEquations& eom, cons
   }
   set_q(q);
   eq.residual = r.cwiseAbs().maxCoeff();
-  if (!(eq.residual <= tolerance))
+  if (!(eq.residual <= tolerance)) {
+    // say which part is left: the forces' balance, or the closure of the constraints
+    Eigen::Index worst = 0;
+    r.cwiseAbs().maxCoeff(&worst);
+    const auto& constraints = model.system.constraints();
+    const std::string part =
+        worst < n ? fmt::format("the forces do not balance: F + Xi^T lambda = {:.3g} on {}", r(worst),
+                                vars.coordinates()[static_cast<std::size_t>(worst)].name)
+                  : fmt::format("the constraint '{}' does not close: phi = {:.3g}",
+                                constraints[static_cast<std::size_t>(holonomic_rows[static_cast<std::size_t>(worst - n)])].name,
+                                r(worst));
     throw Error(fmt::format("finding an equilibrium of {}: Newton's method stopped after {} iterations with "
-                            "residual {:.3g}; try another guess",
-                            model.name, eq.iterations, eq.residual));
+                            "residual {:.3g} ({}); try another guess",
+                            model.name, eq.iterations, eq.residual, part));
+  }
   return eq;
 }
 

@@ -141,6 +141,43 @@ AccelerationSolution solve_accelerations(const NumericEquations& eq) {
   return {llt.solve(eq.forcing), Eigen::VectorXd(0)};
 }
 
+std::string explain_singular_mass_matrix(const Model& model, const ModelEquations& eom, const NamedValues& values,
+                                         const Eigen::MatrixXd& mass_matrix) {
+  const auto& coordinates = model.system.variables().coordinates();
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(mass_matrix);
+  if (eigen.info() != Eigen::Success) return "the mass matrix is not a finite symmetric matrix at this state";
+  // the direction M does not resist: the coordinates that move along it
+  const Eigen::VectorXd null = eigen.eigenvectors().col(0);
+  std::string names;
+  for (Eigen::Index j = 0; j < null.size(); ++j)
+    if (std::abs(null(j)) > 0.1 * null.cwiseAbs().maxCoeff())
+      names += (names.empty() ? "" : ", ") + coordinates[static_cast<std::size_t>(j)].name;
+  // regular a little away? every coordinate moved at once, by distinct small amounts (a gimbal
+  // lock stays locked while only the locked pair moves), at two deterministic states
+  bool regular_nearby = false;
+  for (const double sign : {1.0, -1.0}) {
+    NamedValues moved = values;
+    for (std::size_t j = 0; j < coordinates.size(); ++j) {
+      const auto it = values.find(coordinates[j].name);
+      moved[coordinates[j].name] = (it == values.end() ? 0.0 : it->second) + sign * 0.01 * (1 + 0.37 * static_cast<double>(j));
+    }
+    try {
+      const Eigen::LLT<Eigen::MatrixXd> llt(evaluate_equations(model, eom, moved).mass_matrix);
+      regular_nearby = regular_nearby || eomrt::cholesky_is_regular(llt, eomrt::default_singular_rcond<double>());
+    } catch (const Error&) {
+      // a pole nearby: no evidence either way
+    }
+  }
+  if (regular_nearby)
+    return fmt::format("the mass matrix is singular at this state but not near it: a coordinate singularity (as the "
+                       "gimbal lock of Euler angles) in {}, which describe fewer independent motions here than "
+                       "elsewhere; evaluate away from it, or describe the rotation without one (a quaternion)",
+                       names);
+  return fmt::format("the mass matrix is singular at this state and near it, along {}: the coordinates are redundant "
+                     "(they need a constraint) or a body lacks the mass or inertia to resist that motion",
+                     names);
+}
+
 NumericControllerFunctions evaluate_controller_functions(const Model& model, const ModelEquations& eom,
                                                          const HeaderFunctions& functions, const NamedValues& values,
                                                          const Eigen::VectorXd& qdd) {

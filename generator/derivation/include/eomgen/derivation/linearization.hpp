@@ -95,6 +95,9 @@ struct LinearModel {
   /// them (satisfy_constraints, operating_point.hpp), whose names `solved` lists
   NamedValues point;
   std::vector<std::string> solved;
+  /// given values that had to move because they admit no consistent state (a full guess only
+  /// near the constraints): each with its given and its used value
+  std::vector<MovedValue> moved;
 };
 
 struct LinearizeOptions {
@@ -103,6 +106,9 @@ struct LinearizeOptions {
   /// operating_point_tolerance; each removes an eigenvalue 0, such as a bicycle's heading or
   /// its rear wheel's spin)
   bool drop_cyclic = false;
+  /// starting values of coordinates and rates the point leaves out, for the constraints' solve:
+  /// it takes the consistent state nearest them (which of two assemblies of a loop, say)
+  NamedValues guesses;
 };
 
 /// Evaluates the linearization at an operating point (names as in numeric_substitution:

@@ -99,6 +99,12 @@ eomrt::KktSystem<double> factorize_kkt(const NumericEquations& equations);
 /// \throws Error if M is not positive definite (no constraints) or the KKT matrix is singular.
 AccelerationSolution solve_accelerations(const NumericEquations& equations);
 
+/// Why M is singular at the state `values` (of a model without constraints), for a message:
+/// a coordinate singularity (M regular at nearby states: the gimbal lock of Euler angles),
+/// naming the coordinates of M's null direction; or coordinates that are redundant everywhere.
+std::string explain_singular_mass_matrix(const Model& model, const ModelEquations& eom, const NamedValues& values,
+                                         const Eigen::MatrixXd& mass_matrix);
+
 /// The KKT solve of solve_accelerations with `kkt` = factorize_kkt(equations) already at hand.
 AccelerationSolution solve_accelerations(const NumericEquations& equations, const eomrt::KktSystem<double>& kkt);
 
