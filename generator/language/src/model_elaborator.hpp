@@ -127,7 +127,11 @@ class Elaborator {
   void body(const Instance& instance, const std::string& name, const std::string& what);
   void damper(const Instance& instance, const std::string& name, const std::string& what);
   void generalized_force(const Instance& instance, const std::string& what);
+  // the constraint statement, scalar or vector (model_constraints.cpp)
   void constraint(const Instance& instance, const std::string& name, const std::string& what);
+  void vector_constraint(const Instance& instance, const std::string& name, const std::string& what,
+                         const eomgen::Vector& difference);
+  void add_constraint_row(const std::string& name, const GiNaC::ex& expression, const SourceLocation& at);
   void output(const Instance& instance);
   void roll(const Instance& instance);
   // what roll and wheel share
