@@ -47,6 +47,7 @@
 #include "command_line.hpp"
 #include "command_values.hpp"
 #include "linearize_command.hpp"
+#include "model_loading.hpp"
 #include "file_output.hpp"
 #include "interruption.hpp"
 #include "simulate_command.hpp"
@@ -63,9 +64,7 @@ using eomgen::tools::parse_assignments;
 using eomgen::tools::state_and_parameters;
 using eomgen::tools::UsageError;
 
-eomgen::Model load(const Options& o) {
-  return eomgen::load_model(o.model_path, parse_assignments(o.defines, "--define"), eomgen::tools::import_options(o));
-}
+eomgen::Model load(const Options& o) { return eomgen::tools::load_command_model(o); }
 
 // ---- import ----
 
@@ -78,7 +77,7 @@ void run_import(const Options& o) {
                                                   : std::filesystem::absolute(o.output_path).parent_path().string();
   const eomgen::urdf::ImportResult imported = eomgen::urdf::import_urdf(o.model_path, options);
   // the text must read as the model it stands for before it is written anywhere
-  eomgen::parse_model(imported.text, o.model_path + " (as imported)");
+  eomgen::tools::print_notes(eomgen::parse_model(imported.text, o.model_path + " (as imported)"));
   for (const std::string& repair : imported.repairs) std::cerr << "eomgen: --repair-inertia: " << repair << "\n";
   for (const std::string& lock : imported.locked) std::cerr << "eomgen: --fix-massless-joints: " << lock << "\n";
   if (o.output_path.empty())

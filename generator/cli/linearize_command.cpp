@@ -12,9 +12,9 @@
 #include "eomgen/base/error.hpp"
 #include "eomgen/derivation/linearization.hpp"
 #include "eomgen/derivation/stability_sweep.hpp"
-#include "eomgen/language/model_file.hpp"
 #include "file_output.hpp"
 #include "gnuplot.hpp"
+#include "model_loading.hpp"
 #include "simulate_command.hpp"
 
 namespace eomgen::tools {
@@ -329,7 +329,7 @@ int run_sweep(const Options& o, const Model& model, const ModelEquations& eom, c
 
 int run_linearize(const Options& o) {
   check_output_files({{"-o", o.output_path}, {"--plot", o.sweep_plot}}, o.model_path);
-  const Model model = load_model(o.model_path, parse_assignments(o.defines, "--define"), import_options(o));
+  const Model model = load_command_model(o);
   const NamedValues given = state_and_parameters(o.at, o.set, model);
   if (o.sweep.empty() && !o.sweep_plot.empty()) throw UsageError("--plot: plots a sweep; give --sweep too");
   if (o.sweep.empty() && o.format == "csv") throw UsageError("--format csv: a table of a sweep; give --sweep too");

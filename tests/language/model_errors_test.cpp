@@ -269,9 +269,12 @@ TEST(ModelErrors, ConstraintIdenticallyZero) {
                HasSubstr("Jacobian is identically zero"));
 }
 
-TEST(ModelErrors, LinearlyDependentConstraintsReportTheSecond) {
-  expect_error(planar_mass + "constraint c1: x + y = 1\nconstraint c2: 2*x + 2*y = 3\n", 6, 12,
-               HasSubstr("constraint 'c2' is linearly dependent on the constraints before it"));
+// a row of Xi that depends on those before it is redundant and left out (redundant_constraints_test.cpp)
+// where its Xi_t agrees with theirs; x + y = 1 and x + y = t have one row of Xi, and no motion meets both
+TEST(ModelErrors, DependentConstraintsThatContradictEachOtherReportTheSecond) {
+  expect_error(planar_mass + "constraint c1: x + y = 1\nconstraint c2: 2*x + 2*y = t\n", 6, 12,
+               HasSubstr("constraint 'c2' contradicts the constraints before it: at a generic state its row of Xi is a "
+                         "multiple of that of 'c1', but its Xi_t is not the same combination of theirs"));
 }
 
 // --- independent speeds ---

@@ -131,6 +131,23 @@ TEST(MechanicalSystem, HolonomicConstraintMustDependOnCoordinatesOnly) {
       "holonomic constraint 'c': the constraint does not depend on any coordinate (its Jacobian is identically zero)");
 }
 
+TEST(MechanicalSystem, RemovedConstraintsLeaveTheOthersInOrderAndTheirNamesTaken) {
+  Fixture f;
+  for (const char* name : {"c0", "c1", "c2", "c3", "c4"}) f.s.add_holonomic_constraint(name, f.q.q);
+  f.s.remove_constraints({3, 1});
+  std::vector<std::string> names;
+  for (const Constraint& c : f.s.constraints()) names.push_back(c.name);
+  EXPECT_EQ(names, (std::vector<std::string>{"c0", "c2", "c4"}));
+  // a note on the model still names a removed constraint
+  EXPECT_THROW_MESSAGE(f.s.add_holonomic_constraint("c1", f.q.q), ModelError,
+                       "constraint 'c1': the name is already used");
+  EXPECT_THROW_MESSAGE(f.s.remove_constraints({3}), ModelError,
+                       "remove_constraints: no constraint 3 (the system has 3)");
+  EXPECT_THROW_MESSAGE(f.s.remove_constraints({0, 0}), ModelError,
+                       "remove_constraints: constraint 0 ('c0') is given twice");
+  EXPECT_EQ(f.s.constraints().size(), 3u);
+}
+
 TEST(MechanicalSystem, SpringNeedsTwoDistinctPoints) {
   Fixture f;
   EXPECT_THROW_MESSAGE(f.s.add_spring("k", f.p, f.p, 1, 0), ModelError, "spring 'k': the two points must differ");

@@ -59,6 +59,8 @@ std::array<GiNaC::matrix, 2> plane_tangents(const GiNaC::matrix& n);
 /// The three entries of a 3x1 column.
 inline std::array<GiNaC::ex, 3> column_entries(const GiNaC::matrix& c) { return {c(0, 0), c(1, 0), c(2, 0)}; }
 
+struct ConstraintRows;  // model_constraint_rows.hpp
+
 /// One statement to elaborate, with the loop variables it was expanded under.
 struct Instance {
   const Statement* statement;
@@ -114,6 +116,9 @@ class Elaborator {
   // whole-model checks (model_file.cpp)
   void independent_speeds();
   void checks();
+  // constraints whose rows are combinations of earlier ones, left out with a note; the rows kept
+  // (model_redundant_constraints.cpp)
+  ConstraintRows drop_redundant_constraints();
 
   // element statements (model_elements.cpp)
   class Arguments;  // an element statement's key = value arguments
@@ -122,7 +127,11 @@ class Elaborator {
   void body(const Instance& instance, const std::string& name, const std::string& what);
   void damper(const Instance& instance, const std::string& name, const std::string& what);
   void generalized_force(const Instance& instance, const std::string& what);
+  // the constraint statement, scalar or vector (model_constraints.cpp)
   void constraint(const Instance& instance, const std::string& name, const std::string& what);
+  void vector_constraint(const Instance& instance, const std::string& name, const std::string& what,
+                         const eomgen::Vector& difference);
+  void add_constraint_row(const std::string& name, const GiNaC::ex& expression, const SourceLocation& at);
   void output(const Instance& instance);
   void roll(const Instance& instance);
   // what roll and wheel share

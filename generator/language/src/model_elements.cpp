@@ -175,21 +175,6 @@ void Elaborator::generalized_force(const Instance& in, const std::string& what) 
   sys.add_generalized_force(*sys.variables().coordinate_index(*symbol), value);
 }
 
-void Elaborator::constraint(const Instance& in, const std::string& name, const std::string& what) {
-  const Statement& s = *in.statement;
-  MechanicalSystem& sys = model_.system;
-  const ex expression = scalar(s.value, in.environment, what) - scalar(s.value2, in.environment, what);
-  units_.require_consistent(expression, start_of(*s.value), what);
-  bool has_rate = false;
-  for (const auto& c : sys.variables().coordinates()) has_rate = has_rate || expression.has(c.qd);
-  if (has_rate) {
-    sys.add_nonholonomic_constraint(name, expression);
-  } else {
-    sys.add_holonomic_constraint(name, expression);
-  }
-  model_.constraint_locations.push_back(s.name.location);
-}
-
 const RigidBody& Elaborator::rigid_body(const Arguments& args, const Environment& env) {
   const Argument& body_arg = args.require("body", "the rolling rigid body");
   const std::string body_name = resolve(args.name_of(body_arg, "a rigid body"), env);

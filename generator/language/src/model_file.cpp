@@ -9,14 +9,15 @@
 #include "eomgen/base/error.hpp"
 #include "eomgen/language/model_file.hpp"
 #include "eomgen/urdf/urdf_import.hpp"
+#include "model_constraint_rows.hpp"
 #include "model_elaborator.hpp"
 
 namespace eomgen {
 namespace syntax {
 
 // The independent speeds of the null-space method: declared coordinates, each listed once, one
-// per degree of freedom (nq - nc). Run by checks() once the constraints are known to be
-// independent, which then asks the remaining, dependent speeds to be solvable from them.
+// per degree of freedom (nq - nc). Run by checks() once the redundant constraints are left out,
+// which then asks the remaining, dependent speeds to be solvable from them.
 void Elaborator::independent_speeds() {
   const Instance* declaration = nullptr;
   for (const Instance& in : instances_) {
@@ -64,7 +65,7 @@ void Elaborator::independent_speeds() {
     model_.independent_speeds.push_back(k);
     listed_at.push_back(n.location);
   }
-  // signed: checks() has already rejected more constraints than coordinates as dependent
+  // signed: checks() has already left out every constraint beyond nq as redundant
   const long nq = static_cast<long>(vars.coordinate_count());
   const long nc = static_cast<long>(model_.system.constraints().size());
   if (nc == 0)
@@ -78,8 +79,8 @@ void Elaborator::independent_speeds() {
 }
 
 // Checks that need every statement: an empty system, unused coordinates, constraints that are
-// zero or linearly dependent at a generic state, and declared independent speeds that leave the
-// dependent ones unsolvable there.
+// zero at a generic state (and those redundant there left out), and declared independent speeds
+// that leave the dependent ones unsolvable there.
 void Elaborator::checks() {
   const MechanicalSystem& sys = model_.system;
   const Variables& vars = sys.variables();
@@ -93,41 +94,10 @@ void Elaborator::checks() {
       throw SourceError(model_.coordinate_locations[k],
                         fmt::format("coordinate '{}' is declared but never used", vars.coordinates()[k].name));
 
-  const auto& constraints = sys.constraints();
-  const GiNaC::exmap state = generic_states().front();
+  // Xi of the constraints kept, once those that are redundant are left out: the degrees of
+  // freedom, and so the independent speeds, count only the kept ones
+  const Eigen::MatrixXd xi = drop_redundant_constraints().xi;
   const std::size_t n = vars.coordinate_count();
-  Eigen::MatrixXd xi(0, static_cast<Eigen::Index>(n));
-  for (std::size_t i = 0; i < constraints.size(); ++i) {
-    const Constraint& c = constraints[i];
-    Eigen::RowVectorXd row(n);
-    for (std::size_t k = 0; k < n; ++k) {
-      const auto& coord = vars.coordinates()[k];
-      const GiNaC::ex d = c.expression.diff(GiNaC::ex_to<GiNaC::symbol>(
-          GiNaC::ex(c.kind == Constraint::Kind::holonomic ? coord.q : coord.qd)));
-      GiNaC::ex v;
-      try {
-        v = d.subs(state, GiNaC::subs_options::no_pattern).evalf();
-      } catch (const GiNaC::pole_error&) {  // e.g. 1/l with a parameter l that defaults to 0
-        v = GiNaC::I;                       // reported below as not a real number
-      }
-      if (!GiNaC::is_a<GiNaC::numeric>(v) || !GiNaC::ex_to<GiNaC::numeric>(v).is_real())
-        throw SourceError(model_.constraint_locations[i],
-                          fmt::format("constraint '{}': its Jacobian is not a real number at a generic state", c.name));
-      row[static_cast<Eigen::Index>(k)] = GiNaC::ex_to<GiNaC::numeric>(v).to_double();
-    }
-    if (row.norm() < 1e-12)
-      throw SourceError(model_.constraint_locations[i],
-                        fmt::format("constraint '{}' is identically zero: its Jacobian vanishes at a generic state", c.name));
-    Eigen::MatrixXd grown(xi.rows() + 1, xi.cols());
-    grown << xi, row;
-    Eigen::FullPivLU<Eigen::MatrixXd> lu(grown);
-    lu.setThreshold(1e-9);
-    if (lu.rank() < grown.rows())
-      throw SourceError(model_.constraint_locations[i],
-                        fmt::format("constraint '{}' is linearly dependent on the constraints before it at a "
-                                    "generic state", c.name));
-    xi = grown;
-  }
 
   // the null-space method solves the dependent speeds from Xi_d qd_d = -(Xi_i qd_i + Xi_t): Xi_d,
   // the columns of the coordinates not listed, must be invertible at least at a generic state

@@ -146,6 +146,11 @@ class Parser {
       s.value = expression();
       expect_symbol("=", "in the constraint (write LEFT = RIGHT)");
       s.value2 = expression();
+      if (is_word("in")) {  // the frame of a vector constraint's rows
+        next();
+        s.frame = name("a frame name after 'in'");
+        s.has_frame = true;
+      }
     } else if (word == "output") {
       s.kind = Kind::output;
       s.name = name("the output's name");

@@ -106,7 +106,7 @@ struct Statement {
   std::string text;         // model description
   std::vector<Argument> arguments;  // NAME(key = value, ...); shape: KIND(key = value, ...)
   Name shape_kind;          // shape: sphere, box, cylinder, disk, rod or mesh, as written
-  Name frame;               // output ... in FRAME
+  Name frame;               // output ... in FRAME, constraint ... in FRAME
   bool has_frame = false;
   std::vector<Statement> body;  // loop body
   std::size_t token_count = 0;  // tokens the statement spans (a loop: its header): its share of the

@@ -295,6 +295,27 @@ void MechanicalSystem::add_nonholonomic_constraint(const std::string& name, cons
   constraints_.push_back(Constraint{name, Constraint::Kind::nonholonomic, expression});
 }
 
+void MechanicalSystem::remove_constraints(std::vector<std::size_t> indices) {
+  std::sort(indices.begin(), indices.end());
+  for (std::size_t k = 0; k < indices.size(); ++k) {
+    if (indices[k] >= constraints_.size())
+      throw ModelError(fmt::format("remove_constraints: no constraint {} (the system has {})", indices[k],
+                                   constraints_.size()));
+    if (k > 0 && indices[k] == indices[k - 1])
+      throw ModelError(fmt::format("remove_constraints: constraint {} ('{}') is given twice", indices[k],
+                                   constraints_[indices[k]].name));
+  }
+  std::vector<Constraint> kept;
+  for (std::size_t i = 0, next = 0; i < constraints_.size(); ++i) {
+    if (next < indices.size() && indices[next] == i) {
+      ++next;
+      continue;
+    }
+    kept.push_back(std::move(constraints_[i]));
+  }
+  constraints_ = std::move(kept);
+}
+
 std::optional<FrameId> MechanicalSystem::find_frame(const std::string& name) const {
   for (std::size_t i = 0; i < frames_.size(); ++i)
     if (frames_[i].name == name) return FrameId{i};

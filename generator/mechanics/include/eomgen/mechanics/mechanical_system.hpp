@@ -196,6 +196,11 @@ class MechanicalSystem {
   /// Xi(q,t) qd + Xi_t(q,t) = 0 given by its left side.
   /// \throws ModelError if the expression is not linear in the rates or has no rate in it.
   void add_nonholonomic_constraint(const std::string& name, const GiNaC::ex& expression);
+  /// Removes the constraints at `indices` (distinct, in any order); the others keep their order,
+  /// those after a removed one moving up. Their names stay taken: a model file's notes still name
+  /// them. For constraints found redundant once every constraint is known.
+  /// \throws ModelError for an index out of range or given twice.
+  void remove_constraints(std::vector<std::size_t> indices);
 
   std::optional<FrameId> find_frame(const std::string& name) const;
   std::optional<PointId> find_point(const std::string& name) const;

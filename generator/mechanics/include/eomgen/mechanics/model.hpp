@@ -10,6 +10,7 @@
 #include "eomgen/mechanics/dimension.hpp"
 #include "eomgen/mechanics/mechanical_system.hpp"
 #include "eomgen/mechanics/visual_shape.hpp"
+#include "eomgen/base/note.hpp"
 #include "eomgen/base/source_location.hpp"
 
 namespace eomgen {
@@ -23,6 +24,17 @@ struct Output {
   SourceLocation location;
 };
 
+/// A constraint row left out of the system as redundant: at a generic state its row of Xi is a
+/// combination of the rows of earlier constraints, and so is its Xi_t, so every motion that
+/// satisfies those satisfies it too (docs/model-language.md, constraint). A holonomic one holds
+/// along such a motion where it holds at the start: kept so that a state can be checked
+/// against it.
+struct RedundantConstraint {
+  Constraint constraint;                // name, kind and expression, as it would have been added
+  std::vector<std::string> depends_on;  // the kept constraints its row is a combination of, in system order
+  SourceLocation location;
+};
+
 struct Model {
   std::string name;
   std::string description;
@@ -31,6 +43,11 @@ struct Model {
   /// Where each coordinate and each constraint was declared (same order as in `system`).
   std::vector<SourceLocation> coordinate_locations;
   std::vector<SourceLocation> constraint_locations;
+  /// The constraints left out of `system` as redundant, in the order of the file.
+  std::vector<RedundantConstraint> redundant_constraints;
+  /// What the reader of the file should know that is no error (one per redundant constraint),
+  /// in the order found; the commands print them on standard error.
+  std::vector<Note> notes;
   /// Coordinate indices whose rates are the independent speeds of the null-space method, in the
   /// order of the `independent` statement (nq - nc of them); empty when the model declares none
   /// and the runtime takes the null space of Xi from a QR decomposition instead.
