@@ -106,36 +106,12 @@ TEST_F(Linearize, RatesThatContradictRollingMoveTheLeastTheyMustAndSaySo) {
 
 // a four-bar linkage (crank a1 = 0.3, coupler 1, rocker 0.8, ground 1.1; absolute angles) as a
 // user writes it from docs/model-language.md
-constexpr const char* kFourBar = R"(model four_bar "four-bar linkage"
-parameter m = 1.0
-parameter a1 = 0.3
-parameter b1 = 1.0
-parameter c1 = 0.8
-parameter d1 = 1.1
-parameter g = 9.81
-coordinate q1, q2, q3
-frame f1 = rotate(a, 3, q1)
-frame f2 = rotate(a, 3, q2)
-frame f3 = rotate(a, 3, q3)
-point A = w + a1*f1.1
-point B = A + b1*f2.1
-point D = w + d1*a.1
-point C = D + c1*f3.1
-point G1 = w + a1/2*f1.1
-point G2 = A + b1/2*f2.1
-point G3 = D + c1/2*f3.1
-body crank(mass = m, centre = G1, frame = f1, inertia = diag(0, m*a1^2/12, m*a1^2/12))
-body coupler(mass = m, centre = G2, frame = f2, inertia = diag(0, m*b1^2/12, m*b1^2/12))
-body rocker(mass = m, centre = G3, frame = f3, inertia = diag(0, m*c1^2/12, m*c1^2/12))
-gravity = -g*a.2
-constraint loop_x: dot(position(B) - position(C), a.1) = 0
-constraint loop_y: dot(position(B) - position(C), a.2) = 0
-)";
+const std::string four_bar = eomgen::testing::quote(std::string(EOMGEN_SOURCE_DIR) + "/tests/cli/models/four_bar.eom");
 
 // the closures at q1 = 0.5, by circle intersection: (q2, q3) = (0.710597, 1.669397) and
 // (-1.051057, -2.009857)
 TEST_F(Linearize, AFourBarClosesItsLoopFromTheGivenCrankAngleOnTheGuessedBranch) {
-  const std::string path = model("four_bar.eom", kFourBar);
+  const std::string& path = four_bar;
   const auto first = eomgen("linearize " + path + " --at q1=0.5");
   ASSERT_EQ(first.status, 0) << first.err;
   EXPECT_THAT(first.out, HasSubstr("Solved from the constraints: q2 = 0.71059732708969"));
@@ -149,7 +125,7 @@ TEST_F(Linearize, AFourBarClosesItsLoopFromTheGivenCrankAngleOnTheGuessedBranch)
 }
 
 TEST_F(Linearize, AFullGuessNearTheConstraintsIsCompletedAndTheMovesPrinted) {
-  const std::string path = model("four_bar.eom", kFourBar);
+  const std::string& path = four_bar;
   const auto run = eomgen("linearize " + path + " --at q1=0.5,q2=0.7146,q3=1.665 -f json");
   ASSERT_EQ(run.status, 0) << run.err;
   const nlohmann::json j = nlohmann::json::parse(run.out);
@@ -159,7 +135,7 @@ TEST_F(Linearize, AFullGuessNearTheConstraintsIsCompletedAndTheMovesPrinted) {
 }
 
 TEST_F(Linearize, TheEquilibriumOfAFourBarStartsFromItsClosedGuess) {
-  const std::string path = model("four_bar.eom", kFourBar);
+  const std::string& path = four_bar;
   const auto run = eomgen("linearize " + path + " --at q1=-1.5,q2=0.5,q3=1.5 --equilibrium -f json");
   ASSERT_EQ(run.status, 0) << run.err;
   const nlohmann::json j = nlohmann::json::parse(run.out);
@@ -169,7 +145,7 @@ TEST_F(Linearize, TheEquilibriumOfAFourBarStartsFromItsClosedGuess) {
 }
 
 TEST_F(Linearize, GuessesNameOnlyCoordinatesAndRatesNotGivenElsewhere) {
-  const std::string path = model("four_bar.eom", kFourBar);
+  const std::string& path = four_bar;
   const auto unknown = eomgen("linearize " + path + " --at q1=0.5 --guess g=1");
   EXPECT_EQ(unknown.status, 2);
   EXPECT_THAT(unknown.err, HasSubstr("--guess: 'g' is not a coordinate or rate of four_bar"));
@@ -179,14 +155,14 @@ TEST_F(Linearize, GuessesNameOnlyCoordinatesAndRatesNotGivenElsewhere) {
 }
 
 TEST_F(Linearize, ALoopThatCannotCloseNamesTheConstraint) {
-  const std::string path = model("four_bar.eom", kFourBar);
+  const std::string& path = four_bar;
   const auto run = eomgen("linearize " + path + " --at q1=0.3 --guess q2=0.2,q3=2.5 --set d1=3");
   EXPECT_EQ(run.status, 1);
   EXPECT_THAT(run.err, HasSubstr("no state near the point satisfies the constraint 'loop_x'"));
 }
 
 TEST_F(Linearize, EvalWarnsOfAStateOffTheConstraints) {
-  const std::string path = model("four_bar.eom", kFourBar);
+  const std::string& path = four_bar;
   const auto run = eomgen("eval " + path + " --at q1=0.5");
   ASSERT_EQ(run.status, 0) << run.err;
   EXPECT_THAT(run.err, HasSubstr("warning: the state violates the constraint 'loop_x': phi = -0.637"));

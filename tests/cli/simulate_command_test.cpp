@@ -290,14 +290,39 @@ TEST_F(Simulate, APlotThatFailsAfterTheCsvKeepsTheCsvAndSaysSo) {
 }
 
 // all coordinates 0 put the Cartesian pendulum's bob on the pivot, where its rod constraint has
-// no gradient: the error says that the initial state is the problem
+// no gradient: no start near there exists, and the error names the constraint and the option
 TEST_F(Simulate, InitialStateOffTheConstraintsIsExplained) {
   const Outcome run = simulate(quote(models_dir + "cartesian_pendulum.eom") + " --t-end 1 --no-plot -o " +
                                quote((dir_ / "work" / "c.csv").string()));
   EXPECT_EQ(run.status, 1);
-  EXPECT_THAT(run.err, HasSubstr("stopped at t = 0 s"));
-  EXPECT_THAT(run.err, HasSubstr("at the initial state max |phi| = 0.25"));
+  EXPECT_THAT(run.err, HasSubstr("no start near the request satisfies the constraint 'rod_length'"));
+  EXPECT_THAT(run.err, HasSubstr("phi = -0.25"));
   EXPECT_THAT(run.err, HasSubstr("--init"));
+  EXPECT_THAT(files_in(dir_ / "work"), ::testing::IsEmpty());
+}
+
+// the four-bar given its crank angle and rate starts there, on the closure nearest the guess,
+// and says what it solved; given rates that contradict the loop move, and it says by how much
+TEST_F(Simulate, AFourBarStartsAtTheGivenCrankAngleAndSaysWhatItSolved) {
+  const std::string four_bar = quote(std::string(EOMGEN_SOURCE_DIR) + "/tests/cli/models/four_bar.eom");
+  const fs::path csv = dir_ / "work" / "fb.csv";
+  const Outcome run = simulate(four_bar + " --t-end 0.01 --no-plot --init q1=0.5,q1_dot=1 --guess q2=-1,q3=-2 -o " +
+                               quote(csv.string()));
+  ASSERT_EQ(run.status, 0) << run.err;
+  EXPECT_THAT(run.err, HasSubstr("note: the start was brought onto the constraints"));
+  EXPECT_THAT(run.err, HasSubstr("  q2 = -1.0510571925373"));
+  EXPECT_THAT(run.err, Not(HasSubstr("  q1 = ")));  // given, kept
+  const Csv table = read_csv(csv);
+  const auto& start = table.rows.front();
+  EXPECT_EQ(start[table.column("q1")], 0.5);
+  EXPECT_EQ(start[table.column("q1_dot")], 1.0);
+  EXPECT_NEAR(start[table.column("q3")], -2.009857, 1e-6);
+
+  const Outcome moved = simulate(four_bar + " --t-end 0.01 --no-plot --init q1=0.5,q2=0.71059732708969514,"
+                                 "q3=1.6693970778594451,q1_dot=1,q2_dot=0,q3_dot=0 -o " + quote(csv.string()));
+  ASSERT_EQ(moved.status, 0) << moved.err;
+  EXPECT_THAT(moved.err, HasSubstr("the given rates admit no consistent start: they moved too"));
+  EXPECT_THAT(moved.err, HasSubstr("q2_dot = "));
 }
 
 TEST_F(Simulate, MalformedRequestsAreUsageErrorsBeforeAnythingIsBuilt) {

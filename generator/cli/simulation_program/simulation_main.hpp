@@ -96,7 +96,9 @@ bool assemble_start(RunSettings<Model>& run) {
     }
     if (report.status == eomrt::AssemblyStatus::held_values_moved)
       std::fprintf(stderr, "  the given %s admit no consistent start: they moved too, each the least it must\n",
-                   report.positions_released ? "coordinates" : "rates");
+                   report.positions_released && report.rates_released ? "coordinates and rates"
+                   : report.positions_released                        ? "coordinates"
+                                                                      : "rates");
     return true;
   }
 }
