@@ -20,6 +20,7 @@ import sys
 import mpmath
 import sympy as sp
 
+sys.dont_write_bytecode = True   # no __pycache__ in the source tree
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from reference_common import (exact, holonomic_terms, kkt_solve, lagrange, matrix_value,  # noqa: E402
                               print_reference, to_double)
