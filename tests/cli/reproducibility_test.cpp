@@ -91,6 +91,12 @@ class Reproducibility : public ThreeProcesses, public ::testing::WithParamInterf
     if (m == "quaternion_rigid_body") return "e1=0.48,e2=0.6,eta=0.64";
     if (m == "knife_edge" || m == "rolling_coin") return generic_state(false);  // at rest
     if (m == "whipple_bicycle") return "phi=0.05,delta=0.1,x_dot=5";  // pitch and the other rates solved
+    // assembled closed loops (tests/derivation_references/closed_loop_models_test.cpp's first states)
+    if (m == "four_bar") return "q1=0.3,q2=0.8444960910563463,q3=1.813260085372611,q1_dot=2";
+    if (m == "planar_3rrr")
+      return "theta1=0.5360862984122919,theta2=-3.4416415304500365,theta3=-1.4008269984269872,"
+             "beta1=1.8874930625368604,beta2=1.7740198905759883,beta3=1.6192333869766689,x=0.02,y=-0.03,phi=0.1,"
+             "x_dot=0.3,y_dot=-0.2,phi_dot=0.5";
     return generic_state(true);
   }
 };

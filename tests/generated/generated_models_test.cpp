@@ -19,9 +19,11 @@
 #include "eomgen/derivation/equations_of_motion.hpp"
 #include "eomgen/derivation/model_equations.hpp"
 #include "eomgen/language/model_file.hpp"
+#include "four_bar.hpp"
 #include "generated_strict_compile.hpp"
 #include "heavy_top.hpp"
 #include "knife_edge.hpp"
+#include "planar_3rrr.hpp"
 #include "planar_chain.hpp"
 #include "quaternion_rigid_body.hpp"
 #include "rolling_coin.hpp"
@@ -155,6 +157,8 @@ static_assert(eomgen_models::double_pendulum::Model::has_forward_dynamics);
 static_assert(eomgen_models::spring_mass_damper::Model::has_forward_dynamics);
 static_assert(!eomgen_models::cartesian_pendulum::Model::has_forward_dynamics);
 static_assert(!eomgen_models::rolling_coin::Model::has_forward_dynamics);
+static_assert(!eomgen_models::four_bar::Model::has_forward_dynamics);
+static_assert(!eomgen_models::planar_3rrr::Model::has_forward_dynamics);
 
 TEST(GeneratedModel, EveryModelRunsInDoubleAndFloatFromAStrictlyCompiledUnit) {
   EXPECT_TRUE(generated_models_failing_in_double_or_float().empty());
@@ -180,5 +184,7 @@ GENERATED_MODEL_TEST(spacecraft_panel)
 GENERATED_MODEL_TEST(planar_chain)
 GENERATED_MODEL_TEST(universal_chain)
 GENERATED_MODEL_TEST(whipple_bicycle)
+GENERATED_MODEL_TEST(four_bar)
+GENERATED_MODEL_TEST(planar_3rrr)
 
 }  // namespace

@@ -6,8 +6,10 @@
 #include "cart_pole.hpp"
 #include "cartesian_pendulum.hpp"
 #include "double_pendulum.hpp"
+#include "four_bar.hpp"
 #include "heavy_top.hpp"
 #include "knife_edge.hpp"
+#include "planar_3rrr.hpp"
 #include "planar_chain.hpp"
 #include "quaternion_rigid_body.hpp"
 #include "rolling_coin.hpp"
@@ -79,6 +81,22 @@ TEST(EnergyConservation, CartesianPendulumWithProjection) {
   // on the circle of radius l = 0.5 at 60 degrees, moving tangentially
   expect_energy_conserved<m::cartesian_pendulum::Model>(
       make_state<m::cartesian_pendulum::Model>({0.4330127018922193, -0.25}, {0.5, 0.8660254037844386}));
+}
+
+TEST(EnergyConservation, FourBarCrankTurningThrough) {
+  // assembled on the open branch (tests/derivation_references/closed_loop_models_test.cpp's first
+  // state), no torque: the crank swings through more than a turn under gravity
+  expect_energy_conserved<m::four_bar::Model>(make_state<m::four_bar::Model>(
+      {0.3, 0.8444960910563463, 1.813260085372611}, {2.0, -0.6921771811276309, -0.4189886634661008}));
+}
+
+TEST(EnergyConservation, Planar3RrrPlatformFallingThroughItsWorkspace) {
+  // assembled and at rest (closed_loop_models_test.cpp's third state), no torques: the platform
+  // falls and swings, the elbows passing through straight (beta = 0), where Xi keeps its rank
+  expect_energy_conserved<m::planar_3rrr::Model>(make_state<m::planar_3rrr::Model>(
+      {0.7341278655403614, -3.7418712012219215, -1.4282174485488925, 1.5107848490866023, 1.8173833891898987,
+       1.8527361668932327, 0.0, 0.05, 0.3},
+      {0, 0, 0, 0, 0, 0, 0, 0, 0}));
 }
 
 TEST(EnergyConservation, QuaternionRigidBodyTumbling) {
