@@ -93,6 +93,7 @@ class Reproducibility : public ThreeProcesses, public ::testing::WithParamInterf
     if (m == "whipple_bicycle") return "phi=0.05,delta=0.1,x_dot=5";  // pitch and the other rates solved
     // assembled closed loops (tests/derivation_references/closed_loop_models_test.cpp's first states)
     if (m == "four_bar") return "q1=0.3,q2=0.8444960910563463,q3=1.813260085372611,q1_dot=2";
+    if (m == "two_wheeled_robot") return "x_dot=1,theta=0.05";  // the wheels' rates solved: straight running
     if (m == "planar_3rrr")
       return "theta1=0.5360862984122919,theta2=-3.4416415304500365,theta3=-1.4008269984269872,"
              "beta1=1.8874930625368604,beta2=1.7740198905759883,beta3=1.6192333869766689,x=0.02,y=-0.03,phi=0.1,"

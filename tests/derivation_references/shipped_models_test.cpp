@@ -106,14 +106,15 @@ exmap substitution(const MechanicalSystem& s, const NamedState& v) {
 // ---------------------------------------------------------------------------------------------
 // Every shipped model.
 
-TEST(ShippedModels, DirectoryHoldsTheFourteenDocumentedModels) {
+TEST(ShippedModels, DirectoryHoldsTheEighteenDocumentedModels) {
   std::vector<std::string> names;
   for (const auto& f : shipped_models()) names.push_back(f.stem().string());
   for (const char* expected :
        {"simple_pendulum", "double_pendulum", "cart_pole", "spherical_pendulum", "heavy_top", "quaternion_rigid_body",
         "cartesian_pendulum", "knife_edge", "rolling_coin", "bead_on_hoop", "spring_mass_damper", "spacecraft_panel",
-        "planar_chain", "universal_chain"})
+        "planar_chain", "universal_chain", "whipple_bicycle", "four_bar", "planar_3rrr", "two_wheeled_robot"})
     EXPECT_NE(std::find(names.begin(), names.end(), expected), names.end()) << expected << ".eom is missing";
+  EXPECT_EQ(names.size(), 18u) << "README.md counts the shipped models";
 }
 
 TEST(ShippedModels, EveryModelOpensWithACommentBlockAndNamesItselfAfterItsFile) {

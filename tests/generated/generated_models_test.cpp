@@ -24,6 +24,7 @@
 #include "heavy_top.hpp"
 #include "knife_edge.hpp"
 #include "planar_3rrr.hpp"
+#include "two_wheeled_robot.hpp"
 #include "planar_chain.hpp"
 #include "quaternion_rigid_body.hpp"
 #include "rolling_coin.hpp"
@@ -159,6 +160,7 @@ static_assert(!eomgen_models::cartesian_pendulum::Model::has_forward_dynamics);
 static_assert(!eomgen_models::rolling_coin::Model::has_forward_dynamics);
 static_assert(!eomgen_models::four_bar::Model::has_forward_dynamics);
 static_assert(!eomgen_models::planar_3rrr::Model::has_forward_dynamics);
+static_assert(!eomgen_models::two_wheeled_robot::Model::has_forward_dynamics);
 
 TEST(GeneratedModel, EveryModelRunsInDoubleAndFloatFromAStrictlyCompiledUnit) {
   EXPECT_TRUE(generated_models_failing_in_double_or_float().empty());
@@ -186,5 +188,6 @@ GENERATED_MODEL_TEST(universal_chain)
 GENERATED_MODEL_TEST(whipple_bicycle)
 GENERATED_MODEL_TEST(four_bar)
 GENERATED_MODEL_TEST(planar_3rrr)
+GENERATED_MODEL_TEST(two_wheeled_robot)
 
 }  // namespace

@@ -11,6 +11,7 @@
 #include "heavy_top.hpp"
 #include "knife_edge.hpp"
 #include "planar_3rrr.hpp"
+#include "two_wheeled_robot.hpp"
 #include "planar_chain.hpp"
 #include "quaternion_rigid_body.hpp"
 #include "rolling_coin.hpp"
@@ -90,10 +91,11 @@ std::vector<std::string> generated_models_failing_in_double_or_float() {
                                       "four_bar", "heavy_top", "knife_edge", "planar_3rrr", "planar_chain",
                                       "quaternion_rigid_body", "rolling_coin", "simple_pendulum",
                                       "spacecraft_panel", "spherical_pendulum", "spring_mass_damper",
-                                      "universal_chain"};
+                                      "two_wheeled_robot", "universal_chain"};
   using namespace eomgen_models;
   return failing<bead_on_hoop::Model, cart_pole::Model, cartesian_pendulum::Model, double_pendulum::Model,
                  four_bar::Model, heavy_top::Model, knife_edge::Model, planar_3rrr::Model, planar_chain::Model,
                  quaternion_rigid_body::Model, rolling_coin::Model, simple_pendulum::Model, spacecraft_panel::Model,
-                 spherical_pendulum::Model, spring_mass_damper::Model, universal_chain::Model>(names);
+                 spherical_pendulum::Model, spring_mass_damper::Model, two_wheeled_robot::Model,
+                 universal_chain::Model>(names);
 }

@@ -114,9 +114,10 @@ TEST(VectorConstraint, APlanarLoopInATiltedPlaneHasARedundantRowWithANote) {
   // the plane's normal is e.3 = -sin(tilt) a.2 + cos(tilt) a.3: the component along a.3 is
   // tan(tilt) times the one along a.2, and not zero
   const Model model = parse_model(tilted_four_bar + "constraint loop: position(c) = position(d)\n", "tilted.eom");
-  ASSERT_EQ(model.system.constraints().size(), 2u);
+  ASSERT_EQ(model.system.constraints().size(), 3u);
   EXPECT_EQ(model.system.constraints()[0].name, "loop_1");
   EXPECT_EQ(model.system.constraints()[1].name, "loop_2");
+  EXPECT_EQ(model.system.constraints()[2].name, "loop_3");
   ASSERT_EQ(model.redundant_constraints.size(), 1u);
   const RedundantConstraint& dropped = model.redundant_constraints[0];
   EXPECT_EQ(dropped.constraint.name, "loop_3");
@@ -127,9 +128,9 @@ TEST(VectorConstraint, APlanarLoopInATiltedPlaneHasARedundantRowWithANote) {
   ASSERT_EQ(model.notes.size(), 1u);
   EXPECT_EQ(note_text(model.notes[0]),
             "tilted.eom:24:12: note: constraint 'loop_3' is redundant: at a generic state its row of Xi is a multiple "
-            "of that of 'loop_2'; left out (the multiplier of 'loop_2' carries its force); it holds along a motion "
-            "where it holds at the start");
-  // the row left out: its value is tan(tilt) times loop_2's, at any state
+            "of that of 'loop_2'; kept, the solves take independent rows at each state and give a row they leave out "
+            "the multiplier 0 (docs/conventions.md, Redundant constraints)");
+  // the redundant row: its value is tan(tilt) times loop_2's, at any state
   for (const NamedValues& state : four_bar_states) {
     const NumericEquations x = evaluate_equations(model, derive_equations(model), state);
     const GiNaC::ex value = dropped.constraint.expression.subs(numeric_substitution(model, state)).evalf();
@@ -177,15 +178,16 @@ TEST(VectorConstraint, AComponentDependentOnTheOthersInThreeDimensionsIsRedundan
                                   "particle bead(mass = 1, at = p)\n"
                                   "constraint line: cross(position(p), a.1 + a.2) = 0\n",
                                   "bead.eom");
-  ASSERT_EQ(model.system.constraints().size(), 2u);
+  ASSERT_EQ(model.system.constraints().size(), 3u);
   EXPECT_EQ(model.system.constraints()[0].name, "line_1");
-  EXPECT_EQ(model.system.constraints()[1].name, "line_3");
+  EXPECT_EQ(model.system.constraints()[1].name, "line_2");
+  EXPECT_EQ(model.system.constraints()[2].name, "line_3");
   ASSERT_EQ(model.notes.size(), 1u);
   EXPECT_EQ(note_text(model.notes[0]),
             "bead.eom:4:12: note: constraint 'line_2' is redundant: at a generic state its row of Xi is a multiple of "
-            "that of 'line_1'; left out (the multiplier of 'line_1' carries its force); it holds along a motion where "
-            "it holds at the start");
-  ASSERT_EQ(model.constraint_locations.size(), 2u);
+            "that of 'line_1'; kept, the solves take independent rows at each state and give a row they leave out the "
+            "multiplier 0 (docs/conventions.md, Redundant constraints)");
+  ASSERT_EQ(model.constraint_locations.size(), 3u);
   EXPECT_EQ(model.constraint_locations[1].line, 4);
 }
 

@@ -71,14 +71,36 @@ TYPED_TEST(KktOverScalars, SolvesSeveralRightSidesAtOnce) {
   EXPECT_NEAR(rhs(2, 0), Scalar(-4), 64 * std::numeric_limits<Scalar>::epsilon());
 }
 
-TEST(KktSystem, DependentConstraintsAreSingular) {
+// a redundant row (twice the first): an independent row is kept, the other gets lambda = 0, and
+// the accelerations are those of the one constraint: M qdd = F + Xi1^T lambda1, Xi1 qdd = -b1
+TEST(KktSystem, ARedundantRowIsLeftOutWithAZeroMultiplier) {
   Eigen::Matrix3d M = Eigen::Matrix3d::Identity();
   Eigen::Matrix<double, 2, 3> Xi;
-  Xi << 1, 2, 0, 2, 4, 0;  // the second row is twice the first
+  Xi << 1, 2, 0, 2, 4, 0;
   KktSystem<double, 3, 2> fixed;
-  EXPECT_EQ(fixed.compute(M, Xi), DynamicsStatus::singular_kkt_matrix);
+  ASSERT_EQ(fixed.compute(M, Xi), DynamicsStatus::ok);
+  EXPECT_TRUE(fixed.left_rows_out());
+  Eigen::Matrix<double, 5, 1> rhs;
+  rhs << 1, 0, 3, -0.5, -1.0;  // [F; b], b2 = 2 b1 as the rows are
+  fixed.solve_in_place(rhs);
+  // whichever row is kept, the constraint force Xi^T lambda is unique: M qdd = F + Xi^T lambda
+  const Eigen::Vector3d qdd = rhs.head<3>();
+  const Eigen::Vector2d lambda = rhs.tail<2>();
+  EXPECT_TRUE(lambda(0) == 0 || lambda(1) == 0);
+  EXPECT_NEAR((Xi.row(0) * qdd)(0), 0.5, 1e-14);    // -Xi1 qdd = b1
+  EXPECT_NEAR((Xi.row(1) * qdd)(0), 1.0, 1e-14);    // the row left out holds too
+  const Eigen::Vector3d force = Xi.transpose() * lambda;
+  EXPECT_LT((M * qdd - Eigen::Vector3d(1, 0, 3) - force).cwiseAbs().maxCoeff(), 1e-14);
+  EXPECT_NEAR(force(2), 0.0, 1e-15);                 // along Xi1 only
   KktSystem<double> dynamic;
-  EXPECT_EQ(dynamic.compute(Eigen::MatrixXd(M), Eigen::MatrixXd(Xi)), DynamicsStatus::singular_kkt_matrix);
+  EXPECT_EQ(dynamic.compute(Eigen::MatrixXd(M), Eigen::MatrixXd(Xi)), DynamicsStatus::ok);
+}
+
+TEST(KktSystem, DependentConstraintsAreSingularOnlyWhereNoRowIsLeft) {
+  Eigen::Matrix3d M = Eigen::Matrix3d::Identity();
+  Eigen::Matrix<double, 2, 3> Xi;
+  KktSystem<double, 3, 2> fixed;
+  KktSystem<double> dynamic;
   // nearly dependent: the KKT matrix's smallest singular value goes with the square of Xi's,
   // (sigma 1e-9)^2 far below the threshold, (sigma 1e-3)^2 far above it
   Xi << 1, 2, 0, 1, 2, 1e-9;

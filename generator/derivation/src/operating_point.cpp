@@ -92,32 +92,6 @@ std::string list(const std::vector<std::string>& names) {
   return out.empty() ? std::string("none") : out;
 }
 
-/// A constraint left out as redundant (Model::redundant_constraints) follows from the kept ones
-/// along a motion, but a holonomic one only where it holds at the start: it is checked at the
-/// assembled state, as the kept rows are.
-void require_redundant_rows(const Model& model, const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
-                            const NamedValues& base) {
-  if (model.redundant_constraints.empty()) return;
-  const auto& coordinates = model.system.variables().coordinates();
-  NamedValues at = base;
-  for (std::size_t j = 0; j < coordinates.size(); ++j) {
-    at[coordinates[j].name] = q(static_cast<Eigen::Index>(j));
-    at[coordinates[j].name + "_dot"] = qd(static_cast<Eigen::Index>(j));
-  }
-  const GiNaC::exmap values = numeric_substitution(model, at);
-  for (const RedundantConstraint& r : model.redundant_constraints) {
-    if (r.constraint.kind != Constraint::Kind::holonomic) continue;  // a rate row follows exactly
-    const GiNaC::ex v = r.constraint.expression.subs(values, GiNaC::subs_options::no_pattern).evalf();
-    if (!GiNaC::is_a<GiNaC::numeric>(v) || !GiNaC::ex_to<GiNaC::numeric>(v).is_real()) continue;
-    const double value = GiNaC::ex_to<GiNaC::numeric>(v).to_double();
-    if (std::abs(value) > eomrt::AssemblyOptions<double>{}.tolerance * (1 + q.cwiseAbs().maxCoeff()))
-      throw Error(fmt::format("the constraint '{}', left out as redundant (its row follows from {}), does not hold "
-                              "where those do: phi = {:.3g}; it holds along a motion only where it holds at the "
-                              "start, and no state near the point satisfies it with the others",
-                              r.constraint.name, list(r.depends_on), value));
-  }
-}
-
 }  // namespace
 
 std::string describe_moved(const std::vector<MovedValue>& moved) {
@@ -180,7 +154,6 @@ ConstrainedPoint satisfy_constraints(const Model& model, const Evaluate& evaluat
       throw Error("the constraints' terms are not finite numbers near the point (a pole or a singularity of the "
                   "model); give values away from it");
   }
-  require_redundant_rows(model, q, qd, result.point);
   // the point: what was given or guessed, and what was solved or moved (a name neither given
   // nor solved stays an implicit 0)
   const double scale = std::max(qd.cwiseAbs().maxCoeff(), qd0.cwiseAbs().maxCoeff());

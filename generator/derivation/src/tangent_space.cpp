@@ -21,6 +21,18 @@ std::vector<Eigen::Index> pivot_columns(const Eigen::MatrixXd& a, Eigen::Index c
   return columns;
 }
 
+/// An independent set of the rows of `a` (redundant constraints leave some dependent at a
+/// state), by a column-pivoted QR of a^T; in increasing order.
+std::vector<Eigen::Index> independent_rows(const Eigen::MatrixXd& a) {
+  if (a.rows() == 0) return {};
+  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(a.transpose());
+  qr.setThreshold(1e-10);
+  std::vector<Eigen::Index> rows;
+  for (Eigen::Index i = 0; i < qr.rank(); ++i) rows.push_back(qr.colsPermutation().indices()(i));
+  std::sort(rows.begin(), rows.end());
+  return rows;
+}
+
 std::vector<Eigen::Index> complement(Eigen::Index n, const std::vector<Eigen::Index>& taken) {
   std::vector<Eigen::Index> rest;
   for (Eigen::Index i = 0; i < n; ++i)
@@ -34,9 +46,11 @@ std::vector<Eigen::Index> complement(Eigen::Index n, const std::vector<Eigen::In
 Eigen::MatrixXd dependent_coordinates(const Model& model, const Eigen::MatrixXd& Xi, TangentSpace& space) {
   const Eigen::Index n = Xi.cols();
   const std::vector<Eigen::Index> holonomic_rows = holonomic_rows_of(model);
-  const Eigen::Index nh = static_cast<Eigen::Index>(holonomic_rows.size());
-  Eigen::MatrixXd Phi(nh, n);
-  for (Eigen::Index r = 0; r < nh; ++r) Phi.row(r) = Xi.row(holonomic_rows[static_cast<std::size_t>(r)]);
+  Eigen::MatrixXd all_gradients(static_cast<Eigen::Index>(holonomic_rows.size()), n);
+  for (Eigen::Index r = 0; r < all_gradients.rows(); ++r)
+    all_gradients.row(r) = Xi.row(holonomic_rows[static_cast<std::size_t>(r)]);
+  const Eigen::MatrixXd Phi = all_gradients(independent_rows(all_gradients), Eigen::all);
+  const Eigen::Index nh = Phi.rows();
   space.q_dependent = nh > 0 ? pivot_columns(Phi, nh) : std::vector<Eigen::Index>{};
   space.q_kept = complement(n, space.q_dependent);
   const Eigen::Index nk = static_cast<Eigen::Index>(space.q_kept.size());
@@ -52,10 +66,13 @@ Eigen::MatrixXd dependent_coordinates(const Model& model, const Eigen::MatrixXd&
 
 }  // namespace
 
-TangentSpace tangent_space(const Model& model, const Eigen::MatrixXd& Xi, const Eigen::MatrixXd& C_q) {
+TangentSpace tangent_space(const Model& model, const Eigen::MatrixXd& all_rows, const Eigen::MatrixXd& all_C_q) {
+  // an independent set of the rows: the others follow from them at this point
+  const std::vector<Eigen::Index> rows = independent_rows(all_rows);
+  const Eigen::MatrixXd Xi = all_rows(rows, Eigen::all), C_q = all_C_q(rows, Eigen::all);
   const Eigen::Index n = Xi.cols(), m = Xi.rows();
   TangentSpace space;
-  const Eigen::MatrixXd Tq = dependent_coordinates(model, Xi, space);
+  const Eigen::MatrixXd Tq = dependent_coordinates(model, all_rows, space);
   for (std::size_t k : model.independent_speeds) space.v_independent.push_back(static_cast<Eigen::Index>(k));
   std::sort(space.v_independent.begin(), space.v_independent.end());
   space.v_dependent = space.v_independent.empty() ? pivot_columns(Xi, m) : complement(n, space.v_independent);

@@ -116,9 +116,9 @@ class Elaborator {
   // whole-model checks (model_file.cpp)
   void independent_speeds();
   void checks();
-  // constraints whose rows are combinations of earlier ones, left out with a note; the rows kept
-  // (model_redundant_constraints.cpp)
-  ConstraintRows drop_redundant_constraints();
+  // constraints whose rows are combinations of earlier ones, noted (they stay in the system); an
+  // independent set of the rows (model_redundant_constraints.cpp)
+  ConstraintRows note_redundant_constraints();
 
   // element statements (model_elements.cpp)
   class Arguments;  // an element statement's key = value arguments

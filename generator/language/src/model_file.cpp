@@ -65,12 +65,17 @@ void Elaborator::independent_speeds() {
     model_.independent_speeds.push_back(k);
     listed_at.push_back(n.location);
   }
-  // signed: checks() has already left out every constraint beyond nq as redundant
+  // signed: nc < nq, or the constraints would be dependent
   const long nq = static_cast<long>(vars.coordinate_count());
   const long nc = static_cast<long>(model_.system.constraints().size());
   if (nc == 0)
     throw SourceError(s.location, "'independent' in a model without constraints: every speed is independent; "
                                   "expected no 'independent' statement");
+  if (!model_.redundant_constraints.empty())
+    throw SourceError(s.location, fmt::format("'independent' in a model with a redundant constraint ('{}'): the "
+                                              "null-space method needs independent rows; expected no 'independent' "
+                                              "statement (the KKT solve takes independent rows at each state)",
+                                              model_.redundant_constraints.front().constraint.name));
   const long ni = static_cast<long>(model_.independent_speeds.size());
   if (ni != nq - nc)
     throw SourceError(s.location, fmt::format("independent: expected nq - nc = {} - {} = {} coordinates (one per "
@@ -94,9 +99,9 @@ void Elaborator::checks() {
       throw SourceError(model_.coordinate_locations[k],
                         fmt::format("coordinate '{}' is declared but never used", vars.coordinates()[k].name));
 
-  // Xi of the constraints kept, once those that are redundant are left out: the degrees of
-  // freedom, and so the independent speeds, count only the kept ones
-  const Eigen::MatrixXd xi = drop_redundant_constraints().xi;
+  // Xi of an independent set of the constraints (the redundant ones noted): the dependent
+  // speeds are solved from it
+  const Eigen::MatrixXd xi = note_redundant_constraints().xi;
   const std::size_t n = vars.coordinate_count();
 
   // the null-space method solves the dependent speeds from Xi_d qd_d = -(Xi_i qd_i + Xi_t): Xi_d,

@@ -1,8 +1,9 @@
 // Constraints that are redundant: at a generic state the row of Xi of each is a combination of the
-// rows of constraints before it in the file, and so is its Xi_t. Each is left out of the system,
-// with a note, since every motion that satisfies the others satisfies it: its rate-level form is
-// that combination of theirs (a holonomic one holds along the motion where it holds at the
-// start). A Segway's two wheels on one axle give one: both forbid the same sideways slip.
+// rows of constraints before it in the file, and so is its Xi_t. Each stays in the system, with a
+// note: which rows are dependent can change with the state (of a Segway's two wheels on one axle,
+// both forbidding the same sideways slip, the rows along a.2 at heading 0 and those along a.1 at
+// heading pi/2), so no one row can be left out everywhere; the solves take an independent set
+// at each state instead (runtime/include/eomrt/kkt_system.hpp).
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -27,7 +28,7 @@ std::string name_list(const std::vector<std::string>& names) {
 
 // Tested in file order, so that the later of two dependent constraints is the one left out: the
 // one the reader added last, and the one the note then points at.
-ConstraintRows Elaborator::drop_redundant_constraints() {
+ConstraintRows Elaborator::note_redundant_constraints() {
   const MechanicalSystem& sys = model_.system;
   const Variables& vars = sys.variables();
   const auto& constraints = sys.constraints();
@@ -35,7 +36,6 @@ ConstraintRows Elaborator::drop_redundant_constraints() {
   const Eigen::Index n = static_cast<Eigen::Index>(vars.coordinate_count());
   ConstraintRows kept{Eigen::MatrixXd(0, n), Eigen::VectorXd(0)};
   std::vector<std::string> kept_names;
-  std::vector<std::size_t> dropped;
   for (std::size_t i = 0; i < constraints.size(); ++i) {
     const Constraint& c = constraints[i];
     const SourceLocation& at = model_.constraint_locations[i];
@@ -77,40 +77,12 @@ ConstraintRows Elaborator::drop_redundant_constraints() {
                                         "row of Xi is {}, but its Xi_t is not the same combination of theirs, so no "
                                         "motion satisfies them all: expected a constraint that agrees with them, or "
                                         "none", c.name, combination));
-    std::string message = fmt::format("constraint '{}' is redundant: at a generic state its row of Xi is {}; left out "
-                                      "({} its force)", c.name, combination,
-                                      one ? "the multiplier of " + name_list(depends_on) + " carries"
-                                          : std::string("their multipliers carry"));
-    if (c.kind == Constraint::Kind::holonomic) message += "; it holds along a motion where it holds at the start";
+    std::string message = fmt::format("constraint '{}' is redundant: at a generic state its row of Xi is {}; kept, "
+                                      "the solves take independent rows at each state and give a row they leave out "
+                                      "the multiplier 0 (docs/conventions.md, Redundant constraints)",
+                                      c.name, combination);
     model_.notes.push_back({at, std::move(message)});
     model_.redundant_constraints.push_back({c, std::move(depends_on), at});
-    dropped.push_back(i);
-  }
-  if (dropped.empty()) return kept;
-  const std::size_t total = constraints.size();
-
-  // the system, the constraints' places and the contacts' rows without them; a contact row names
-  // its constraint by index, which moves up past every constraint left out before it
-  model_.system.remove_constraints(dropped);
-  std::vector<SourceLocation> locations;
-  std::vector<std::size_t> new_index(total, 0);
-  for (std::size_t i = 0, removed = 0; i < new_index.size(); ++i) {
-    if (removed < dropped.size() && dropped[removed] == i) {
-      ++removed;
-      continue;
-    }
-    new_index[i] = i - removed;
-    locations.push_back(model_.constraint_locations[i]);
-  }
-  model_.constraint_locations = std::move(locations);
-  for (ContactForce& contact : model_.contacts) {
-    std::vector<ContactForce::Row> rows;
-    for (ContactForce::Row& r : contact.rows) {
-      if (std::binary_search(dropped.begin(), dropped.end(), r.constraint)) continue;
-      r.constraint = new_index[r.constraint];
-      rows.push_back(std::move(r));
-    }
-    contact.rows = std::move(rows);
   }
   return kept;
 }

@@ -77,7 +77,22 @@ DynamicsStatus project_onto_constraints(const ParametersOrConstants& p,
     const auto factor_gram = [&]() {
       Model::constraint_jacobian(t, q, p, ws.Xi);
       if (!ws.Xi.allFinite()) return DynamicsStatus::non_finite;
+      s.dependent_rows.setConstant(false);
       s.gram.noalias() = ws.Xi * ws.Xi.transpose();
+      s.gram_ldlt.compute(s.gram);
+      if (s.gram_ldlt.info() == Eigen::Success && s.gram_ldlt.rcond() > ws.singular_rcond) return DynamicsStatus::ok;
+      // redundant constraints: the rows dependent at this state are left out of the correction
+      // (the others imply them here), as the KKT system leaves them out (kkt_system.hpp)
+      s.qr.setThreshold(ws.singular_rcond);
+      s.qr.compute(ws.Xi.transpose());
+      if (s.qr.rank() == Model::nc) return DynamicsStatus::singular_constraint_jacobian;
+      for (Eigen::Index k = s.qr.rank(); k < Model::nc; ++k) {
+        const Eigen::Index row = s.qr.colsPermutation().indices()(k);
+        s.dependent_rows(row) = true;
+        ws.Xi.row(row).setZero();
+      }
+      s.gram.noalias() = ws.Xi * ws.Xi.transpose();
+      s.gram.diagonal() += s.dependent_rows.template cast<Scalar>().matrix();
       s.gram_ldlt.compute(s.gram);
       if (s.gram_ldlt.info() != Eigen::Success || !(s.gram_ldlt.rcond() > ws.singular_rcond))
         return DynamicsStatus::singular_constraint_jacobian;
@@ -93,7 +108,8 @@ DynamicsStatus project_onto_constraints(const ParametersOrConstants& p,
         const DynamicsStatus status = factor_gram();
         if (status != DynamicsStatus::ok) return status;
         s.small.setZero();
-        for (int i = 0; i < Model::nh; ++i) s.small(Model::holonomic_rows[i]) = ws.phi(i);
+        for (int i = 0; i < Model::nh; ++i)
+          if (!s.dependent_rows(Model::holonomic_rows[i])) s.small(Model::holonomic_rows[i]) = ws.phi(i);
         s.gram_ldlt.solveInPlace(s.small);
         s.particular.noalias() = ws.Xi.transpose() * s.small;
         q -= s.particular;
@@ -114,6 +130,8 @@ DynamicsStatus project_onto_constraints(const ParametersOrConstants& p,
     Model::constraint_rate_term(t, q, p, ws.Xi_t);
     ws.velocity_residual.noalias() = ws.Xi * qd;
     ws.velocity_residual += ws.Xi_t;
+    for (Eigen::Index k = 0; k < Model::nc; ++k)
+      if (s.dependent_rows(k)) ws.velocity_residual(k) = 0;
     s.small = s.gram_ldlt.solve(ws.velocity_residual);
     qd.noalias() -= ws.Xi.transpose() * s.small;
     return q.allFinite() && qd.allFinite() ? DynamicsStatus::ok : DynamicsStatus::non_finite;

@@ -42,6 +42,8 @@ struct ConstraintSolvers {
   Eigen::Matrix<Scalar, nq, 1> particular;                       ///< qdd_p with Xi qdd_p = r
   Eigen::Matrix<Scalar, nr, 1> reduced_rhs;                      ///< Upsilon^T (F - M qdd_p)
   Eigen::Matrix<Scalar, nc, 1> small;                            ///< scratch of dim nc
+  /// rows of Xi the projection left out as dependent at the state (redundant constraints)
+  Eigen::Array<bool, nc, 1> dependent_rows = Eigen::Array<bool, nc, 1>::Constant(false);
 };
 
 template <class Scalar, int nq>

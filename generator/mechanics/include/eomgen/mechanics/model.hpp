@@ -43,7 +43,9 @@ struct Model {
   /// Where each coordinate and each constraint was declared (same order as in `system`).
   std::vector<SourceLocation> coordinate_locations;
   std::vector<SourceLocation> constraint_locations;
-  /// The constraints left out of `system` as redundant, in the order of the file.
+  /// The constraints of `system` that are redundant (their rows combinations of earlier ones at a
+  /// generic state), in the order of the file; they stay in the system, and the solves take an
+  /// independent set of rows at each state.
   std::vector<RedundantConstraint> redundant_constraints;
   /// What the reader of the file should know that is no error (one per redundant constraint),
   /// in the order found; the commands print them on standard error.
