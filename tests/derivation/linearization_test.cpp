@@ -201,9 +201,10 @@ TEST(Linearization, CartesianPendulumReducesToTheAnglePendulum) {
   const StabilityReport report = assess_stability(lin.A);
   EXPECT_NEAR(report.eigenvalues(0).imag(), std::sqrt(9.81 / 0.5), 1e-12);
   EXPECT_THROW_MESSAGE(linearize_at(model, {}), Error,
-                       "linearizing cartesian_pendulum: the operating point violates the constraint 'rod_length' "
-                       "(residual -0.25); Newton's method could not solve it for the coordinates left out (x, y) from "
-                       "there; give coordinates that satisfy it");  // (0, 0): the constraint's gradient vanishes
+                       "linearizing cartesian_pendulum: no state near the point satisfies the constraint "
+                       "'rod_length': the nearest the search came, with every value free to move, leaves phi = -0.25 "
+                       "(given: none); check the model's dimensions, or give values near an assembly");  // (0, 0):
+                                                                                         // no gradient
 }
 
 // Rolling upright and straight at speed v = r w, a thin disk's lean obeys (Euler's equations
@@ -245,7 +246,10 @@ TEST(Linearization, SingularMassMatrixAtThePointIsAnError) {
   const Model model = shipped("heavy_top");
   const ModelEquations eom = derive_equations(model);
   EXPECT_THROW_MESSAGE(linearize(model, eom, linearize_symbolic(model, eom), {{"phi_dot", 50.0}}), Error,
-                       "linearizing heavy_top: the mass matrix is singular at the operating point");
+                       "linearizing heavy_top: the mass matrix is singular at this state but not near it: a "
+                       "coordinate singularity (as the gimbal lock of Euler angles) in psi, phi, which describe fewer "
+                       "independent motions here than elsewhere; evaluate away from it, or describe the rotation "
+                       "without one (a quaternion)");
 }
 
 TEST(Equilibrium, NewtonFindsTheEquilibriaOfTheShippedModelsFromNearbyGuesses) {
@@ -271,7 +275,8 @@ TEST(Equilibrium, NewtonFindsTheEquilibriaOfTheShippedModelsFromNearbyGuesses) {
   EXPECT_NEAR(hanging.lambda(0), -1.0 * 9.81 / (2 * 0.5), 1e-10);
   EXPECT_THROW_MESSAGE(solve("knife_edge", {{"x_dot", 1.0}, {"tau", 1.0}}), Error,
                        "finding an equilibrium of knife_edge: Newton's method stopped after 0 iterations with residual "
-                       "1; try another guess");  // a steady torque: no equilibrium
+                       "1 (the forces do not balance: F + Xi^T lambda = 1 on theta); try another guess");  // a steady
+                                                                                                          // torque
 }
 
 TEST(Stability, RepeatedEigenvalueWithoutEnoughEigenvectorsIsUnstableForTheLinearSystem) {

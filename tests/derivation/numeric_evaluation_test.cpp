@@ -187,10 +187,10 @@ TEST(KktSolution, SingularKktMatrixIsAnError) {
   eq.mass_matrix = Eigen::Matrix2d::Identity();
   eq.forcing = Eigen::Vector2d(1.0, 2.0);
   eq.constraint_jacobian.resize(2, 2);
-  eq.constraint_jacobian << 1.0, 0.0, 2.0, 0.0;  // dependent rows
+  eq.constraint_jacobian << 0.0, 0.0, 0.0, 0.0;  // no row has a direction: none to keep
   eq.constraint_acceleration_term = Eigen::Vector2d::Zero();
   EXPECT_THROW_MESSAGE(solve_accelerations(eq), Error,
-                       "solving the KKT system [[M, -Xi^T], [-Xi, 0]]: the matrix is singular at this state (rank 3 of "
+                       "solving the KKT system [[M, -Xi^T], [-Xi, 0]]: the matrix is singular at this state (rank 2 of "
                        "4): the constraints are dependent, or M is singular on the directions they allow");
 }
 
