@@ -18,6 +18,10 @@ packages=(
   texlive-latex-base
   gnuplot-nox
   python3       # writes the models of the scaling benchmark (bench/scaling.sh), which the docs test runs
+  # the Python modules of models (`eomgen python`, docs/python.md): pybind11 and Python's headers;
+  # NumPy for their arrays; pytest, SciPy and Matplotlib for their tests and example; SymPy for
+  # their benchmark (bench/python/)
+  python3-dev python3-pybind11 python3-numpy python3-pytest python3-scipy python3-matplotlib python3-sympy
   libjs-three   # three.js (r111), embedded into eomgen for `simulate --animate` pages
   chromium      # the browser test of those pages (tests/browser/, headless)
 )

@@ -233,4 +233,23 @@ CLI::App* add_simulate_command(CLI::App& app, Options& o) {
   return simulate;
 }
 
+CLI::App* add_python_command(CLI::App& app, Options& o) {
+  CLI::App* python = app.add_subcommand(
+      "python", "Build the model's Python module (pybind11, NumPy arrays; cached): import it as its model's name");
+  add_model_options(python, o);
+  PythonRequest& r = o.python;
+  python->add_option("-o,--output", r.output_dir, "Directory the module is written to (made if missing)")
+      ->type_name("DIR")
+      ->capture_default_str();
+  python->add_option("--module-name", r.module_name, "The name to import (default: the model's name)")
+      ->type_name("NAME");
+  python->add_option("--cache-dir", r.cache_dir,
+                     "Where compiled modules are kept (default: $EOMGEN_CACHE_DIR, else ~/.cache/eomgen)")
+      ->type_name("DIR");
+  python->add_flag("--source-only", r.source_only,
+                   "Write the header (model.hpp) and the binding source (module.cpp) to DIR instead of building "
+                   "(what eomgen_add_python_module compiles)");
+  return python;
+}
+
 }  // namespace eomgen::tools

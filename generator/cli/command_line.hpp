@@ -1,11 +1,13 @@
 #pragma once
 // The eomgen command line: what each subcommand accepts (CLI11), parsed into Options. What the
-// subcommands do is in eomgen_main.cpp and simulate_command.cpp.
+// subcommands do is in eomgen_main.cpp, linearize_command.cpp, simulate_command.cpp and
+// python_command.cpp.
 #include <CLI/CLI.hpp>
 #include <string>
 #include <vector>
 
 #include "eomgen/urdf/urdf_import.hpp"
+#include "python_command.hpp"
 #include "simulate_command.hpp"
 
 namespace eomgen::tools {
@@ -44,6 +46,8 @@ struct Options {
   SimulateRequest simulate;
   std::vector<std::string> init, inputs;
   bool no_plot = false;
+  // python
+  PythonRequest python;
 };
 
 /// How a URDF file given to a command becomes its model.
@@ -58,5 +62,6 @@ CLI::App* add_eval_command(CLI::App& app, Options& o);
 CLI::App* add_generate_command(CLI::App& app, Options& o);
 CLI::App* add_linearize_command(CLI::App& app, Options& o);
 CLI::App* add_simulate_command(CLI::App& app, Options& o);
+CLI::App* add_python_command(CLI::App& app, Options& o);
 
 }  // namespace eomgen::tools

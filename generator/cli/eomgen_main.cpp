@@ -440,6 +440,14 @@ int run_simulate(Options& o) {
   return eomgen::tools::run_simulate(model, r);
 }
 
+// ---- python ----
+
+int run_python(Options& o) {
+  const eomgen::Model model = load(o);
+  o.python.model_path = o.model_path;
+  return eomgen::tools::run_python(model, o.python);
+}
+
 // runs the parsed subcommand and maps its errors to exit statuses (see the file comment)
 int run_command(const std::vector<std::pair<CLI::App*, int (*)(Options&)>>& commands, Options& o) {
   try {
@@ -491,6 +499,7 @@ int main(int argc, char** argv) {
       {tools::add_generate_command(app, o), succeeds<run_generate>},
       {tools::add_linearize_command(app, o), [](Options& opts) { return eomgen::tools::run_linearize(opts); }},
       {tools::add_simulate_command(app, o), run_simulate},
+      {tools::add_python_command(app, o), run_python},
   };
   try {
     app.parse(argc, argv);

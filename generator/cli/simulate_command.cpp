@@ -4,30 +4,25 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cstring>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <optional>
 #include <set>
-#include <sstream>
 
-#include "eomgen/base/content_hash.hpp"
 #include "eomgen/codegen/emit_model.hpp"
 #include "eomgen/derivation/equations_of_motion.hpp"
 #include "eomgen/derivation/scene_recording.hpp"
 #include "eomgen/report/animation_page.hpp"
 #include "eomgen/base/error.hpp"
-#include "eomgen/base/version.hpp"
 #include "eomgen_build_config.hpp"
 #include "eomrt/integrators.hpp"
 #include "animation.hpp"
+#include "cached_build.hpp"
 #include "command_values.hpp"
 #include "file_output.hpp"
 #include "gnuplot.hpp"
-#include "interruption.hpp"
 #include "process.hpp"
 
 namespace eomgen::tools {
@@ -35,13 +30,6 @@ namespace eomgen::tools {
 namespace fs = std::filesystem;
 
 namespace {
-
-std::string read_file(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 /// %.17g: the value the user gave, exactly, for the simulation program to read back
 std::string exact(double v) { return fmt::format("{:.17g}", v); }
@@ -98,35 +86,6 @@ const eomrt::IntegratorInfo& method_of(const SimulateRequest& r) {
   return *method;
 }
 
-fs::path cache_root(const SimulateRequest& r) {
-  if (!r.cache_dir.empty()) return r.cache_dir;
-  if (const char* dir = std::getenv("EOMGEN_CACHE_DIR"); dir && *dir) return dir;
-  if (const char* dir = std::getenv("XDG_CACHE_HOME"); dir && *dir) return fs::path(dir) / "eomgen";
-  if (const char* home = std::getenv("HOME"); home && *home) return fs::path(home) / ".cache" / "eomgen";
-  throw Error("no cache directory: set EOMGEN_CACHE_DIR or HOME, or pass --cache-dir");
-}
-
-/// A directory of sources the simulation is compiled from: next to an installed eomgen (a
-/// path relative to its binary), else in the source tree; \p marker is a file it must hold.
-std::optional<fs::path> find_sources(const fs::path& installed, const fs::path& source, const fs::path& marker) {
-  std::error_code ec;
-  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-  if (!ec && fs::exists(exe.parent_path() / installed / marker, ec)) return exe.parent_path() / installed;
-  if (fs::exists(source / marker, ec)) return source;
-  return std::nullopt;
-}
-
-/// The runtime headers: next to an installed eomgen (bin/../include), else the source tree.
-fs::path runtime_include_dir() {
-  if (const char* dir = std::getenv("EOMGEN_RUNTIME_INCLUDE_DIR"); dir && *dir) return dir;
-  const std::optional<fs::path> found = find_sources(build_config::installed_runtime_include_dir,
-                                                     build_config::source_runtime_include_dir, "eomrt/simulate.hpp");
-  if (found) return *found;
-  throw Error(fmt::format("the eomrt runtime headers are neither next to eomgen nor in '{}'; set "
-                          "EOMGEN_RUNTIME_INCLUDE_DIR to the directory that holds eomrt/",
-                          build_config::source_runtime_include_dir));
-}
-
 /// The main() of the simulation program: next to an installed eomgen
 /// (bin/../share/eomgen/simulation_program), else the source tree.
 fs::path simulation_program_dir() {
@@ -138,23 +97,10 @@ fs::path simulation_program_dir() {
                           build_config::source_simulation_program_dir));
 }
 
-/// The headers under \p dir (sorted, so the cache key does not depend on directory order).
-std::vector<fs::path> headers_in(const fs::path& dir) {
-  std::vector<fs::path> headers;
-  for (const auto& entry : fs::directory_iterator(dir))
-    if (entry.path().extension() == ".hpp") headers.push_back(entry.path());
-  std::sort(headers.begin(), headers.end());
-  return headers;
-}
-
-/// The compiler command: the configured compiler and flags, never fast math (it would break
-/// the NaN checks that make failures loud, and the reproducibility of the results).
+/// The compiler command of the simulation program.
 std::vector<std::string> compile_command(const fs::path& source, const fs::path& output, const fs::path& runtime,
                                          const fs::path& program) {
-  std::vector<std::string> cmd{build_config::cxx_compiler};
-  std::istringstream flags(build_config::cxx_flags);
-  for (std::string flag; flags >> flag;) cmd.push_back(flag);
-  for (const char* extra : {"-std=c++17", "-fno-fast-math"}) cmd.push_back(extra);
+  std::vector<std::string> cmd = compiler_invocation();
   cmd.push_back("-I" + source.parent_path().string());
   cmd.push_back("-I" + program.string());
   cmd.push_back("-I" + runtime.string());
@@ -165,21 +111,6 @@ std::vector<std::string> compile_command(const fs::path& source, const fs::path&
   return cmd;
 }
 
-/// The key of a build in the cache: a hash of everything the program is built from (the
-/// generated header, the driver, the program's and the runtime's headers, the command), so a
-/// stale build is never reused.
-std::string cache_key(const Model& model, const std::string& header, const std::string& driver,
-                      const fs::path& runtime, const fs::path& program) {
-  std::string key_material = fmt::format("eomgen {}\n", version);
-  key_material += header + driver;
-  for (const fs::path& dir : {program, runtime / "eomrt"})
-    for (const fs::path& h : headers_in(dir)) key_material += h.filename().string() + "\n" + read_file(h);
-  for (const std::string& part : compile_command("driver.cpp", "simulate", runtime, program))
-    key_material += part + "\n";
-  return fmt::format("{}-{:016x}", cpp_identifier(model.name), content_hash(key_material));
-}
-
-/// Builds the simulation program for `header` unless the cache has it; returns its path.
 /// The simulation program's methods as C++: the eomrt::OnlyMethods of the request. A program
 /// compiled with every integrator and constraint solver took 35 to 50 s for a constrained model,
 /// most of it in the solvers' fixed-size decompositions; with the request's only, a request
@@ -191,6 +122,7 @@ std::string methods_of(const eomrt::IntegratorInfo& method, const SimulateReques
                      r.stabilization);
 }
 
+/// Builds the simulation program for `header` unless the cache has it; returns its path.
 fs::path simulation_program(const Model& model, const std::string& header, const std::string& methods,
                             const fs::path& runtime, const fs::path& program_dir, const fs::path& cache) {
   const std::string driver = fmt::format(
@@ -200,63 +132,16 @@ fs::path simulation_program(const Model& model, const std::string& header, const
       "  return eomgen::simulation_program::simulation_main<eomgen_models::{}::Model,\n"
       "                                                     {}>(argc, argv);\n}}\n",
       cpp_string_contents(model.name), cpp_identifier(model.name), methods);
-  const std::string key = cache_key(model, header, driver, runtime, program_dir);
-
-  const fs::path directory = cache / key;
-  const fs::path program = directory / "simulate";
-  std::error_code ec;
-  if (fs::exists(program, ec)) {
-    std::cerr << fmt::format("eomgen: using the cached build {}\n", directory.string());
-    return program;
-  }
-
-  // built in a private directory, renamed into place when complete: a concurrent run or an
-  // interrupted build never leaves a half-built program under the key
-  fs::create_directories(cache, ec);
-  if (ec) throw Error(fmt::format("cannot create the cache directory '{}': {}", cache.string(), ec.message()));
-  const fs::path building = cache / fmt::format(".{}.{}.tmp", key, ::getpid());
-  const auto discard_building = [&] {
-    interruption::Hold hold;
-    fs::remove_all(building, ec);
-    interruption::forget(building.string());
+  CachedBuild build;
+  build.what = "the simulation of " + model.name;
+  build.key_name = cpp_identifier(model.name);
+  build.files = {{"model.hpp", header}, {"driver.cpp", driver}};
+  build.header_dirs = {program_dir, runtime / "eomrt"};
+  build.command = [&](const fs::path& directory) {
+    return compile_command(directory / "driver.cpp", directory / "simulate", runtime, program_dir);
   };
-  {
-    interruption::Hold hold;  // an interrupted run removes it, with the compiler's output
-    fs::remove_all(building, ec);
-    fs::create_directories(building, ec);
-    if (ec) throw Error(fmt::format("cannot create '{}': {}", building.string(), ec.message()));
-    interruption::remember(building.string(), true);
-  }
-  write_atomically((building / "model.hpp").string(), header);
-  write_atomically((building / "driver.cpp").string(), driver);
-  const std::vector<std::string> cmd =
-      compile_command(building / "driver.cpp", building / "simulate", runtime, program_dir);
-  std::cerr << fmt::format("eomgen: compiling the simulation of {} with {} ...\n", model.name, cmd.front());
-  const auto start = std::chrono::steady_clock::now();
-  const fs::path log = building / "compile.log";
-  const int status = run_process(cmd, log.string());
-  if (status != 0) {
-    const std::string output = read_file(log);
-    discard_building();
-    throw Error(fmt::format("compiling the generated simulation failed (exit status {}); this is a bug in eomgen "
-                            "or a broken compiler setup. Compiler output:\n{}",
-                            status, output.substr(0, 4000)));
-  }
-  std::cerr << fmt::format(
-      "eomgen: compiled in {:.1f} s, cached in {}\n",
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), directory.string());
-  {
-    interruption::Hold hold;  // in place whole, or removed
-    fs::rename(building, directory, ec);
-    if (!ec) interruption::forget(building.string());
-  }
-  if (ec) {
-    discard_building();  // another run finished the same build first: use its
-    if (!fs::exists(program))
-      throw Error(fmt::format("cannot move the build into '{}' ({}); delete that directory and run again",
-                              directory.string(), ec.message()));
-  }
-  return program;
+  build.product = "simulate";
+  return build_cached(build, cache);
 }
 
 /// The cache holds the programs simulate runs, and the builds of concurrent runs: no output of a
@@ -336,7 +221,8 @@ int run_simulate(const Model& model, const SimulateRequest& r) {
   const std::string plot_path = r.plot_path.empty() ? stem + ".svg" : r.plot_path;
   const std::vector<OutputFile> outputs{
       {"-o", csv_path}, {"--plot", r.plot ? plot_path : std::string()}, {"--animate", r.animation_path}};
-  const fs::path runtime = runtime_include_dir(), program_dir = simulation_program_dir(), cache = cache_root(r);
+  const fs::path runtime = runtime_include_dir(), program_dir = simulation_program_dir(),
+                 cache = cache_root(r.cache_dir);
   std::vector<std::string> sources;
   for (const fs::path& dir : {program_dir, runtime / "eomrt"})
     for (const fs::path& h : headers_in(dir)) sources.push_back(h.string());

@@ -191,8 +191,10 @@ TEST_P(DocumentedCommands, RunsAsWrittenAndExitsZero) {
       continue;
     }
     const fs::path out = dir_ / "output.txt";
-    const std::string script = "cd " + quote(dir_.string()) + " && export PATH=" + quote(EOMGEN_BIN_DIR) +
-                               ":\"$PATH\" EOMGEN_BUILD_DIR=" + quote(EOMGEN_BUILD_DIR) +
+    // python3 is the interpreter the Python modules were configured for (the first on PATH may
+    // lack NumPy), as on a machine where scripts/install-deps.sh installed Debian's
+    const std::string script = "cd " + quote(dir_.string()) + " && export PATH=" + quote(EOMGEN_BIN_DIR) + ":" +
+                               quote(EOMGEN_PYTHON_BIN_DIR) + ":\"$PATH\" EOMGEN_BUILD_DIR=" + quote(EOMGEN_BUILD_DIR) +
                                " EOMGEN_CACHE_DIR=" + quote(EOMGEN_TEST_CACHE_DIR) + " && set -o pipefail && " +
                                command;
     const std::string shell = "bash -c " + quote(script) + " > " + quote(out.string()) + " 2>&1 < /dev/null";

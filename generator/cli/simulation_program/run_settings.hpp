@@ -21,6 +21,7 @@
 
 #include "eomrt/assembly.hpp"
 #include "eomrt/integrators.hpp"
+#include "eomrt/sampling.hpp"
 #include "eomrt/simulate.hpp"
 
 namespace eomgen::simulation_program {
@@ -181,12 +182,7 @@ RunSettings<Model> parse_arguments(int argc, char** argv) {
   }
 
   eomrt::SimulationOptions<double>& o = run.options;
-  if (o.sample_interval == 0) {
-    // about 1000 rows; a fixed step keeps its exact size by sampling every k-th step
-    const double target = (o.t_end - o.t0) / 1000;
-    o.sample_interval = eomrt::is_adaptive(o.integrator) ? target : o.step * std::max(1.0, std::round(target / o.step));
-    if (!(o.sample_interval > 0)) o.sample_interval = 0;  // t_end == t0: one sample
-  }
+  if (o.sample_interval == 0) o.sample_interval = eomrt::default_sample_interval(o);
   return run;
 }
 
