@@ -13,6 +13,7 @@
 #include <Eigen/Core>
 #include <array>
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <tuple>
 #include <utility>
@@ -92,24 +93,6 @@ py::ssize_t size_of(Arg a) {
   return 0;
 }
 
-/// Points the view of \p a in \p point at state \p k of \p arg.
-template <class Model>
-void bind(Point<Model>& point, Arg a, const Argument& arg, py::ssize_t k) {
-  const double* data = arg.at(k);
-  const Eigen::InnerStride<> stride(arg.inner);
-  using P = Point<Model>;
-  // a Map is re-pointed by constructing it anew in place (Eigen's documented way)
-  switch (a) {
-    case Arg::t: point.t = *data; return;
-    case Arg::q: new (&point.q) typename P::template View<Model::nq>(data, Model::nq, stride); return;
-    case Arg::qd: new (&point.qd) typename P::template View<Model::nq>(data, Model::nq, stride); return;
-    case Arg::qdd: new (&point.qdd) typename P::template View<Model::nq>(data, Model::nq, stride); return;
-    case Arg::u: new (&point.u) typename P::template View<Model::nu>(data, Model::nu, stride); return;
-    case Arg::lambda: new (&point.lambda) typename P::template View<Model::nc>(data, Model::nc, stride); return;
-    case Arg::p: return;
-  }
-}
-
 /// Zero inputs, for a call that leaves u out.
 template <class Model>
 const double* zero_inputs() {
@@ -139,60 +122,9 @@ struct FunctionDefinition<Model, returns, Reads<args...>, Outs...> {
   static void define(py::module_& m, const char* name, const std::string& doc, const ParameterSet<Model>& defaults,
                      Call call) {
     const std::string function = name;
-    const ParameterSet<Model>* parameters = &defaults;  // owned by the module (define_model)
+    const ParameterTypes<Model> parameters(m, defaults);
     auto body = [function, parameters, call](const std::array<py::handle, count>& values) -> py::object {
-      constexpr std::array<Arg, count> kinds{args...};
-      constexpr std::array<const char*, count> names{python_name(args)...};
-      std::array<Argument, count> read{};
-      Point<Model> point;
-      for (std::size_t i = 0; i < count; ++i) {
-        const Arg a = kinds[i];
-        const ArgumentName what{function, names[i]};
-        if (a == Arg::p) {
-          point.c = &constants_of<Model>(values[i], *parameters, function.c_str());
-        } else if (a == Arg::u && values[i].is_none()) {
-          read[i].data = detail::zero_inputs<Model>();
-        } else if (a == Arg::t) {
-          read_scalar(values[i], what, read[i]);
-        } else {
-          read_vector(values[i], detail::size_of<Model>(a), what, read[i]);
-        }
-      }
-      const py::ssize_t batch = batch_size(function, names, read);
-      std::tuple<Result<Outs::rows, Outs::cols, Outs::is_vector>...> results{
-          Result<Outs::rows, Outs::cols, Outs::is_vector>(batch)...};
-      py::array_t<double> scalars;
-      if constexpr (returns == Returns::scalar) scalars = py::array_t<double>(std::vector<py::ssize_t>{batch < 0 ? 1 : batch});
-      const py::ssize_t n = batch < 0 ? 1 : batch;
-      py::ssize_t irregular = -1;
-      const char* reason = nullptr;
-      {
-        // a large batch runs without the GIL: other Python threads go on meanwhile
-        std::optional<py::gil_scoped_release> release;
-        if (n >= 64) release.emplace();
-        for (py::ssize_t k = 0; k < n; ++k) {
-          for (std::size_t i = 0; i < count; ++i)
-            if (kinds[i] != Arg::p) detail::bind(point, kinds[i], read[i], k);
-          auto outputs = std::apply([k](auto&... r) { return std::make_tuple(r.at(k)...); }, results);
-          if constexpr (returns == Returns::nothing) {
-            std::apply([&](auto&... o) { call(point, o...); }, outputs);
-          } else if constexpr (returns == Returns::scalar) {
-            scalars.mutable_data()[k] = call(point);
-          } else {
-            const char* why = std::apply([&](auto&... o) { return call(point, o...); }, outputs);
-            if (why != nullptr && irregular < 0) irregular = k, reason = why;
-          }
-        }
-      }
-      if constexpr (returns == Returns::scalar) {
-        if (batch < 0) return py::float_(scalars.data()[0]);
-        return std::move(scalars);
-      } else {
-        if (irregular >= 0)
-          throw py::value_error(function + "(): " +
-                                (batch < 0 ? std::string() : "at state " + std::to_string(irregular) + ": ") + reason);
-        return detail::result_object(std::move(results));
-      }
+      return evaluate(function, parameters, call, values, std::make_index_sequence<count>());
     };
     define_with(m, name, doc, body, std::make_index_sequence<count>());
     // the functions of states and their arguments, by name: for introspection and tests
@@ -201,6 +133,86 @@ struct FunctionDefinition<Model, returns, Reads<args...>, Outs...> {
   }
 
  private:
+  /// Reads the arguments, runs \p call per state, returns the results (see the file comment).
+  template <class Call, std::size_t... I>
+  static py::object evaluate(const std::string& function, const ParameterTypes<Model>& parameters, const Call& call,
+                             const std::array<py::handle, count>& values, std::index_sequence<I...>) {
+    constexpr std::array<const char*, count> names{python_name(args)...};
+    std::array<Argument, count> read{};
+    Point<Model> point;
+    (read_argument<args>(values[I], ArgumentName{function, names[I]}, parameters, read[I], point), ...);
+    const py::ssize_t batch = batch_size(function, names, read);
+    const py::ssize_t n = batch < 0 ? 1 : batch;
+    std::tuple<Result<Outs::rows, Outs::cols, Outs::is_vector>...> results{
+        Result<Outs::rows, Outs::cols, Outs::is_vector>(batch)...};
+    double scalar = 0;
+    py::array scalars;  // a scalar function's batch of results
+    double* scalar_out = &scalar;
+    if constexpr (returns == Returns::scalar) {
+      if (batch >= 0) {
+        const Py_intptr_t dimensions[1] = {batch};
+        scalars = new_doubles(1, dimensions);
+        scalar_out = reinterpret_cast<double*>(py::detail::array_proxy(scalars.ptr())->data);
+      }
+    }
+    py::ssize_t irregular = -1;
+    const char* reason = nullptr;
+    {
+      // a large batch runs without the GIL: other Python threads go on meanwhile
+      std::optional<py::gil_scoped_release> release;
+      if (n >= 64) release.emplace();
+      for (py::ssize_t k = 0; k < n; ++k) {
+        (bind<args>(point, read[I], k), ...);
+        if constexpr (returns == Returns::nothing) {
+          std::apply([&](auto&... r) { call(point, r.at(k)...); }, results);
+        } else if constexpr (returns == Returns::scalar) {
+          scalar_out[k] = call(point);
+        } else {
+          const char* why = std::apply([&](auto&... r) { return call(point, r.at(k)...); }, results);
+          if (why != nullptr && irregular < 0) irregular = k, reason = why;
+        }
+      }
+    }
+    if constexpr (returns == Returns::scalar) {
+      if (batch < 0) return py::float_(scalar);
+      return scalars;
+    } else {
+      if (irregular >= 0)
+        throw py::value_error(function + "(): " +
+                              (batch < 0 ? std::string() : "at state " + std::to_string(irregular) + ": ") + reason);
+      return detail::result_object(std::move(results));
+    }
+  }
+
+  /// Reads the argument \p a of a call into \p out (a state argument) or \p point (p).
+  template <Arg a>
+  static void read_argument(py::handle value, const ArgumentName& name, const ParameterTypes<Model>& parameters,
+                            Argument& out, Point<Model>& point) {
+    if constexpr (a == Arg::p)
+      point.c = &parameters.constants(value, name.function.c_str());
+    else if constexpr (a == Arg::t)
+      read_scalar(value, name, out);
+    else if (a == Arg::u && value.is_none())
+      out.data = detail::zero_inputs<Model>();
+    else
+      read_vector(value, detail::size_of<Model>(a), name, out);
+  }
+
+  /// Points the view of \p a in \p point at state \p k of \p arg (a Map is re-pointed by
+  /// constructing it anew in place, Eigen's documented way).
+  template <Arg a>
+  static void bind(Point<Model>& point, const Argument& arg, py::ssize_t k) {
+    using P = Point<Model>;
+    const double* data = arg.at(k);
+    const Eigen::InnerStride<> stride(arg.inner);
+    if constexpr (a == Arg::t) point.t = *data;
+    if constexpr (a == Arg::q) new (&point.q) typename P::template View<Model::nq>(data, Model::nq, stride);
+    if constexpr (a == Arg::qd) new (&point.qd) typename P::template View<Model::nq>(data, Model::nq, stride);
+    if constexpr (a == Arg::qdd) new (&point.qdd) typename P::template View<Model::nq>(data, Model::nq, stride);
+    if constexpr (a == Arg::u) new (&point.u) typename P::template View<Model::nu>(data, Model::nu, stride);
+    if constexpr (a == Arg::lambda) new (&point.lambda) typename P::template View<Model::nc>(data, Model::nc, stride);
+  }
+
   template <class Body, std::size_t... I>
   static void define_with(py::module_& m, const char* name, const std::string& doc, Body body,
                           std::index_sequence<I...>) {

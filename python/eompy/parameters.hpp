@@ -111,8 +111,8 @@ template <class Model>
 }
 
 template <class Model>
-std::string parameters_repr(const ParameterSet<Model>& s, const ParameterText<Model>& text) {
-  std::string r = std::string(Model::name) + ".Parameters(";
+std::string parameters_repr(const std::string& module, const ParameterSet<Model>& s, const ParameterText<Model>& text) {
+  std::string r = module + ".Parameters(";
   for (std::size_t k = 0; k < Model::np; ++k)
     r += (k ? ", " : "") + std::string(text.attributes[k]) + "=" + std::string(py::repr(py::float_(s.get(k))));
   return r + ")";
@@ -140,13 +140,6 @@ void define_parameters(py::module_& m, const ParameterText<Model>& text) {
                    }
                    return s;
                  }));
-  for (std::size_t k = 0; k < Model::np; ++k) {
-    const std::string name = text.attributes[k];
-    parameters.def_property(
-        text.attributes[k], [k](const Set& s) { return s.get(k); },
-        [k, name](Set& s, py::handle v) { s.set(k, detail::parameter_value(v, name)); },
-        (std::string("[") + text.units[k] + "]").c_str());
-  }
   // attributes are the parameters only: a misspelt name is an error, not a new attribute
   parameters.def("__setattr__", [text, error](Set& s, const std::string& name, py::handle v) {
     const std::optional<std::size_t> k = detail::parameter_index(text, name);
@@ -156,7 +149,9 @@ void define_parameters(py::module_& m, const ParameterText<Model>& text) {
   parameters.def("__getattr__", [text, error](const Set&, const std::string& name) -> py::object {
     detail::unknown_parameter(error, text, name);
   });
-  parameters.def("__repr__", [text](const Set& s) { return detail::parameters_repr(s, text); });
+  // the module's name, which eval() of the repr finds (a model named NULL is the module NULL_)
+  const std::string module = py::str(m.attr("__name__"));
+  parameters.def("__repr__", [text, module](const Set& s) { return detail::parameters_repr(module, s, text); });
   parameters.def("__eq__", [](const Set& a, const Set& b) {
     for (std::size_t k = 0; k < Model::np; ++k)
       if (a.get(k) != b.get(k)) return false;
@@ -185,6 +180,14 @@ void define_parameters(py::module_& m, const ParameterText<Model>& text) {
       },
       "The values by name, in the model's order.");
   parameters.attr("__hash__") = py::none();  // mutable, compared by value
+  // the parameters last: one named like a method (to_dict) is the parameter
+  for (std::size_t k = 0; k < Model::np; ++k) {
+    const std::string name = text.attributes[k];
+    parameters.def_property(
+        text.attributes[k], [k](const Set& s) { return s.get(k); },
+        [k, name](Set& s, py::handle v) { s.set(k, detail::parameter_value(v, name)); },
+        (std::string("[") + text.units[k] + "]").c_str());
+  }
 
   py::class_<Constants>(m, "Constants",
                         "The values of the generated functions that depend on the parameters alone, computed once: "
@@ -193,8 +196,8 @@ void define_parameters(py::module_& m, const ParameterText<Model>& text) {
       .def_property_readonly(
           "parameters", [](const Constants& c) { return Set(c.parameters()); },
           "A copy of the parameters these were computed from.")
-      .def("__repr__", [text](const Constants& c) {
-        return std::string(Model::name) + ".Constants(" + detail::parameters_repr(Set(c.parameters()), text) + ")";
+      .def("__repr__", [text, module](const Constants& c) {
+        return module + ".Constants(" + detail::parameters_repr(module, Set(c.parameters()), text) + ")";
       })
       .def(py::pickle([](const Constants& c) {
                         py::tuple state(Model::np);
@@ -225,5 +228,38 @@ const typename Model::template Constants<double>& constants_of(py::handle p, con
                        ".Constants (or None for the defaults), got an object of type " +
                        std::string(py::str(py::type::handle_of(p).attr("__name__"))));
 }
+
+/// How a call finds the Constants of its p, fast: the classes' Python types are looked up once,
+/// when a function is defined, and an argument of exactly one of them is read in place (a
+/// general pybind11 cast per call would cost more than a small model's function).
+template <class Model>
+class ParameterTypes {
+ public:
+  using Set = ParameterSet<Model>;
+  using Constants = typename Set::Constants;
+
+  /// The classes must be defined in \p m (define_parameters); \p defaults outlives every call.
+  ParameterTypes(const py::module_& m, const Set& defaults)
+      : set_(reinterpret_cast<PyTypeObject*>(m.attr("Parameters").ptr())),
+        constants_(reinterpret_cast<PyTypeObject*>(m.attr("Constants").ptr())),
+        defaults_(&defaults) {}
+
+  /// The Constants of \p p: Parameters, Constants or None (the defaults).
+  /// \throws py::type_error for anything else
+  const Constants& constants(py::handle p, const char* function) const {
+    if (Py_TYPE(p.ptr()) == set_) return static_cast<const Set*>(value(p))->constants();
+    if (Py_TYPE(p.ptr()) == constants_) return *static_cast<const Constants*>(value(p));
+    return constants_of<Model>(p, *defaults_, function);  // None, a subclass, or an error
+  }
+
+ private:
+  static const void* value(py::handle p) {
+    return reinterpret_cast<py::detail::instance*>(p.ptr())->get_value_and_holder().value_ptr();
+  }
+
+  PyTypeObject* set_;
+  PyTypeObject* constants_;
+  const Set* defaults_;
+};
 
 }  // namespace eompy

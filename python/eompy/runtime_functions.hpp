@@ -65,7 +65,7 @@ void define_linearization(py::module_& m, const ParameterSet<Model>& defaults) {
              "A (2 nq x 2 nq) and B (2 nq x nu) of dx' = A dx + B du about the state x = [q; qd] and the inputs u, "
              "x' = [qd; qdd], from the exact derivatives of the equations (eomrt::linearization; with constraints, "
              "qdd and lambda from the KKT system).",
-             defaults, [](const Point<Model>& x, auto& A, auto& B) -> const char* {
+             defaults, [](const Point<Model>& x, auto&& A, auto&& B) -> const char* {
                thread_local eomrt::LinearizationWorkspace<Model, double> ws;
                const typename Types::Coordinates q = x.q, qd = x.qd;
                const typename Types::Inputs u = x.u;

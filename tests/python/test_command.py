@@ -88,3 +88,21 @@ def test_an_output_directory_that_is_a_file_is_refused(tmp_path):
     run = eomgen("python", SOURCE_DIR / "models" / "cart_pole.eom", "-o", target, check=False)
     assert run.returncode == 2 and "is not a directory" in run.stderr
     assert target.read_text() == "keep me"
+
+
+def test_a_model_named_with_every_name_that_broke_generated_code_builds_and_imports(tmp_path):
+    # tests/cli/models/colliding_names.eom: C++ keywords, macros, the header's own names, and
+    # Python's keywords (lambda, import); the module is named NULL_, as its header's namespace
+    eomgen("python", SOURCE_DIR / "tests" / "cli" / "models" / "colliding_names.eom", "-o", tmp_path,
+           "--cache-dir", CACHE)
+    check = run_python(
+        "import math, NULL_ as m\n"
+        "p = m.Parameters(lambda_=1.5)\n"
+        "assert p.lambda_ == 1.5 and p.import_ == 2.11 and p.class_ == 1.51 and p.outputs_ == 1.31\n"
+        "assert len(p.to_dict()) == m.np and m.parameter_defaults['lambda'] == 1.17\n"
+        "assert eval(repr(p), {'NULL_': m}) == p\n"
+        "T = m.kinetic_energy(0.0, [0.3, 0.4], [-0.2, 0.5], p)\n"
+        "assert math.isfinite(T) and T > 0\n"
+        "print(m.name, m.state_names, m.input_names)", tmp_path)
+    assert check.returncode == 0, check.stderr
+    assert check.stdout == "NULL ('errno', '__theta', 'errno_dot', '__theta_dot') ('stdin', '_u_')\n"

@@ -99,6 +99,8 @@ def test_views_of_any_layout_read_the_same_values(module):
     assert np.array_equal(m.forcing(t, x[:, :m.nq], x[:, m.nq:], u), contiguous)  # column blocks
     fortran = np.asfortranarray(x)
     assert np.array_equal(m.forcing(t, fortran[:, :m.nq], fortran[:, m.nq:], np.asfortranarray(u)), contiguous)
+    swapped = m.forcing(t, x[:, :m.nq].astype(">f8"), x[:, m.nq:].astype(">f8"), u.astype(">f8"))
+    assert np.array_equal(swapped, contiguous)  # big-endian: converted
     reversed_x = x[::-1]  # negative strides: copied
     assert np.array_equal(m.forcing(t[::-1], reversed_x[:, :m.nq], reversed_x[:, m.nq:], u[::-1]), contiguous[::-1])
     as_lists = m.forcing(t.tolist(), x[:, :m.nq].tolist(), x[:, m.nq:].tolist(), u.tolist())

@@ -90,7 +90,7 @@ std::string definition(const FunctionSpec& f) {
     for (std::size_t k = 0; k < f.shapes.size(); ++k) {
       outs += fmt::format(", eompy::Out<{}, {}, {}>", f.shapes[k].rows, f.shapes[k].cols,
                           f.shapes[k].cols == "1" ? "true" : "false");
-      out_parameters += fmt::format(", auto& o{}", k);
+      out_parameters += fmt::format(", auto&& o{}", k);
       call_arguments += fmt::format(", o{}", k);
     }
   }
