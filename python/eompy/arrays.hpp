@@ -105,7 +105,7 @@ inline bool stride_in_doubles(const py::detail::PyArray_Proxy* a, int d, py::ssi
 template <class Read>
 void read_doubles(py::handle value, const ArgumentName& name, Argument& out, Read read) {
   const py::detail::PyArray_Proxy* a = native_doubles(value);
-  py::array converted;
+  py::object converted;  // not a py::array: its default constructor makes an empty array
   if (a == nullptr) {
     converted = real_array(value, name);
     a = py::detail::array_proxy(converted.ptr());
@@ -197,16 +197,21 @@ struct Result {
   py::array array;
   double* data;
 
-  explicit Result(py::ssize_t batch) {
+  explicit Result(py::ssize_t batch)
+      : array(make(batch)), data(reinterpret_cast<double*>(py::detail::array_proxy(array.ptr())->data)) {}
+  Map at(py::ssize_t k) { return Map(data + k * R * C); }
+
+ private:
+  // made in the initializer list: a default-constructed py::array would be an empty NumPy
+  // array, made and freed at every call for nothing
+  static py::array make(py::ssize_t batch) {
     Py_intptr_t dimensions[3];
     int nd = 0;
     if (batch >= 0) dimensions[nd++] = batch;
     dimensions[nd++] = R;
     if (!vector) dimensions[nd++] = C;
-    array = new_doubles(nd, dimensions);
-    data = reinterpret_cast<double*>(py::detail::array_proxy(array.ptr())->data);
+    return new_doubles(nd, dimensions);
   }
-  Map at(py::ssize_t k) { return Map(data + k * R * C); }
 };
 
 }  // namespace eompy

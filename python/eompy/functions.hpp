@@ -146,7 +146,7 @@ struct FunctionDefinition<Model, returns, Reads<args...>, Outs...> {
     std::tuple<Result<Outs::rows, Outs::cols, Outs::is_vector>...> results{
         Result<Outs::rows, Outs::cols, Outs::is_vector>(batch)...};
     double scalar = 0;
-    py::array scalars;  // a scalar function's batch of results
+    py::object scalars;  // a scalar function's batch of results (not py::array: that would make an empty one)
     double* scalar_out = &scalar;
     if constexpr (returns == Returns::scalar) {
       if (batch >= 0) {
