@@ -53,6 +53,11 @@ const NotRun not_run[] = {
     {"scripts/fuzz.sh 60 2", "installs clang 14 and builds the fuzzer in a second, instrumented build folder; "
                              "CI's fuzz phase runs it, with as many workers as cores (.ci/run)"},
     {"scripts/fuzz.sh 1800 2", "the issue's 30-minute fuzzing run: CI runs the same script for 60 s (.ci/run)"},
+    {"/usr/bin/python3 bench/python/python_bench.py --eomgen build/generator/eomgen --out report.md",
+     "the Python modules' benchmark: minutes of timing on a quiet machine, a benchmark, not a test"},
+    {"/usr/bin/python3 bench/python/python_bench.py --eomgen build/generator/eomgen --quick",
+     "its smoke run is the test Python.benchmark_smoke_run (tests/python/CMakeLists.txt), with the "
+     "suite's eomgen and cache"},
     {"bench/model_times.sh build/generator/eomgen",
      "a benchmark, not a test: times commands and compiles a simulation three times (minutes)"},
 };
