@@ -52,6 +52,13 @@ void add_model_options(CLI::App* sub, Options& o) {
       ->type_name("NAME=VALUE");
 }
 
+// simulate and python share one cache of compiled programs (cached_build.hpp)
+void add_cache_option(CLI::App* sub, std::string& dir, const std::string& what) {
+  sub->add_option("--cache-dir", dir,
+                  "Where compiled " + what + " are kept (default: $EOMGEN_CACHE_DIR, else ~/.cache/eomgen)")
+      ->type_name("DIR");
+}
+
 // --set NAME=VALUE, repeatable; `help` says what it sets
 void add_parameter_option(CLI::App* sub, std::vector<std::string>& set, const std::string& help) {
   sub->add_option("--set", set, help)->delimiter(',')->type_name("NAME=VALUE");
@@ -227,9 +234,7 @@ CLI::App* add_simulate_command(CLI::App& app, Options& o) {
   simulate->add_option("--animate", r.animation_path,
                        "Also write an animated 3D view of the run: one self-contained HTML page (docs/animation.md)")
       ->type_name("FILE.html");
-  simulate->add_option("--cache-dir", r.cache_dir,
-                       "Where compiled simulations are kept (default: $EOMGEN_CACHE_DIR, else ~/.cache/eomgen)")
-      ->type_name("DIR");
+  add_cache_option(simulate, r.cache_dir, "simulations");
   return simulate;
 }
 
@@ -243,9 +248,7 @@ CLI::App* add_python_command(CLI::App& app, Options& o) {
       ->capture_default_str();
   python->add_option("--module-name", r.module_name, "The name to import (default: the model's name)")
       ->type_name("NAME");
-  python->add_option("--cache-dir", r.cache_dir,
-                     "Where compiled modules are kept (default: $EOMGEN_CACHE_DIR, else ~/.cache/eomgen)")
-      ->type_name("DIR");
+  add_cache_option(python, r.cache_dir, "modules");
   python->add_flag("--source-only", r.source_only,
                    "Write the header (model.hpp) and the binding source (module.cpp) to DIR instead of building "
                    "(what eomgen_add_python_module compiles)");
