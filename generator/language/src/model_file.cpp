@@ -6,6 +6,7 @@
 #include <cctype>
 #include <fstream>
 
+#include "eomgen/base/bounded_read.hpp"
 #include "eomgen/base/error.hpp"
 #include "eomgen/language/model_file.hpp"
 #include "eomgen/urdf/urdf_import.hpp"
@@ -162,11 +163,8 @@ Model load_model(const std::string& path, const std::map<std::string, double>& o
     throw Error(fmt::format("{}: a model file takes no URDF import options (repair_inertia, floating_base, fix_massless_joints)", path));
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(fmt::format("{}: error: cannot read the model file", path));
-  // read no further than one byte past the limit: the file may be endless (/dev/zero, a pipe)
-  std::string text(syntax::max_model_bytes + 1, '\0');
-  in.read(text.data(), static_cast<std::streamsize>(text.size()));
+  const std::string text = read_at_most(in, syntax::max_model_bytes);
   if (in.bad()) throw Error(fmt::format("{}: error: cannot read the model file", path));
-  text.resize(static_cast<std::size_t>(in.gcount()));
   return parse_model(text, path, overrides);
 }
 

@@ -24,6 +24,7 @@
 #include <map>
 #include <set>
 
+#include "eomgen/base/bounded_read.hpp"
 #include "eomgen/base/error.hpp"
 #include "eomgen/urdf/urdf_import.hpp"
 #include "joint_space_inertia.hpp"
@@ -782,11 +783,8 @@ bool is_urdf_path(const std::string& path) {
 ImportResult import_urdf(const std::string& path, const ImportOptions& options) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(fmt::format("{}: error: cannot read the URDF file", path));
-  // no further than one byte past the limit: the file may be endless (/dev/zero, a pipe)
-  std::string text(max_urdf_bytes + 1, '\0');
-  in.read(text.data(), static_cast<std::streamsize>(text.size()));
+  const std::string text = read_at_most(in, max_urdf_bytes);
   if (in.bad()) throw Error(fmt::format("{}: error: cannot read the URDF file", path));
-  text.resize(static_cast<std::size_t>(in.gcount()));
   return write_model(read_robot(text, path), options);
 }
 
