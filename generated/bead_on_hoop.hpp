@@ -24,7 +24,7 @@ struct Model {
   static constexpr const char* name = "bead_on_hoop";
   static constexpr const char* description = "Bead sliding on a hoop turning at a constant rate about its vertical diameter";
   static constexpr const char* generator_version = "0.1.0";
-  static constexpr const char* model_hash = "752f3198187b6ad8";
+  static constexpr const char* model_hash = "a930b9f6bb39d94f";
   static constexpr std::array<const char*, nq> coordinate_names{{"theta"}};
   static constexpr std::array<const char*, nu> input_names{{}};
   static constexpr std::array<const char*, np> parameter_names{{"m", "R", "Omega", "g"}};
@@ -127,7 +127,8 @@ struct Model {
     eigen_assert(q.size() == nq && qd.size() == nq && u.size() == nu && F.rows() == nq && F.cols() == 1);
     using std::sin; using std::cos;
     const Scalar w0 = sin(q(0));
-    F(0) = c.k1 * w0 * cos(q(0)) - c.k2 * w0;
+    const Scalar w1 = cos(q(0));
+    F(0) = c.k1 * w0 * w1 - c.k2 * w0;
   }
 
   /// F(q, qd, t, u): everything of Lagrange's equations except M qdd
@@ -409,10 +410,13 @@ struct Model {
     eigen_assert(q.size() == nq && J.rows() == 3 && J.cols() == nq);
     using std::sin; using std::cos;
     const Scalar w0 = t * c.p.Omega;
-    const Scalar w1 = cos(q(0));
-    J(0, 0) = cos(w0) * c.p.R * w1;
-    J(1, 0) = sin(w0) * c.p.R * w1;
-    J(2, 0) = sin(q(0)) * c.p.R;
+    const Scalar w1 = cos(w0);
+    const Scalar w2 = cos(q(0));
+    const Scalar w3 = sin(w0);
+    const Scalar w4 = sin(q(0));
+    J(0, 0) = w1 * c.p.R * w2;
+    J(1, 0) = w3 * c.p.R * w2;
+    J(2, 0) = w4 * c.p.R;
   }
 
   /// J = dy/dq of the output bead_pos
@@ -459,10 +463,13 @@ struct Model {
     eigen_assert(q.size() == nq && J.rows() == 3 && J.cols() == nq);
     using std::sin; using std::cos;
     const Scalar w0 = t * c.p.Omega;
-    const Scalar w1 = cos(q(0));
-    J(0, 0) = cos(w0) * c.p.R * w1;
-    J(1, 0) = sin(w0) * c.p.R * w1;
-    J(2, 0) = sin(q(0)) * c.p.R;
+    const Scalar w1 = cos(w0);
+    const Scalar w2 = cos(q(0));
+    const Scalar w3 = sin(w0);
+    const Scalar w4 = sin(q(0));
+    J(0, 0) = w1 * c.p.R * w2;
+    J(1, 0) = w3 * c.p.R * w2;
+    J(2, 0) = w4 * c.p.R;
   }
 
   /// J = dy/dqd of the output bead_vel

@@ -24,7 +24,7 @@ struct Model {
   static constexpr const char* name = "cart_pole";
   static constexpr const char* description = "Cart-pole: a uniform rod hinged on a cart pushed along a rail";
   static constexpr const char* generator_version = "0.1.0";
-  static constexpr const char* model_hash = "53ac2b3aa7cae057";
+  static constexpr const char* model_hash = "a9519b92bf406243";
   static constexpr std::array<const char*, nq> coordinate_names{{"x", "theta"}};
   static constexpr std::array<const char*, nu> input_names{{"u"}};
   static constexpr std::array<const char*, np> parameter_names{{"mc", "mp", "l", "rp", "g"}};
@@ -152,12 +152,13 @@ struct Model {
     static_assert(fits<std::decay_t<Out1>>(nq, 1), "F: expected nq x 1");
     eigen_assert(q.size() == nq && qd.size() == nq && u.size() == nu && M.rows() == nq && M.cols() == nq && F.rows() == nq && F.cols() == 1);
     using std::sin; using std::cos;
-    const Scalar w0 = sin(q(1));
+    const Scalar w0 = cos(q(1));
+    const Scalar w1 = sin(q(1));
     M(0, 0) = c.k1;
-    M(0, 1) = -(cos(q(1)) * c.k0);
+    M(0, 1) = -(w0 * c.k0);
     M(1, 1) = c.k2;
-    F(0) = u(0) - w0 * c.k0 * qd(1) * qd(1);
-    F(1) = c.k3 * w0;
+    F(0) = u(0) - w1 * c.k0 * qd(1) * qd(1);
+    F(1) = c.k3 * w1;
     M(1, 0) = M(0, 1);
   }
 
@@ -456,9 +457,11 @@ struct Model {
     static_assert(fits<std::decay_t<Out0>>(3, nq), "J: expected 3 x nq");
     eigen_assert(q.size() == nq && J.rows() == 3 && J.cols() == nq);
     using std::sin; using std::cos;
+    const Scalar w0 = cos(q(1));
+    const Scalar w1 = sin(q(1));
     J(0, 0) = Scalar(1);
-    J(0, 1) = -(cos(q(1)) * c.p.l);
-    J(1, 1) = -(sin(q(1)) * c.p.l);
+    J(0, 1) = -(w0 * c.p.l);
+    J(1, 1) = -(w1 * c.p.l);
     J(1, 0) = Scalar(0);
     J(2, 0) = Scalar(0);
     J(2, 1) = Scalar(0);
@@ -481,9 +484,11 @@ struct Model {
     static_assert(fits<std::decay_t<Out0>>(3, 1), "Jdot_qd: expected 3 x 1");
     eigen_assert(q.size() == nq && qd.size() == nq && Jdot_qd.rows() == 3 && Jdot_qd.cols() == 1);
     using std::sin; using std::cos;
-    const Scalar w0 = qd(1) * qd(1);
-    Jdot_qd(0) = sin(q(1)) * c.p.l * w0;
-    Jdot_qd(1) = -(cos(q(1)) * c.p.l * w0);
+    const Scalar w0 = sin(q(1));
+    const Scalar w1 = qd(1) * qd(1);
+    const Scalar w2 = cos(q(1));
+    Jdot_qd(0) = w0 * c.p.l * w1;
+    Jdot_qd(1) = -(w2 * c.p.l * w1);
     Jdot_qd(2) = Scalar(0);
   }
 
@@ -503,9 +508,11 @@ struct Model {
     static_assert(fits<std::decay_t<Out0>>(3, nq), "J: expected 3 x nq");
     eigen_assert(q.size() == nq && J.rows() == 3 && J.cols() == nq);
     using std::sin; using std::cos;
+    const Scalar w0 = cos(q(1));
+    const Scalar w1 = sin(q(1));
     J(0, 0) = Scalar(1);
-    J(0, 1) = -(cos(q(1)) * c.p.l);
-    J(1, 1) = -(sin(q(1)) * c.p.l);
+    J(0, 1) = -(w0 * c.p.l);
+    J(1, 1) = -(w1 * c.p.l);
     J(1, 0) = Scalar(0);
     J(2, 0) = Scalar(0);
     J(2, 1) = Scalar(0);
@@ -528,9 +535,11 @@ struct Model {
     static_assert(fits<std::decay_t<Out0>>(3, 1), "Jdot_qd: expected 3 x 1");
     eigen_assert(q.size() == nq && qd.size() == nq && Jdot_qd.rows() == 3 && Jdot_qd.cols() == 1);
     using std::sin; using std::cos;
-    const Scalar w0 = qd(1) * qd(1);
-    Jdot_qd(0) = sin(q(1)) * c.p.l * w0;
-    Jdot_qd(1) = -(cos(q(1)) * c.p.l * w0);
+    const Scalar w0 = sin(q(1));
+    const Scalar w1 = qd(1) * qd(1);
+    const Scalar w2 = cos(q(1));
+    Jdot_qd(0) = w0 * c.p.l * w1;
+    Jdot_qd(1) = -(w2 * c.p.l * w1);
     Jdot_qd(2) = Scalar(0);
   }
 

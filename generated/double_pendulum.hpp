@@ -24,7 +24,7 @@ struct Model {
   static constexpr const char* name = "double_pendulum";
   static constexpr const char* description = "Planar double pendulum: two point masses on massless rods, relative angles";
   static constexpr const char* generator_version = "0.1.0";
-  static constexpr const char* model_hash = "f976a213dec195d2";
+  static constexpr const char* model_hash = "e19cd6c1c1e034d1";
   static constexpr std::array<const char*, nq> coordinate_names{{"theta1", "theta2"}};
   static constexpr std::array<const char*, nu> input_names{{}};
   static constexpr std::array<const char*, np> parameter_names{{"m1", "m2", "l1", "l2", "g"}};
@@ -138,13 +138,16 @@ struct Model {
     static_assert(fits<DerivedU>(nu, 1), "u: expected a column of nu entries");
     static_assert(fits<std::decay_t<Out0>>(nq, 1), "F: expected nq x 1");
     eigen_assert(q.size() == nq && qd.size() == nq && u.size() == nu && F.rows() == nq && F.cols() == 1);
-    using std::sin;
-    const Scalar w0 = sin(q(1));
-    const Scalar w1 = c.k2 * w0 * qd(0) * qd(0);
-    const Scalar w2 = qd(1) + qd(0);
-    const Scalar w3 = c.k5 * sin(q(0) + q(1));
-    F(0) = c.k2 * w0 * w2 * w2 - sin(q(0)) * c.k4 - w1 - w3;
-    F(1) = -(w1 + w3);
+    using std::sin; using std::cos;
+    const Scalar w0 = sin(q(0));
+    const Scalar w1 = sin(q(1));
+    const Scalar w2 = c.k2 * w1 * qd(0) * qd(0);
+    const Scalar w3 = qd(1) + qd(0);
+    const Scalar w4 = cos(q(0));
+    const Scalar w5 = cos(q(1));
+    const Scalar w6 = c.k5 * (w1 * w4 + w0 * w5);
+    F(0) = c.k2 * w1 * w3 * w3 - w0 * c.k4 - w2 - w6;
+    F(1) = -(w2 + w6);
   }
 
   /// F(q, qd, t, u): everything of Lagrange's equations except M qdd
@@ -167,15 +170,17 @@ struct Model {
     eigen_assert(q.size() == nq && qd.size() == nq && u.size() == nu && M.rows() == nq && M.cols() == nq && F.rows() == nq && F.cols() == 1);
     using std::sin; using std::cos;
     const Scalar w0 = cos(q(1));
-    const Scalar w1 = sin(q(1));
-    const Scalar w2 = c.k2 * w1 * qd(0) * qd(0);
-    const Scalar w3 = qd(1) + qd(0);
-    const Scalar w4 = c.k5 * sin(q(0) + q(1));
+    const Scalar w1 = sin(q(0));
+    const Scalar w2 = sin(q(1));
+    const Scalar w3 = c.k2 * w2 * qd(0) * qd(0);
+    const Scalar w4 = qd(1) + qd(0);
+    const Scalar w5 = cos(q(0));
+    const Scalar w6 = c.k5 * (w0 * w1 + w2 * w5);
     M(0, 0) = c.k1 + c.k0 * w0;
     M(0, 1) = c.k3 + c.k2 * w0;
     M(1, 1) = c.k3;
-    F(0) = c.k2 * w1 * w3 * w3 - sin(q(0)) * c.k4 - w2 - w4;
-    F(1) = -(w2 + w4);
+    F(0) = c.k2 * w2 * w4 * w4 - w1 * c.k4 - w3 - w6;
+    F(1) = -(w3 + w6);
     M(1, 0) = M(0, 1);
   }
 
@@ -308,18 +313,18 @@ struct Model {
     const Scalar w1 = c.p.l1 * w0;
     const Scalar w2 = cos(q(0));
     const Scalar w3 = c.p.l1 * w2;
-    const Scalar w4 = q(0) + q(1);
-    const Scalar w5 = sin(w4);
-    const Scalar w6 = cos(w4);
-    const Scalar w7 = sin(q(1));
-    const Scalar w8 = cos(q(1)) * c.p.l2 * qd(0) + c.p.l1 * qd(0);
+    const Scalar w4 = sin(q(1));
+    const Scalar w5 = cos(q(1));
+    const Scalar w6 = w2 * w4 + w0 * w5;
+    const Scalar w7 = w2 * w5 - w0 * w4;
+    const Scalar w8 = w5 * c.p.l2 * qd(0) + c.p.l1 * qd(0);
     y(0) = w1;
     y(1) = -w3;
-    y(3) = w5 * c.p.l2 + w1;
-    y(4) = -(w3 + w6 * c.p.l2);
-    y(6) = qd(1) * w6 * c.p.l2 - w7 * c.p.l2 * qd(0) * w0 + w8 * w2;
-    y(7) = w8 * w0 + w7 * c.p.l2 * qd(0) * w2 + qd(1) * w5 * c.p.l2;
-    y(9) = w4;
+    y(3) = w6 * c.p.l2 + w1;
+    y(4) = -(w3 + w7 * c.p.l2);
+    y(6) = qd(1) * w7 * c.p.l2 - w4 * c.p.l2 * qd(0) * w0 + w8 * w2;
+    y(7) = w8 * w0 + w4 * c.p.l2 * qd(0) * w2 + qd(1) * w6 * c.p.l2;
+    y(9) = q(0) + q(1);
     y(2) = Scalar(0);
     y(5) = Scalar(0);
     y(8) = Scalar(0);
@@ -351,17 +356,19 @@ struct Model {
     const Scalar w4 = w3 * c.k9;
     const Scalar w5 = w4 * w3 - (c.k11 + c.k3 + w2 + (w1 + c.k10) * c.p.l1);
     const Scalar w6 = sin(q(1));
-    const Scalar w7 = c.p.g * cos(q(0));
-    const Scalar w8 = c.p.g * sin(q(0));
-    const Scalar w9 = qd(0) * c.p.l1 * qd(0);
-    const Scalar w10 = w6 * w7 + w0 * w8 + w9 * w6;
-    const Scalar w11 = w10 * c.k8;
-    const Scalar w12 = qd(1) + qd(0);
-    const Scalar w13 = Scalar(1) / w5 * (w11 * w4 - (c.p.l1 * (w6 * ((w6 * w8 - w7 * w0 - w9 * w0) * c.p.m2 - w12 * c.p.m2 * c.p.l2 * w12) + w0 * w10 * c.p.m2) + c.k12 * w8 + w11));
+    const Scalar w7 = cos(q(0));
+    const Scalar w8 = c.p.g * w7;
+    const Scalar w9 = sin(q(0));
+    const Scalar w10 = c.p.g * w9;
+    const Scalar w11 = qd(0) * c.p.l1 * qd(0);
+    const Scalar w12 = w6 * w8 + w0 * w10 + w11 * w6;
+    const Scalar w13 = w12 * c.k8;
+    const Scalar w14 = qd(1) + qd(0);
+    const Scalar w15 = Scalar(1) / w5 * (w13 * w4 - (c.p.l1 * (w6 * ((w6 * w10 - w8 * w0 - w11 * w0) * c.p.m2 - w14 * c.p.m2 * c.p.l2 * w14) + w0 * w12 * c.p.m2) + c.k12 * w10 + w13));
     pivot(0) = c.k3;
     pivot(1) = -w5;
-    qdd(0) = -w13;
-    qdd(1) = -(w11 * c.k9 - w13 * w4);
+    qdd(0) = -w15;
+    qdd(1) = -(w13 * c.k9 - w15 * w4);
     bool regular = true;
     for (int k = 0; k < 2; ++k) regular = regular && pivot(k) > Scalar(0);
     using std::isfinite;
@@ -393,9 +400,11 @@ struct Model {
     const Scalar w2 = sin(q(1));
     const Scalar w3 = qd(1) + qd(0);
     const Scalar w4 = c.k2 * w2 * qd(0) * qd(0);
-    const Scalar w5 = c.k5 * sin(q(0) + q(1));
-    tau(0) = qdd(1) * w1 + qdd(0) * (c.k1 + c.k0 * w0) - c.k2 * w2 * w3 * w3 + w4 + w5 + sin(q(0)) * c.k4;
-    tau(1) = qdd(1) * c.k3 + w4 + w5 + qdd(0) * w1;
+    const Scalar w5 = sin(q(0));
+    const Scalar w6 = cos(q(0));
+    const Scalar w7 = c.k5 * (w0 * w5 + w2 * w6);
+    tau(0) = qdd(1) * w1 + qdd(0) * (c.k1 + c.k0 * w0) - c.k2 * w2 * w3 * w3 + w4 + w7 + w5 * c.k4;
+    tau(1) = qdd(1) * c.k3 + w4 + w7 + qdd(0) * w1;
   }
 
   /// tau = M qdd - F: the generalized forces to add to produce qdd, from M and F
@@ -461,8 +470,10 @@ struct Model {
     static_assert(fits<std::decay_t<Out0>>(3, nq), "J: expected 3 x nq");
     eigen_assert(q.size() == nq && J.rows() == 3 && J.cols() == nq);
     using std::sin; using std::cos;
-    J(0, 0) = c.p.l1 * cos(q(0));
-    J(1, 0) = c.p.l1 * sin(q(0));
+    const Scalar w0 = cos(q(0));
+    const Scalar w1 = sin(q(0));
+    J(0, 0) = c.p.l1 * w0;
+    J(1, 0) = c.p.l1 * w1;
     J(0, 1) = Scalar(0);
     J(1, 1) = Scalar(0);
     J(2, 0) = Scalar(0);
@@ -487,8 +498,10 @@ struct Model {
     eigen_assert(q.size() == nq && qd.size() == nq && Jdot_qd.rows() == 3 && Jdot_qd.cols() == 1);
     using std::sin; using std::cos;
     const Scalar w0 = qd(0) * qd(0);
-    Jdot_qd(0) = -(c.p.l1 * w0 * sin(q(0)));
-    Jdot_qd(1) = c.p.l1 * w0 * cos(q(0));
+    const Scalar w1 = sin(q(0));
+    const Scalar w2 = cos(q(0));
+    Jdot_qd(0) = -(c.p.l1 * w0 * w1);
+    Jdot_qd(1) = c.p.l1 * w0 * w2;
     Jdot_qd(2) = Scalar(0);
   }
 
@@ -508,13 +521,17 @@ struct Model {
     static_assert(fits<std::decay_t<Out0>>(3, nq), "J: expected 3 x nq");
     eigen_assert(q.size() == nq && J.rows() == 3 && J.cols() == nq);
     using std::sin; using std::cos;
-    const Scalar w0 = q(0) + q(1);
-    const Scalar w1 = cos(w0) * c.p.l2;
-    const Scalar w2 = sin(w0) * c.p.l2;
-    J(0, 0) = c.p.l1 * cos(q(0)) + w1;
-    J(0, 1) = w1;
-    J(1, 0) = w2 + c.p.l1 * sin(q(0));
-    J(1, 1) = w2;
+    const Scalar w0 = cos(q(0));
+    const Scalar w1 = q(0) + q(1);
+    const Scalar w2 = cos(w1);
+    const Scalar w3 = w2 * c.p.l2;
+    const Scalar w4 = sin(w1);
+    const Scalar w5 = w4 * c.p.l2;
+    const Scalar w6 = sin(q(0));
+    J(0, 0) = c.p.l1 * w0 + w3;
+    J(0, 1) = w3;
+    J(1, 0) = w5 + c.p.l1 * w6;
+    J(1, 1) = w5;
     J(2, 0) = Scalar(0);
     J(2, 1) = Scalar(0);
   }
@@ -539,10 +556,12 @@ struct Model {
     const Scalar w0 = q(0) + q(1);
     const Scalar w1 = sin(w0);
     const Scalar w2 = qd(1) * w1 * c.p.l2;
-    const Scalar w3 = cos(w0);
-    const Scalar w4 = qd(1) * w3 * c.p.l2;
-    Jdot_qd(0) = -(qd(1) * (w1 * c.p.l2 * qd(0) + w2) + qd(0) * ((w1 * c.p.l2 + c.p.l1 * sin(q(0))) * qd(0) + w2));
-    Jdot_qd(1) = qd(0) * (w4 + (c.p.l1 * cos(q(0)) + w3 * c.p.l2) * qd(0)) + qd(1) * (w4 + w3 * c.p.l2 * qd(0));
+    const Scalar w3 = sin(q(0));
+    const Scalar w4 = cos(w0);
+    const Scalar w5 = qd(1) * w4 * c.p.l2;
+    const Scalar w6 = cos(q(0));
+    Jdot_qd(0) = -(qd(1) * (w1 * c.p.l2 * qd(0) + w2) + qd(0) * ((w1 * c.p.l2 + c.p.l1 * w3) * qd(0) + w2));
+    Jdot_qd(1) = qd(0) * (w5 + (c.p.l1 * w6 + w4 * c.p.l2) * qd(0)) + qd(1) * (w5 + w4 * c.p.l2 * qd(0));
     Jdot_qd(2) = Scalar(0);
   }
 
@@ -562,15 +581,15 @@ struct Model {
     static_assert(fits<std::decay_t<Out0>>(3, nq), "J: expected 3 x nq");
     eigen_assert(q.size() == nq && J.rows() == 3 && J.cols() == nq);
     using std::sin; using std::cos;
-    const Scalar w0 = c.p.l1 + cos(q(1)) * c.p.l2;
-    const Scalar w1 = cos(q(0));
-    const Scalar w2 = sin(q(1));
-    const Scalar w3 = sin(q(0));
-    const Scalar w4 = q(0) + q(1);
-    J(0, 0) = w0 * w1 - w2 * c.p.l2 * w3;
-    J(0, 1) = cos(w4) * c.p.l2;
-    J(1, 0) = w0 * w3 + w2 * c.p.l2 * w1;
-    J(1, 1) = sin(w4) * c.p.l2;
+    const Scalar w0 = cos(q(1));
+    const Scalar w1 = c.p.l1 + w0 * c.p.l2;
+    const Scalar w2 = cos(q(0));
+    const Scalar w3 = sin(q(1));
+    const Scalar w4 = sin(q(0));
+    J(0, 0) = w1 * w2 - w3 * c.p.l2 * w4;
+    J(0, 1) = (w0 * w2 - w3 * w4) * c.p.l2;
+    J(1, 0) = w1 * w4 + w3 * c.p.l2 * w2;
+    J(1, 1) = (w0 * w4 + w2 * w3) * c.p.l2;
     J(2, 0) = Scalar(0);
     J(2, 1) = Scalar(0);
   }
@@ -597,13 +616,12 @@ struct Model {
     const Scalar w2 = w0 * c.p.l2 * qd(0) * w1;
     const Scalar w3 = cos(q(1));
     const Scalar w4 = sin(q(0));
-    const Scalar w5 = q(0) + q(1);
-    const Scalar w6 = qd(1) * sin(w5) * c.p.l2;
-    const Scalar w7 = w3 * c.p.l2 * qd(0) + c.p.l1 * qd(0);
-    const Scalar w8 = qd(1) * cos(w5) * c.p.l2;
-    const Scalar w9 = -(w0 * c.p.l2 * qd(0) * w4);
-    Jdot_qd(0) = -((w2 + w3 * c.p.l2 * qd(0) * w4 + w6) * qd(1) + (w7 * w4 + w2 + w6) * qd(0));
-    Jdot_qd(1) = (w8 + w3 * c.p.l2 * qd(0) * w1 + w9) * qd(1) + (w8 + w9 + w7 * w1) * qd(0);
+    const Scalar w5 = qd(1) * (w3 * w4 + w0 * w1) * c.p.l2;
+    const Scalar w6 = w3 * c.p.l2 * qd(0) + c.p.l1 * qd(0);
+    const Scalar w7 = qd(1) * (w1 * w3 - w0 * w4) * c.p.l2;
+    const Scalar w8 = -(w0 * c.p.l2 * qd(0) * w4);
+    Jdot_qd(0) = -((w2 + w3 * c.p.l2 * qd(0) * w4 + w5) * qd(1) + (w6 * w4 + w2 + w5) * qd(0));
+    Jdot_qd(1) = (w7 + w3 * c.p.l2 * qd(0) * w1 + w8) * qd(1) + (w7 + w8 + w6 * w1) * qd(0);
     Jdot_qd(2) = Scalar(0);
   }
 
@@ -663,27 +681,29 @@ struct Model {
     static_assert(fits<std::decay_t<Out0>>(nq, npi), "Y: expected nq x npi");
     eigen_assert(q.size() == nq && qd.size() == nq && qdd.size() == nq && Y.rows() == nq && Y.cols() == npi);
     using std::sin; using std::cos;
-    const Scalar w0 = c.p.g * cos(q(0));
-    const Scalar w1 = c.p.g * sin(q(0));
-    const Scalar w2 = sin(q(1));
-    const Scalar w3 = qdd(0) * c.p.l1 + w1;
-    const Scalar w4 = cos(q(1));
-    const Scalar w5 = qd(0) * c.p.l1 * qd(0);
-    const Scalar w6 = w2 * w3 - w0 * w4 - w5 * w4;
-    const Scalar w7 = w2 * w0 + w4 * w3 + w5 * w2;
-    const Scalar w8 = qd(1) + qd(0);
-    const Scalar w9 = w8 * w8;
-    const Scalar w10 = qdd(0) + qdd(1);
-    Y(0, 1) = w0;
-    Y(0, 2) = -w1;
+    const Scalar w0 = cos(q(0));
+    const Scalar w1 = c.p.g * w0;
+    const Scalar w2 = sin(q(0));
+    const Scalar w3 = c.p.g * w2;
+    const Scalar w4 = sin(q(1));
+    const Scalar w5 = qdd(0) * c.p.l1 + w3;
+    const Scalar w6 = cos(q(1));
+    const Scalar w7 = qd(0) * c.p.l1 * qd(0);
+    const Scalar w8 = w4 * w5 - w1 * w6 - w7 * w6;
+    const Scalar w9 = w4 * w1 + w6 * w5 + w7 * w4;
+    const Scalar w10 = qd(1) + qd(0);
+    const Scalar w11 = w10 * w10;
+    const Scalar w12 = qdd(0) + qdd(1);
+    Y(0, 1) = w1;
+    Y(0, 2) = -w3;
     Y(0, 9) = qdd(0);
-    Y(0, 10) = c.p.l1 * (w2 * w6 + w7 * w4);
-    Y(0, 11) = -(w6 + c.p.l1 * (w4 * w9 + w2 * w10));
-    Y(0, 12) = -(w7 - c.p.l1 * (w2 * w9 - w4 * w10));
-    Y(0, 19) = w10;
-    Y(1, 11) = -w6;
-    Y(1, 12) = -w7;
-    Y(1, 19) = w10;
+    Y(0, 10) = c.p.l1 * (w4 * w8 + w9 * w6);
+    Y(0, 11) = -(w8 + c.p.l1 * (w6 * w11 + w4 * w12));
+    Y(0, 12) = -(w9 - c.p.l1 * (w4 * w11 - w6 * w12));
+    Y(0, 19) = w12;
+    Y(1, 11) = -w8;
+    Y(1, 12) = -w9;
+    Y(1, 19) = w12;
     Y(0, 0) = Scalar(0);
     Y(0, 3) = Scalar(0);
     Y(0, 4) = Scalar(0);

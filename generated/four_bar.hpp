@@ -25,7 +25,7 @@ struct Model {
   static constexpr const char* name = "four_bar";
   static constexpr const char* description = "Planar four-bar linkage, Grashof crank-rocker: absolute link angles, loop closed by two holonomic constraints, crank torque";
   static constexpr const char* generator_version = "0.1.0";
-  static constexpr const char* model_hash = "db2e2db71c757c2d";
+  static constexpr const char* model_hash = "43f93875a4a71f5d";
   static constexpr std::array<const char*, nq> coordinate_names{{"q1", "q2", "q3"}};
   static constexpr std::array<const char*, nu> input_names{{"tau"}};
   static constexpr std::array<const char*, np> parameter_names{{"l0", "l1", "l2", "l3", "m1", "m2", "m3", "g"}};
@@ -137,9 +137,13 @@ struct Model {
     static_assert(fits<std::decay_t<Out0>>(nq, 1), "F: expected nq x 1");
     eigen_assert(q.size() == nq && qd.size() == nq && u.size() == nu && F.rows() == nq && F.cols() == 1);
     using std::sin; using std::cos;
-    const Scalar w0 = sin(q(0) - q(1));
-    F(0) = -(c.k4 * cos(q(0)) - u(0) + c.k0 * w0 * qd(1) * qd(1));
-    F(1) = -(c.k5 * cos(q(1)) - c.k0 * qd(0) * qd(0) * w0);
+    const Scalar w0 = cos(q(0));
+    const Scalar w1 = cos(q(1));
+    const Scalar w2 = sin(q(0));
+    const Scalar w3 = sin(q(1));
+    const Scalar w4 = w1 * w2 - w0 * w3;
+    F(0) = -(c.k4 * w0 - u(0) + c.k0 * w4 * qd(1) * qd(1));
+    F(1) = -(c.k5 * w1 - c.k0 * qd(0) * qd(0) * w4);
     F(2) = -(c.k6 * cos(q(2)));
   }
 
@@ -162,14 +166,17 @@ struct Model {
     static_assert(fits<std::decay_t<Out1>>(nq, 1), "F: expected nq x 1");
     eigen_assert(q.size() == nq && qd.size() == nq && u.size() == nu && M.rows() == nq && M.cols() == nq && F.rows() == nq && F.cols() == 1);
     using std::sin; using std::cos;
-    const Scalar w0 = q(0) - q(1);
-    const Scalar w1 = sin(w0);
+    const Scalar w0 = sin(q(1));
+    const Scalar w1 = sin(q(0));
+    const Scalar w2 = cos(q(0));
+    const Scalar w3 = cos(q(1));
+    const Scalar w4 = w3 * w1 - w2 * w0;
     M(0, 0) = c.k1;
-    M(0, 1) = c.k0 * cos(w0);
+    M(0, 1) = c.k0 * (w0 * w1 + w2 * w3);
     M(1, 1) = c.k2;
     M(2, 2) = c.k3;
-    F(0) = -(c.k4 * cos(q(0)) - u(0) + c.k0 * w1 * qd(1) * qd(1));
-    F(1) = -(c.k5 * cos(q(1)) - c.k0 * qd(0) * qd(0) * w1);
+    F(0) = -(c.k4 * w2 - u(0) + c.k0 * w4 * qd(1) * qd(1));
+    F(1) = -(c.k5 * w3 - c.k0 * qd(0) * qd(0) * w4);
     F(2) = -(c.k6 * cos(q(2)));
     M(0, 2) = Scalar(0);
     M(1, 2) = Scalar(0);
@@ -189,16 +196,23 @@ struct Model {
   /// Xi(q, t) of the Pfaffian constraints Xi qd + Xi_t = 0
   template <class DerivedQ, class Out0>
   static void constraint_jacobian([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Constants<typename DerivedQ::Scalar>& c, Out0&& Xi) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
     static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
     static_assert(fits<std::decay_t<Out0>>(nc, nq), "Xi: expected nc x nq");
     eigen_assert(q.size() == nq && Xi.rows() == nc && Xi.cols() == nq);
     using std::sin; using std::cos;
-    Xi(0, 0) = -(c.p.l1 * sin(q(0)));
-    Xi(0, 1) = -(sin(q(1)) * c.p.l2);
-    Xi(0, 2) = sin(q(2)) * c.p.l3;
-    Xi(1, 0) = c.p.l1 * cos(q(0));
-    Xi(1, 1) = cos(q(1)) * c.p.l2;
-    Xi(1, 2) = -(c.p.l3 * cos(q(2)));
+    const Scalar w0 = sin(q(0));
+    const Scalar w1 = sin(q(1));
+    const Scalar w2 = sin(q(2));
+    const Scalar w3 = cos(q(0));
+    const Scalar w4 = cos(q(1));
+    const Scalar w5 = cos(q(2));
+    Xi(0, 0) = -(c.p.l1 * w0);
+    Xi(0, 1) = -(w1 * c.p.l2);
+    Xi(0, 2) = w2 * c.p.l3;
+    Xi(1, 0) = c.p.l1 * w3;
+    Xi(1, 1) = w4 * c.p.l2;
+    Xi(1, 2) = -(c.p.l3 * w5);
   }
 
   /// Xi(q, t) of the Pfaffian constraints Xi qd + Xi_t = 0
@@ -238,10 +252,16 @@ struct Model {
     eigen_assert(q.size() == nq && qd.size() == nq && b.rows() == nc && b.cols() == 1);
     using std::sin; using std::cos;
     const Scalar w0 = qd(0) * qd(0);
-    const Scalar w1 = qd(2) * qd(2);
-    const Scalar w2 = qd(1) * qd(1);
-    b(0) = -(c.p.l1 * w0 * cos(q(0)) - w1 * c.p.l3 * cos(q(2)) + cos(q(1)) * c.p.l2 * w2);
-    b(1) = sin(q(2)) * w1 * c.p.l3 - c.p.l1 * w0 * sin(q(0)) - sin(q(1)) * c.p.l2 * w2;
+    const Scalar w1 = cos(q(0));
+    const Scalar w2 = qd(2) * qd(2);
+    const Scalar w3 = cos(q(2));
+    const Scalar w4 = cos(q(1));
+    const Scalar w5 = qd(1) * qd(1);
+    const Scalar w6 = sin(q(0));
+    const Scalar w7 = sin(q(2));
+    const Scalar w8 = sin(q(1));
+    b(0) = -(c.p.l1 * w0 * w1 - w2 * c.p.l3 * w3 + w4 * c.p.l2 * w5);
+    b(1) = w7 * w2 * c.p.l3 - c.p.l1 * w0 * w6 - w8 * c.p.l2 * w5;
   }
 
   /// dXi/dt qd + dXi_t/dt, so that Xi qdd + b = 0
@@ -255,12 +275,19 @@ struct Model {
   /// phi(q, t) of the holonomic constraints
   template <class DerivedQ, class Out0>
   static void holonomic_residuals([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Constants<typename DerivedQ::Scalar>& c, Out0&& phi) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
     static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
     static_assert(fits<std::decay_t<Out0>>(nh, 1), "phi: expected nh x 1");
     eigen_assert(q.size() == nq && phi.rows() == nh && phi.cols() == 1);
     using std::sin; using std::cos;
-    phi(0) = c.p.l1 * cos(q(0)) + cos(q(1)) * c.p.l2 - c.p.l3 * cos(q(2)) - c.p.l0;
-    phi(1) = -(sin(q(2)) * c.p.l3 - c.p.l1 * sin(q(0)) - sin(q(1)) * c.p.l2);
+    const Scalar w0 = cos(q(0));
+    const Scalar w1 = cos(q(1));
+    const Scalar w2 = cos(q(2));
+    const Scalar w3 = sin(q(0));
+    const Scalar w4 = sin(q(1));
+    const Scalar w5 = sin(q(2));
+    phi(0) = c.p.l1 * w0 + w1 * c.p.l2 - c.p.l3 * w2 - c.p.l0;
+    phi(1) = -(w5 * c.p.l3 - c.p.l1 * w3 - w4 * c.p.l2);
   }
 
   /// phi(q, t) of the holonomic constraints
@@ -357,20 +384,22 @@ struct Model {
     using std::sin; using std::cos;
     Eigen::Matrix<Scalar, nc, nq> Xi;
     const Scalar w0 = cos(q(0));
-    const Scalar w1 = q(0) - q(1);
-    const Scalar w2 = sin(w1);
-    const Scalar w3 = cos(w1);
-    const Scalar w4 = cos(q(1));
-    const Scalar w5 = cos(q(2));
-    tau(0) = qdd(0) * c.k1 + c.k4 * w0 - u(0) + c.k0 * w2 * qd(1) * qd(1) + c.k0 * qdd(1) * w3;
-    tau(1) = c.k5 * w4 + qdd(0) * c.k0 * w3 - c.k0 * qd(0) * qd(0) * w2 + qdd(1) * c.k2;
-    tau(2) = c.k3 * qdd(2) + c.k6 * w5;
-    Xi(0, 0) = -(c.p.l1 * sin(q(0)));
-    Xi(0, 1) = -(sin(q(1)) * c.p.l2);
-    Xi(0, 2) = sin(q(2)) * c.p.l3;
+    const Scalar w1 = cos(q(1));
+    const Scalar w2 = sin(q(0));
+    const Scalar w3 = sin(q(1));
+    const Scalar w4 = w1 * w2 - w0 * w3;
+    const Scalar w5 = w2 * w3 + w0 * w1;
+    const Scalar w6 = cos(q(2));
+    const Scalar w7 = sin(q(2));
+    tau(0) = qdd(0) * c.k1 + c.k4 * w0 - u(0) + c.k0 * w4 * qd(1) * qd(1) + c.k0 * qdd(1) * w5;
+    tau(1) = c.k5 * w1 + qdd(0) * c.k0 * w5 - c.k0 * qd(0) * qd(0) * w4 + qdd(1) * c.k2;
+    tau(2) = c.k3 * qdd(2) + c.k6 * w6;
+    Xi(0, 0) = -(c.p.l1 * w2);
+    Xi(0, 1) = -(w3 * c.p.l2);
+    Xi(0, 2) = w7 * c.p.l3;
     Xi(1, 0) = c.p.l1 * w0;
-    Xi(1, 1) = w4 * c.p.l2;
-    Xi(1, 2) = -(c.p.l3 * w5);
+    Xi(1, 1) = w1 * c.p.l2;
+    Xi(1, 2) = -(c.p.l3 * w6);
     const Eigen::Matrix<Scalar, nq, 1> total = tau;
     lambda = (Xi * Xi.transpose()).ldlt().solve(Xi * total);
     tau = total - Xi.transpose() * lambda;
@@ -441,10 +470,14 @@ struct Model {
     static_assert(fits<std::decay_t<Out0>>(3, nq), "J: expected 3 x nq");
     eigen_assert(q.size() == nq && J.rows() == 3 && J.cols() == nq);
     using std::sin; using std::cos;
-    J(0, 0) = -(c.p.l1 * sin(q(0)));
-    J(0, 1) = -(sin(q(1)) * c.p.l2);
-    J(1, 0) = c.p.l1 * cos(q(0));
-    J(1, 1) = cos(q(1)) * c.p.l2;
+    const Scalar w0 = sin(q(0));
+    const Scalar w1 = sin(q(1));
+    const Scalar w2 = cos(q(0));
+    const Scalar w3 = cos(q(1));
+    J(0, 0) = -(c.p.l1 * w0);
+    J(0, 1) = -(w1 * c.p.l2);
+    J(1, 0) = c.p.l1 * w2;
+    J(1, 1) = w3 * c.p.l2;
     J(0, 2) = Scalar(0);
     J(1, 2) = Scalar(0);
     J(2, 0) = Scalar(0);
@@ -470,9 +503,13 @@ struct Model {
     eigen_assert(q.size() == nq && qd.size() == nq && Jdot_qd.rows() == 3 && Jdot_qd.cols() == 1);
     using std::sin; using std::cos;
     const Scalar w0 = qd(0) * qd(0);
-    const Scalar w1 = qd(1) * qd(1);
-    Jdot_qd(0) = -(c.p.l1 * w0 * cos(q(0)) + cos(q(1)) * c.p.l2 * w1);
-    Jdot_qd(1) = -(sin(q(1)) * c.p.l2 * w1 + c.p.l1 * w0 * sin(q(0)));
+    const Scalar w1 = cos(q(0));
+    const Scalar w2 = cos(q(1));
+    const Scalar w3 = qd(1) * qd(1);
+    const Scalar w4 = sin(q(1));
+    const Scalar w5 = sin(q(0));
+    Jdot_qd(0) = -(c.p.l1 * w0 * w1 + w2 * c.p.l2 * w3);
+    Jdot_qd(1) = -(w4 * c.p.l2 * w3 + c.p.l1 * w0 * w5);
     Jdot_qd(2) = Scalar(0);
   }
 
@@ -492,10 +529,14 @@ struct Model {
     static_assert(fits<std::decay_t<Out0>>(3, nq), "J: expected 3 x nq");
     eigen_assert(q.size() == nq && J.rows() == 3 && J.cols() == nq);
     using std::sin; using std::cos;
-    J(0, 0) = -(c.p.l1 * sin(q(0)));
-    J(0, 1) = -(sin(q(1)) * c.k10);
-    J(1, 0) = c.p.l1 * cos(q(0));
-    J(1, 1) = cos(q(1)) * c.k10;
+    const Scalar w0 = sin(q(0));
+    const Scalar w1 = sin(q(1));
+    const Scalar w2 = cos(q(0));
+    const Scalar w3 = cos(q(1));
+    J(0, 0) = -(c.p.l1 * w0);
+    J(0, 1) = -(w1 * c.k10);
+    J(1, 0) = c.p.l1 * w2;
+    J(1, 1) = w3 * c.k10;
     J(0, 2) = Scalar(0);
     J(1, 2) = Scalar(0);
     J(2, 0) = Scalar(0);
@@ -521,9 +562,13 @@ struct Model {
     eigen_assert(q.size() == nq && qd.size() == nq && Jdot_qd.rows() == 3 && Jdot_qd.cols() == 1);
     using std::sin; using std::cos;
     const Scalar w0 = qd(0) * qd(0);
-    const Scalar w1 = qd(1) * qd(1);
-    Jdot_qd(0) = -(c.p.l1 * w0 * cos(q(0)) + cos(q(1)) * c.k10 * w1);
-    Jdot_qd(1) = -(c.p.l1 * w0 * sin(q(0)) + sin(q(1)) * c.k10 * w1);
+    const Scalar w1 = cos(q(0));
+    const Scalar w2 = cos(q(1));
+    const Scalar w3 = qd(1) * qd(1);
+    const Scalar w4 = sin(q(0));
+    const Scalar w5 = sin(q(1));
+    Jdot_qd(0) = -(c.p.l1 * w0 * w1 + w2 * c.k10 * w3);
+    Jdot_qd(1) = -(c.p.l1 * w0 * w4 + w5 * c.k10 * w3);
     Jdot_qd(2) = Scalar(0);
   }
 

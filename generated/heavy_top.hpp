@@ -24,7 +24,7 @@ struct Model {
   static constexpr const char* name = "heavy_top";
   static constexpr const char* description = "Heavy symmetric top spinning on a fixed pivot at its tip, 3-1-3 Euler angles";
   static constexpr const char* generator_version = "0.1.0";
-  static constexpr const char* model_hash = "cfcf522ea2e2c842";
+  static constexpr const char* model_hash = "42f9f574fdd9a6d6";
   static constexpr std::array<const char*, nq> coordinate_names{{"psi", "theta", "phi"}};
   static constexpr std::array<const char*, nu> input_names{{}};
   static constexpr std::array<const char*, np> parameter_names{{"m", "l", "J1", "J3", "g"}};
@@ -290,13 +290,14 @@ struct Model {
     eigen_assert(q.size() == nq && qd.size() == nq);
     using std::sin; using std::cos;
     Scalar T = Scalar(0);
-    const Scalar w0 = cos(q(1)) * qd(0) + qd(2);
-    const Scalar w1 = cos(q(2));
-    const Scalar w2 = sin(q(1));
-    const Scalar w3 = sin(q(2));
-    const Scalar w4 = qd(1) * w1 + w2 * qd(0) * w3;
-    const Scalar w5 = w2 * qd(0) * w1 - qd(1) * w3;
-    T = w0 * w0 * c.k2 + w4 * w4 * c.k3 + c.k3 * w5 * w5;
+    const Scalar w0 = cos(q(1));
+    const Scalar w1 = w0 * qd(0) + qd(2);
+    const Scalar w2 = cos(q(2));
+    const Scalar w3 = sin(q(1));
+    const Scalar w4 = sin(q(2));
+    const Scalar w5 = qd(1) * w2 + w3 * qd(0) * w4;
+    const Scalar w6 = w3 * qd(0) * w2 - qd(1) * w4;
+    T = w1 * w1 * c.k2 + w5 * w5 * c.k3 + c.k3 * w6 * w6;
     return T;
   }
 
@@ -596,11 +597,12 @@ struct Model {
     const Scalar w0 = sin(q(1));
     const Scalar w1 = sin(q(2));
     const Scalar w2 = cos(q(2));
+    const Scalar w3 = cos(q(1));
     J(0, 0) = w0 * w1;
     J(0, 1) = w2;
     J(1, 0) = w0 * w2;
     J(1, 1) = -w1;
-    J(2, 0) = cos(q(1));
+    J(2, 0) = w3;
     J(2, 2) = Scalar(1);
     J(0, 2) = Scalar(0);
     J(1, 2) = Scalar(0);

@@ -25,7 +25,7 @@ struct Model {
   static constexpr const char* name = "knife_edge";
   static constexpr const char* description = "Knife edge / unicycle on the plane with the no-side-slip nonholonomic constraint";
   static constexpr const char* generator_version = "0.1.0";
-  static constexpr const char* model_hash = "db2ec31776589e16";
+  static constexpr const char* model_hash = "31aa1dda0db85326";
   static constexpr std::array<const char*, nq> coordinate_names{{"x", "y", "theta"}};
   static constexpr std::array<const char*, nu> input_names{{"f", "tau"}};
   static constexpr std::array<const char*, np> parameter_names{{"m", "J1", "J2", "J3"}};
@@ -113,14 +113,17 @@ struct Model {
   /// F(q, qd, t, u): everything of Lagrange's equations except M qdd
   template <class DerivedQ, class DerivedQd, class DerivedU, class Out0>
   static void forcing([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, [[maybe_unused]] const Eigen::MatrixBase<DerivedQd>& qd, const Eigen::MatrixBase<DerivedU>& u, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& F) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
     static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
     static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
     static_assert(fits<DerivedU>(nu, 1), "u: expected a column of nu entries");
     static_assert(fits<std::decay_t<Out0>>(nq, 1), "F: expected nq x 1");
     eigen_assert(q.size() == nq && qd.size() == nq && u.size() == nu && F.rows() == nq && F.cols() == 1);
     using std::sin; using std::cos;
-    F(0) = u(0) * cos(q(2));
-    F(1) = sin(q(2)) * u(0);
+    const Scalar w0 = cos(q(2));
+    const Scalar w1 = sin(q(2));
+    F(0) = u(0) * w0;
+    F(1) = w1 * u(0);
     F(2) = u(1);
   }
 
@@ -143,11 +146,13 @@ struct Model {
     static_assert(fits<std::decay_t<Out1>>(nq, 1), "F: expected nq x 1");
     eigen_assert(q.size() == nq && qd.size() == nq && u.size() == nu && M.rows() == nq && M.cols() == nq && F.rows() == nq && F.cols() == 1);
     using std::sin; using std::cos;
+    const Scalar w0 = cos(q(2));
+    const Scalar w1 = sin(q(2));
     M(0, 0) = c.p.m;
     M(1, 1) = c.p.m;
     M(2, 2) = c.p.J3;
-    F(0) = u(0) * cos(q(2));
-    F(1) = sin(q(2)) * u(0);
+    F(0) = u(0) * w0;
+    F(1) = w1 * u(0);
     F(2) = u(1);
     M(0, 1) = Scalar(0);
     M(0, 2) = Scalar(0);
@@ -173,8 +178,10 @@ struct Model {
     static_assert(fits<std::decay_t<Out0>>(nc, nq), "Xi: expected nc x nq");
     eigen_assert(q.size() == nq && Xi.rows() == nc && Xi.cols() == nq);
     using std::sin; using std::cos;
-    Xi(0, 0) = -sin(q(2));
-    Xi(0, 1) = cos(q(2));
+    const Scalar w0 = sin(q(2));
+    const Scalar w1 = cos(q(2));
+    Xi(0, 0) = -w0;
+    Xi(0, 1) = w1;
     Xi(0, 2) = Scalar(0);
   }
 
@@ -207,12 +214,15 @@ struct Model {
   /// dXi/dt qd + dXi_t/dt, so that Xi qdd + b = 0
   template <class DerivedQ, class DerivedQd, class Out0>
   static void constraint_acceleration_term([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& b) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
     static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
     static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
     static_assert(fits<std::decay_t<Out0>>(nc, 1), "b: expected nc x 1");
     eigen_assert(q.size() == nq && qd.size() == nq && b.rows() == nc && b.cols() == 1);
     using std::sin; using std::cos;
-    b(0) = -((qd(1) * sin(q(2)) + qd(0) * cos(q(2))) * qd(2));
+    const Scalar w0 = sin(q(2));
+    const Scalar w1 = cos(q(2));
+    b(0) = -((qd(1) * w0 + qd(0) * w1) * qd(2));
   }
 
   /// dXi/dt qd + dXi_t/dt, so that Xi qdd + b = 0
@@ -393,8 +403,10 @@ struct Model {
     static_assert(fits<std::decay_t<Out0>>(3, nq), "J: expected 3 x nq");
     eigen_assert(q.size() == nq && J.rows() == 3 && J.cols() == nq);
     using std::sin; using std::cos;
-    J(0, 2) = -sin(q(2));
-    J(1, 2) = cos(q(2));
+    const Scalar w0 = sin(q(2));
+    const Scalar w1 = cos(q(2));
+    J(0, 2) = -w0;
+    J(1, 2) = w1;
     J(0, 0) = Scalar(0);
     J(0, 1) = Scalar(0);
     J(1, 0) = Scalar(0);
@@ -422,8 +434,10 @@ struct Model {
     eigen_assert(q.size() == nq && qd.size() == nq && Jdot_qd.rows() == 3 && Jdot_qd.cols() == 1);
     using std::sin; using std::cos;
     const Scalar w0 = qd(2) * qd(2);
-    Jdot_qd(0) = -(w0 * cos(q(2)));
-    Jdot_qd(1) = -(sin(q(2)) * w0);
+    const Scalar w1 = cos(q(2));
+    const Scalar w2 = sin(q(2));
+    Jdot_qd(0) = -(w0 * w1);
+    Jdot_qd(1) = -(w2 * w0);
     Jdot_qd(2) = Scalar(0);
   }
 
@@ -443,8 +457,10 @@ struct Model {
     static_assert(fits<std::decay_t<Out0>>(1, nq), "J: expected 1 x nq");
     eigen_assert(q.size() == nq && J.rows() == 1 && J.cols() == nq);
     using std::sin; using std::cos;
-    J(0, 0) = cos(q(2));
-    J(0, 1) = sin(q(2));
+    const Scalar w0 = cos(q(2));
+    const Scalar w1 = sin(q(2));
+    J(0, 0) = w0;
+    J(0, 1) = w1;
     J(0, 2) = Scalar(0);
   }
 
@@ -459,12 +475,15 @@ struct Model {
   /// Jdot qd of the output speed: its rate at qdd = 0
   template <class DerivedQ, class DerivedQd, class Out0>
   static void output_bias_speed([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& Jdot_qd) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
     static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
     static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
     static_assert(fits<std::decay_t<Out0>>(1, 1), "Jdot_qd: expected 1 x 1");
     eigen_assert(q.size() == nq && qd.size() == nq && Jdot_qd.rows() == 1 && Jdot_qd.cols() == 1);
     using std::sin; using std::cos;
-    Jdot_qd(0) = -((qd(0) * sin(q(2)) - qd(1) * cos(q(2))) * qd(2));
+    const Scalar w0 = sin(q(2));
+    const Scalar w1 = cos(q(2));
+    Jdot_qd(0) = -((qd(0) * w0 - qd(1) * w1) * qd(2));
   }
 
   /// Jdot qd of the output speed: its rate at qdd = 0
@@ -483,8 +502,10 @@ struct Model {
     static_assert(fits<std::decay_t<Out0>>(1, nq), "J: expected 1 x nq");
     eigen_assert(q.size() == nq && J.rows() == 1 && J.cols() == nq);
     using std::sin; using std::cos;
-    J(0, 0) = -sin(q(2));
-    J(0, 1) = cos(q(2));
+    const Scalar w0 = sin(q(2));
+    const Scalar w1 = cos(q(2));
+    J(0, 0) = -w0;
+    J(0, 1) = w1;
     J(0, 2) = Scalar(0);
   }
 
@@ -499,12 +520,15 @@ struct Model {
   /// Jdot qd of the output side_slip: its rate at qdd = 0
   template <class DerivedQ, class DerivedQd, class Out0>
   static void output_bias_side_slip([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& Jdot_qd) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
     static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
     static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
     static_assert(fits<std::decay_t<Out0>>(1, 1), "Jdot_qd: expected 1 x 1");
     eigen_assert(q.size() == nq && qd.size() == nq && Jdot_qd.rows() == 1 && Jdot_qd.cols() == 1);
     using std::sin; using std::cos;
-    Jdot_qd(0) = -((qd(1) * sin(q(2)) + qd(0) * cos(q(2))) * qd(2));
+    const Scalar w0 = sin(q(2));
+    const Scalar w1 = cos(q(2));
+    Jdot_qd(0) = -((qd(1) * w0 + qd(0) * w1) * qd(2));
   }
 
   /// Jdot qd of the output side_slip: its rate at qdd = 0

@@ -25,7 +25,7 @@ struct Model {
   static constexpr const char* name = "rolling_coin";
   static constexpr const char* description = "Thin disk (coin) rolling without slip on a plane: twist, lean, roll";
   static constexpr const char* generator_version = "0.1.0";
-  static constexpr const char* model_hash = "ea8362ff284fc086";
+  static constexpr const char* model_hash = "d94c13ee2fc9de52";
   static constexpr std::array<const char*, nq> coordinate_names{{"x", "y", "psi", "theta", "phi"}};
   static constexpr std::array<const char*, nu> input_names{{}};
   static constexpr std::array<const char*, np> parameter_names{{"m", "r", "g"}};
@@ -363,14 +363,15 @@ struct Model {
     using std::sin; using std::cos;
     Scalar T = Scalar(0);
     const Scalar w0 = sin(q(4));
-    const Scalar w1 = cos(q(3)) * qd(2);
-    const Scalar w2 = cos(q(4));
-    const Scalar w3 = w0 * w1 + w2 * qd(3);
-    const Scalar w4 = sin(q(3));
-    const Scalar w5 = w4 * qd(2) - qd(4);
-    const Scalar w6 = c.p.r * w4 * qd(3);
-    const Scalar w7 = w0 * qd(3) - w1 * w2;
-    T = w3 * Scalar(0.5) * c.k0 * w3 + w5 * Scalar(0.5) * w5 * c.k1 + c.k3 * (w6 * w6 + qd(0) * qd(0) + qd(1) * qd(1)) + Scalar(0.5) * w7 * c.k0 * w7;
+    const Scalar w1 = cos(q(3));
+    const Scalar w2 = w1 * qd(2);
+    const Scalar w3 = cos(q(4));
+    const Scalar w4 = w0 * w2 + w3 * qd(3);
+    const Scalar w5 = sin(q(3));
+    const Scalar w6 = w5 * qd(2) - qd(4);
+    const Scalar w7 = c.p.r * w5 * qd(3);
+    const Scalar w8 = w0 * qd(3) - w2 * w3;
+    T = w4 * Scalar(0.5) * c.k0 * w4 + w6 * Scalar(0.5) * w6 * c.k1 + c.k3 * (w7 * w7 + qd(0) * qd(0) + qd(1) * qd(1)) + Scalar(0.5) * w8 * c.k0 * w8;
     return T;
   }
 
@@ -414,14 +415,16 @@ struct Model {
     using std::sin; using std::cos;
     const Scalar w0 = cos(q(3));
     const Scalar w1 = sin(q(3));
+    const Scalar w2 = cos(q(2));
+    const Scalar w3 = sin(q(2));
     y(0) = q(0);
     y(1) = q(1);
     y(2) = w0 * c.p.r;
     y(3) = qd(0);
     y(4) = qd(1);
     y(5) = -(c.p.r * w1 * qd(3));
-    y(6) = -(c.p.r * w1 * cos(q(2)) - q(0));
-    y(7) = q(1) - c.p.r * sin(q(2)) * w1;
+    y(6) = -(c.p.r * w1 * w2 - q(0));
+    y(7) = q(1) - c.p.r * w3 * w1;
     y(9) = -(w1 * qd(2) - qd(4));
     y(10) = qd(3);
     y(11) = w0 * qd(2);
@@ -766,10 +769,12 @@ struct Model {
     static_assert(fits<std::decay_t<Out0>>(3, nq), "J: expected 3 x nq");
     eigen_assert(q.size() == nq && J.rows() == 3 && J.cols() == nq);
     using std::sin; using std::cos;
-    J(0, 2) = -sin(q(3));
+    const Scalar w0 = sin(q(3));
+    const Scalar w1 = cos(q(3));
+    J(0, 2) = -w0;
     J(0, 4) = Scalar(1);
     J(1, 3) = Scalar(1);
-    J(2, 2) = cos(q(3));
+    J(2, 2) = w1;
     J(0, 0) = Scalar(0);
     J(0, 1) = Scalar(0);
     J(0, 3) = Scalar(0);
@@ -800,8 +805,10 @@ struct Model {
     static_assert(fits<std::decay_t<Out0>>(3, 1), "Jdot_qd: expected 3 x 1");
     eigen_assert(q.size() == nq && qd.size() == nq && Jdot_qd.rows() == 3 && Jdot_qd.cols() == 1);
     using std::sin; using std::cos;
-    Jdot_qd(0) = -(cos(q(3)) * qd(3) * qd(2));
-    Jdot_qd(2) = -(sin(q(3)) * qd(3) * qd(2));
+    const Scalar w0 = cos(q(3));
+    const Scalar w1 = sin(q(3));
+    Jdot_qd(0) = -(w0 * qd(3) * qd(2));
+    Jdot_qd(2) = -(w1 * qd(3) * qd(2));
     Jdot_qd(1) = Scalar(0);
   }
 

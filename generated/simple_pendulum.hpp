@@ -24,7 +24,7 @@ struct Model {
   static constexpr const char* name = "simple_pendulum";
   static constexpr const char* description = "Simple pendulum: a point mass on a massless rod in a vertical plane";
   static constexpr const char* generator_version = "0.1.0";
-  static constexpr const char* model_hash = "6d297fb46f390ec8";
+  static constexpr const char* model_hash = "47c93708c3ebad5a";
   static constexpr std::array<const char*, nq> coordinate_names{{"theta"}};
   static constexpr std::array<const char*, nu> input_names{{}};
   static constexpr std::array<const char*, np> parameter_names{{"m", "l", "g"}};
@@ -378,8 +378,10 @@ struct Model {
     static_assert(fits<std::decay_t<Out0>>(3, nq), "J: expected 3 x nq");
     eigen_assert(q.size() == nq && J.rows() == 3 && J.cols() == nq);
     using std::sin; using std::cos;
-    J(0, 0) = c.p.l * cos(q(0));
-    J(1, 0) = c.p.l * sin(q(0));
+    const Scalar w0 = cos(q(0));
+    const Scalar w1 = sin(q(0));
+    J(0, 0) = c.p.l * w0;
+    J(1, 0) = c.p.l * w1;
     J(2, 0) = Scalar(0);
   }
 
@@ -401,8 +403,10 @@ struct Model {
     eigen_assert(q.size() == nq && qd.size() == nq && Jdot_qd.rows() == 3 && Jdot_qd.cols() == 1);
     using std::sin; using std::cos;
     const Scalar w0 = qd(0) * qd(0);
-    Jdot_qd(0) = -(w0 * c.p.l * sin(q(0)));
-    Jdot_qd(1) = w0 * c.p.l * cos(q(0));
+    const Scalar w1 = sin(q(0));
+    const Scalar w2 = cos(q(0));
+    Jdot_qd(0) = -(w0 * c.p.l * w1);
+    Jdot_qd(1) = w0 * c.p.l * w2;
     Jdot_qd(2) = Scalar(0);
   }
 
@@ -422,8 +426,10 @@ struct Model {
     static_assert(fits<std::decay_t<Out0>>(3, nq), "J: expected 3 x nq");
     eigen_assert(q.size() == nq && J.rows() == 3 && J.cols() == nq);
     using std::sin; using std::cos;
-    J(0, 0) = c.p.l * cos(q(0));
-    J(1, 0) = c.p.l * sin(q(0));
+    const Scalar w0 = cos(q(0));
+    const Scalar w1 = sin(q(0));
+    J(0, 0) = c.p.l * w0;
+    J(1, 0) = c.p.l * w1;
     J(2, 0) = Scalar(0);
   }
 
@@ -445,8 +451,10 @@ struct Model {
     eigen_assert(q.size() == nq && qd.size() == nq && Jdot_qd.rows() == 3 && Jdot_qd.cols() == 1);
     using std::sin; using std::cos;
     const Scalar w0 = qd(0) * qd(0);
-    Jdot_qd(0) = -(w0 * c.p.l * sin(q(0)));
-    Jdot_qd(1) = w0 * c.p.l * cos(q(0));
+    const Scalar w1 = sin(q(0));
+    const Scalar w2 = cos(q(0));
+    Jdot_qd(0) = -(w0 * c.p.l * w1);
+    Jdot_qd(1) = w0 * c.p.l * w2;
     Jdot_qd(2) = Scalar(0);
   }
 
@@ -505,8 +513,10 @@ struct Model {
     static_assert(fits<std::decay_t<Out0>>(nq, npi), "Y: expected nq x npi");
     eigen_assert(q.size() == nq && qd.size() == nq && qdd.size() == nq && Y.rows() == nq && Y.cols() == npi);
     using std::sin; using std::cos;
-    Y(0, 1) = c.p.g * cos(q(0));
-    Y(0, 2) = -(c.p.g * sin(q(0)));
+    const Scalar w0 = cos(q(0));
+    const Scalar w1 = sin(q(0));
+    Y(0, 1) = c.p.g * w0;
+    Y(0, 2) = -(c.p.g * w1);
     Y(0, 9) = qdd(0);
     Y(0, 0) = Scalar(0);
     Y(0, 3) = Scalar(0);

@@ -24,7 +24,7 @@ struct Model {
   static constexpr const char* name = "spacecraft_panel";
   static constexpr const char* description = "Spacecraft bus spinning about b3 with a solar panel hinged about b2 (notes Example 3.1)";
   static constexpr const char* generator_version = "0.1.0";
-  static constexpr const char* model_hash = "0a4b26b3b1b2dced";
+  static constexpr const char* model_hash = "49f46df77b6e31d9";
   static constexpr std::array<const char*, nq> coordinate_names{{"gamma", "theta"}};
   static constexpr std::array<const char*, nu> input_names{{"tau_b", "tau_p"}};
   static constexpr std::array<const char*, np> parameter_names{{"l_fh", "l_ef", "w_p", "t_p", "m_b", "J_b1", "J_b2", "J_b3", "m_p"}};
@@ -291,8 +291,9 @@ struct Model {
     Scalar T = Scalar(0);
     const Scalar w0 = cos(q(1));
     const Scalar w1 = w0 * qd(0);
-    const Scalar w2 = sin(q(1)) * qd(0);
-    T = w1 * w1 * c.k8 + c.k9 * qd(1) * qd(1) + w2 * w2 * c.k10 - qd(1) * c.k3 * w0 * qd(0) + qd(0) * qd(0) * c.k11;
+    const Scalar w2 = sin(q(1));
+    const Scalar w3 = w2 * qd(0);
+    T = w1 * w1 * c.k8 + c.k9 * qd(1) * qd(1) + w3 * w3 * c.k10 - qd(1) * c.k3 * w0 * qd(0) + qd(0) * qd(0) * c.k11;
     return T;
   }
 
@@ -533,11 +534,12 @@ struct Model {
     static_assert(fits<std::decay_t<Out0>>(3, nq), "J: expected 3 x nq");
     eigen_assert(q.size() == nq && J.rows() == 3 && J.cols() == nq);
     using std::sin; using std::cos;
-    const Scalar w0 = sin(q(1));
-    J(0, 0) = -(cos(q(1)) * c.p.l_fh);
+    const Scalar w0 = cos(q(1));
+    const Scalar w1 = sin(q(1));
+    J(0, 0) = -(w0 * c.p.l_fh);
     J(0, 1) = c.p.l_ef;
-    J(1, 0) = w0 * c.p.l_ef;
-    J(2, 0) = -(w0 * c.p.l_fh);
+    J(1, 0) = w1 * c.p.l_ef;
+    J(2, 0) = -(w1 * c.p.l_fh);
     J(1, 1) = Scalar(0);
     J(2, 1) = Scalar(0);
   }
@@ -559,10 +561,11 @@ struct Model {
     static_assert(fits<std::decay_t<Out0>>(3, 1), "Jdot_qd: expected 3 x 1");
     eigen_assert(q.size() == nq && qd.size() == nq && Jdot_qd.rows() == 3 && Jdot_qd.cols() == 1);
     using std::sin; using std::cos;
-    const Scalar w0 = cos(q(1));
-    Jdot_qd(0) = qd(1) * sin(q(1)) * qd(0) * c.p.l_fh;
-    Jdot_qd(1) = qd(1) * c.p.l_ef * w0 * qd(0);
-    Jdot_qd(2) = -(qd(1) * w0 * qd(0) * c.p.l_fh);
+    const Scalar w0 = sin(q(1));
+    const Scalar w1 = cos(q(1));
+    Jdot_qd(0) = qd(1) * w0 * qd(0) * c.p.l_fh;
+    Jdot_qd(1) = qd(1) * c.p.l_ef * w1 * qd(0);
+    Jdot_qd(2) = -(qd(1) * w1 * qd(0) * c.p.l_fh);
   }
 
   /// Jdot qd of the output tip_velocity: its rate at qdd = 0
@@ -581,9 +584,11 @@ struct Model {
     static_assert(fits<std::decay_t<Out0>>(3, nq), "J: expected 3 x nq");
     eigen_assert(q.size() == nq && J.rows() == 3 && J.cols() == nq);
     using std::sin; using std::cos;
-    J(0, 0) = -sin(q(1));
+    const Scalar w0 = sin(q(1));
+    const Scalar w1 = cos(q(1));
+    J(0, 0) = -w0;
     J(1, 1) = Scalar(1);
-    J(2, 0) = cos(q(1));
+    J(2, 0) = w1;
     J(0, 1) = Scalar(0);
     J(1, 0) = Scalar(0);
     J(2, 1) = Scalar(0);
@@ -606,8 +611,10 @@ struct Model {
     static_assert(fits<std::decay_t<Out0>>(3, 1), "Jdot_qd: expected 3 x 1");
     eigen_assert(q.size() == nq && qd.size() == nq && Jdot_qd.rows() == 3 && Jdot_qd.cols() == 1);
     using std::sin; using std::cos;
-    Jdot_qd(0) = -(qd(1) * cos(q(1)) * qd(0));
-    Jdot_qd(2) = -(qd(1) * sin(q(1)) * qd(0));
+    const Scalar w0 = cos(q(1));
+    const Scalar w1 = sin(q(1));
+    Jdot_qd(0) = -(qd(1) * w0 * qd(0));
+    Jdot_qd(2) = -(qd(1) * w1 * qd(0));
     Jdot_qd(1) = Scalar(0);
   }
 

@@ -24,7 +24,7 @@ struct Model {
   static constexpr const char* name = "spherical_pendulum";
   static constexpr const char* description = "Spherical pendulum: a point mass on a massless rod with a ball-joint pivot";
   static constexpr const char* generator_version = "0.1.0";
-  static constexpr const char* model_hash = "970a9d4bcafaaa2e";
+  static constexpr const char* model_hash = "4aafbdac9c29d4a7";
   static constexpr std::array<const char*, nq> coordinate_names{{"theta", "phi"}};
   static constexpr std::array<const char*, nu> input_names{{}};
   static constexpr std::array<const char*, np> parameter_names{{"m", "l", "g"}};
@@ -401,11 +401,13 @@ struct Model {
     static_assert(fits<std::decay_t<Out0>>(nq, nq), "C: expected nq x nq");
     eigen_assert(q.size() == nq && qd.size() == nq && C.rows() == nq && C.cols() == nq);
     using std::sin; using std::cos;
-    const Scalar w0 = c.k2 * sin(q(0)) * cos(q(0));
-    const Scalar w1 = w0 * qd(1) * Scalar(0.5);
-    C(0, 1) = -w1;
-    C(1, 0) = w1;
-    C(1, 1) = w0 * Scalar(0.5) * qd(0);
+    const Scalar w0 = sin(q(0));
+    const Scalar w1 = cos(q(0));
+    const Scalar w2 = c.k2 * w0 * w1;
+    const Scalar w3 = w2 * qd(1) * Scalar(0.5);
+    C(0, 1) = -w3;
+    C(1, 0) = w3;
+    C(1, 1) = w2 * Scalar(0.5) * qd(0);
     C(0, 0) = Scalar(0);
   }
 
@@ -588,12 +590,15 @@ struct Model {
   /// Jdot qd of the output angular_momentum_vertical: its rate at qdd = 0
   template <class DerivedQ, class DerivedQd, class Out0>
   static void output_bias_angular_momentum_vertical([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, const Constants<typename DerivedQ::Scalar>& c, Out0&& Jdot_qd) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
     static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
     static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
     static_assert(fits<std::decay_t<Out0>>(1, 1), "Jdot_qd: expected 1 x 1");
     eigen_assert(q.size() == nq && qd.size() == nq && Jdot_qd.rows() == 1 && Jdot_qd.cols() == 1);
     using std::sin; using std::cos;
-    Jdot_qd(0) = qd(1) * c.k2 * qd(0) * sin(q(0)) * cos(q(0));
+    const Scalar w0 = sin(q(0));
+    const Scalar w1 = cos(q(0));
+    Jdot_qd(0) = qd(1) * c.k2 * qd(0) * w0 * w1;
   }
 
   /// Jdot qd of the output angular_momentum_vertical: its rate at qdd = 0

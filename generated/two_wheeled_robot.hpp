@@ -25,7 +25,7 @@ struct Model {
   static constexpr const char* name = "two_wheeled_robot";
   static constexpr const char* description = "Two-wheeled self-balancing robot: chassis pitch, heading, two wheels on one axle rolling without slip, wheel motors";
   static constexpr const char* generator_version = "0.1.0";
-  static constexpr const char* model_hash = "3406befa58a6b850";
+  static constexpr const char* model_hash = "82db6d70e7105dad";
   static constexpr std::array<const char*, nq> coordinate_names{{"x", "y", "psi", "theta", "phi_l", "phi_r"}};
   static constexpr std::array<const char*, nu> input_names{{"tau_l", "tau_r"}};
   static constexpr std::array<const char*, np> parameter_names{{"r", "track", "d", "m_c", "I_c1", "I_c2", "I_c3", "m_w", "J_a", "J_d", "g"}};
@@ -478,19 +478,20 @@ struct Model {
     const Scalar w0 = cos(q(3));
     const Scalar w1 = w0 * qd(2);
     const Scalar w2 = sin(q(2));
-    const Scalar w3 = sin(q(3)) * qd(2);
-    const Scalar w4 = cos(q(4));
-    const Scalar w5 = sin(q(4));
-    const Scalar w6 = w4 * w3 + w5 * w1;
-    const Scalar w7 = w1 * w4 - w5 * w3;
-    const Scalar w8 = sin(q(5));
-    const Scalar w9 = cos(q(5));
-    const Scalar w10 = w1 * w8 + w3 * w9;
-    const Scalar w11 = qd(5) + qd(3);
-    const Scalar w12 = qd(4) + qd(3);
-    const Scalar w13 = cos(q(2));
-    const Scalar w14 = w1 * w9 - w8 * w3;
-    T = c.k11 * w1 * w1 + qd(3) * qd(3) * c.k12 - qd(0) * w2 * w3 * c.k0 + c.k13 * qd(2) * qd(2) + c.k14 * w6 * w6 + c.k14 * w7 * w7 + qd(0) * qd(0) * c.k15 + c.k14 * w10 * w10 + c.k16 * w3 * w3 + qd(1) * w0 * w2 * qd(3) * c.k0 + w11 * w11 * c.k17 + c.k17 * w12 * w12 + qd(0) * qd(3) * c.k0 * w0 * w13 + c.k15 * qd(1) * qd(1) + qd(1) * w3 * c.k0 * w13 + c.k14 * w14 * w14;
+    const Scalar w3 = sin(q(3));
+    const Scalar w4 = w3 * qd(2);
+    const Scalar w5 = cos(q(4));
+    const Scalar w6 = sin(q(4));
+    const Scalar w7 = w5 * w4 + w6 * w1;
+    const Scalar w8 = w1 * w5 - w6 * w4;
+    const Scalar w9 = sin(q(5));
+    const Scalar w10 = cos(q(5));
+    const Scalar w11 = w1 * w9 + w4 * w10;
+    const Scalar w12 = qd(5) + qd(3);
+    const Scalar w13 = qd(4) + qd(3);
+    const Scalar w14 = cos(q(2));
+    const Scalar w15 = w1 * w10 - w9 * w4;
+    T = c.k11 * w1 * w1 + qd(3) * qd(3) * c.k12 - qd(0) * w2 * w4 * c.k0 + c.k13 * qd(2) * qd(2) + c.k14 * w7 * w7 + c.k14 * w8 * w8 + qd(0) * qd(0) * c.k15 + c.k14 * w11 * w11 + c.k16 * w4 * w4 + qd(1) * w0 * w2 * qd(3) * c.k0 + w12 * w12 * c.k17 + c.k17 * w13 * w13 + qd(0) * qd(3) * c.k0 * w0 * w14 + c.k15 * qd(1) * qd(1) + qd(1) * w4 * c.k0 * w14 + c.k14 * w15 * w15;
     return T;
   }
 
@@ -525,16 +526,19 @@ struct Model {
   /// the model's named outputs, in the order of output_names
   template <class DerivedQ, class DerivedQd, class DerivedU, class Out0>
   static void outputs([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, [[maybe_unused]] const Eigen::MatrixBase<DerivedU>& u, const Constants<typename DerivedQ::Scalar>& c, Out0&& y) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
     static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
     static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
     static_assert(fits<DerivedU>(nu, 1), "u: expected a column of nu entries");
     static_assert(fits<std::decay_t<Out0>>(ny, 1), "y: expected ny x 1");
     eigen_assert(q.size() == nq && qd.size() == nq && u.size() == nu && y.rows() == ny && y.cols() == 1);
     using std::sin; using std::cos;
+    const Scalar w0 = sin(q(2));
+    const Scalar w1 = cos(q(2));
     y(0) = q(0);
     y(1) = q(1);
     y(2) = c.p.r;
-    y(3) = qd(1) * sin(q(2)) + qd(0) * cos(q(2));
+    y(3) = qd(1) * w0 + qd(0) * w1;
     y(4) = q(3);
   }
 
@@ -576,59 +580,56 @@ struct Model {
     const Scalar w14 = sin(q(5));
     const Scalar w15 = cos(q(5));
     const Scalar w16 = w1 * w14 + w5 * w15;
-    const Scalar w17 = w14 * w4 - w0 * w15;
-    const Scalar w18 = cos(q(4));
-    const Scalar w19 = sin(q(4));
-    const Scalar w20 = w18 * w4 + w19 * w0;
-    const Scalar w21 = w1 * w18 - w19 * w5;
-    const Scalar w22 = w5 * qd(3);
-    const Scalar w23 = w0 * w14 + w4 * w15;
-    const Scalar w24 = w1 * w15 - w14 * w5;
-    const Scalar w25 = qd(4) + qd(3);
-    const Scalar w26 = w0 * w0;
-    const Scalar w27 = w0 * w18 - w19 * w4;
-    const Scalar w28 = w4 * w4;
-    const Scalar w29 = w18 * w5 + w19 * w1;
-    const Scalar w30 = c.p.J_a * qdd(4);
-    const Scalar w31 = c.p.J_a * qdd(5);
-    const Scalar w32 = qdd(3) * c.p.J_a;
-    const Scalar w33 = c.k10 * w3;
-    const Scalar w34 = -(c.p.r * w3 * w28 + c.p.r * w3 * w26);
-    const Scalar w35 = q(4) + q(3);
-    const Scalar w36 = cos(w35);
-    const Scalar w37 = w36 * w36;
-    const Scalar w38 = sin(w35);
-    const Scalar w39 = w38 * w38;
+    const Scalar w17 = w14 * w4;
+    const Scalar w18 = w0 * w15;
+    const Scalar w19 = w17 - w18;
+    const Scalar w20 = cos(q(4));
+    const Scalar w21 = sin(q(4));
+    const Scalar w22 = w20 * w4 + w21 * w0;
+    const Scalar w23 = w1 * w20 - w21 * w5;
+    const Scalar w24 = w5 * qd(3);
+    const Scalar w25 = w0 * w14 + w4 * w15;
+    const Scalar w26 = w1 * w15 - w14 * w5;
+    const Scalar w27 = qd(4) + qd(3);
+    const Scalar w28 = w0 * w0;
+    const Scalar w29 = w25 * w25;
+    const Scalar w30 = w0 * w20 - w21 * w4;
+    const Scalar w31 = w30 * w30;
+    const Scalar w32 = w22 * w22;
+    const Scalar w33 = w4 * w4;
+    const Scalar w34 = w20 * w5 + w21 * w1;
+    const Scalar w35 = c.p.J_a * qdd(4);
+    const Scalar w36 = c.p.J_a * qdd(5);
+    const Scalar w37 = qdd(3) * c.p.J_a;
+    const Scalar w38 = c.k10 * w3;
+    const Scalar w39 = -(c.p.r * w3 * w33 + c.p.r * w3 * w28);
     const Scalar w40 = c.k10 * w7;
-    const Scalar w41 = c.p.r * w28 * w7 + c.p.r * w26 * w7;
-    const Scalar w42 = q(5) + q(3);
-    const Scalar w43 = cos(w42);
-    const Scalar w44 = w43 * w43;
-    const Scalar w45 = sin(w42);
-    const Scalar w46 = w45 * w45;
-    const Scalar w47 = -Scalar(1);
+    const Scalar w41 = c.p.r * w33 * w7 + c.p.r * w28 * w7;
+    const Scalar w42 = w18 - w17;
+    const Scalar w43 = w42 * w42;
+    const Scalar w44 = -Scalar(1);
     tau(0) = -(w2 * w3 * c.k0 + w6 * w8 * c.k0 + w1 * w3 * qd(3) * c.k0 - qdd(0) * c.k3 + w3 * w4 * qdd(2) * c.k0 + w1 * w5 * c.k0 * w9 + w10 * w8 * c.k0 - qdd(3) * c.k0 * w9);
     tau(1) = qdd(1) * c.k3 - w11 * w10 * c.k0 - w12 * w1 * w5 * c.k0 + w1 * qd(3) * c.k0 * w7 + w2 * c.k0 * w7 + qdd(3) * w12 * c.k0 + w4 * qdd(2) * c.k0 * w7 - w11 * w6 * c.k0;
-    tau(2) = w13 * w16 * c.k5 * w17 - qdd(0) * w3 * w4 * c.k0 + w20 * (w21 * qd(4) + w18 * w2 - w19 * w22) * c.p.J_d + qdd(1) * w4 * c.k0 * w7 + (w2 * w14 + w22 * w15 + qd(5) * w16) * c.p.J_d * w17 + c.k1 * w2 * w4 + w0 * c.k6 * w5 * qd(3) - w0 * w22 * c.p.I_c3 + w13 * w23 * w24 * c.k5 + w20 * w21 * w25 * c.k5 + (w26 * c.p.I_c3 + w23 * w23 * c.p.J_d + w17 * w17 * c.p.J_d + w27 * w27 * c.p.J_d + w20 * w20 * c.p.J_d + c.k2 + c.k1 * w28) * qdd(2) - (qd(4) * w29 + w22 * w18 + w19 * w2) * w27 * c.p.J_d + w1 * c.k7 * w4 * qd(3) + (qd(5) * w24 + w2 * w15 - w22 * w14) * w23 * c.p.J_d - w25 * w29 * c.k5 * w27;
-    tau(3) = qdd(0) * c.k0 * w9 + qdd(3) * c.k4 - c.k9 * w1 * w5 + w30 + w31 - c.k8 * w4 + qdd(1) * w12 * c.k0;
-    tau(4) = w32 - u(0) + w30;
-    tau(5) = w32 - u(1) + w31;
+    tau(2) = w13 * w16 * c.k5 * w19 - qdd(0) * w3 * w4 * c.k0 + w22 * (w23 * qd(4) + w20 * w2 - w21 * w24) * c.p.J_d + qdd(1) * w4 * c.k0 * w7 + (w2 * w14 + w24 * w15 + qd(5) * w16) * c.p.J_d * w19 + c.k1 * w2 * w4 + w0 * c.k6 * w5 * qd(3) - w0 * w24 * c.p.I_c3 + w13 * w25 * w26 * c.k5 + w22 * w23 * w27 * c.k5 + (w28 * c.p.I_c3 + w29 * c.p.J_d + w19 * w19 * c.p.J_d + w31 * c.p.J_d + w32 * c.p.J_d + c.k2 + c.k1 * w33) * qdd(2) - (qd(4) * w34 + w24 * w20 + w21 * w2) * w30 * c.p.J_d + w1 * c.k7 * w4 * qd(3) + (qd(5) * w26 + w2 * w15 - w24 * w14) * w25 * c.p.J_d - w27 * w34 * c.k5 * w30;
+    tau(3) = qdd(0) * c.k0 * w9 + qdd(3) * c.k4 - c.k9 * w1 * w5 + w35 + w36 - c.k8 * w4 + qdd(1) * w12 * c.k0;
+    tau(4) = w37 - u(0) + w35;
+    tau(5) = w37 - u(1) + w36;
     Xi(0, 1) = Scalar(1);
-    Xi(0, 2) = -w33;
-    Xi(0, 3) = w34;
-    Xi(0, 4) = -(c.p.r * w3 * w37 + c.p.r * w3 * w39);
-    Xi(1, 0) = w47;
+    Xi(0, 2) = -w38;
+    Xi(0, 3) = w39;
+    Xi(0, 4) = -(c.p.r * w3 * w31 + c.p.r * w3 * w32);
+    Xi(1, 0) = w44;
     Xi(1, 2) = w40;
     Xi(1, 3) = w41;
-    Xi(1, 4) = c.p.r * w39 * w7 + c.p.r * w37 * w7;
+    Xi(1, 4) = c.p.r * w32 * w7 + c.p.r * w31 * w7;
     Xi(2, 1) = Scalar(1);
-    Xi(2, 2) = w33;
-    Xi(2, 3) = w34;
-    Xi(2, 5) = -(w44 * c.p.r * w3 + w46 * c.p.r * w3);
-    Xi(3, 0) = w47;
+    Xi(2, 2) = w38;
+    Xi(2, 3) = w39;
+    Xi(2, 5) = -(w43 * c.p.r * w3 + w29 * c.p.r * w3);
+    Xi(3, 0) = w44;
     Xi(3, 2) = -w40;
     Xi(3, 3) = w41;
-    Xi(3, 5) = w46 * c.p.r * w7 + w44 * c.p.r * w7;
+    Xi(3, 5) = w29 * c.p.r * w7 + w43 * c.p.r * w7;
     Xi(0, 0) = Scalar(0);
     Xi(0, 5) = Scalar(0);
     Xi(1, 1) = Scalar(0);
@@ -812,8 +813,10 @@ struct Model {
     static_assert(fits<std::decay_t<Out0>>(1, nq), "J: expected 1 x nq");
     eigen_assert(q.size() == nq && J.rows() == 1 && J.cols() == nq);
     using std::sin; using std::cos;
-    J(0, 0) = cos(q(2));
-    J(0, 1) = sin(q(2));
+    const Scalar w0 = cos(q(2));
+    const Scalar w1 = sin(q(2));
+    J(0, 0) = w0;
+    J(0, 1) = w1;
     J(0, 2) = Scalar(0);
     J(0, 3) = Scalar(0);
     J(0, 4) = Scalar(0);
@@ -831,12 +834,15 @@ struct Model {
   /// Jdot qd of the output forward_speed: its rate at qdd = 0
   template <class DerivedQ, class DerivedQd, class Out0>
   static void output_bias_forward_speed([[maybe_unused]] const typename DerivedQ::Scalar& t, const Eigen::MatrixBase<DerivedQ>& q, const Eigen::MatrixBase<DerivedQd>& qd, [[maybe_unused]] const Constants<typename DerivedQ::Scalar>& c, Out0&& Jdot_qd) noexcept {
+    using Scalar = typename DerivedQ::Scalar;
     static_assert(fits<DerivedQ>(nq, 1), "q: expected a column of nq entries");
     static_assert(fits<DerivedQd>(nq, 1), "qd: expected a column of nq entries");
     static_assert(fits<std::decay_t<Out0>>(1, 1), "Jdot_qd: expected 1 x 1");
     eigen_assert(q.size() == nq && qd.size() == nq && Jdot_qd.rows() == 1 && Jdot_qd.cols() == 1);
     using std::sin; using std::cos;
-    Jdot_qd(0) = -((qd(0) * sin(q(2)) - qd(1) * cos(q(2))) * qd(2));
+    const Scalar w0 = sin(q(2));
+    const Scalar w1 = cos(q(2));
+    Jdot_qd(0) = -((qd(0) * w0 - qd(1) * w1) * qd(2));
   }
 
   /// Jdot qd of the output forward_speed: its rate at qdd = 0

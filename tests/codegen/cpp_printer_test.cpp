@@ -53,8 +53,17 @@ TEST(CppPrinter, DivisorThatIsAProductIsParenthesized) {
 }
 
 TEST(CppPrinter, SharedValuesBecomeTemporariesInOrder) {
-  ir::Program p{{q(0), op(Op::sin, {0}), op(Op::cos, {0}), op(Op::multiply, {1, 2})}, {{M(0, 0), 3}, {M(1, 1), 1}}};
-  EXPECT_EQ(print_cpp(p), "    const Scalar w0 = sin(q(0));\n    M(0, 0) = w0 * cos(q(0));\n    M(1, 1) = w0;\n");
+  ir::Program p{{q(0), op(Op::sin, {0}), op(Op::sqrt, {0}), op(Op::multiply, {1, 2})}, {{M(0, 0), 3}, {M(1, 1), 1}}};
+  EXPECT_EQ(print_cpp(p), "    const Scalar w0 = sin(q(0));\n    M(0, 0) = w0 * sqrt(q(0));\n    M(1, 1) = w0;\n");
+}
+
+TEST(CppPrinter, SineAndCosineOfOneAngleAreBothComputedBeforeTheFirstOutput) {
+  // an output may alias q, so cos(q(0)) written inside M(1, 1)'s statement would be read after
+  // M(0, 0) is stored, and the compiler could not merge it with sin(q(0)) into one sincos
+  ir::Program p{{q(0), op(Op::sin, {0}), op(Op::cos, {0}), q(1), op(Op::multiply, {1, 3})},
+                {{M(0, 0), 4}, {M(1, 1), 2}}};
+  EXPECT_EQ(print_cpp(p), "    const Scalar w0 = sin(q(0));\n    const Scalar w1 = cos(q(0));\n    M(0, 0) = w0 * q(1);\n"
+                          "    M(1, 1) = w1;\n");
 }
 
 TEST(CppPrinter, WithoutSharingEveryUseIsWrittenOut) {

@@ -10,6 +10,7 @@
 #include "eomgen/base/error.hpp"
 #include "eomgen/codegen/cpp_printer.hpp"
 #include "support/ir_builders.hpp"
+#include "support/ir_interpreter.hpp"
 
 namespace eomgen {
 namespace {
@@ -19,44 +20,12 @@ using ir::Op;
 using ir::VariableKind;
 
 using namespace testing::ir_builders;
+using testing::evaluate;
 
 CppPrintOptions options() {
   CppPrintOptions o;
   o.parameter_names = {"a", "m"};
   return o;
-}
-
-// the outputs of a program at the given inputs, with an interpreter independent of the printer
-std::map<ir::Target, double> evaluate(const ir::Program& program, const std::map<ir::Variable, double>& inputs) {
-  std::vector<double> v;
-  for (const Instruction& in : program.instructions) {
-    auto arg = [&](std::size_t k) { return v[in.args[k]]; };
-    double x = 0;
-    if (in.op == Op::number) {
-      x = in.number;
-    } else if (in.op == Op::variable) {
-      x = inputs.at(in.variable);
-    } else if (in.op == Op::add) {
-      for (std::size_t a : in.args) x += v[a];
-    } else if (in.op == Op::multiply) {
-      x = 1;
-      for (std::size_t a : in.args) x *= v[a];
-    } else if (in.op == Op::divide) {
-      x = arg(0) / arg(1);
-    } else if (in.op == Op::negate) {
-      x = -arg(0);
-    } else if (in.op == Op::sin) {
-      x = std::sin(arg(0));
-    } else if (in.op == Op::cos) {
-      x = std::cos(arg(0));
-    } else {
-      ADD_FAILURE() << "the interpreter of this test knows no op " << static_cast<int>(in.op);
-    }
-    v.push_back(x);
-  }
-  std::map<ir::Target, double> out;
-  for (const ir::Assignment& a : program.outputs) out[a.target] = v[a.value];
-  return out;
 }
 
 const std::map<ir::Variable, double> state{{{VariableKind::coordinate, 0}, 0.7},

@@ -40,6 +40,16 @@ class Printer {
     // a variable reads the same way at every use
     for (std::size_t i = 0; i < p.instructions.size(); ++i)
       if (p.instructions[i].op == Op::variable) names_[i] = cpp_variable(p.instructions[i].variable, o);
+    // sin(x) and cos(x) are both computed before the first output is stored: the compiler
+    // merges them into one sincos only then, since an output may alias the inputs x reads
+    std::vector<int> trig(p.instructions.size(), 0);
+    for (const auto& in : p.instructions)
+      if (in.op == Op::sin || in.op == Op::cos) ++trig[in.args[0]];
+    hoisted_.assign(p.instructions.size(), false);
+    for (std::size_t i = 0; i < p.instructions.size(); ++i) {
+      const ir::Instruction& in = p.instructions[i];
+      hoisted_[i] = (in.op == Op::sin || in.op == Op::cos) && trig[in.args[0]] > 1;
+    }
   }
 
   std::string run() {
@@ -47,7 +57,8 @@ class Printer {
     std::size_t temporaries = 0;
     for (std::size_t i = 0; i < program_.instructions.size(); ++i) {
       const ir::Instruction& in = program_.instructions[i];
-      if (in.op == Op::number || in.op == Op::variable || uses_[i] <= 1 || !options_.share_subexpressions) continue;
+      if (in.op == Op::number || in.op == Op::variable || (uses_[i] <= 1 && !hoisted_[i]) || !options_.share_subexpressions)
+        continue;
       names_[i] = fmt::format("{}{}", options_.temporary_prefix, temporaries++);
       body += fmt::format("{}const {} {} = {};\n", options_.indent, options_.scalar, names_[i], expression(i));
     }
@@ -117,6 +128,7 @@ class Printer {
   const CppPrintOptions& options_;
   std::vector<std::size_t> uses_;
   std::vector<std::string> names_;  // of a variable or a temporary: the text that stands for it
+  std::vector<bool> hoisted_;        // computed as a temporary even where used once
 };
 
 }  // namespace

@@ -10,6 +10,7 @@
 #include <iterator>
 #include <set>
 
+#include "eomgen/codegen/angle_sums.hpp"
 #include "eomgen/codegen/parameter_constants.hpp"
 
 namespace eomgen {
@@ -302,8 +303,11 @@ EmittedFunctions emit_functions(const std::vector<FunctionSpec>& table,
   for (const FunctionSpec& f : table) targets.push_back(f.targets);
   const std::vector<ir::Program> programs = lower_functions(targets, intermediates, variables);
   const ir::Program derived = lower(derived_parameters, Subexpressions(), variables);
-  // the baseline without sharing keeps every value where it is used
-  const ConstantSplit split = print.share_subexpressions ? split_constants(programs) : ConstantSplit{{}, programs};
+  // the baseline without sharing keeps every value where it is used, and every call
+  std::vector<ir::Program> optimized;
+  if (print.share_subexpressions)
+    for (const ir::Program& p : programs) optimized.push_back(expand_angle_sums(p));
+  const ConstantSplit split = print.share_subexpressions ? split_constants(optimized) : ConstantSplit{{}, programs};
   EmittedFunctions emitted;
   // the derived parameters are computed as written, each tree whole, however they are printed
   emitted.statistics.push_back(

@@ -1,6 +1,9 @@
 #include "operation_estimate.hpp"
 
 #include <cmath>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "eomgen/symbolic/expression_map.hpp"
 
@@ -14,6 +17,10 @@ using GiNaC::ex;
 // summed angles, which pays only while the calls are few. With 8 here the planar chain of 4 rods
 // took the local form, 16 calls against 8, and its M and F ran at 0.57 of SymPy's speed.
 constexpr double call_cost = 24;
+// Emission merges what sin and cos of one argument cost into one call (codegen/angle_sums.hpp:
+// the compiler makes them one sincos), and computes those of a sum whose terms have sines or
+// cosines of their own by the addition theorems: two products and a sum each.
+constexpr double angle_sum_cost = 3;
 
 // a local static, not one at namespace scope: GiNaC's numbers must exist before it is built
 bool is_minus_one(const ex& e) {
@@ -29,6 +36,19 @@ class Estimate {
   }
 
   double of(const ex& e) { return count(e); }
+
+  /// The sines and cosines met by of(): one call per argument, or the addition theorems' few
+  /// operations for an angle sum whose terms' sines or cosines are computed anyway.
+  double trigonometric_calls() {
+    const auto has_call = [&](const ex& term) { return trig_.contains(term) || trig_.contains(-term); };
+    double operations = 0;
+    for (const auto& [argument, functions] : trig_arguments_) {
+      bool parts_at_hand = GiNaC::is_a<GiNaC::add>(argument);
+      for (std::size_t i = 0; i < argument.nops() && parts_at_hand; ++i) parts_at_hand = has_call(argument.op(i));
+      operations += parts_at_hand ? angle_sum_cost * functions : call_cost;
+    }
+    return operations;
+  }
 
  private:
   struct Facts {
@@ -99,7 +119,17 @@ class Estimate {
       }
       return operations + 1;
     }
-    if (GiNaC::is_a<GiNaC::function>(e)) return operations + call_cost;
+    if (GiNaC::is_a<GiNaC::function>(e)) {
+      const std::string name = GiNaC::ex_to<GiNaC::function>(e).get_name();
+      if ((name != "sin" && name != "cos") || e.nops() != 1) return operations + call_cost;
+      if (const std::size_t* k = trig_.find(e.op(0))) {
+        ++trig_arguments_[*k].second;
+      } else {
+        trig_.emplace(e.op(0), trig_arguments_.size());
+        trig_arguments_.emplace_back(e.op(0), 1);
+      }
+      return operations;
+    }
     return operations;
   }
 
@@ -107,6 +137,9 @@ class Estimate {
   // by value, looked up only: only counts come out
   ExpressionMap<const ex*> definitions_;
   ExpressionMap<Facts> facts_;
+  // the arguments of sin and cos, and how many of the two each has
+  ExpressionMap<std::size_t> trig_;
+  std::vector<std::pair<ex, int>> trig_arguments_;
 };
 
 }  // namespace
@@ -119,7 +152,7 @@ double estimated_operations(const GiNaC::matrix& mass_matrix, const GiNaC::matri
     for (unsigned k = j; k < mass_matrix.cols(); ++k) operations += estimate.of(mass_matrix(j, k));
     operations += estimate.of(forcing(j, 0));
   }
-  return operations;
+  return operations + estimate.trigonometric_calls();
 }
 
 double estimated_operations(const GiNaC::exvector& entries, const std::vector<const Subexpressions*>& intermediates,
@@ -127,7 +160,7 @@ double estimated_operations(const GiNaC::exvector& entries, const std::vector<co
   Estimate estimate(intermediates, variables);
   double operations = 0;
   for (const ex& e : entries) operations += estimate.of(e);
-  return operations;
+  return operations + estimate.trigonometric_calls();
 }
 
 }  // namespace eomgen

@@ -3,7 +3,9 @@
 // two derivations of one model before anything is emitted. It follows what emission does: shared
 // intermediates counted once, parameter-only subexpressions free (they are computed once per
 // parameter set), a sum of n terms n - 1 additions, x^k as k - 1 multiplications, and a call of sin, cos
-// or sqrt weighted as the multiplications it costs.
+// or sqrt weighted as the multiplications it costs: sin and cos of one argument as one call, and
+// those of a sum whose terms have sines or cosines as the addition theorems' few operations (as
+// emission computes them, codegen/angle_sums.hpp).
 #include <ginac/ginac.h>
 
 #include <vector>
