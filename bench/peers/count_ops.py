@@ -274,8 +274,9 @@ def count_body(body):
     for raw in body.split(";"):
         stmt = raw.strip()
         if not stmt or stmt.startswith("using ") or stmt.startswith("return") \
-                or stmt.startswith("(void)") or stmt.startswith("#"):
-            continue
+                or stmt.startswith("(void)") or stmt.startswith("#") \
+                or stmt.startswith("static_assert") or stmt.startswith("eigen_assert"):
+            continue  # declarations and the argument checks, no arithmetic of the function
         toks = tokenize(stmt)
         # find the assignment operator at depth 0
         depth, at = 0, None

@@ -671,7 +671,9 @@ def print_tables(rows, methods, a):
                     "%s %d ops %.3gs" % (v["cse"], v["ops"]["total"], v["cse_s"]) for v in vs)))
 
     P("\n## Evaluation (ns per call, g++ %s, median of rounds, variants interleaved)\n" % a.opt)
-    hdr = "| chain | n | eomgen M+F | " + " | ".join("%s M+F | ratio" % m for m in methods) + \
+    P("trig floor: the same call doing only sin and cos of each coordinate (one sincos each) and "
+      "writing M and F, which every side's M + F computes too.\n")
+    hdr = "| chain | n | trig floor | eomgen M+F | " + " | ".join("%s M+F | ratio" % m for m in methods) + \
           " | eomgen FD | " + " | ".join("%s FD | ratio" % m for m in methods) + " |"
     P(hdr)
     P("|" + "---|" * (hdr.count("|") - 1))
@@ -680,7 +682,8 @@ def print_tables(rows, methods, a):
         if not tv:
             continue
         o = tv["eomgen"]
-        cells = [r["chain"], "%d" % r["n"], "%.1f" % o["mf_ns"]]
+        floor = r["timing"].get("trig_floor_ns")
+        cells = [r["chain"], "%d" % r["n"], "%.1f" % floor if floor else "–", "%.1f" % o["mf_ns"]]
         for m in methods:
             v = tv.get(m)
             cells += ["%.1f" % v["mf_ns"], "%.2fx" % (v["mf_ns"] / o["mf_ns"])] if v else ["–", "–"]
