@@ -116,6 +116,19 @@ TEST(MechanicalSystem, NonholonomicConstraintMustBeLinearInRates) {
                        "nonholonomic constraint 'c': the constraint contains no rate with a non-zero coefficient");
 }
 
+TEST(MechanicalSystem, NonholonomicConstraintWhoseSquaredRateCancelsIsLinear) {
+  // the coefficient of q_dot^2 is q/(q+1) + 1/(q+1) - 1, zero only once normalized: the rate
+  // left in q_dot's coefficient is tested exactly, not refused for its looks
+  Fixture f;
+  const GiNaC::ex vanishing = f.q.q / (f.q.q + 1) + 1 / (f.q.q + 1) - 1;
+  f.s.add_nonholonomic_constraint("c", f.q.qd + f.q.qd * f.q.qd * vanishing);
+  EXPECT_EQ(f.s.constraints().size(), 1u);
+  // and a squared rate whose coefficient does not vanish is refused as before
+  EXPECT_THROW_MESSAGE(
+      f.s.add_nonholonomic_constraint("d", f.q.qd + f.q.qd * f.q.qd * (vanishing + f.q.q)), ModelError,
+      "nonholonomic constraint 'd': the constraint must be linear in the rates, but it is not linear in 'q_dot'");
+}
+
 TEST(MechanicalSystem, HolonomicConstraintMustDependOnCoordinatesOnly) {
   Fixture f;
   EXPECT_THROW_MESSAGE(f.s.add_holonomic_constraint("c", f.q.qd), ModelError,

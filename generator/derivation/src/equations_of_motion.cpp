@@ -454,8 +454,11 @@ class Derivation {
         eom_.constraint_rate_term(i, 0) = vars_.at_rest(c.expression);
         rate_form = c.expression;
       }
-      // d/dt (Xi qd + Xi_t) = Xi qdd + (dXi/dt qd + dXi_t/dt): keep the part without qdd
-      eom_.constraint_acceleration_term(i, 0) = rate_at_zero_acceleration(rate_form);
+      // d/dt (Xi qd + Xi_t) = Xi qdd + (dXi/dt qd + dXi_t/dt): keep the part without qdd. Through
+      // the derivation's memo whatever the size: a wheel's rows share their contact's kinematics,
+      // which GiNaC's tree walk took apart again for each row (a seventh of the bicycle's
+      // linearize); the result is the same expression.
+      eom_.constraint_acceleration_term(i, 0) = without_accelerations_(time_derivative_(rate_form));
     }
     share_large_constraint_terms();
   }

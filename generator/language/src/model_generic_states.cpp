@@ -7,19 +7,27 @@
 #include <random>
 
 #include "eomgen/base/error.hpp"
+#include "eomgen/symbolic/double_evaluator.hpp"
 #include "model_elaborator.hpp"
 
 namespace eomgen::syntax {
 
 std::optional<double> value_at(const GiNaC::ex& e, const GiNaC::exmap& state) {
-  GiNaC::ex v;
+  // in doubles, each shared node once: GiNaC's subs() and evalf() walk the tree, which for a
+  // wheel's constraint rows is many times the graph, in arbitrary-precision numbers
+  DoubleEvaluator values;
+  for (const auto& [symbol, value] : state) {
+    const GiNaC::ex number = value.evalf();
+    if (GiNaC::is_a<GiNaC::numeric>(number) && GiNaC::ex_to<GiNaC::numeric>(number).is_real())
+      values.set(symbol, GiNaC::ex_to<GiNaC::numeric>(number).to_double());
+  }
   try {
-    v = e.subs(state, GiNaC::subs_options::no_pattern).evalf();
-  } catch (const GiNaC::pole_error&) {
+    const double v = values.value(e, "a generic state's value");
+    if (!std::isfinite(v)) return std::nullopt;
+    return v;
+  } catch (const Error&) {  // a symbol without a value, a complex number
     return std::nullopt;
   }
-  if (!GiNaC::is_a<GiNaC::numeric>(v) || !GiNaC::ex_to<GiNaC::numeric>(v).is_real()) return std::nullopt;
-  return GiNaC::ex_to<GiNaC::numeric>(v).to_double();
 }
 
 // Parameters at their defaults; coordinates, rates, inputs and time at irrational-looking values
