@@ -1,10 +1,12 @@
 #include "eomgen/codegen/angle_sums.hpp"
 
 #include <algorithm>
+#include <cstdint>
 #include <iterator>
 #include <map>
 #include <optional>
 #include <tuple>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -47,12 +49,11 @@ enum class Trig { sine, cosine };
 
 class AngleSums {
  public:
-  explicit AngleSums(const ir::Program& program) : program_(program), code_(program.instructions) {
-    for (std::size_t i = 0; i < code_.size(); ++i) {
-      const ir::Instruction& in = code_[i];
+  explicit AngleSums(const ir::Program& program) : program_(program) {
+    for (std::size_t i = 0; i < program.instructions.size(); ++i) {
+      const ir::Instruction& in = program.instructions[i];
       if (in.op == Op::sin) calls_[in.args[0]].sine = i;
       if (in.op == Op::cos) calls_[in.args[0]].cosine = i;
-      if (shareable(in.op)) interned_.emplace(key(in), i);
     }
   }
 
@@ -60,14 +61,22 @@ class AngleSums {
     // sums first by their number of terms, so a sum's parts are decided before it
     std::vector<std::pair<std::size_t, std::size_t>> sums;  // (terms, argument)
     for (const auto& [argument, calls] : calls_)
-      if (code_[argument].op == Op::add) sums.emplace_back(code_[argument].args.size(), argument);
+      if (program_.instructions[argument].op == Op::add)
+        sums.emplace_back(program_.instructions[argument].args.size(), argument);
     std::sort(sums.begin(), sums.end());
+    if (sums.empty()) return program_;
+    add_single_parts();
     for (const auto& [terms, argument] : sums) {
       const Angle angle = angle_of(argument);
       if (const std::optional<Split> split = split_of(angle)) splits_.emplace(argument, *split);
-      available_.emplace(angle, argument);
+      add_sum_part(angle, argument);
     }
     if (splits_.empty()) return program_;
+    code_ = program_.instructions;
+    // the program's values, to share what the theorems build with what it has (only now: a long
+    // chain's programs have no angle sums and a hundred thousand instructions)
+    for (std::size_t i = 0; i < code_.size(); ++i)
+      if (shareable(code_[i].op)) interned_.emplace(key(code_[i]), i);
     std::vector<std::size_t> replacement(code_.size());
     for (std::size_t i = 0; i < replacement.size(); ++i) replacement[i] = i;
     for (const auto& [argument, split] : splits_) {
@@ -102,27 +111,50 @@ class AngleSums {
     return it->second;
   }
 
+  // (of the program's own instructions only)
   Angle angle_of(std::size_t value) const {
+    const std::vector<ir::Instruction>& code = program_.instructions;
     Angle angle;
-    if (code_[value].op != Op::add) return {{value, false}};
-    for (std::size_t term : code_[value].args) {
-      if (code_[term].op == Op::negate) angle.emplace_back(code_[term].args[0], true);
+    if (code[value].op != Op::add) return {{value, false}};
+    for (std::size_t term : code[value].args) {
+      if (code[term].op == Op::negate) angle.emplace_back(code[term].args[0], true);
       else angle.emplace_back(term, false);
     }
     std::sort(angle.begin(), angle.end());
     return angle;
   }
 
-  // the angle as one part: a term whose sine or cosine is computed, or a sum met before
-  std::optional<Part> part(const Angle& angle) const {
-    if (angle.size() == 1) {
-      if (calls_.count(angle[0].first)) return Part{angle[0].first, angle[0].second, 1};
-      return std::nullopt;
-    }
-    if (const auto it = available_.find(angle); it != available_.end()) return Part{it->second, false, angle.size()};
-    if (const auto it = available_.find(negated(angle)); it != available_.end())
-      return Part{it->second, true, angle.size()};
-    return std::nullopt;
+  // An additive hash of an angle: the hash of a sum of two parts is the sum of theirs, so the
+  // part that completes a given one is found by one lookup instead of a search over all pairs
+  // (a chain's outputs take sines of a hundred nested sums).
+  static std::uint64_t hash_of(const Term& t) {
+    std::uint64_t z = (static_cast<std::uint64_t>(t.first) << 1 | (t.second ? 1u : 0u)) + 0x9e3779b97f4a7c15ull;
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+    return z ^ (z >> 31);
+  }
+  static std::uint64_t hash_of(const Angle& a) {
+    std::uint64_t h = 0;
+    for (const Term& t : a) h += hash_of(t);
+    return h;
+  }
+
+  // an angle whose sine and cosine are at hand, as a part of larger ones
+  void add_part(Angle angle, Part part) {
+    const std::uint64_t h = hash_of(angle);
+    by_hash_.emplace(h, parts_.size());
+    parts_.push_back({std::move(angle), part, h});
+  }
+
+  // every argument of a call, either way round, before any sum is split
+  void add_single_parts() {
+    for (const auto& [argument, calls] : calls_)
+      for (const bool negative : {false, true}) add_part(Angle{{argument, negative}}, Part{argument, negative, 1});
+  }
+
+  void add_sum_part(const Angle& angle, std::size_t argument) {
+    add_part(angle, Part{argument, false, angle.size()});
+    add_part(negated(angle), Part{argument, true, angle.size()});
   }
 
   static Angle without(const Angle& whole, const Angle& part) {
@@ -131,25 +163,27 @@ class AngleSums {
     return rest;
   }
 
-  // the angle as two parts, the larger first and as large as can be (the fewest new values
-  // down the line); nothing when no split has both parts at hand
+  // the angle as two parts at hand, the larger as large as can be (the fewest new values down
+  // the line; the first such split in the parts' order); nothing when no split has both parts
   std::optional<Split> split_of(const Angle& angle) const {
-    std::vector<std::pair<Angle, Part>> candidates;
-    for (const Term& t : angle)
-      if (const std::optional<Part> p = part({t})) candidates.emplace_back(Angle{t}, *p);
-    for (const auto& [sum, argument] : available_) {
-      if (sum.size() >= angle.size()) continue;
-      if (std::includes(angle.begin(), angle.end(), sum.begin(), sum.end()))
-        candidates.emplace_back(sum, Part{argument, false, sum.size()});
-      const Angle opposite = negated(sum);
-      if (std::includes(angle.begin(), angle.end(), opposite.begin(), opposite.end()))
-        candidates.emplace_back(opposite, Part{argument, true, sum.size()});
+    const std::uint64_t whole = hash_of(angle);
+    std::optional<Split> best;
+    std::size_t best_size = 0;
+    for (const PartEntry& first : parts_) {
+      if (first.angle.size() >= angle.size() || 2 * first.angle.size() < angle.size()) continue;
+      if (first.angle.size() <= best_size) continue;
+      const auto [from, to] = by_hash_.equal_range(whole - first.hash);
+      for (auto it = from; it != to; ++it) {
+        const PartEntry& second = parts_[it->second];
+        if (first.angle.size() + second.angle.size() != angle.size()) continue;
+        if (!std::includes(angle.begin(), angle.end(), first.angle.begin(), first.angle.end())) continue;
+        if (without(angle, first.angle) != second.angle) continue;
+        best = Split{first.part, second.part};
+        best_size = first.angle.size();
+        break;
+      }
     }
-    std::stable_sort(candidates.begin(), candidates.end(),
-                     [](const auto& a, const auto& b) { return a.first.size() > b.first.size(); });
-    for (const auto& [taken, first] : candidates)
-      if (const std::optional<Part> second = part(without(angle, taken))) return Split{first, *second};
-    return std::nullopt;
+    return best;
   }
 
   // sin or cos of the value `argument`: by its split, or the program's call (a new call for the
@@ -224,10 +258,16 @@ class AngleSums {
   }
 
   const ir::Program& program_;
-  std::vector<ir::Instruction> code_;  // the program's instructions, then the new ones
+  std::vector<ir::Instruction> code_;  // the program's instructions, then the new ones (once rewriting)
   std::map<std::pair<Op, std::vector<std::size_t>>, std::size_t> interned_;
   std::map<std::size_t, Calls> calls_;       // by argument
-  std::map<Angle, std::size_t> available_;  // sums with a sine or cosine, decided so far
+  struct PartEntry {
+    Angle angle;
+    Part part;
+    std::uint64_t hash;
+  };
+  std::vector<PartEntry> parts_;  // the angles at hand: the calls' arguments, then the sums decided so far
+  std::unordered_multimap<std::uint64_t, std::size_t> by_hash_;  // into parts_
   std::map<std::size_t, Split> splits_;      // by argument: the sums rewritten
   std::map<std::pair<std::size_t, Trig>, Signed> trig_memo_;
 };

@@ -7,6 +7,7 @@
 #include <random>
 
 #include "eomgen/base/error.hpp"
+#include "eomgen/mechanics/variables.hpp"
 #include "eomgen/symbolic/double_evaluator.hpp"
 #include "model_elaborator.hpp"
 
@@ -16,8 +17,10 @@ std::optional<double> value_at(const GiNaC::ex& e, const GiNaC::exmap& state) {
   // in doubles, each shared node once: GiNaC's subs() and evalf() walk the tree, which for a
   // wheel's constraint rows is many times the graph, in arbitrary-precision numbers
   DoubleEvaluator values;
-  for (const auto& [symbol, value] : state) {
-    const GiNaC::ex number = value.evalf();
+  for (const GiNaC::ex& symbol : symbols_of(e)) {  // e's few, not the state's hundreds
+    const auto value = state.find(symbol);
+    if (value == state.end()) continue;
+    const GiNaC::ex number = value->second.evalf();
     if (GiNaC::is_a<GiNaC::numeric>(number) && GiNaC::ex_to<GiNaC::numeric>(number).is_real())
       values.set(symbol, GiNaC::ex_to<GiNaC::numeric>(number).to_double());
   }
