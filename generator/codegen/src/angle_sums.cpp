@@ -5,7 +5,6 @@
 #include <iterator>
 #include <map>
 #include <optional>
-#include <tuple>
 #include <unordered_map>
 #include <utility>
 #include <vector>
@@ -38,7 +37,6 @@ Angle negated(Angle a) {
 struct Part {
   std::size_t argument;
   bool negative;
-  std::size_t size;  // terms
 };
 
 struct Split {
@@ -149,12 +147,12 @@ class AngleSums {
   // every argument of a call, either way round, before any sum is split
   void add_single_parts() {
     for (const auto& [argument, calls] : calls_)
-      for (const bool negative : {false, true}) add_part(Angle{{argument, negative}}, Part{argument, negative, 1});
+      for (const bool negative : {false, true}) add_part(Angle{{argument, negative}}, Part{argument, negative});
   }
 
   void add_sum_part(const Angle& angle, std::size_t argument) {
-    add_part(angle, Part{argument, false, angle.size()});
-    add_part(negated(angle), Part{argument, true, angle.size()});
+    add_part(angle, Part{argument, false});
+    add_part(negated(angle), Part{argument, true});
   }
 
   static Angle without(const Angle& whole, const Angle& part) {
@@ -175,8 +173,9 @@ class AngleSums {
       const auto [from, to] = by_hash_.equal_range(whole - first.hash);
       for (auto it = from; it != to; ++it) {
         const PartEntry& second = parts_[it->second];
+        // the hashes may collide; the terms decide (with the sizes adding up, angle less first
+        // equal to second means first is a part of angle)
         if (first.angle.size() + second.angle.size() != angle.size()) continue;
-        if (!std::includes(angle.begin(), angle.end(), first.angle.begin(), first.angle.end())) continue;
         if (without(angle, first.angle) != second.angle) continue;
         best = Split{first.part, second.part};
         best_size = first.angle.size();

@@ -8,29 +8,14 @@
 
 #include "eomgen/base/error.hpp"
 #include "eomgen/mechanics/variables.hpp"
-#include "eomgen/symbolic/double_evaluator.hpp"
 #include "model_elaborator.hpp"
 
 namespace eomgen::syntax {
 
 std::optional<double> value_at(const GiNaC::ex& e, const GiNaC::exmap& state) {
-  // in doubles, each shared node once: GiNaC's subs() and evalf() walk the tree, which for a
-  // wheel's constraint rows is many times the graph, in arbitrary-precision numbers
-  DoubleEvaluator values;
-  for (const GiNaC::ex& symbol : symbols_of(e)) {  // e's few, not the state's hundreds
-    const auto value = state.find(symbol);
-    if (value == state.end()) continue;
-    const GiNaC::ex number = value->second.evalf();
-    if (GiNaC::is_a<GiNaC::numeric>(number) && GiNaC::ex_to<GiNaC::numeric>(number).is_real())
-      values.set(symbol, GiNaC::ex_to<GiNaC::numeric>(number).to_double());
-  }
-  try {
-    const double v = values.value(e, "a generic state's value");
-    if (!std::isfinite(v)) return std::nullopt;
-    return v;
-  } catch (const Error&) {  // a symbol without a value, a complex number
-    return std::nullopt;
-  }
+  const std::optional<double> v = value_in_doubles(e, state);
+  if (!v || !std::isfinite(*v)) return std::nullopt;
+  return v;
 }
 
 // Parameters at their defaults; coordinates, rates, inputs and time at irrational-looking values

@@ -7,7 +7,6 @@
 
 #include <Eigen/Eigenvalues>
 
-#include "eomgen/symbolic/double_evaluator.hpp"
 #include "eomgen/base/error.hpp"
 
 namespace eomgen {
@@ -16,18 +15,6 @@ namespace {
 using GiNaC::ex;
 
 bool contains_kind(const Variables& v, const ex& e, SymbolKind kind) { return v.contains(e, kind); }
-
-// Numeric value of a constant expression at the parameters' defaults, if it has one. Evaluated
-// in doubles: a pole (1/z with z = 0) gives inf, not a GiNaC exception (which would leak).
-std::optional<double> numeric_value(const ex& e, const GiNaC::exmap& defaults) {
-  DoubleEvaluator evaluator;
-  for (const auto& [symbol, value] : defaults) evaluator.set(symbol, GiNaC::ex_to<GiNaC::numeric>(value).to_double());
-  try {
-    return evaluator.value(e, "a constant");
-  } catch (const Error&) {
-    return std::nullopt;  // depends on coordinates, rates or inputs
-  }
-}
 
 // An inertia matrix about the mass centre belongs to some mass distribution exactly when its
 // principal moments are non-negative and each is at most the sum of the other two (J1 = Iyy +
@@ -135,7 +122,7 @@ void MechanicalSystem::add_particle(const std::string& name, const ex& mass, Poi
   const std::string what = fmt::format("particle '{}'", name);
   require_point(point, what);
   variables_.require_known_symbols(mass, what);
-  auto m = numeric_value(mass, parameter_defaults());
+  auto m = value_in_doubles(mass, parameter_defaults());
   if (!m) throw ModelError(fmt::format("{}: the mass must be a constant (parameters and numbers)", what));
   if (!std::isfinite(*m))
     throw ModelError(fmt::format("{}: the mass is infinite or undefined at the parameters' default values "
@@ -154,7 +141,7 @@ void MechanicalSystem::add_rigid_body(const std::string& name, const ex& mass, P
   if (inertia.rows() != 3 || inertia.cols() != 3)
     throw ModelError(fmt::format("{}: expected a 3x3 inertia matrix, got {}x{}", what, inertia.rows(), inertia.cols()));
   const auto defaults = parameter_defaults();
-  auto m = numeric_value(mass, defaults);
+  auto m = value_in_doubles(mass, defaults);
   if (!m) throw ModelError(fmt::format("{}: the mass must be a constant (parameters and numbers)", what));
   if (!std::isfinite(*m))
     throw ModelError(fmt::format("{}: the mass is infinite or undefined at the parameters' default values "
@@ -164,7 +151,7 @@ void MechanicalSystem::add_rigid_body(const std::string& name, const ex& mass, P
   for (unsigned i = 0; i < 3; ++i)
     for (unsigned j = 0; j < 3; ++j) {
       variables_.require_known_symbols(inertia(i, j), what);
-      auto value = numeric_value(inertia(i, j), defaults);
+      auto value = value_in_doubles(inertia(i, j), defaults);
       if (!value)
         throw ModelError(fmt::format("{}: inertia entry ({},{}) must be a constant", what, i + 1, j + 1));
       J(i, j) = *value;

@@ -300,6 +300,22 @@ GiNaC::exset symbols_of(const GiNaC::ex& e) {
   return symbols;
 }
 
+std::optional<double> value_in_doubles(const GiNaC::ex& e, const GiNaC::exmap& values) {
+  DoubleEvaluator evaluator;
+  for (const GiNaC::ex& symbol : symbols_of(e)) {  // e's few, not the map's hundreds
+    const auto value = values.find(symbol);
+    if (value == values.end()) continue;
+    const GiNaC::ex number = value->second.evalf();
+    if (GiNaC::is_a<GiNaC::numeric>(number) && GiNaC::ex_to<GiNaC::numeric>(number).is_real())
+      evaluator.set(symbol, GiNaC::ex_to<GiNaC::numeric>(number).to_double());
+  }
+  try {
+    return evaluator.value(e, "an expression");
+  } catch (const Error&) {  // a symbol without a value, a complex number
+    return std::nullopt;
+  }
+}
+
 bool Variables::contains(const GiNaC::ex& e, SymbolKind kind) const {
   for (const GiNaC::ex& s : symbols_of(e))
     if (kind_of(s) == kind) return true;

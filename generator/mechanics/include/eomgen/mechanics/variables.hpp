@@ -63,6 +63,11 @@ std::string tex_name(const std::string& name);
 /// Every symbol in e, visiting shared subexpressions once (linear in the expression's graph).
 GiNaC::exset symbols_of(const GiNaC::ex& e);
 
+/// e in doubles with its symbols at the numbers `values` gives them, each shared node once
+/// (GiNaC's subs() and evalf() walk the tree): inf or NaN where e has a pole there; nothing where
+/// a symbol of e has no real number in `values` or e is complex.
+std::optional<double> value_in_doubles(const GiNaC::ex& e, const GiNaC::exmap& values);
+
 class Variables {
  public:
   Variables();
