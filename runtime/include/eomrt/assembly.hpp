@@ -16,8 +16,8 @@
 /// another), then Gauss-Newton steps toward the nearest consistent point: each solves the
 /// constraints linearized at the current point for the point nearest the request, and is
 /// restored onto phi = 0 and kept only if it comes nearer. Rates: the same problem is linear,
-/// one solve. Every solve is a complete orthogonal decomposition, rank-revealing, so redundant
-/// rows and singular configurations cost nothing but their rank.
+/// one solve. Every solve is of minimum norm and rank-revealing (eomrt/minimum_norm.hpp), so
+/// redundant rows and singular configurations cost nothing but their rank.
 ///
 /// Where the held values admit no solution (three given angles of a four-bar that do not close
 /// its loop, a given forward speed and wheel rate that disagree), they are released: held
@@ -25,11 +25,13 @@
 /// says so; the caller names what moved. Rates are first solved with the preferred entries held
 /// too (the declared independent speeds a caller did not give stay at their guesses), then
 /// without them, then released.
-#include <Eigen/Dense>
+#include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
+#include "eomrt/lu_factorization.hpp"
+#include "eomrt/minimum_norm.hpp"
 #include "eomrt/model_traits.hpp"
 #include "eomrt/regularity.hpp"
 
@@ -107,8 +109,8 @@ class Assembly {
   Assembly(Problem& problem, const AssemblyOptions<Scalar>& options) : problem_(problem), options_(options) {
     // rows dependent to rounding (a redundant closure, a singular configuration) count as
     // dependent, by the threshold every other solve of the runtime uses (regularity.hpp)
-    cod_.setThreshold(default_singular_rcond<Scalar>());
-    cod_rates_.setThreshold(default_singular_rcond<Scalar>());
+    minimum_norm_.set_threshold(default_singular_rcond<Scalar>());
+    minimum_norm_rates_.set_threshold(default_singular_rcond<Scalar>());
   }
 
   /// Assembles q and qd in place (see the file comment); q_held, qd_held: the given entries,
@@ -206,8 +208,10 @@ class Assembly {
       for (int attempt = 0; attempt < 30 && !reduced; ++attempt) {
         damped_ = gram_;
         damped_.diagonal().array() += mu;
-        ldlt_.compute(damped_);
-        step_ = -(s.asDiagonal() * (A_.transpose() * ldlt_.solve(phi_)));
+        damped_lu_.compute(damped_);
+        multipliers_ = phi_;
+        damped_lu_.solve_in_place(multipliers_);
+        step_ = -(s.asDiagonal() * (A_.transpose() * multipliers_));
         // Newton converges quadratically: once the step is at rounding level of q, phi is too
         if (step_.cwiseAbs().maxCoeff() <= 4 * eps * (1 + q.cwiseAbs().maxCoeff())) {
           if (mu > Scalar(1e-12) * scale) {  // a step damped to nothing, not Newton's
@@ -251,10 +255,11 @@ class Assembly {
       // the point nearest q0 where the constraints linearized at q hold: q0 + S y with
       // Phi S y = -(phi + Phi (q0 - q)), y of minimum norm
       A_ = Phi_ * s.asDiagonal();
-      cod_.compute(A_);
+      minimum_norm_.compute(A_);
       offset_ = q0 - q;
       residual_ = phi_ + Phi_ * offset_;
-      step_ = offset_ - s.asDiagonal() * cod_.solve(residual_);
+      minimum_norm_.solve(residual_, y_);
+      step_ = offset_ - s.asDiagonal() * y_;
       if (step_.cwiseAbs().maxCoeff() <= 64 * eps * (1 + q.cwiseAbs().maxCoeff())) break;
       bool nearer = false;
       for (Scalar alpha = 1; alpha >= Scalar(1) / 64 && !nearer; alpha /= 2) {
@@ -278,42 +283,49 @@ class Assembly {
 
   bool assemble_positions(Coordinates& q, const Mask& held) {
     solved_q_ = Mask::Constant(q.size(), false);
-    if (problem_.holonomic_count() == 0) return true;
-    if (!evaluate_positions(q)) return failed(AssemblyStatus::non_finite), false;
-    if (phi_violation(q) <= options_.tolerance) return true;  // consistent already: left as given
-    const Coordinates q0 = q;
-    Coordinates s;
-    scaling(held, false, s);
-    if (nearest(q, q0, s)) return determined(s, Phi_, solved_q_), true;
-    scaling(held, true, s);
-    report_.positions_released = held.any();
-    if (held.any() && nearest(q, q0, s)) {
-      report_.status = AssemblyStatus::held_values_moved;
-      determined(s, Phi_, solved_q_);
+    if constexpr (Holonomic::RowsAtCompileTime == 0) {
+      (void)held;  // a fixed size without holonomic rows: no position phase to compile
       return true;
-    }
-    if (!evaluate_positions(q) || !phi_.allFinite()) {
+    } else {
+      if (problem_.holonomic_count() == 0) return true;
+      if (!evaluate_positions(q)) return failed(AssemblyStatus::non_finite), false;
+      if (phi_violation(q) <= options_.tolerance) return true;  // consistent already: left as given
+      const Coordinates q0 = q;
+      Coordinates s;
+      scaling(held, false, s);
+      if (nearest(q, q0, s)) return determined(s, Phi_, solved_q_), true;
+      scaling(held, true, s);
+      report_.positions_released = held.any();
+      if (held.any() && nearest(q, q0, s)) {
+        report_.status = AssemblyStatus::held_values_moved;
+        determined(s, Phi_, solved_q_);
+        return true;
+      }
+      if (!evaluate_positions(q) || !phi_.allFinite()) {
+        q = q0;
+        failed(AssemblyStatus::non_finite);
+        return false;
+      }
+      // the residual where the released search ended, the nearest it came to closing
+      Eigen::Index row = 0;
+      phi_violation(q, &row);
+      report_.status = AssemblyStatus::unreachable;
+      report_.worst_row = problem_.holonomic_row(row);
+      report_.worst_residual = phi_(row);
+      report_.worst_is_position = true;
       q = q0;
-      failed(AssemblyStatus::non_finite);
       return false;
+    
     }
-    // the residual where the released search ended, the nearest it came to closing
-    Eigen::Index row = 0;
-    phi_violation(q, &row);
-    report_.status = AssemblyStatus::unreachable;
-    report_.worst_row = problem_.holonomic_row(row);
-    report_.worst_residual = phi_(row);
-    report_.worst_is_position = true;
-    q = q0;
-    return false;
   }
 
   /// qd0 + S y with Xi S y = -(Xi qd0 + Xi_t), y of minimum norm; \return whether it holds
   bool solve_rates(const Coordinates& qd0, const Coordinates& s, Coordinates& qd, Eigen::Index& row) {
     A_rates_ = Xi_ * s.asDiagonal();
-    cod_rates_.compute(A_rates_);
+    minimum_norm_rates_.compute(A_rates_);
     c_ = Xi_ * qd0 + Xi_t_;
-    qd = qd0 - s.asDiagonal() * cod_rates_.solve(c_);
+    minimum_norm_rates_.solve(c_, y_);
+    qd = qd0 - s.asDiagonal() * y_;
     c_ = Xi_ * qd + Xi_t_;
     return qd.allFinite() && relative_violation(c_, Xi_, qd.cwiseAbs(), Xi_t_, &row) <= options_.tolerance;
   }
@@ -364,27 +376,27 @@ class Assembly {
   const AssemblyOptions<Scalar>& options_;
   AssemblyReport<Scalar> report_;
   Mask solved_q_, solved_qd_;
-  Coordinates weights_, step_, trial_, candidate_, offset_;
-  Holonomic phi_, phi0_, predicted_, residual_;
+  Coordinates weights_, step_, trial_, candidate_, offset_, y_;
+  Holonomic phi_, phi0_, predicted_, residual_, multipliers_;
   Gradients Phi_;
   Jacobian Xi_;
   Constraints Xi_t_, c_;
   Gradients A_;
   using Gram = Eigen::Matrix<Scalar, Gradients::RowsAtCompileTime, Gradients::RowsAtCompileTime>;
   Gram gram_, damped_;
-  Eigen::LDLT<Gram> ldlt_;
+  LuFactorization<Scalar, Gram::RowsAtCompileTime> damped_lu_;
   Jacobian A_rates_;
-  Eigen::CompleteOrthogonalDecomposition<Gradients> cod_;
-  Eigen::CompleteOrthogonalDecomposition<Jacobian> cod_rates_;
+  MinimumNormSolver<Gradients> minimum_norm_;
+  MinimumNormSolver<Jacobian> minimum_norm_rates_;
 };
 
 /// The constraint terms of a model at one time and parameter set, as Assembly asks for them.
 template <class Model, class Scalar, class ParametersOrConstants>
 class ModelConstraintTerms {
   using Types = ModelTypes<Model, Scalar>;
-  // a model without holonomic rows never evaluates them; dynamic types of size 0 stand in for
-  // the fixed ones, whose decompositions do not compile with zero rows
-  static constexpr int nh_fixed = Model::nh > 0 ? Model::nh : Eigen::Dynamic;
+  // a model without holonomic rows never evaluates them: Assembly compiles no position phase
+  // for its fixed types of zero rows (dynamic ones would instantiate Eigen's general products)
+  static constexpr int nh_fixed = Model::nh;
 
  public:
   using Coordinates = typename Types::Coordinates;
@@ -447,8 +459,7 @@ using HeldEntries = Eigen::Array<bool, 2 * Model::nq, 1>;
 /// Assembles a model's state in place: the consistent state nearest x, holding the entries
 /// `held` marks (see the file comment). The declared independent speeds (Model::independent_
 /// speeds) not held stay at their guesses where the constraints allow. Without constraints x
-/// is left as it is. Needs no heap with the model's fixed sizes, except where Eigen's complete
-/// orthogonal decomposition of a fixed-size matrix uses its own fixed-size workspace.
+/// is left as it is. Needs no heap with the model's fixed sizes.
 /// \param[in]     p        parameters, or their Constants (model_traits.hpp)
 /// \param[in]     t        time
 /// \param[in,out] x        the request [q; qd] on entry, the assembled state on return (the

@@ -8,9 +8,9 @@
 /// e.g. for a quaternion attitude with omega = 2 S(q) qd, where M has rank nq - 1; the KKT
 /// matrix is still regular as long as M is positive definite on the null space of Xi.
 #include <Eigen/Core>
-#include <Eigen/LU>
-#include <Eigen/QR>
 
+#include "eomrt/lu_factorization.hpp"
+#include "eomrt/pivoted_qr.hpp"
 #include "eomrt/regularity.hpp"
 #include "eomrt/status.hpp"
 
@@ -40,7 +40,7 @@ class KktSystem {
   /// \param[in] M               mass matrix (n x n; nq if fixed), possibly singular
   /// \param[in] Xi              constraint Jacobian (m x n; nc x nq if fixed)
   /// \param[in] singular_rcond  the regularity threshold (see default_singular_rcond)
-  /// \return ok, or singular_kkt_matrix where the (scaled) matrix fails lu_is_regular:
+  /// \return ok, or singular_kkt_matrix where the (scaled) matrix is not regular (LuFactorization::is_regular):
   ///         dependent constraints, or M singular on the directions the constraints allow
   template <class MassMatrix, class Jacobian>
   DynamicsStatus compute(const Eigen::MatrixBase<MassMatrix>& M, const Eigen::MatrixBase<Jacobian>& Xi,
@@ -60,28 +60,28 @@ class KktSystem {
     matrix_.bottomRightCorner(constraints_, constraints_).setZero();
     left_out_.setConstant(constraints_, false);
     lu_.compute(matrix_);
-    if (lu_is_regular(lu_, singular_rcond)) return DynamicsStatus::ok;
+    if (lu_.is_regular(singular_rcond)) return DynamicsStatus::ok;
     if (constraints_ == 0) return DynamicsStatus::singular_kkt_matrix;
     // Redundant constraints (two wheels on one axle forbid the same sideways slip): rows of Xi
     // dependent at this state. A column-pivoted QR of Xi^T takes an independent set; each row
     // left out gets the equation lambda_k = 0 in place of its own, which the others imply at
     // this state (docs/conventions.md, Redundant constraints). Which rows are dependent may
     // change with the state (with the heading), so the choice is made per state.
-    rows_qr_.setThreshold(singular_rcond);
+    rows_qr_.set_threshold(singular_rcond);
     rows_qr_.compute(Xi.transpose());
     const Eigen::Index rank = rows_qr_.rank();
     // full rank: M is what is singular; rank 0: no constraint has a direction here (a Cartesian
     // pendulum's bob on its pivot), a singular configuration rather than a redundant row
     if (rank == constraints_ || rank == 0) return DynamicsStatus::singular_kkt_matrix;
     for (Eigen::Index k = rank; k < constraints_; ++k) {
-      const Eigen::Index row = rows_qr_.colsPermutation().indices()(k);
+      const Eigen::Index row = rows_qr_.column(k);
       left_out_(row) = true;
       matrix_.row(n + row).setZero();
       matrix_.col(n + row).setZero();
       matrix_(n + row, n + row) = m_size > 0 ? m_size : Scalar(1);
     }
     lu_.compute(matrix_);
-    return lu_is_regular(lu_, singular_rcond) ? DynamicsStatus::ok : DynamicsStatus::singular_kkt_matrix;
+    return lu_.is_regular(singular_rcond) ? DynamicsStatus::ok : DynamicsStatus::singular_kkt_matrix;
   }
 
   /// Whether the last compute() left redundant rows out (see compute), and which.
@@ -97,7 +97,7 @@ class KktSystem {
     if (left_out_.any())
       for (Eigen::Index k = 0; k < constraints_; ++k)
         if (left_out_(k)) rhs.row(rhs.rows() - constraints_ + k).setZero();
-    rhs.derived() = lu_.solve(rhs.derived());
+    lu_.solve_in_place(rhs);
     rhs.bottomRows(constraints_) *= sigma_;
   }
 
@@ -106,8 +106,8 @@ class KktSystem {
 
  private:
   Matrix matrix_;
-  Eigen::PartialPivLU<Matrix> lu_;
-  Eigen::ColPivHouseholderQR<Eigen::Matrix<Scalar, nq, nc>> rows_qr_;
+  LuFactorization<Scalar, nk> lu_;
+  PivotedQr<Scalar, nq, nc> rows_qr_;
   Eigen::Array<bool, nc, 1> left_out_ = Eigen::Array<bool, nc, 1>::Constant(nc == Eigen::Dynamic ? 0 : nc, false);
   Scalar sigma_ = Scalar(1);
   Eigen::Index constraints_ = nc == Eigen::Dynamic ? 0 : nc;

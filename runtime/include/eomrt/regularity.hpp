@@ -29,16 +29,7 @@ bool cholesky_is_regular(const Llt& llt, const Scalar& threshold) {
   return smallest * smallest > threshold * largest * largest;
 }
 
-/// Whether an LU factorization (Eigen::PartialPivLU, of any size) is numerically regular:
-/// Eigen's estimate of the reciprocal condition number is above threshold. An exactly zero
-/// pivot counts as singular before the estimate, which would turn it into inf and NaN (and,
-/// with dynamic sizes, into a meaningless finite number).
-template <class Lu, class Scalar>
-bool lu_is_regular(const Lu& lu, const Scalar& threshold) {
-  const auto pivots = lu.matrixLU().diagonal();
-  if (pivots.size() == 0) return true;
-  if (!pivots.allFinite() || (pivots.array() == Scalar(0)).any()) return false;
-  return lu.rcond() > threshold;
-}
+// An LU factorization's test (estimated reciprocal condition number above the threshold) is
+// LuFactorization::is_regular (lu_factorization.hpp).
 
 }  // namespace eomrt

@@ -79,22 +79,23 @@ DynamicsStatus project_onto_constraints(const ParametersOrConstants& p,
       if (!ws.Xi.allFinite()) return DynamicsStatus::non_finite;
       s.dependent_rows.setConstant(false);
       s.gram.noalias() = ws.Xi * ws.Xi.transpose();
-      s.gram_ldlt.compute(s.gram);
-      if (s.gram_ldlt.info() == Eigen::Success && s.gram_ldlt.rcond() > ws.singular_rcond) return DynamicsStatus::ok;
+      s.gram_lu.compute(s.gram);
+      if (s.gram_lu.is_regular(ws.singular_rcond)) return DynamicsStatus::ok;
       // redundant constraints: the rows dependent at this state are left out of the correction
       // (the others imply them here), as the KKT system leaves them out (kkt_system.hpp)
-      s.qr.setThreshold(ws.singular_rcond);
-      s.qr.compute(ws.Xi.transpose());
-      if (s.qr.rank() == Model::nc) return DynamicsStatus::singular_constraint_jacobian;
-      for (Eigen::Index k = s.qr.rank(); k < Model::nc; ++k) {
-        const Eigen::Index row = s.qr.colsPermutation().indices()(k);
+      s.rows_qr.set_threshold(ws.singular_rcond);
+      s.rows_qr.compute(ws.Xi.transpose());
+      const Eigen::Index rank = s.rows_qr.rank();
+      if (rank == Model::nc) return DynamicsStatus::singular_constraint_jacobian;
+      for (Eigen::Index k = rank; k < Model::nc; ++k) {
+        const Eigen::Index row = s.rows_qr.column(k);
         s.dependent_rows(row) = true;
         ws.Xi.row(row).setZero();
       }
       s.gram.noalias() = ws.Xi * ws.Xi.transpose();
       s.gram.diagonal() += s.dependent_rows.template cast<Scalar>().matrix();
-      s.gram_ldlt.compute(s.gram);
-      if (s.gram_ldlt.info() != Eigen::Success || !(s.gram_ldlt.rcond() > ws.singular_rcond))
+      s.gram_lu.compute(s.gram);
+      if (!s.gram_lu.is_regular(ws.singular_rcond))
         return DynamicsStatus::singular_constraint_jacobian;
       return DynamicsStatus::ok;
     };
@@ -110,7 +111,7 @@ DynamicsStatus project_onto_constraints(const ParametersOrConstants& p,
         s.small.setZero();
         for (int i = 0; i < Model::nh; ++i)
           if (!s.dependent_rows(Model::holonomic_rows[i])) s.small(Model::holonomic_rows[i]) = ws.phi(i);
-        s.gram_ldlt.solveInPlace(s.small);
+        s.gram_lu.solve_in_place(s.small);
         s.particular.noalias() = ws.Xi.transpose() * s.small;
         q -= s.particular;
         // Newton converges quadratically: once the step is at rounding level of q, phi is too
@@ -132,7 +133,8 @@ DynamicsStatus project_onto_constraints(const ParametersOrConstants& p,
     ws.velocity_residual += ws.Xi_t;
     for (Eigen::Index k = 0; k < Model::nc; ++k)
       if (s.dependent_rows(k)) ws.velocity_residual(k) = 0;
-    s.small = s.gram_ldlt.solve(ws.velocity_residual);
+    s.small = ws.velocity_residual;
+    s.gram_lu.solve_in_place(s.small);
     qd.noalias() -= ws.Xi.transpose() * s.small;
     return q.allFinite() && qd.allFinite() ? DynamicsStatus::ok : DynamicsStatus::non_finite;
   }

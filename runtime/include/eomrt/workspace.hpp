@@ -2,9 +2,14 @@
 /// \file
 /// DynamicsWorkspace: all per-evaluation data of a model's forward dynamics (M, F, Xi, the
 /// factorizations, qdd, lambda), built once so that a solve never allocates.
-#include <Eigen/Dense>
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
+#include <Eigen/LU>
+#include <Eigen/QR>
 
 #include "eomrt/kkt_system.hpp"
+#include "eomrt/lu_factorization.hpp"
+#include "eomrt/pivoted_qr.hpp"
 #include "eomrt/model_traits.hpp"
 #include "eomrt/regularity.hpp"
 #include "eomrt/status.hpp"
@@ -38,7 +43,8 @@ struct ConstraintSolvers {
   Eigen::Matrix<Scalar, nc, nc> dependent_block;                 ///< Xi restricted to dependent speeds
   Eigen::PartialPivLU<Eigen::Matrix<Scalar, nc, nc>> dependent_lu;
   Eigen::Matrix<Scalar, nc, nc> gram;                            ///< Xi Xi^T (projection)
-  Eigen::LDLT<Eigen::Matrix<Scalar, nc, nc>> gram_ldlt;
+  LuFactorization<Scalar, nc> gram_lu;                           ///< of gram
+  PivotedQr<Scalar, nq, nc> rows_qr;  ///< of Xi^T, for the rows the projection leaves out
   Eigen::Matrix<Scalar, nq, 1> particular;                       ///< qdd_p with Xi qdd_p = r
   Eigen::Matrix<Scalar, nr, 1> reduced_rhs;                      ///< Upsilon^T (F - M qdd_p)
   Eigen::Matrix<Scalar, nc, 1> small;                            ///< scratch of dim nc
@@ -82,7 +88,7 @@ struct DynamicsWorkspace {
   /// Reciprocal condition number below which a factorization counts as singular (see
   /// default_singular_rcond). Cholesky factorizations of mass matrices compare it with their
   /// pivot ratio (cholesky_is_regular), the KKT matrix and the Gram matrix Xi Xi^T with
-  /// Eigen's rcond(), the QR of Xi^T with the ratio of its diagonal.
+  /// the estimated reciprocal condition number of their LU (LuFactorization::is_regular), the QR of Xi^T with the ratio of its diagonal.
   Scalar singular_rcond = default_singular_rcond<Scalar>();
 
   DynamicsWorkspace() {
