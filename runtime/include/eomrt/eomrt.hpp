@@ -23,4 +23,5 @@
 #include "eomrt/dynamics_null_space.hpp"
 #include "eomrt/stabilization.hpp"
 #include "eomrt/linearization.hpp"
+#include "eomrt/step_derivatives.hpp"
 #include "eomrt/assembly.hpp"
