@@ -241,6 +241,38 @@ TEST(GeneratedLinearization, AllocatesNothing) {
   EXPECT_EQ(eigen_assert_failures, 0);
 }
 
+// an MPC's stacked matrices: A and B written into blocks of larger ones, the rest untouched,
+// the numbers those of ws.A and ws.B, and nothing allocated
+template <class Model>
+void expect_blocks_written(const OperatingPoint<Model>& x) {
+  constexpr int n = 2 * Model::nq, nu = Model::nu;
+  const typename Model::template Parameters<double> p{};
+  eomrt::LinearizationWorkspace<Model, double> ws, blocks_ws;
+  ASSERT_EQ(eomrt::linearization<Model>(p, ws, 0.0, x.q, x.qd, x.u), eomrt::DynamicsStatus::ok);
+  Eigen::Matrix<double, n + 3, 2 * n + 1> stacked = Eigen::Matrix<double, n + 3, 2 * n + 1>::Constant(7.0);
+  Eigen::Matrix<double, n + 2, nu + 2> inputs = Eigen::Matrix<double, n + 2, nu + 2>::Constant(7.0);
+  eigen_assert_failures = 0;
+  Eigen::internal::set_is_malloc_allowed(false);
+  const auto status = eomrt::linearization<Model>(p, blocks_ws, 0.0, x.q, x.qd, x.u,
+                                                  stacked.template block<n, n>(2, n + 1),
+                                                  inputs.template block<n, nu>(1, 2));
+  Eigen::internal::set_is_malloc_allowed(true);
+  EXPECT_EQ(status, eomrt::DynamicsStatus::ok);
+  EXPECT_EQ(eigen_assert_failures, 0);
+  EXPECT_EQ(Eigen::MatrixXd(stacked.template block<n, n>(2, n + 1)), Eigen::MatrixXd(ws.A)) << Model::name;
+  EXPECT_EQ(Eigen::MatrixXd(inputs.template block<n, nu>(1, 2)), Eigen::MatrixXd(ws.B)) << Model::name;
+  // everything outside the blocks keeps its 7
+  stacked.template block<n, n>(2, n + 1).setConstant(7.0);
+  inputs.template block<n, nu>(1, 2).setConstant(7.0);
+  EXPECT_TRUE((stacked.array() == 7.0).all()) << Model::name;
+  EXPECT_TRUE((inputs.array() == 7.0).all()) << Model::name;
+}
+
+TEST(GeneratedLinearization, WritesIntoBlocksOfACallersMatrices) {
+  expect_blocks_written(at<eomgen_models::cart_pole::Model>({{"theta", 0.4}, {"theta_dot", 1.0}, {"u", 2.0}}));
+  expect_blocks_written(at<eomgen_models::rolling_coin::Model>({{"theta", 0.2}, {"phi_dot", 30.0}}));
+}
+
 // the runtime's algorithms take the Constants as they take the Parameters, with the same numbers
 template <class Model>
 void expect_same_through_constants(const OperatingPoint<Model>& x) {

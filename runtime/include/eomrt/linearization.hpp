@@ -49,6 +49,51 @@ using StateInputMatrix = Eigen::Matrix<Scalar, detail::size_times(2, nq), nu>;
 template <class Scalar, int nq = Eigen::Dynamic, int nu = Eigen::Dynamic, int nc = Eigen::Dynamic>
 using KktDerivatives = Eigen::Matrix<Scalar, detail::size_sum(nq, nc), detail::size_sum(detail::size_times(2, nq), nu)>;
 
+namespace detail {
+
+// Writes A and B of the unconstrained form into A, B of the right sizes (a caller's blocks or
+// the workspace's): [0, I] written as it is, -M^-1 [K, D] and M^-1 B_u solved in place.
+template <class Llt, class Scalar, int nq, int nu, int nc, class OutA, class OutB>
+void write_first_order_form(const Llt& mass_llt, const LinearizationTerms<Scalar, nq, nu, nc>& terms,
+                            Eigen::MatrixBase<OutA>& A, Eigen::MatrixBase<OutB>& B) {
+  const Eigen::Index n = terms.K.rows();
+  A.topLeftCorner(n, n).setZero();
+  A.topRightCorner(n, n).setIdentity();
+  A.bottomLeftCorner(n, n) = -terms.K;
+  A.bottomRightCorner(n, n) = -terms.D;
+  auto bottom = A.bottomRows(n);
+  mass_llt.solveInPlace(bottom);
+  B.topRows(n).setZero();
+  if constexpr (nu != 0) {
+    auto inputs = B.bottomRows(n);
+    inputs = terms.B_u;
+    mass_llt.solveInPlace(inputs);
+  }
+}
+
+// Writes A and B of the constrained form from the KKT solve of the derivatives' right sides.
+template <class Scalar, int nq, int nu, int nc, class OutA, class OutB>
+void write_first_order_form(const KktSystem<Scalar, nq, nc>& kkt, const LinearizationTerms<Scalar, nq, nu, nc>& terms,
+                            KktDerivatives<Scalar, nq, nu, nc>& derivatives, Eigen::MatrixBase<OutA>& A,
+                            Eigen::MatrixBase<OutB>& B) {
+  const Eigen::Index n = terms.K.rows(), m = terms.S_q.rows(), k = terms.B_u.cols();
+  derivatives.resize(n + m, 2 * n + k);
+  derivatives.topLeftCorner(n, n) = -terms.K;
+  derivatives.block(0, n, n, n) = -terms.D;
+  derivatives.topRightCorner(n, k) = terms.B_u;
+  derivatives.bottomLeftCorner(m, n) = terms.S_q;
+  derivatives.block(n, n, m, n) = terms.S_qd;
+  derivatives.bottomRightCorner(m, k).setZero();
+  kkt.solve_in_place(derivatives);
+  A.topLeftCorner(n, n).setZero();
+  A.topRightCorner(n, n).setIdentity();
+  A.bottomRows(n) = derivatives.topLeftCorner(n, 2 * n);
+  B.topRows(n).setZero();
+  B.bottomRows(n) = derivatives.topRightCorner(n, k);
+}
+
+}  // namespace detail
+
 /// A and B of an unconstrained model from its second-order form.
 /// \param[in]  mass_llt  Cholesky factorization of M at the point (regular)
 /// \param[in]  terms     K, D, B_u at the point
@@ -57,12 +102,9 @@ template <class Llt, class Scalar, int nq, int nu, int nc>
 void first_order_form(const Llt& mass_llt, const LinearizationTerms<Scalar, nq, nu, nc>& terms,
                       StateMatrix<Scalar, nq>& A, StateInputMatrix<Scalar, nq, nu>& B) {
   const Eigen::Index n = terms.K.rows(), m = terms.B_u.cols();
-  A.setZero(2 * n, 2 * n);
-  A.topRightCorner(n, n).setIdentity();
-  A.bottomLeftCorner(n, n) = -mass_llt.solve(terms.K);
-  A.bottomRightCorner(n, n) = -mass_llt.solve(terms.D);
-  B.setZero(2 * n, m);
-  if constexpr (nu != 0) B.bottomRows(n) = mass_llt.solve(terms.B_u);
+  A.resize(2 * n, 2 * n);
+  B.resize(2 * n, m);
+  detail::write_first_order_form(mass_llt, terms, A, B);
 }
 
 /// A and B of a constrained model: the derivatives of its KKT accelerations.
@@ -74,20 +116,10 @@ template <class Scalar, int nq, int nu, int nc>
 void first_order_form(const KktSystem<Scalar, nq, nc>& kkt, const LinearizationTerms<Scalar, nq, nu, nc>& terms,
                       KktDerivatives<Scalar, nq, nu, nc>& derivatives, StateMatrix<Scalar, nq>& A,
                       StateInputMatrix<Scalar, nq, nu>& B) {
-  const Eigen::Index n = terms.K.rows(), m = terms.S_q.rows(), k = terms.B_u.cols();
-  derivatives.resize(n + m, 2 * n + k);
-  derivatives.topLeftCorner(n, n) = -terms.K;
-  derivatives.block(0, n, n, n) = -terms.D;
-  derivatives.topRightCorner(n, k) = terms.B_u;
-  derivatives.bottomLeftCorner(m, n) = terms.S_q;
-  derivatives.block(n, n, m, n) = terms.S_qd;
-  derivatives.bottomRightCorner(m, k).setZero();
-  kkt.solve_in_place(derivatives);
-  A.setZero(2 * n, 2 * n);
-  A.topRightCorner(n, n).setIdentity();
-  A.bottomRows(n) = derivatives.topLeftCorner(n, 2 * n);
-  B.setZero(2 * n, k);
-  B.bottomRows(n) = derivatives.topRightCorner(n, k);
+  const Eigen::Index n = terms.K.rows(), k = terms.B_u.cols();
+  A.resize(2 * n, 2 * n);
+  B.resize(2 * n, k);
+  detail::write_first_order_form(kkt, terms, derivatives, A, B);
 }
 
 namespace detail {
@@ -167,6 +199,35 @@ DynamicsStatus second_order_linearization(const ParametersOrConstants& p,
                                                                                         : DynamicsStatus::non_finite;
 }
 
+namespace detail {
+
+// linearization() into A and B of the right sizes (the workspace's, or a caller's blocks)
+template <class Model, class Scalar, class ParametersOrConstants, class OutA, class OutB>
+DynamicsStatus linearization_into(const ParametersOrConstants& p, LinearizationWorkspace<Model, Scalar>& ws,
+                                  const Scalar& t, const typename ModelTypes<Model, Scalar>::Coordinates& q,
+                                  const typename ModelTypes<Model, Scalar>::Coordinates& qd,
+                                  const typename ModelTypes<Model, Scalar>::Inputs& u, Eigen::MatrixBase<OutA>& A,
+                                  Eigen::MatrixBase<OutB>& B) noexcept {
+  static_assert(is_parameter_argument_v<Model, Scalar, ParametersOrConstants>,
+                "eomrt: p must be the model's Parameters or its Constants");
+  static_assert(has_linearization_terms<Model, Scalar, ParametersOrConstants>::value,
+                "eomrt model: linearization needs linearization_terms; generate with --linearization");
+  if constexpr (Model::nc == 0) {
+    const DynamicsStatus status = second_order_linearization<Model>(p, ws, t, q, qd, u);
+    if (status != DynamicsStatus::ok) return status;
+    write_first_order_form(ws.dynamics.mass_llt, ws.terms, A, B);
+  } else {
+    const DynamicsStatus status = forward_dynamics_kkt<Model>(p, ws.dynamics, t, q, qd, u);
+    if (status != DynamicsStatus::ok) return status;
+    Model::linearization_terms(t, q, qd, u, p, ws.dynamics.qdd, ws.dynamics.lambda, ws.terms.K, ws.terms.D,
+                               ws.terms.B_u, ws.terms.S_q, ws.terms.S_qd);
+    write_first_order_form(ws.dynamics.solvers.kkt, ws.terms, ws.derivatives, A, B);
+  }
+  return A.allFinite() && B.allFinite() ? DynamicsStatus::ok : DynamicsStatus::non_finite;
+}
+
+}  // namespace detail
+
 /// A and B of dx' = A dx + B du, x = [q; qd], about (t, q, qd, u), from exact derivatives; for
 /// a constrained model those of the KKT accelerations (without stabilization) on the full state.
 /// \param[in]  p      parameters, or their Constants (model_traits.hpp) to evaluate repeatedly
@@ -184,22 +245,29 @@ DynamicsStatus linearization(const ParametersOrConstants& p,
                              const typename ModelTypes<Model, Scalar>::Coordinates& q,
                              const typename ModelTypes<Model, Scalar>::Coordinates& qd,
                              const typename ModelTypes<Model, Scalar>::Inputs& u) noexcept {
-  static_assert(is_parameter_argument_v<Model, Scalar, ParametersOrConstants>,
-                "eomrt: p must be the model's Parameters or its Constants");
-  static_assert(detail::has_linearization_terms<Model, Scalar, ParametersOrConstants>::value,
-                "eomrt model: linearization needs linearization_terms; generate with --linearization");
-  if constexpr (Model::nc == 0) {
-    const DynamicsStatus status = second_order_linearization<Model>(p, ws, t, q, qd, u);
-    if (status != DynamicsStatus::ok) return status;
-    first_order_form(ws.dynamics.mass_llt, ws.terms, ws.A, ws.B);
-  } else {
-    const DynamicsStatus status = forward_dynamics_kkt<Model>(p, ws.dynamics, t, q, qd, u);
-    if (status != DynamicsStatus::ok) return status;
-    Model::linearization_terms(t, q, qd, u, p, ws.dynamics.qdd, ws.dynamics.lambda, ws.terms.K, ws.terms.D,
-                               ws.terms.B_u, ws.terms.S_q, ws.terms.S_qd);
-    first_order_form(ws.dynamics.solvers.kkt, ws.terms, ws.derivatives, ws.A, ws.B);
-  }
-  return ws.A.allFinite() && ws.B.allFinite() ? DynamicsStatus::ok : DynamicsStatus::non_finite;
+  return detail::linearization_into<Model>(p, ws, t, q, qd, u, ws.A, ws.B);
+}
+
+/// linearization() written into a caller's matrices: A and B may be blocks of larger ones (an
+/// MPC's stacked dynamics), of 2 nq x 2 nq and 2 nq x nu; ws.A and ws.B are left alone. The top
+/// half [0, I] of A and [0] of B are written as they are, not solved for.
+/// \param[out] A, B  dx' = A dx + B du, written through (blocks and maps bind as Eigen's
+///                   in-place solves take them)
+template <class Model, class Scalar, class ParametersOrConstants, class OutA, class OutB>
+DynamicsStatus linearization(const ParametersOrConstants& p, LinearizationWorkspace<Model, Scalar>& ws,
+                             const Scalar& t, const typename ModelTypes<Model, Scalar>::Coordinates& q,
+                             const typename ModelTypes<Model, Scalar>::Coordinates& qd,
+                             const typename ModelTypes<Model, Scalar>::Inputs& u, const Eigen::MatrixBase<OutA>& A,
+                             const Eigen::MatrixBase<OutB>& B) noexcept {
+  static_assert(int(OutA::RowsAtCompileTime) == Eigen::Dynamic || int(OutA::RowsAtCompileTime) == 2 * Model::nq,
+                "eomrt::linearization: A has 2 nq rows");
+  static_assert(int(OutB::ColsAtCompileTime) == Eigen::Dynamic || int(OutB::ColsAtCompileTime) == Model::nu,
+                "eomrt::linearization: B has nu columns");
+  eigen_assert(A.rows() == 2 * Model::nq && A.cols() == 2 * Model::nq && B.rows() == 2 * Model::nq &&
+               B.cols() == Model::nu && "eomrt::linearization: A is 2 nq x 2 nq and B 2 nq x nu");
+  auto& a = const_cast<Eigen::MatrixBase<OutA>&>(A);
+  auto& b = const_cast<Eigen::MatrixBase<OutB>&>(B);
+  return detail::linearization_into<Model>(p, ws, t, q, qd, u, a, b);
 }
 
 }  // namespace eomrt
