@@ -24,4 +24,5 @@
 #include "eomrt/stabilization.hpp"
 #include "eomrt/linearization.hpp"
 #include "eomrt/step_derivatives.hpp"
+#include "eomrt/inverse_dynamics_derivatives.hpp"
 #include "eomrt/assembly.hpp"
