@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <sstream>
 
 #include "eomgen/base/content_hash.hpp"
@@ -80,6 +81,9 @@ std::string cache_key(const CachedBuild& build) {
   for (const auto& [name, content] : build.files) material += name + "\n" + content;
   for (const fs::path& dir : build.header_dirs)
     for (const fs::path& h : headers_in(dir)) material += h.filename().string() + "\n" + read_file(h);
+  if (build.units)
+    for (const std::vector<std::string>& unit : build.units("BUILD"))
+      for (const std::string& part : unit) material += part + "\n";
   for (const std::string& part : build.command("BUILD")) material += part + "\n";
   return fmt::format("{}-{:016x}", build.key_name, content_hash(material));
 }
@@ -117,15 +121,41 @@ fs::path build_cached(const CachedBuild& build, const fs::path& cache) {
   const std::vector<std::string> cmd = build.command(building);
   std::cerr << fmt::format("eomgen: compiling {} with {} ...\n", build.what, cmd.front());
   const auto start = std::chrono::steady_clock::now();
-  const fs::path log = building / "compile.log";
-  const int status = run_process(cmd, log.string());
-  if (status != 0) {
+  const auto failed = [&](int status, const fs::path& log) {
     const std::string output = read_file(log);
     discard_building();
     throw Error(fmt::format("compiling {} failed (exit status {}); this is a bug in eomgen or a broken compiler "
                             "setup. Compiler output:\n{}",
                             build.what, status, output.substr(0, 4000)));
+  };
+  if (build.units) {
+    // all started before any is waited for; every started one is waited for, even when a later
+    // one cannot start, so that no compiler outlives the build directory
+    std::vector<std::pair<StartedProcess, fs::path>> running;
+    std::optional<Error> not_started;
+    const std::vector<std::vector<std::string>> units = build.units(building);
+    for (std::size_t k = 0; k < units.size() && !not_started; ++k) {
+      const fs::path log = building / (k == 0 ? std::string("compile.log") : fmt::format("compile-{}.log", k + 1));
+      try {
+        running.emplace_back(start_process(units[k], log.string()), log);
+      } catch (const Error& e) {
+        not_started = e;
+      }
+    }
+    std::optional<std::pair<int, fs::path>> first_failure;
+    for (const auto& [process, log] : running) {
+      const int status = wait_for(process);
+      if (status != 0 && !first_failure) first_failure.emplace(status, log);
+    }
+    if (not_started) {
+      discard_building();
+      throw *not_started;
+    }
+    if (first_failure) failed(first_failure->first, first_failure->second);
   }
+  const fs::path log = building / (build.units ? "link.log" : "compile.log");
+  const int status = run_process(cmd, log.string());
+  if (status != 0) failed(status, log);
   std::cerr << fmt::format("eomgen: compiled in {:.1f} s, cached in {}\n",
                            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
                            directory.string());

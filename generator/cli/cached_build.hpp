@@ -48,6 +48,9 @@ struct CachedBuild {
   std::vector<std::filesystem::path> header_dirs;
   /// the compiler's command line for a build in the given directory
   std::function<std::vector<std::string>(const std::filesystem::path& directory)> command;
+  /// if set, commands run at the same time before `command` (the translation units of one
+  /// program, compiled on as many cores as there are; `command` then links them)
+  std::function<std::vector<std::vector<std::string>>(const std::filesystem::path& directory)> units;
   std::string product;  ///< the file the command writes into the directory
 };
 

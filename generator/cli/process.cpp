@@ -19,6 +19,10 @@ extern char** environ;
 namespace eomgen::tools {
 
 int run_process(const std::vector<std::string>& argv, const std::string& output_log) {
+  return wait_for(start_process(argv, output_log));
+}
+
+StartedProcess start_process(const std::vector<std::string>& argv, const std::string& output_log) {
   std::vector<char*> args;
   for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
   args.push_back(nullptr);
@@ -54,17 +58,21 @@ int run_process(const std::vector<std::string>& argv, const std::string& output_
   posix_spawn_file_actions_destroy(&actions);
   posix_spawnattr_destroy(&attributes);
   if (spawned != 0) throw Error(fmt::format("cannot run '{}': {}", argv[0], std::strerror(spawned)));
+  return {pid, argv[0]};
+}
 
+int wait_for(const StartedProcess& process) {
+  const pid_t pid = process.pid;
   // waited for without reaping, then forgotten and reaped at once: until then its pid is its own
   siginfo_t ended{};
   while (::waitid(P_PID, static_cast<id_t>(pid), &ended, WEXITED | WNOWAIT) != 0)
-    if (errno != EINTR) throw Error(fmt::format("waiting for '{}': {}", argv[0], std::strerror(errno)));
+    if (errno != EINTR) throw Error(fmt::format("waiting for '{}': {}", process.program, std::strerror(errno)));
   int status = 0;
   {
     interruption::Hold hold;
     interruption::forget_child(pid);
     while (::waitpid(pid, &status, 0) < 0)
-      if (errno != EINTR) throw Error(fmt::format("waiting for '{}': {}", argv[0], std::strerror(errno)));
+      if (errno != EINTR) throw Error(fmt::format("waiting for '{}': {}", process.program, std::strerror(errno)));
   }
   if (WIFEXITED(status)) return WEXITSTATUS(status);
   if (WIFSIGNALED(status)) return 128 + WTERMSIG(status);

@@ -97,7 +97,7 @@ fs::path simulation_program_dir() {
                           build_config::source_simulation_program_dir));
 }
 
-/// The compiler command of the simulation program.
+/// The compiler command of one translation unit of the simulation program (-c: an object file).
 std::vector<std::string> compile_command(const fs::path& source, const fs::path& output, const fs::path& runtime,
                                          const fs::path& program) {
   std::vector<std::string> cmd = compiler_invocation();
@@ -105,6 +105,7 @@ std::vector<std::string> compile_command(const fs::path& source, const fs::path&
   cmd.push_back("-I" + program.string());
   cmd.push_back("-I" + runtime.string());
   cmd.push_back(std::string("-I") + build_config::eigen_include_dir);
+  cmd.push_back("-c");
   cmd.push_back(source.string());
   cmd.push_back("-o");
   cmd.push_back(output.string());
@@ -122,25 +123,55 @@ std::string methods_of(const eomrt::IntegratorInfo& method, const SimulateReques
                      r.stabilization);
 }
 
-/// Builds the simulation program for `header` unless the cache has it; returns its path.
+/// Builds the simulation program for `header` unless the cache has it; returns its path. A
+/// constrained model's program is two translation units compiled at the same time, the start
+/// (assembly onto the constraints: a third of the compile) and the rest, then linked.
 fs::path simulation_program(const Model& model, const std::string& header, const std::string& methods,
                             const fs::path& runtime, const fs::path& program_dir, const fs::path& cache) {
+  const std::string type = fmt::format("eomgen_models::{}::Model", cpp_identifier(model.name));
+  const bool split = !model.system.constraints().empty();
+  const std::string start_instance = fmt::format(
+      "template bool eomgen::simulation_program::assemble_start<{0}>(eomgen::simulation_program::RunSettings<{0}>&);\n",
+      type);
   const std::string driver = fmt::format(
       "// The simulation program of model '{}', written by eomgen simulate.\n"
       "#include \"model.hpp\"\n#include \"simulation_main.hpp\"\n\n"
+      "{}"
       "int main(int argc, char** argv) {{\n"
-      "  return eomgen::simulation_program::simulation_main<eomgen_models::{}::Model,\n"
+      "  return eomgen::simulation_program::simulation_main<{},\n"
       "                                                     {}>(argc, argv);\n}}\n",
-      cpp_string_contents(model.name), cpp_identifier(model.name), methods);
+      cpp_string_contents(model.name), split ? "// compiled in start.cpp\nextern " + start_instance + "\n" : "", type,
+      methods);
   CachedBuild build;
   build.what = "the simulation of " + model.name;
   build.key_name = cpp_identifier(model.name);
   build.files = {{"model.hpp", header}, {"driver.cpp", driver}};
   build.header_dirs = {program_dir, runtime / "eomrt"};
-  build.command = [&](const fs::path& directory) {
-    return compile_command(directory / "driver.cpp", directory / "simulate", runtime, program_dir);
-  };
   build.product = "simulate";
+  if (!split) {
+    build.command = [&](const fs::path& directory) {
+      std::vector<std::string> cmd = compile_command(directory / "driver.cpp", directory / "simulate", runtime,
+                                                     program_dir);
+      cmd.erase(std::find(cmd.begin(), cmd.end(), "-c"));  // compiled and linked at once
+      return cmd;
+    };
+    return build_cached(build, cache);
+  }
+  build.files.emplace_back("start.cpp", fmt::format("// The start (assembly) of the simulation program of model '{}'.\n"
+                                                    "#include \"model.hpp\"\n#include \"simulation_main.hpp\"\n\n{}",
+                                                    cpp_string_contents(model.name), start_instance));
+  build.units = [&](const fs::path& directory) {
+    return std::vector<std::vector<std::string>>{
+        compile_command(directory / "driver.cpp", directory / "driver.o", runtime, program_dir),
+        compile_command(directory / "start.cpp", directory / "start.o", runtime, program_dir)};
+  };
+  build.command = [&](const fs::path& directory) {
+    std::vector<std::string> cmd = compiler_invocation();
+    for (const char* object : {"driver.o", "start.o"}) cmd.push_back((directory / object).string());
+    cmd.push_back("-o");
+    cmd.push_back((directory / "simulate").string());
+    return cmd;
+  };
   return build_cached(build, cache);
 }
 

@@ -247,6 +247,36 @@ TEST_F(Simulate, CartesianPendulumReportsMultipliersAndResidualsWithEitherSolver
   }
 }
 
+// a constrained model's program is two translation units compiled at once: the start (the
+// assembly, instantiated only there) and the rest, which declares it extern; an unconstrained
+// model's is one
+TEST_F(Simulate, AConstrainedModelsProgramIsCompiledAsTwoUnitsAtOnce) {
+  const fs::path cache = dir_ / "cache";
+  const auto entry_of = [&](const std::string& stem) {
+    for (const auto& e : fs::directory_iterator(cache))
+      if (e.path().filename().string().rfind(stem + "-", 0) == 0) return e.path();
+    return fs::path();
+  };
+  const Outcome constrained = eomgen("simulate " + quote(models_dir + "cartesian_pendulum.eom") +
+                                     " --t-end 0.1 --init x=0.3,y=-0.4 --no-plot -o " +
+                                     quote((dir_ / "c.csv").string()) + " --cache-dir " + quote(cache.string()));
+  ASSERT_EQ(constrained.status, 0) << constrained.err;
+  const fs::path split = entry_of("cartesian_pendulum");
+  ASSERT_FALSE(split.empty());
+  EXPECT_TRUE(fs::exists(split / "start.o") && fs::exists(split / "driver.o"));
+  EXPECT_THAT(slurp(split / "start.cpp"),
+              HasSubstr("template bool eomgen::simulation_program::assemble_start<"
+                        "eomgen_models::cartesian_pendulum::Model>"));
+  EXPECT_THAT(slurp(split / "driver.cpp"), HasSubstr("extern template bool eomgen::simulation_program::assemble_start<"));
+  const Outcome free = eomgen("simulate " + quote(models_dir + "simple_pendulum.eom") + " --t-end 0.1 --no-plot -o " +
+                              quote((dir_ / "s.csv").string()) + " --cache-dir " + quote(cache.string()));
+  ASSERT_EQ(free.status, 0) << free.err;
+  const fs::path whole = entry_of("simple_pendulum");
+  ASSERT_FALSE(whole.empty());
+  EXPECT_FALSE(fs::exists(whole / "start.cpp"));
+  EXPECT_THAT(slurp(whole / "driver.cpp"), Not(HasSubstr("extern template")));
+}
+
 // gnuplot runs a data file named "<cmd" as a shell command: a CSV by that name (relative, in
 // the working directory) must reach gnuplot as an absolute path and nothing may run
 TEST_F(Simulate, FileNamesThatGnuplotWouldRunAreOnlyFileNames) {
