@@ -33,14 +33,11 @@ DynamicsStatus inverse_dynamics_derivatives(const ParametersOrConstants& p, cons
                 "inverse_dynamics_derivatives: the model has constraints, whose inverse dynamics also split lambda");
   static_assert(detail::has_linearization_terms<Model, Scalar, ParametersOrConstants>::value,
                 "eomrt model: inverse_dynamics_derivatives needs linearization_terms; generate with --linearization");
-  auto& K = const_cast<Eigen::MatrixBase<OutQ>&>(dtau_dq);
-  auto& D = const_cast<Eigen::MatrixBase<OutQd>&>(dtau_dqd);
-  Eigen::Matrix<Scalar, Model::nq, Model::nq> k, d;
-  Eigen::Matrix<Scalar, Model::nq, Model::nu> b;
-  Model::linearization_terms(t, q, qd, u, p, qdd, k, d, b);
-  K = k;
-  D = d;
-  return k.allFinite() && d.allFinite() ? DynamicsStatus::ok : DynamicsStatus::non_finite;
+  auto& K = const_cast<Eigen::MatrixBase<OutQ>&>(dtau_dq).derived();
+  auto& D = const_cast<Eigen::MatrixBase<OutQd>&>(dtau_dqd).derived();
+  Eigen::Matrix<Scalar, Model::nq, Model::nu> B_u;  // dtau/du = -B_u, not asked for
+  Model::linearization_terms(t, q, qd, u, p, qdd, K, D, B_u);
+  return K.allFinite() && D.allFinite() ? DynamicsStatus::ok : DynamicsStatus::non_finite;
 }
 
 }  // namespace eomrt
