@@ -180,6 +180,9 @@ const char* cpp_array_name(ir::Array array) {
     case ir::Array::multipliers: return "lambda";
     case ir::Array::constants: return "k";
     case ir::Array::accelerations: return "qdd";
+    case ir::Array::acceleration_by_coordinates: return "dqdd_dq";
+    case ir::Array::acceleration_by_rates: return "dqdd_dqd";
+    case ir::Array::acceleration_by_inputs: return "dqdd_du";
     case ir::Array::pivots: return "pivot";
     case ir::Array::derived_parameters: return "derived";
   }

@@ -211,9 +211,14 @@ std::string regularity_check(const FunctionSpec& f, std::size_t pivots, const st
   if (pivots > 0)
     s += fmt::format("{}for (int k = 0; k < {}; ++k) regular = regular && pivot(k) > Scalar(0);\n", indent, pivots);
   s += fmt::format("{}using std::isfinite;\n", indent);
+  // a matrix entry by entry: the output may be a block, which has no linear access
   for (Array array : f.writes)
-    s += fmt::format("{}for (int k = 0; k < {}.size(); ++k) regular = regular && isfinite({}(k));\n", indent,
-                     cpp_array_name(array), cpp_array_name(array));
+    s += ir::rank(array) == 2
+             ? fmt::format("{0}for (int j = 0; j < {1}.cols(); ++j)\n{0}  for (int i = 0; i < {1}.rows(); ++i) "
+                           "regular = regular && isfinite({1}(i, j));\n",
+                           indent, cpp_array_name(array))
+             : fmt::format("{}for (int k = 0; k < {}.size(); ++k) regular = regular && isfinite({}(k));\n", indent,
+                           cpp_array_name(array), cpp_array_name(array));
   return s + fmt::format("{}return regular;\n", indent);
 }
 

@@ -42,6 +42,8 @@ ArgumentShape shape_of(Array array) {
     case Array::stiffness:
     case Array::damping:
     case Array::coriolis_matrix:
+    case Array::acceleration_by_coordinates:
+    case Array::acceleration_by_rates:
       return {"nq", "nq"};
     case Array::forcing:
     case Array::accelerations:
@@ -58,7 +60,9 @@ ArgumentShape shape_of(Array array) {
       return {"nc", "1"};
     case Array::holonomic_residuals: return {"nh", "1"};
     case Array::outputs: return {"ny", "1"};
-    case Array::input_matrix: return {"nq", "nu"};
+    case Array::input_matrix:
+    case Array::acceleration_by_inputs:
+      return {"nq", "nu"};
     case Array::regressor: return {"nq", "npi"};
     case Array::inertial_parameters: return {"npi", "1"};
     case Array::kinetic_energy:
@@ -160,6 +164,28 @@ FunctionSpec linearization_terms(const SymbolicLinearization& linearization, boo
     add_matrix(f, Array::acceleration_constraint_by_q, linearization.S_q);
     add_matrix(f, Array::acceleration_constraint_by_qd, linearization.S_qd);
   }
+  return f;
+}
+
+// dqdd/dq, dqdd/dqd and dqdd/du, the pivots first, as forward_dynamics has them
+FunctionSpec forward_dynamics_derivatives(const ForwardDynamicsDerivatives& d) {
+  const char* how = nullptr;
+  switch (d.form.form) {
+    case FunctionForm::recursions: how = "by the chain rule through the recursive forward dynamics"; break;
+    case FunctionForm::closed_form: how = "as -M^-1 dR/dq, -M^-1 dR/dqd, M^-1 dF/du of R = M qdd - F at qdd = M^-1 F"; break;
+  }
+  FunctionSpec f = function("forward_dynamics_derivatives",
+                            fmt::format("dqdd/dq, dqdd/dqd and dqdd/du of the forward dynamics qdd = M^-1 F, {}; false "
+                                        "if M is not positive definite (a pivot is not positive) or an entry is not "
+                                        "finite", how),
+                            states_and_inputs,
+                            {Array::acceleration_by_coordinates, Array::acceleration_by_rates,
+                             Array::acceleration_by_inputs});
+  for (std::size_t k = 0; k < d.pivots.size(); ++k) f.targets.push_back({{Array::pivots, k, 0}, d.pivots[k]});
+  add_matrix(f, Array::acceleration_by_coordinates, d.by_coordinates);
+  add_matrix(f, Array::acceleration_by_rates, d.by_rates);
+  add_matrix(f, Array::acceleration_by_inputs, d.by_inputs);
+  f.returns_regularity = true;
   return f;
 }
 
@@ -287,6 +313,7 @@ std::vector<FunctionSpec> function_table(const Model& model, const HeaderFunctio
   add_output_jacobians(table, model, h);
   add_regressor(table, h);
   if (h.linearization) table.push_back(linearization_terms(*h.linearization, eom.constraint_count > 0));
+  if (h.forward_dynamics_derivatives) table.push_back(forward_dynamics_derivatives(*h.forward_dynamics_derivatives));
   return table;
 }
 

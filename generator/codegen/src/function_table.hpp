@@ -43,7 +43,7 @@ struct FunctionSpec {
 
 /// M, F, the constraint terms, T, V, the outputs, then forward_dynamics, inverse_dynamics, the
 /// gravity forces and the Coriolis matrix, the output Jacobians, the regressor and
-/// linearization_terms, as `functions` has them.
+/// linearization_terms and forward_dynamics_derivatives, as `functions` has them.
 std::vector<FunctionSpec> function_table(const Model& model, const HeaderFunctions& functions);
 
 /// The name of the Jacobian function of an output, and of its bias.

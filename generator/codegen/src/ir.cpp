@@ -86,6 +86,9 @@ std::size_t rank(Array array) {
     case Array::acceleration_constraint_by_q:
     case Array::acceleration_constraint_by_qd:
     case Array::coriolis_matrix:
+    case Array::acceleration_by_coordinates:
+    case Array::acceleration_by_rates:
+    case Array::acceleration_by_inputs:
     case Array::output_jacobian:
     case Array::regressor:
       return 2;

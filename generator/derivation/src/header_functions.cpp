@@ -11,6 +11,7 @@
 #include "eomgen/symbolic/graph_calculus.hpp"
 #include "base_parameters.hpp"
 #include "chain_rule.hpp"
+#include "forward_dynamics_derivatives.hpp"
 #include "newton_euler.hpp"
 #include "operation_estimate.hpp"
 #include "symbol_dependence.hpp"
@@ -60,6 +61,7 @@ class Derivation {
   void run(const HeaderOptions& options) {
     dynamics();
     forward_dynamics();
+    forward_dynamics_derivatives();
     h_.controller_functions = options.controller_functions;
     if (!options.controller_functions) return;
     inverse_dynamics();
@@ -111,6 +113,24 @@ class Derivation {
     h_.forward_dynamics = std::move(std::get<ForwardDynamics>(derived));
     h_.mass_matrix_path_operations = h_.mass_matrix_form.estimated_operations + cholesky_path_operations(n_);
     h_.prefers_forward_dynamics = h_.forward_dynamics->estimated_operations < h_.mass_matrix_path_operations;
+  }
+
+  // dqdd/d[q, qd, u] where the header has the linearization's terms to take them from
+  void forward_dynamics_derivatives() {
+    if (!h_.linearization) return;
+    if (eom_.constraint_count > 0) {
+      h_.no_forward_dynamics_derivatives = "the model has constraints: its accelerations are the KKT system's";
+      return;
+    }
+    std::vector<const Subexpressions*> sets{&eom_.subexpressions, &recursions_};
+    const ForwardDynamics* fd = h_.forward_dynamics ? &*h_.forward_dynamics : nullptr;
+    if (fd) sets.push_back(&fd->subexpressions);
+    try {
+      h_.forward_dynamics_derivatives =
+          derive_forward_dynamics_derivatives(vars_, {h_.mass_matrix, h_.forcing, sets, *h_.linearization, fd});
+    } catch (const DerivationError& e) {
+      h_.no_forward_dynamics_derivatives = e.what();
+    }
   }
 
   // M qdd - F from M and F, or by Newton-Euler on the tree of the bodies: the smaller estimate
@@ -311,6 +331,7 @@ std::vector<const Subexpressions*> HeaderFunctions::intermediates() const {
   if (linearization) all.push_back(&linearization->derivatives);
   if (forward_dynamics) all.push_back(&forward_dynamics->subexpressions);
   for (const auto& z : owned) all.push_back(z.get());
+  if (forward_dynamics_derivatives) all.push_back(forward_dynamics_derivatives->intermediates.get());
   return all;
 }
 

@@ -44,12 +44,13 @@ matrix forward_substitution(const matrix& L, const matrix& B, Subexpressions& z)
 matrix ldl_solve(const LdlFactors& f, const matrix& b, Subexpressions& z) {
   const unsigned k = b.rows();
   const matrix y = forward_substitution(f.L, b, z);
-  matrix x(k, 1);
-  for (unsigned a = k; a-- > 0;) {
-    ex sum = f.inverse_d(a, 0) * y(a, 0);
-    for (unsigned m = a + 1; m < k; ++m) sum -= f.L(m, a) * x(m, 0);
-    x(a, 0) = bound(sum, z);
-  }
+  matrix x(k, b.cols());
+  for (unsigned c = 0; c < b.cols(); ++c)
+    for (unsigned a = k; a-- > 0;) {
+      ex sum = f.inverse_d(a, 0) * y(a, c);
+      for (unsigned m = a + 1; m < k; ++m) sum -= f.L(m, a) * x(m, c);
+      x(a, c) = bound(sum, z);
+    }
   return x;
 }
 

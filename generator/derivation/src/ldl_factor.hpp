@@ -20,7 +20,7 @@ LdlFactors ldl_factor(const GiNaC::matrix& D, Subexpressions& z, GiNaC::exvector
 /// L^-1 B by forward substitution.
 GiNaC::matrix forward_substitution(const GiNaC::matrix& L, const GiNaC::matrix& B, Subexpressions& z);
 
-/// x of L diag(d) L^T x = b.
+/// X of L diag(d) L^T X = B, column by column (B of any number of columns).
 GiNaC::matrix ldl_solve(const LdlFactors& f, const GiNaC::matrix& b, Subexpressions& z);
 
 }  // namespace eomgen

@@ -11,6 +11,11 @@
 ///
 /// Unconstrained: M dqdd + D dqd + K dq = B_u du, the second-order form, gives
 ///   A = [[0, 1], [-M^-1 K, -M^-1 D]],   B = [[0], [M^-1 B_u]].
+/// Those bottom rows are dqdd/dq, dqdd/dqd and dqdd/du, which a header generated with
+/// --linearization for a model without constraints computes in one function,
+/// forward_dynamics_derivatives (in the form of fewer operations: the chain rule through the
+/// recursive forward dynamics, or M's LDL^T factors applied to K, D, B_u); linearization uses
+/// it where the model has it.
 /// Constrained: dR = 0 and dS = 0 are the KKT system of docs/conventions.md for the derivatives,
 ///   [[M, -Xi^T], [-Xi, 0]] d[qdd; lambda] = [-K dq - D dqd + B_u du; S_q dq + S_qd dqd],
 /// (the implicit function theorem), and A, B are those of the KKT accelerations on the full
@@ -149,6 +154,19 @@ struct has_linearization_terms<Model, Scalar, P, std::enable_if_t<(Model::nc > 0
     std::declval<typename ModelTypes<Model, Scalar>::ConstraintJacobian&>(),
     std::declval<typename ModelTypes<Model, Scalar>::ConstraintJacobian&>()))>>> : std::true_type {};
 
+// forward_dynamics_derivatives (generated with --linearization for models without constraints)
+// taking P as its parameter argument
+template <class Model, class Scalar, class P, class = void>
+struct has_forward_dynamics_derivatives : std::false_type {};
+template <class Model, class Scalar, class P>
+struct has_forward_dynamics_derivatives<Model, Scalar, P, void_t<decltype(Model::forward_dynamics_derivatives(
+    std::declval<const Scalar&>(), std::declval<const typename ModelTypes<Model, Scalar>::Coordinates&>(),
+    std::declval<const typename ModelTypes<Model, Scalar>::Coordinates&>(),
+    std::declval<const typename ModelTypes<Model, Scalar>::Inputs&>(),
+    std::declval<const P&>(),
+    std::declval<Eigen::Matrix<Scalar, Model::nq, Model::nq>&>(), std::declval<Eigen::Matrix<Scalar, Model::nq, Model::nq>&>(),
+    std::declval<Eigen::Matrix<Scalar, Model::nq, Model::nu>&>()))>> : std::true_type {};
+
 }  // namespace detail
 
 /// Scratch and results of the linearization of one model, for one scalar type; fixed-size, so
@@ -212,7 +230,19 @@ DynamicsStatus linearization_into(const ParametersOrConstants& p, LinearizationW
                 "eomrt: p must be the model's Parameters or its Constants");
   static_assert(has_linearization_terms<Model, Scalar, ParametersOrConstants>::value,
                 "eomrt model: linearization needs linearization_terms; generate with --linearization");
-  if constexpr (Model::nc == 0) {
+  if constexpr (has_forward_dynamics_derivatives<Model, Scalar, ParametersOrConstants>::value) {
+    // the generated derivatives of qdd written straight into A's and B's bottom rows; qdd0 from
+    // the model's own forward dynamics, for the caller (a step's stages need it)
+    const DynamicsStatus status = forward_dynamics_unconstrained<Model>(p, ws.dynamics, t, q, qd, u);
+    if (status != DynamicsStatus::ok) return status;
+    constexpr int n = Model::nq;
+    A.template topLeftCorner<n, n>().setZero();
+    A.template topRightCorner<n, n>().setIdentity();
+    B.template topRows<n>().setZero();
+    if (!Model::forward_dynamics_derivatives(t, q, qd, u, p, A.template bottomLeftCorner<n, n>(),
+                                             A.template bottomRightCorner<n, n>(), B.template bottomRows<n>()))
+      return DynamicsStatus::non_finite;
+  } else if constexpr (Model::nc == 0) {
     const DynamicsStatus status = second_order_linearization<Model>(p, ws, t, q, qd, u);
     if (status != DynamicsStatus::ok) return status;
     write_first_order_form(ws.dynamics.mass_llt, ws.terms, A, B);
@@ -231,8 +261,11 @@ DynamicsStatus linearization_into(const ParametersOrConstants& p, LinearizationW
 /// A and B of dx' = A dx + B du, x = [q; qd], about (t, q, qd, u), from exact derivatives; for
 /// a constrained model those of the KKT accelerations (without stabilization) on the full state.
 /// \param[in]  p      parameters, or their Constants (model_traits.hpp) to evaluate repeatedly
-/// \param[out] ws     ws.A (2 nq x 2 nq) and ws.B (2 nq x nu) receive the result; the terms and
-///                    the point's forward dynamics stay in ws.terms and ws.dynamics
+/// \param[out] ws     ws.A (2 nq x 2 nq) and ws.B (2 nq x nu) receive the result; qdd0 (and with
+///                    constraints lambda0) stay in ws.dynamics. The bottom rows of A and B come
+///                    from the model's forward_dynamics_derivatives where it has them (generated
+///                    with --linearization, no constraints), ws.terms left alone; otherwise from
+///                    K, D, B_u (S_q, S_qd) of linearization_terms, kept in ws.terms
 /// \param[in]  t      time
 /// \param[in]  q, qd  coordinates and rates (dim nq)
 /// \param[in]  u      inputs (dim nu)

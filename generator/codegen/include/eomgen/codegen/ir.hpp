@@ -126,6 +126,9 @@ enum class Array {
   multipliers,                    // lambda of the inverse dynamics with constraints (solved, never a target)
   constants,                      // the per-parameter-set constants, computed once by Constants
   accelerations,                  // qdd of the generated forward dynamics
+  acceleration_by_coordinates,    // dqdd/dq of the forward dynamics
+  acceleration_by_rates,          // dqdd/dqd
+  acceleration_by_inputs,         // dqdd/du
   pivots,                         // the forward dynamics' pivots: a local array, checked, not returned
   derived_parameters,             // the derived parameters, computed by the Constants from the parameters
 };

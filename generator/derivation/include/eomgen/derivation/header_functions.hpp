@@ -5,6 +5,8 @@
 //
 //   mass_matrix, forcing      Kane's closed form, or the composite-body M and Newton-Euler F
 //   forward_dynamics          the articulated-body recursion, or M's LDL^T factors (trees)
+//   forward_dynamics_derivatives  dqdd/dq, dqdd/dqd, dqdd/du: the chain rule through the
+//                             recursion, or M^-1 of the linearization's K, D and B_u
 //   inverse_dynamics          tau = M qdd - F, from M and F or by Newton-Euler
 //   gravity_forces            g(q) = dV/dq
 //   coriolis_matrix           C(q, qd) from the Christoffel symbols of M
@@ -68,6 +70,23 @@ struct BaseParameters {
   std::vector<std::string> names;  ///< "BODY.Izz + 0.180625*OTHER.m", one per base parameter
 };
 
+/// The derivatives of the forward dynamics of an unconstrained model, qdd = M^-1 F (the
+/// header's forward_dynamics_derivatives), in the form of fewer estimated operations:
+///  - recursions: the chain rule through the recursive forward dynamics' own intermediates;
+///  - closed_form: M^-1 of the residual's derivatives, -M^-1 K, -M^-1 D and M^-1 B_u (K, D, B_u
+///    of the linearization taken at qdd = M^-1 F), with one LDL^T factorization of M for every
+///    column. D = -dF/dqd needs no derivative of M, and a torque input's B_u is constant.
+struct ForwardDynamicsDerivatives {
+  GiNaC::matrix by_coordinates;  ///< dqdd/dq, n x n
+  GiNaC::matrix by_rates;        ///< dqdd/dqd, n x n
+  GiNaC::matrix by_inputs;       ///< dqdd/du, n x nu
+  /// all positive exactly when M is positive definite (the generated code checks them)
+  GiNaC::exvector pivots;
+  FormChoice form;
+  /// the intermediates the entries refer to beyond the header's others
+  std::unique_ptr<Subexpressions> intermediates;
+};
+
 struct HeaderFunctions {
   const ModelEquations* equations = nullptr;
   const SymbolicLinearization* linearization = nullptr;  ///< linearization_terms, when asked for
@@ -80,6 +99,10 @@ struct HeaderFunctions {
   std::string no_forward_dynamics;  ///< why there is none (constraints, not a tree)
   bool prefers_forward_dynamics = false;
   double mass_matrix_path_operations = 0;
+
+  /// With a linearization and no constraints; or why there are none.
+  std::optional<ForwardDynamicsDerivatives> forward_dynamics_derivatives;
+  std::string no_forward_dynamics_derivatives;
 
   bool controller_functions = false;  ///< whether the functions below were derived (HeaderOptions)
   GiNaC::matrix inverse_dynamics;  ///< M qdd - F, n x 1
