@@ -213,6 +213,18 @@ std::string forward_dynamics_line(const eomgen::EmittedModel& emitted) {
                      emitted.prefers_forward_dynamics ? "forward_dynamics" : "M and F");
 }
 
+// with a linearization: which form forward_dynamics_derivatives() took, or why there is none
+std::string forward_dynamics_derivatives_line(const eomgen::EmittedModel& emitted) {
+  if (!emitted.no_forward_dynamics_derivatives.empty())
+    return "no forward_dynamics_derivatives: " + emitted.no_forward_dynamics_derivatives + "\n";
+  if (!emitted.forward_dynamics_derivatives) return {};
+  std::string estimates;
+  for (const auto& [form, operations] : emitted.forward_dynamics_derivatives_estimates)
+    estimates += fmt::format("{}{} {:.0f}", estimates.empty() ? "" : ", ", eomgen::to_string(form), operations);
+  return fmt::format("forward_dynamics_derivatives: {} (estimated operations: {})\n",
+                     eomgen::to_string(*emitted.forward_dynamics_derivatives), estimates);
+}
+
 void run_generate(const Options& o) {
   eomgen::tools::check_output_files({{"-o", o.output_path}}, o.model_path);
   using clock = std::chrono::steady_clock;
@@ -237,7 +249,7 @@ void run_generate(const Options& o) {
   // peer should compare), not the program's start-up
   const std::string stats =
       o.stats ? statistics_table(emitted.statistics) + resolution_line(eom, emitted) +
-                    forward_dynamics_line(emitted) +
+                    forward_dynamics_line(emitted) + forward_dynamics_derivatives_line(emitted) +
                     fmt::format("time [ms]: parse {:.3f}, derive {:.3f}, emit {:.3f}\n", milliseconds(loaded - start),
                                 milliseconds(derived - loaded), milliseconds(clock::now() - derived))
               : std::string();

@@ -283,7 +283,8 @@ int run_simulate(const Model& model, const SimulateRequest& r) {
   EmitOptions emit;
   emit.source_name = fs::path(r.model_path).filename().string();
   // the simulation needs no functions for controllers: their code would only lengthen the compile
-  const HeaderOptions without_controller_functions{false};
+  HeaderOptions without_controller_functions;
+  without_controller_functions.controller_functions = false;
   const std::string header =
       emit_model(simulated, derive_header_functions(simulated, eom, nullptr, without_controller_functions), emit).header;
   const fs::path program = simulation_program(model, header, methods_of(method_info, r), runtime, program_dir, cache);

@@ -57,6 +57,11 @@ EmittedModel emit(const Model& model, const HeaderFunctions& functions, const Em
   emitted.estimated_operations_recursions = emitted.mass_matrix_from_recursions
                                                 ? functions.mass_matrix_form.estimated_operations
                                                 : functions.mass_matrix_form.estimated_operations_other;
+  if (const auto& d = functions.forward_dynamics_derivatives) {
+    emitted.forward_dynamics_derivatives = d->form;
+    emitted.forward_dynamics_derivatives_estimates = d->candidates;
+  }
+  emitted.no_forward_dynamics_derivatives = functions.no_forward_dynamics_derivatives;
   const std::uint64_t hash = model_fingerprint(model, table, printed.source);
   emitted.header = assemble_header(model, functions, printed.source, hash, options);
   return emitted;

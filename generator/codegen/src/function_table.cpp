@@ -170,9 +170,16 @@ FunctionSpec linearization_terms(const SymbolicLinearization& linearization, boo
 // dqdd/dq, dqdd/dqd and dqdd/du, the pivots first, as forward_dynamics has them
 FunctionSpec forward_dynamics_derivatives(const ForwardDynamicsDerivatives& d) {
   const char* how = nullptr;
-  switch (d.form.form) {
-    case FunctionForm::recursions: how = "by the chain rule through the recursive forward dynamics"; break;
-    case FunctionForm::closed_form: how = "as -M^-1 dR/dq, -M^-1 dR/dqd, M^-1 dF/du of R = M qdd - F at qdd = M^-1 F"; break;
+  switch (d.form) {
+    case ForwardDynamicsDerivatives::Form::chain_rule_through_recursion:
+      how = "by the chain rule through the recursive forward dynamics";
+      break;
+    case ForwardDynamicsDerivatives::Form::mass_matrix_and_linearization:
+      how = "as -M^-1 dR/dq, -M^-1 dR/dqd, M^-1 dF/du of R = M qdd - F at qdd = M^-1 F";
+      break;
+    case ForwardDynamicsDerivatives::Form::mass_matrix_and_newton_euler:
+      how = "as -M^-1 dR/dq, -M^-1 dR/dqd, M^-1 dF/du of R = M qdd - F at qdd = M^-1 F, R by Newton-Euler";
+      break;
   }
   FunctionSpec f = function("forward_dynamics_derivatives",
                             fmt::format("dqdd/dq, dqdd/dqd and dqdd/du of the forward dynamics qdd = M^-1 F, {}; false "

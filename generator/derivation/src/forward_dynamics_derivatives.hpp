@@ -3,7 +3,12 @@
 // forward_dynamics_derivatives (header_functions.hpp says which forms there are).
 #include <ginac/ginac.h>
 
+#include <optional>
+#include <string>
+#include <variant>
 #include <vector>
+
+#include "eomgen/mechanics/mechanical_system.hpp"
 
 #include "eomgen/derivation/header_functions.hpp"
 #include "eomgen/derivation/linearization.hpp"
@@ -21,12 +26,14 @@ struct ForwardDynamicsSources {
   const ForwardDynamics* forward_dynamics = nullptr;
 };
 
-/// The derivatives in each form the model admits, keeping the one of fewer estimated
-/// operations (the other's estimate stays in form.estimated_operations_other, NaN where the
-/// model has no recursive forward dynamics).
-/// \pre the model has no constraints
-/// \throws DerivationError if an expression of the forward dynamics cannot be differentiated
-ForwardDynamicsDerivatives derive_forward_dynamics_derivatives(const Variables& variables,
-                                                               const ForwardDynamicsSources& sources);
+/// The derivatives in each form the model admits (the chain rule through the recursion where
+/// it has one, Newton-Euler where its bodies form a tree), keeping the one of fewer estimated
+/// operations; the first of them on a tie, so the choice is the same in every run. With `only`,
+/// that form alone, or why the model does not admit it.
+/// \pre the system has no constraints
+/// \throws DerivationError if an expression cannot be differentiated
+std::variant<ForwardDynamicsDerivatives, std::string> derive_forward_dynamics_derivatives(
+    const MechanicalSystem& system, const ForwardDynamicsSources& sources,
+    std::optional<ForwardDynamicsDerivatives::Form> only = std::nullopt);
 
 }  // namespace eomgen

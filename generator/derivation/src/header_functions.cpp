@@ -61,7 +61,7 @@ class Derivation {
   void run(const HeaderOptions& options) {
     dynamics();
     forward_dynamics();
-    forward_dynamics_derivatives();
+    forward_dynamics_derivatives(options.forward_dynamics_derivatives_form);
     h_.controller_functions = options.controller_functions;
     if (!options.controller_functions) return;
     inverse_dynamics();
@@ -116,7 +116,7 @@ class Derivation {
   }
 
   // dqdd/d[q, qd, u] where the header has the linearization's terms to take them from
-  void forward_dynamics_derivatives() {
+  void forward_dynamics_derivatives(std::optional<ForwardDynamicsDerivatives::Form> form) {
     if (!h_.linearization) return;
     if (eom_.constraint_count > 0) {
       h_.no_forward_dynamics_derivatives = "the model has constraints: its accelerations are the KKT system's";
@@ -126,8 +126,12 @@ class Derivation {
     const ForwardDynamics* fd = h_.forward_dynamics ? &*h_.forward_dynamics : nullptr;
     if (fd) sets.push_back(&fd->subexpressions);
     try {
-      h_.forward_dynamics_derivatives =
-          derive_forward_dynamics_derivatives(vars_, {h_.mass_matrix, h_.forcing, sets, *h_.linearization, fd});
+      auto derived = derive_forward_dynamics_derivatives(
+          model_.system, {h_.mass_matrix, h_.forcing, sets, *h_.linearization, fd}, form);
+      if (auto* reason = std::get_if<std::string>(&derived))
+        h_.no_forward_dynamics_derivatives = *reason;
+      else
+        h_.forward_dynamics_derivatives = std::move(std::get<ForwardDynamicsDerivatives>(derived));
     } catch (const DerivationError& e) {
       h_.no_forward_dynamics_derivatives = e.what();
     }
@@ -326,12 +330,23 @@ const char* to_string(FunctionForm form) {
   EOMGEN_UNREACHABLE("a FunctionForm value that is not an enumerator");
 }
 
+const char* to_string(ForwardDynamicsDerivatives::Form form) {
+  switch (form) {
+    case ForwardDynamicsDerivatives::Form::chain_rule_through_recursion: return "chain rule through the recursion";
+    case ForwardDynamicsDerivatives::Form::mass_matrix_and_linearization: return "M^-1 of the linearization's K, D, B_u";
+    case ForwardDynamicsDerivatives::Form::mass_matrix_and_newton_euler:
+      return "M^-1 of K, D, B_u through Newton-Euler";
+  }
+  EOMGEN_UNREACHABLE("a ForwardDynamicsDerivatives::Form value that is not an enumerator");
+}
+
 std::vector<const Subexpressions*> HeaderFunctions::intermediates() const {
   std::vector<const Subexpressions*> all{&equations->subexpressions};
   if (linearization) all.push_back(&linearization->derivatives);
   if (forward_dynamics) all.push_back(&forward_dynamics->subexpressions);
   for (const auto& z : owned) all.push_back(z.get());
-  if (forward_dynamics_derivatives) all.push_back(forward_dynamics_derivatives->intermediates.get());
+  if (forward_dynamics_derivatives)
+    for (const auto& z : forward_dynamics_derivatives->intermediates) all.push_back(z.get());
   return all;
 }
 

@@ -1,6 +1,8 @@
 #pragma once
 // Assembles one self-contained C++ header (Eigen only) from a model and its derived equations.
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "eomgen/codegen/cpp_identifier.hpp"  // the spelling of the model's names in the header
@@ -48,6 +50,12 @@ struct EmittedModel {
   /// (then `no_forward_dynamics` says why).
   bool mass_matrix_from_recursions = false;
   double estimated_operations_recursions = 0;
+  /// With forward_dynamics_derivatives(): the form emitted, and every form derived with its
+  /// estimated operations; empty otherwise, and `no_forward_dynamics_derivatives` says why
+  /// where a linearization was asked for.
+  std::optional<ForwardDynamicsDerivatives::Form> forward_dynamics_derivatives;
+  std::vector<std::pair<ForwardDynamicsDerivatives::Form, double>> forward_dynamics_derivatives_estimates;
+  std::string no_forward_dynamics_derivatives;
 };
 
 /// The header of a model: its metadata and every function of `functions`, lowered and printed;

@@ -71,21 +71,33 @@ struct BaseParameters {
 };
 
 /// The derivatives of the forward dynamics of an unconstrained model, qdd = M^-1 F (the
-/// header's forward_dynamics_derivatives), in the form of fewer estimated operations:
-///  - recursions: the chain rule through the recursive forward dynamics' own intermediates;
-///  - closed_form: M^-1 of the residual's derivatives, -M^-1 K, -M^-1 D and M^-1 B_u (K, D, B_u
-///    of the linearization taken at qdd = M^-1 F), with one LDL^T factorization of M for every
-///    column. D = -dF/dqd needs no derivative of M, and a torque input's B_u is constant.
+/// header's forward_dynamics_derivatives), in the form of fewer estimated operations.
 struct ForwardDynamicsDerivatives {
+  enum class Form {
+    /// the chain rule through the recursive forward dynamics' own intermediates
+    chain_rule_through_recursion,
+    /// -M^-1 K, -M^-1 D and M^-1 B_u with one LDL^T factorization of M for every column, K, D
+    /// and B_u those of the linearization (Lagrange's residual R = M qdd - F) at qdd = M^-1 F
+    mass_matrix_and_linearization,
+    /// the same solves, K, D and B_u by the chain rule through the Newton-Euler recursion of R
+    /// at qdd = M^-1 F (a tree of bodies)
+    mass_matrix_and_newton_euler,
+  };
   GiNaC::matrix by_coordinates;  ///< dqdd/dq, n x n
   GiNaC::matrix by_rates;        ///< dqdd/dqd, n x n
   GiNaC::matrix by_inputs;       ///< dqdd/du, n x nu
   /// all positive exactly when M is positive definite (the generated code checks them)
   GiNaC::exvector pivots;
-  FormChoice form;
-  /// the intermediates the entries refer to beyond the header's others
-  std::unique_ptr<Subexpressions> intermediates;
+  Form form = Form::mass_matrix_and_linearization;
+  double estimated_operations = 0;
+  /// every form derived, with its estimate, in the order of Form
+  std::vector<std::pair<Form, double>> candidates;
+  /// the intermediates the entries refer to beyond the header's others, each set after those
+  /// it refers to
+  std::vector<std::unique_ptr<Subexpressions>> intermediates;
 };
+
+const char* to_string(ForwardDynamicsDerivatives::Form form);
 
 struct HeaderFunctions {
   const ModelEquations* equations = nullptr;
@@ -146,6 +158,9 @@ struct HeaderOptions {
   bool controller_functions = true;
   /// the regressor on the identifiable base parameters (`--regressor base`) instead of ten per body
   bool base_regressor = false;
+  /// forward_dynamics_derivatives in that form, not the one of fewer operations (for tests and
+  /// comparisons); none where the model does not admit it, no_forward_dynamics_derivatives saying why
+  std::optional<ForwardDynamicsDerivatives::Form> forward_dynamics_derivatives_form;
 };
 
 /// Every function of the model's header. `linearization`, when given, is linearize_symbolic of
