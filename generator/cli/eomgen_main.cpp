@@ -216,7 +216,7 @@ std::string forward_dynamics_line(const eomgen::EmittedModel& emitted) {
 // with a linearization: which form forward_dynamics_derivatives() took, or why there is none
 std::string forward_dynamics_derivatives_line(const eomgen::EmittedModel& emitted) {
   if (!emitted.no_forward_dynamics_derivatives.empty())
-    return "no forward_dynamics_derivatives: " + emitted.no_forward_dynamics_derivatives + "\n";
+    return "forward_dynamics_derivatives not derived symbolically: " + emitted.no_forward_dynamics_derivatives + "\n";
   if (!emitted.forward_dynamics_derivatives) return {};
   std::string estimates;
   for (const auto& [form, operations] : emitted.forward_dynamics_derivatives_estimates)

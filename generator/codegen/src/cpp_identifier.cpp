@@ -54,7 +54,7 @@ std::set<std::string> generated_code_names() {
       "mass_matrix", "forcing", "mass_matrix_and_forcing", "constraint_jacobian", "constraint_rate_term",
       "constraint_acceleration_term", "holonomic_residuals", "kinetic_energy", "potential_energy", "outputs",
       "forward_dynamics", "forward_dynamics_derivatives", "linearization_terms", "inverse_dynamics", "gravity_forces",
-      "coriolis_matrix", "regressor",
+      "coriolis_matrix", "regressor", "kkt_derivatives", "multiplier_derivatives",
       "inertial_parameters", "npi", "inertial_parameter_names", "fits",
       // the template parameters of the functions, their locals, and the standard names they use
       "DerivedQ", "DerivedQd", "DerivedU", "DerivedQdd", "DerivedLambda", "Out0", "Out1", "Out2", "Out3", "Out4",

@@ -1,15 +1,16 @@
 #pragma once
-// What the generated header says about its linearization. The model-specific derivative
-// terms (linearization_terms) are lowered from the expression graph like every other
-// function; the solves that turn them into A and B are the runtime's, generic over models
-// (eomrt/linearization.hpp), so no numerics are emitted as text.
+// What the generated header adds to its linearization as text. The model-specific derivative
+// terms (linearization_terms, forward_dynamics_derivatives of a model without constraints) are
+// lowered from the expression graph like every other function. A constrained model's
+// derivatives of its KKT accelerations and multipliers are composed of the header's functions
+// and a small LU solve written out, since they solve a system of numbers.
 #include <string>
 
 namespace eomgen {
 
-/// Text for the body of the generated Model after linearization_terms: a comment naming the
-/// runtime algorithms that use it (unconstrained: second_order_linearization and linearization;
-/// constrained: linearization through the KKT system).
+/// Text for the body of the generated Model after linearization_terms: without constraints a
+/// comment naming the runtime algorithms that use it; with constraints kkt_derivatives,
+/// forward_dynamics_derivatives and multiplier_derivatives, with the comment.
 std::string linearization_source(bool constrained);
 
 }  // namespace eomgen

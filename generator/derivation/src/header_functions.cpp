@@ -119,7 +119,8 @@ class Derivation {
   void forward_dynamics_derivatives(std::optional<ForwardDynamicsDerivatives::Form> form) {
     if (!h_.linearization) return;
     if (eom_.constraint_count > 0) {
-      h_.no_forward_dynamics_derivatives = "the model has constraints: its accelerations are the KKT system's";
+      h_.no_forward_dynamics_derivatives =
+          "the model has constraints: the header solves the KKT system for them at each call (kkt_derivatives)";
       return;
     }
     std::vector<const Subexpressions*> sets{&eom_.subexpressions, &recursions_};

@@ -230,7 +230,9 @@ DynamicsStatus linearization_into(const ParametersOrConstants& p, LinearizationW
                 "eomrt: p must be the model's Parameters or its Constants");
   static_assert(has_linearization_terms<Model, Scalar, ParametersOrConstants>::value,
                 "eomrt model: linearization needs linearization_terms; generate with --linearization");
-  if constexpr (has_forward_dynamics_derivatives<Model, Scalar, ParametersOrConstants>::value) {
+  // a constrained header's forward_dynamics_derivatives solves the KKT system without the
+  // runtime's regularity tests and redundant rows: the KKT path below keeps them
+  if constexpr (Model::nc == 0 && has_forward_dynamics_derivatives<Model, Scalar, ParametersOrConstants>::value) {
     // the generated derivatives of qdd written straight into A's and B's bottom rows; qdd0 from
     // the model's own forward dynamics, for the caller (a step's stages need it)
     const DynamicsStatus status = forward_dynamics_unconstrained<Model>(p, ws.dynamics, t, q, qd, u);
@@ -239,9 +241,11 @@ DynamicsStatus linearization_into(const ParametersOrConstants& p, LinearizationW
     A.template topLeftCorner<n, n>().setZero();
     A.template topRightCorner<n, n>().setIdentity();
     B.template topRows<n>().setZero();
-    if (!Model::forward_dynamics_derivatives(t, q, qd, u, p, A.template bottomLeftCorner<n, n>(),
-                                             A.template bottomRightCorner<n, n>(), B.template bottomRows<n>()))
-      return DynamicsStatus::non_finite;
+    // it tests every entry it writes for finiteness, and the top rows are constants
+    return Model::forward_dynamics_derivatives(t, q, qd, u, p, A.template bottomLeftCorner<n, n>(),
+                                               A.template bottomRightCorner<n, n>(), B.template bottomRows<n>())
+               ? DynamicsStatus::ok
+               : DynamicsStatus::non_finite;
   } else if constexpr (Model::nc == 0) {
     const DynamicsStatus status = second_order_linearization<Model>(p, ws, t, q, qd, u);
     if (status != DynamicsStatus::ok) return status;
