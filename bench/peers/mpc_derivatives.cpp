@@ -17,7 +17,9 @@
 // 2. ns per call, interleaved rounds over a pool of 64 states (q and qd uniform in [-1, 1], zero
 //    input; medians and minima), keys in the RESULT lines: our forward_dynamics (forward),
 //    forward_dynamics_derivatives (derivatives), eomrt::linearization (linearize) and
-//    eomrt::step_derivatives with RK4 (step), all with the model's Constants; MuJoCo's
+//    eomrt::step_derivatives with RK4 (step), all with the model's Constants; the linearization
+//    as a header without forward_dynamics_derivatives takes it (terms: linearization_terms at
+//    the accelerations from M's Cholesky factor, then -M^-1 [K, D] and M^-1 B_u); MuJoCo's
 //    mj_forward and mjd_transitionFD (transitionFD: RK4, forward differences, eps 1e-6), each
 //    preceded by copying the state into its mjData.
 // The step is h = 1 ms in both. Machine-readable lines start with "RESULT key value".
@@ -172,6 +174,16 @@ int run(const std::string& path, int rounds) {
   ops.push_back({"linearize", "eomrt::linearization", [&](int k) {
                    const Vec q = states[k].head<nq>(), qd = states[k].tail<nq>();
                    eomrt::linearization<Model>(c, linearization, 0.0, q, qd, u);
+                   sink += linearization.A(nq, 0);
+                 }});
+  // the path before forward_dynamics_derivatives: linearization_terms at qdd0 (from M's Cholesky
+  // factor) and the three solves with the factor, as eomrt::linearization takes for a header
+  // without the derivatives
+  ops.push_back({"terms", "linearization_terms, Cholesky and solves", [&](int k) {
+                   const Vec q = states[k].head<nq>(), qd = states[k].tail<nq>();
+                   eomrt::second_order_linearization<Model>(c, linearization, 0.0, q, qd, u);
+                   eomrt::detail::write_first_order_form(linearization.dynamics.mass_llt, linearization.terms,
+                                                         linearization.A, linearization.B);
                    sink += linearization.A(nq, 0);
                  }});
   ops.push_back({"step", "eomrt::step_derivatives (RK4)", [&](int k) {

@@ -12,6 +12,8 @@
 #   eomrt::linearization / forward_dynamics           at most 4
 #   eomrt::step_derivatives / mjd_transitionFD        at most 0.1 (both RK4, h = 1 ms; MuJoCo's
 #                                                     forward differences, eps 1e-6)
+# and eomrt::linearization against the path a header without forward_dynamics_derivatives takes
+# (linearization_terms, M's Cholesky factor and three solves),
 # with the cross-check of our Phi against MuJoCo's A (centered differences) and the load average.
 # Environment:
 #   WORK=/tmp/mpc-derivatives   scratch directory
@@ -88,11 +90,11 @@ ratio3() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%.3f", a / b }'; }
 echo
 echo "MPC derivatives, $(date -u +%Y-%m-%d), $(nproc) cores, load average $load_start at the start of the runs and $load_end at the end; g++ $CXXFLAGS, $ROUNDS interleaved rounds, ns per call median (minimum)."
 echo
-echo "| model | nq | forward_dynamics | forward_dynamics_derivatives | eomrt::linearization | step_derivatives (RK4) | mjd_transitionFD (RK4) | derivatives / forward | linearization / forward | step / transitionFD | Phi vs MuJoCo's A |"
-echo "|:--|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|"
+echo "| model | nq | forward_dynamics | forward_dynamics_derivatives | eomrt::linearization | terms and solves | step_derivatives (RK4) | mjd_transitionFD (RK4) | derivatives / forward | linearization / forward | linearization / terms and solves | step / transitionFD | Phi vs MuJoCo's A |"
+echo "|:--|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|"
 for c in "${cases[@]}"; do
   stem=$(stem_of $c)
   f=$(result "$stem" ns_forward) d=$(result "$stem" ns_derivatives) l=$(result "$stem" ns_linearize)
-  s=$(result "$stem" ns_step) m=$(result "$stem" ns_transitionFD)
-  echo "| $stem | $(result "$stem" nq) | $f ($(result "$stem" nsmin_forward)) | $d ($(result "$stem" nsmin_derivatives)) | $l ($(result "$stem" nsmin_linearize)) | $s ($(result "$stem" nsmin_step)) | $m ($(result "$stem" nsmin_transitionFD)) | $(ratio "$d" "$f") | $(ratio "$l" "$f") | $(ratio3 "$s" "$m") | $(result "$stem" err_phi) |"
+  s=$(result "$stem" ns_step) m=$(result "$stem" ns_transitionFD) o=$(result "$stem" ns_terms)
+  echo "| $stem | $(result "$stem" nq) | $f ($(result "$stem" nsmin_forward)) | $d ($(result "$stem" nsmin_derivatives)) | $l ($(result "$stem" nsmin_linearize)) | $o ($(result "$stem" nsmin_terms)) | $s ($(result "$stem" nsmin_step)) | $m ($(result "$stem" nsmin_transitionFD)) | $(ratio "$d" "$f") | $(ratio "$l" "$f") | $(ratio "$l" "$o") | $(ratio3 "$s" "$m") | $(result "$stem" err_phi) |"
 done

@@ -151,6 +151,28 @@ def test_linearization_of_a_batch_equals_the_loop_and_finite_differences(module)
             np.testing.assert_allclose(A[0][m.nq:, j], column, rtol=1e-5, atol=1e-6)
 
 
+def test_forward_dynamics_derivatives_are_the_bottom_rows_of_the_linearization(module):
+    m = module
+    if m.nc > 0:
+        assert "forward_dynamics_derivatives" not in m.functions  # composed in the header, not bound
+        return
+    assert "forward_dynamics_derivatives" in m.functions
+    rng = np.random.default_rng(19)
+    q = rng.uniform(-0.3, 0.3, (3, m.nq))
+    qd = rng.uniform(-0.3, 0.3, (3, m.nq))
+    u = rng.uniform(-0.3, 0.3, (3, m.nu))
+    try:
+        by_q, by_qd, by_u = m.forward_dynamics_derivatives(0.0, q, qd, u)
+        A, B = m.linearization(0.0, q, qd, u)
+    except ValueError as e:
+        pytest.skip(f"not regular at random states: {e}")
+    assert by_q.shape == (3, m.nq, m.nq) and by_qd.shape == (3, m.nq, m.nq) and by_u.shape == (3, m.nq, m.nu)
+    for k in range(3):
+        np.testing.assert_array_equal(by_q[k], A[k][m.nq:, :m.nq])
+        np.testing.assert_array_equal(by_qd[k], A[k][m.nq:, m.nq:])
+        np.testing.assert_array_equal(by_u[k], B[k][m.nq:])
+
+
 def test_assemble_returns_a_state_on_the_constraints(module):
     m = module
     rng = np.random.default_rng(17)
