@@ -60,7 +60,10 @@ std::set<std::string> generated_code_names() {
       "DerivedQ", "DerivedQd", "DerivedU", "DerivedQdd", "DerivedLambda", "Out0", "Out1", "Out2", "Out3", "Out4",
       "total", "decay_t", "forward", "eigen_assert", "Derived", "rows", "cols",
       // the template parameter, an attribute, the locals of forward_dynamics and its finiteness test
-      "Scalar", "maybe_unused", "regular", "isfinite",
+      "Scalar", "maybe_unused", "regular", "isfinite", "i", "j",
+      // those of a constrained header's kkt_derivatives (linearization_source.cpp)
+      "ParametersOrConstants", "kkt", "kkt_x", "kkt_pivot", "kkt_row", "kkt_below", "kkt_column", "kkt_solve",
+      "kkt_rhs", "dlambda_dq", "dlambda_dqd", "dlambda_du",
       // macros the generated code must never meet as names, whatever the headers included
       "NDEBUG", "assert", "errno"};
   for (const ir::CallOp& call : ir::call_ops) names.insert(call.cpp_name);
