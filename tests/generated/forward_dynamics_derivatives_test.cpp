@@ -17,9 +17,12 @@
 #include "eomrt/dynamics_kkt.hpp"
 #include "eomrt/dynamics_unconstrained.hpp"
 #include "eomrt/linearization.hpp"
+#include "four_bar.hpp"
 #include "heavy_top.hpp"
+#include "knife_edge.hpp"
 #include "rolling_coin.hpp"
 #include "spacecraft_panel.hpp"
+#include "two_wheeled_robot.hpp"
 
 namespace {
 
@@ -118,6 +121,8 @@ TEST(GeneratedForwardDynamicsDerivatives, MatchDifferencesOfTheForwardDynamicsAn
 
 TEST(GeneratedForwardDynamicsDerivatives, ConstrainedModelsAndTheirMultipliersMatchDifferencesOfTheKktSolve) {
   expect_derivatives_match<eomgen_models::cartesian_pendulum::Model>();
+  expect_derivatives_match<eomgen_models::four_bar::Model>();
+  expect_derivatives_match<eomgen_models::knife_edge::Model>();
   expect_derivatives_match<eomgen_models::rolling_coin::Model>();
 }
 
@@ -164,6 +169,21 @@ TEST(GeneratedForwardDynamicsDerivatives, ASingularMassOrKktMatrixIsReported) {
   Eigen::Matrix<double, Model::nc, Model::nq> l_q, l_qd;
   Eigen::Matrix<double, Model::nc, Model::nu> l_u;
   EXPECT_FALSE(Model::multiplier_derivatives(0.0, x.q, x.qd, x.u, p, l_q, l_qd, l_u));
+}
+
+// The two-wheeled robot's four rolling rows have rank three: the header's KKT solve has no rule
+// for a redundant set and says so, where the runtime's linearization (which sets the redundant
+// rows' multipliers to zero, kkt_system.hpp) still answers
+TEST(GeneratedForwardDynamicsDerivatives, ARedundantSetOfConstraintsIsRefusedWhereTheRuntimeAnswers) {
+  using Model = eomgen_models::two_wheeled_robot::Model;
+  const Model::Constants<double> c{Model::Parameters<double>{}};
+  const Point<Model> x = generic_point<Model>(3);
+  Eigen::Matrix<double, Model::nq, Model::nq> by_q, by_qd;
+  Eigen::Matrix<double, Model::nq, Model::nu> by_u;
+  EXPECT_FALSE(Model::forward_dynamics_derivatives(0.3, x.q, x.qd, x.u, c, by_q, by_qd, by_u));
+  static eomrt::LinearizationWorkspace<Model, double> ws;
+  EXPECT_EQ(eomrt::linearization<Model>(c, ws, 0.3, x.q, x.qd, x.u), eomrt::DynamicsStatus::ok);
+  EXPECT_TRUE(ws.A.allFinite());
 }
 
 }  // namespace

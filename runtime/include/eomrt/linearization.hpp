@@ -234,7 +234,9 @@ DynamicsStatus linearization_into(const ParametersOrConstants& p, LinearizationW
   // runtime's regularity tests and redundant rows: the KKT path below keeps them
   if constexpr (Model::nc == 0 && has_forward_dynamics_derivatives<Model, Scalar, ParametersOrConstants>::value) {
     // the generated derivatives of qdd written straight into A's and B's bottom rows; qdd0 from
-    // the model's own forward dynamics, for the caller (a step's stages need it)
+    // the model's own forward dynamics, for the caller (a step's stages need it). That reports a
+    // point that is not finite as a singular M; it is the terms that are not finite
+    if (!q.allFinite() || !qd.allFinite() || !u.allFinite()) return DynamicsStatus::non_finite;
     const DynamicsStatus status = forward_dynamics_unconstrained<Model>(p, ws.dynamics, t, q, qd, u);
     if (status != DynamicsStatus::ok) return status;
     constexpr int n = Model::nq;

@@ -65,10 +65,15 @@ DynamicsStatus step_derivatives(const ButcherTableau<S>& tableau, const Paramete
   constexpr int nu = Model::nu;
   for (std::size_t i = 0; i < S; ++i) {
     ws.x_stage = x;
-    ws.dX_dx.setIdentity();
-    ws.dX_du.setZero();
+    // a stage at x itself (the first) has dX/dx = I and dX/du = 0: its dk is A and B as they are
+    bool moved = false;
     for (std::size_t j = 0; j < i; ++j) {
       if (tableau.a[i][j] == 0) continue;
+      if (!moved) {
+        ws.dX_dx.setIdentity();
+        ws.dX_du.setZero();
+        moved = true;
+      }
       const Scalar w = h * static_cast<Scalar>(tableau.a[i][j]);
       ws.x_stage += w * ws.k[j];
       ws.dX_dx += w * ws.dk_dx[j];
@@ -80,6 +85,11 @@ DynamicsStatus step_derivatives(const ButcherTableau<S>& tableau, const Paramete
         linearization<Model>(p, ws.stage, t + static_cast<Scalar>(tableau.c[i]) * h, q, qd, u);
     if (status != DynamicsStatus::ok) return status;
     ws.k[i] << qd, ws.stage.dynamics.qdd;
+    if (!moved) {
+      ws.dk_dx[i] = ws.stage.A;
+      if constexpr (nu > 0) ws.dk_du[i] = ws.stage.B;
+      continue;
+    }
     // dk_i = A_i dX_i: the top rows of A_i pick the rates' rows, the bottom ones are products
     const auto A_bottom = ws.stage.A.template bottomRows<nq>();
     ws.dk_dx[i].template topRows<nq>() = ws.dX_dx.template bottomRows<nq>();
