@@ -20,9 +20,12 @@
 #include "four_bar.hpp"
 #include "heavy_top.hpp"
 #include "knife_edge.hpp"
+#include "planar_3rrr.hpp"
+#include "quaternion_rigid_body.hpp"
 #include "rolling_coin.hpp"
 #include "spacecraft_panel.hpp"
 #include "two_wheeled_robot.hpp"
+#include "whipple_bicycle.hpp"
 
 namespace {
 
@@ -123,6 +126,9 @@ TEST(GeneratedForwardDynamicsDerivatives, ConstrainedModelsAndTheirMultipliersMa
   expect_derivatives_match<eomgen_models::cartesian_pendulum::Model>();
   expect_derivatives_match<eomgen_models::four_bar::Model>();
   expect_derivatives_match<eomgen_models::knife_edge::Model>();
+  expect_derivatives_match<eomgen_models::planar_3rrr::Model>();
+  expect_derivatives_match<eomgen_models::quaternion_rigid_body::Model>();
+  expect_derivatives_match<eomgen_models::whipple_bicycle::Model>();
   expect_derivatives_match<eomgen_models::rolling_coin::Model>();
 }
 
