@@ -95,6 +95,10 @@ Eigen::MatrixXd derivatives_at(const Model& model, const ModelEquations& eom, co
   Eigen::MatrixXd all(by_q.rows(), by_q.cols() + by_qd.cols() + by_u.cols());
   all << by_q, by_qd, by_u;
   for (const GiNaC::ex& pivot : d.pivots) EXPECT_GT(eval.value(pivot, "pivot"), 0.0);
+  // qdd itself, which the header's overload writes before the derivatives
+  EXPECT_TRUE(matrices_near_relative(evaluate_matrix(d.accelerations, eval, "qdd"),
+                                     Eigen::MatrixXd(accelerations(model, eom, at)), 1e-12))
+      << to_string(d.form);
   return all;
 }
 

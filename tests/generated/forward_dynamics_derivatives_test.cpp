@@ -104,6 +104,22 @@ void expect_derivatives_match() {
       ASSERT_TRUE(Model::multiplier_derivatives(t, x.q, x.qd, x.u, p, l_q, l_qd, l_u)) << Model::name;
       ours.bottomRows(nc) << l_q, l_qd, l_u;
     }
+    if constexpr (nc == 0) {
+      // the overload that writes qdd too, with Constants and with Parameters: the same numbers,
+      // and the qdd of the runtime's forward dynamics
+      for (const bool from_parameters : {false, true}) {
+        typename Model::template Vector<double> qdd;
+        Eigen::Matrix<double, nq, nq> with_q, with_qd;
+        Eigen::Matrix<double, nq, nu> with_u;
+        ASSERT_TRUE(from_parameters ? Model::forward_dynamics_derivatives(t, x.q, x.qd, x.u, p, qdd, with_q, with_qd, with_u)
+                                    : Model::forward_dynamics_derivatives(t, x.q, x.qd, x.u, c, qdd, with_q, with_qd, with_u))
+            << Model::name;
+        EXPECT_TRUE(near(qdd, accelerations_and_multipliers<Model>(t, x), 1e-12)) << Model::name << ", seed " << seed;
+        EXPECT_EQ(Eigen::MatrixXd(with_q), Eigen::MatrixXd(by_q)) << Model::name;
+        EXPECT_EQ(Eigen::MatrixXd(with_qd), Eigen::MatrixXd(by_qd)) << Model::name;
+        EXPECT_EQ(Eigen::MatrixXd(with_u), Eigen::MatrixXd(by_u)) << Model::name;
+      }
+    }
     EXPECT_TRUE(near(ours, central_differences<Model>(t, x), 1e-6))
         << Model::name << ", seed " << seed << "\n" << ours << "\n\n" << central_differences<Model>(t, x);
     // the linearization's bottom rows: for a constrained model the runtime's own KKT path
@@ -112,6 +128,8 @@ void expect_derivatives_match() {
     Eigen::MatrixXd bottom(nq, 2 * nq + nu);
     bottom << ws.A.template bottomRows<nq>(), ws.B.template bottomRows<nq>();
     EXPECT_TRUE(near(ours.topRows(nq), bottom, 1e-12)) << Model::name << ", seed " << seed;
+    // and the point's own accelerations, which a step's stages read there
+    EXPECT_TRUE(near(ws.dynamics.qdd, accelerations_and_multipliers<Model>(t, x).head(nq), 1e-12)) << Model::name;
   }
 }
 

@@ -191,6 +191,29 @@ std::string forwarding_source(const FunctionSpec& f, const Arguments& a, const C
       signature(f, a, VariableKind::parameter, false), print.indent, returns ? "return " : "", f.name, arguments);
 }
 
+// With first_output_optional: the overloads without the first output (taking Constants, then
+// Parameters), each computing it into a local and forwarding to the one above it that takes it
+std::string optional_output_source(const FunctionSpec& f, const Arguments& a, const CppPrintOptions& print) {
+  const FunctionSpec without = without_first_output(f);
+  const std::string local = cpp_array_name(f.writes.front());
+  std::string code;
+  for (const VariableKind parameters : {VariableKind::constant, VariableKind::parameter}) {
+    std::string arguments;
+    for (VariableKind kind : f.reads)
+      arguments += std::string(arguments.empty() ? "" : ", ") + cpp_argument_name(kind == VariableKind::parameter ? parameters : kind);
+    arguments += ", " + local;
+    for (std::size_t k = 0; k < without.writes.size(); ++k)
+      arguments += fmt::format(", std::forward<{}>({})", output_parameter(k), cpp_array_name(without.writes[k]));
+    code += fmt::format(
+        "\n  /// {}: the overload above without {} (computed all the same).\n{}"
+        "  static {} {}({}) noexcept {{\n{}Eigen::Matrix<{}, {}, {}> {};\n{}{}{}({});\n  }}\n",
+        f.name, local, template_header(without, a), f.returns_regularity ? "bool" : "void", f.name,
+        signature(without, a, parameters, false), print.indent, scalar_type(a), f.shapes.front().rows,
+        f.shapes.front().cols, local, print.indent, f.returns_regularity ? "return " : "", f.name, arguments);
+  }
+  return code;
+}
+
 // `Scalar k0, k1, ...;`, ten to a line
 std::string constant_members(std::size_t count) {
   std::string s;
@@ -272,7 +295,11 @@ std::string function_source(const FunctionSpec& f, const ir::Program& program, c
   const bool scalar = returns_scalar(f);
   const Arguments arguments = arguments_of(f, program);
   const std::string result = scalar ? cpp_target(f.targets.front().target) : std::string();
-  std::string code = fmt::format("\n  /// {}\n{}  static {} {}({}) noexcept {{\n", f.doc, template_header(f, arguments),
+  const std::string doc = f.first_output_optional
+                              ? fmt::format("{}. With {} first: the overload below leaves it out", f.doc,
+                                            cpp_array_name(f.writes.front()))
+                              : f.doc;
+  std::string code = fmt::format("\n  /// {}\n{}  static {} {}({}) noexcept {{\n", doc, template_header(f, arguments),
                                  scalar ? scalar_type(arguments) : f.returns_regularity ? "bool" : "void", f.name,
                                  signature(f, arguments, VariableKind::constant, true));
   const std::size_t checks = code.size();
@@ -297,7 +324,9 @@ std::string function_source(const FunctionSpec& f, const ir::Program& program, c
   // `using Scalar` only where the statements name it: an unused alias is a warning
   const bool names_scalar = code.find("Scalar", checks) != std::string::npos;
   code.insert(checks, argument_checks(f, arguments, names_scalar, print.indent));
-  return code + "  }\n" + forwarding_source(f, arguments, print);
+  code += "  }\n" + forwarding_source(f, arguments, print);
+  if (f.first_output_optional) code += optional_output_source(f, arguments, print);
+  return code;
 }
 
 EmittedFunctions emit_functions(const std::vector<FunctionSpec>& table,

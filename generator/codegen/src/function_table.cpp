@@ -1,6 +1,10 @@
 #include "function_table.hpp"
 
+#include "eomgen/base/error.hpp"
+
 #include <fmt/format.h>
+
+#include <algorithm>
 
 #include "eomgen/codegen/cpp_identifier.hpp"
 #include "eomgen/derivation/linearization.hpp"
@@ -186,13 +190,15 @@ FunctionSpec forward_dynamics_derivatives(const ForwardDynamicsDerivatives& d) {
                                         "if M is not positive definite (a pivot is not positive) or an entry is not "
                                         "finite", how),
                             states_and_inputs,
-                            {Array::acceleration_by_coordinates, Array::acceleration_by_rates,
+                            {Array::accelerations, Array::acceleration_by_coordinates, Array::acceleration_by_rates,
                              Array::acceleration_by_inputs});
   for (std::size_t k = 0; k < d.pivots.size(); ++k) f.targets.push_back({{Array::pivots, k, 0}, d.pivots[k]});
+  add_vector(f, Array::accelerations, d.accelerations);
   add_matrix(f, Array::acceleration_by_coordinates, d.by_coordinates);
   add_matrix(f, Array::acceleration_by_rates, d.by_rates);
   add_matrix(f, Array::acceleration_by_inputs, d.by_inputs);
   f.returns_regularity = true;
+  f.first_output_optional = true;
   return f;
 }
 
@@ -326,6 +332,20 @@ std::vector<FunctionSpec> function_table(const Model& model, const HeaderFunctio
 
 bool returns_scalar(const FunctionSpec& function) {
   return function.writes.size() == 1 && ir::rank(function.writes.front()) == 0;
+}
+
+FunctionSpec without_first_output(const FunctionSpec& function) {
+  EOMGEN_DEMAND(function.first_output_optional && function.writes.size() > 1,
+                "only a function whose first output is optional has an overload without it");
+  FunctionSpec f = function;
+  const Array dropped = f.writes.front();
+  f.writes.erase(f.writes.begin());
+  f.shapes.erase(f.shapes.begin());
+  f.targets.erase(std::remove_if(f.targets.begin(), f.targets.end(),
+                                 [&](const LoweringTarget& t) { return t.target.array == dropped; }),
+                  f.targets.end());
+  f.first_output_optional = false;
+  return f;
 }
 
 }  // namespace eomgen

@@ -39,6 +39,9 @@ struct FunctionSpec {
   /// local array); the function then splits tau into the constraint forces Xi^T lambda and the
   /// rest, orthogonal to them (the least tau that gives qdd)
   bool splits_constraint_forces = false;
+  /// an overload without the first output computes it into a local array: the derivatives of
+  /// qdd are taken at qdd, which a caller may want (a step's stages) or not
+  bool first_output_optional = false;
 };
 
 /// M, F, the constraint terms, T, V, the outputs, then forward_dynamics, inverse_dynamics, the
@@ -52,5 +55,8 @@ std::string output_bias_name(const Output& output);
 
 /// True if the function returns its single scalar output instead of writing arguments.
 bool returns_scalar(const FunctionSpec& function);
+
+/// The function as its overload without the first output takes it (first_output_optional).
+FunctionSpec without_first_output(const FunctionSpec& function);
 
 }  // namespace eomgen

@@ -136,7 +136,9 @@ std::string python_module_source(const Model& model, const HeaderFunctions& func
   for (const Input& u : vars.inputs()) input_units.push_back(u.unit);
 
   std::string definitions;
-  for (const FunctionSpec& f : function_table(model, functions)) definitions += definition(f);
+  // a function with an optional first output is bound without it, as its own outputs alone
+  for (const FunctionSpec& f : function_table(model, functions))
+    definitions += definition(f.first_output_optional ? without_first_output(f) : f);
 
   return fmt::format(
       "// The Python module of model '{model}', written by eomgen (docs/python.md).\n"

@@ -34,6 +34,7 @@ class Candidate {
  public:
   Candidate(Form form, const Variables& variables) : variables_(variables), n_(unsigned(variables.coordinate_count())) {
     d_.form = form;
+    d_.accelerations = matrix(n_, 1);
     d_.by_coordinates = matrix(n_, n_);
     d_.by_rates = matrix(n_, n_);
     d_.by_inputs = matrix(n_, unsigned(variables.inputs().size()));
@@ -52,13 +53,13 @@ class Candidate {
   void factor_mass_matrix(const ForwardDynamicsSources& s) {
     Subexpressions& z = next_set();
     factors_ = ldl_factor(s.mass_matrix, z, d_.pivots);
-    qdd_ = ldl_solve(factors_, s.forcing, z);
+    d_.accelerations = ldl_solve(factors_, s.forcing, z);
   }
 
   /// qdd -> M^-1 F, for the expressions that hold the symbols qdd
   GiNaC::exmap accelerations_at_the_solution() const {
     GiNaC::exmap at;
-    for (unsigned j = 0; j < n_; ++j) at[variables_.coordinates()[j].qdd] = qdd_(j, 0);
+    for (unsigned j = 0; j < n_; ++j) at[variables_.coordinates()[j].qdd] = d_.accelerations(j, 0);
     return at;
   }
 
@@ -79,11 +80,11 @@ class Candidate {
 
   ForwardDynamicsDerivatives& derivatives() { return d_; }
 
-  /// The operations of every entry and pivot, the intermediates of `sources` and of its own sets
-  /// counted once each.
+  /// The operations of every entry, pivot and acceleration, the intermediates of `sources` and
+  /// of its own sets counted once each.
   double estimate(std::vector<const Subexpressions*> sources) const {
     GiNaC::exvector entries(d_.pivots.begin(), d_.pivots.end());
-    for (const matrix* m : {&d_.by_coordinates, &d_.by_rates, &d_.by_inputs})
+    for (const matrix* m : {&d_.accelerations, &d_.by_coordinates, &d_.by_rates, &d_.by_inputs})
       for (unsigned i = 0; i < m->rows(); ++i)
         for (unsigned j = 0; j < m->cols(); ++j) entries.push_back((*m)(i, j));
     for (const auto& z : d_.intermediates) sources.push_back(z.get());
@@ -95,7 +96,6 @@ class Candidate {
   const unsigned n_;
   ForwardDynamicsDerivatives d_;
   LdlFactors factors_;
-  matrix qdd_;
 };
 
 // Every definition of `source` that holds a key of `at` (directly or through an earlier one)
@@ -165,6 +165,7 @@ Candidate by_recursion(const Variables& variables, const ForwardDynamics& fd,
     for (unsigned k = 0; k < nu; ++k) d.by_inputs(i, k) = z.bind(gradient[2 * n + k]);
   }
   d.pivots = fd.pivots;
+  d.accelerations = fd.accelerations;
   return c;
 }
 

@@ -154,8 +154,8 @@ struct has_linearization_terms<Model, Scalar, P, std::enable_if_t<(Model::nc > 0
     std::declval<typename ModelTypes<Model, Scalar>::ConstraintJacobian&>(),
     std::declval<typename ModelTypes<Model, Scalar>::ConstraintJacobian&>()))>>> : std::true_type {};
 
-// forward_dynamics_derivatives (generated with --linearization for models without constraints)
-// taking P as its parameter argument
+// forward_dynamics_derivatives with qdd as its first output (generated with --linearization for
+// models without constraints), taking P as its parameter argument
 template <class Model, class Scalar, class P, class = void>
 struct has_forward_dynamics_derivatives : std::false_type {};
 template <class Model, class Scalar, class P>
@@ -163,7 +163,7 @@ struct has_forward_dynamics_derivatives<Model, Scalar, P, void_t<decltype(Model:
     std::declval<const Scalar&>(), std::declval<const typename ModelTypes<Model, Scalar>::Coordinates&>(),
     std::declval<const typename ModelTypes<Model, Scalar>::Coordinates&>(),
     std::declval<const typename ModelTypes<Model, Scalar>::Inputs&>(),
-    std::declval<const P&>(),
+    std::declval<const P&>(), std::declval<typename ModelTypes<Model, Scalar>::Coordinates&>(),
     std::declval<Eigen::Matrix<Scalar, Model::nq, Model::nq>&>(), std::declval<Eigen::Matrix<Scalar, Model::nq, Model::nq>&>(),
     std::declval<Eigen::Matrix<Scalar, Model::nq, Model::nu>&>()))>> : std::true_type {};
 
@@ -233,21 +233,21 @@ DynamicsStatus linearization_into(const ParametersOrConstants& p, LinearizationW
   // a constrained header's forward_dynamics_derivatives solves the KKT system without the
   // runtime's regularity tests and redundant rows: the KKT path below keeps them
   if constexpr (Model::nc == 0 && has_forward_dynamics_derivatives<Model, Scalar, ParametersOrConstants>::value) {
-    // the generated derivatives of qdd written straight into A's and B's bottom rows; qdd0 from
-    // the model's own forward dynamics, for the caller (a step's stages need it). That reports a
-    // point that is not finite as a singular M; it is the terms that are not finite
+    // the generated derivatives of qdd written straight into A's and B's bottom rows, and qdd0
+    // (which they compute on the way) into ws.dynamics for the caller: a step's stages need it
     if (!q.allFinite() || !qd.allFinite() || !u.allFinite()) return DynamicsStatus::non_finite;
-    const DynamicsStatus status = forward_dynamics_unconstrained<Model>(p, ws.dynamics, t, q, qd, u);
-    if (status != DynamicsStatus::ok) return status;
     constexpr int n = Model::nq;
     A.template topLeftCorner<n, n>().setZero();
     A.template topRightCorner<n, n>().setIdentity();
     B.template topRows<n>().setZero();
-    // it tests every entry it writes for finiteness, and the top rows are constants
-    return Model::forward_dynamics_derivatives(t, q, qd, u, p, A.template bottomLeftCorner<n, n>(),
-                                               A.template bottomRightCorner<n, n>(), B.template bottomRows<n>())
-               ? DynamicsStatus::ok
-               : DynamicsStatus::non_finite;
+    // it tests its pivots and every entry it writes, and the top rows are constants
+    if (Model::forward_dynamics_derivatives(t, q, qd, u, p, ws.dynamics.qdd, A.template bottomLeftCorner<n, n>(),
+                                            A.template bottomRightCorner<n, n>(), B.template bottomRows<n>()))
+      return DynamicsStatus::ok;
+    // which of the two failed: the model's forward dynamics tells a singular M (a finite point
+    // whose qdd is not finite included) from derivatives that are not finite
+    const DynamicsStatus status = forward_dynamics_unconstrained<Model>(p, ws.dynamics, t, q, qd, u);
+    return status != DynamicsStatus::ok ? status : DynamicsStatus::non_finite;
   } else if constexpr (Model::nc == 0) {
     const DynamicsStatus status = second_order_linearization<Model>(p, ws, t, q, qd, u);
     if (status != DynamicsStatus::ok) return status;

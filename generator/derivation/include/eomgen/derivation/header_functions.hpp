@@ -83,6 +83,9 @@ struct ForwardDynamicsDerivatives {
     /// at qdd = M^-1 F (a tree of bodies)
     mass_matrix_and_newton_euler,
   };
+  /// qdd = M^-1 F itself, n x 1, from the intermediates the derivatives share (every form
+  /// computes it on the way)
+  GiNaC::matrix accelerations;
   GiNaC::matrix by_coordinates;  ///< dqdd/dq, n x n
   GiNaC::matrix by_rates;        ///< dqdd/dqd, n x n
   GiNaC::matrix by_inputs;       ///< dqdd/du, n x nu
