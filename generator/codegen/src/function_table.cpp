@@ -171,7 +171,8 @@ FunctionSpec linearization_terms(const SymbolicLinearization& linearization, boo
   return f;
 }
 
-// dqdd/dq, dqdd/dqd and dqdd/du, the pivots first, as forward_dynamics has them
+// qdd, dqdd/dq, dqdd/dqd and dqdd/du (qdd optional: an overload leaves it out), the pivots first,
+// as forward_dynamics has them
 FunctionSpec forward_dynamics_derivatives(const ForwardDynamicsDerivatives& d) {
   const char* how = nullptr;
   switch (d.form) {
