@@ -173,16 +173,28 @@ std::string math_using_declarations(std::initializer_list<const ir::Program*> pr
   return s;
 }
 
-// the overload taking Parameters: it builds their Constants for this one call
-std::string forwarding_source(const FunctionSpec& f, const Arguments& a, const CppPrintOptions& print) {
-  const bool scalar = returns_scalar(f), returns = scalar || f.returns_regularity;
+// what an overload passes on: its inputs, the parameters spelt `parameters`
+std::string forwarded_inputs(const FunctionSpec& f, const std::string& parameters) {
   std::string arguments;
   for (VariableKind kind : f.reads)
     arguments += std::string(arguments.empty() ? "" : ", ") +
-                 (kind == VariableKind::parameter ? fmt::format("Constants<{}>(p)", scalar_type(a)) : cpp_argument_name(kind));
-  if (!scalar)
-    for (std::size_t k = 0; k < f.writes.size(); ++k)
-      arguments += fmt::format(", std::forward<{}>({})", output_parameter(k), cpp_array_name(f.writes[k]));
+                 (kind == VariableKind::parameter ? parameters : std::string(cpp_argument_name(kind)));
+  return arguments;
+}
+
+// ... and its outputs, each after a comma
+std::string forwarded_outputs(const FunctionSpec& f) {
+  std::string arguments;
+  for (std::size_t k = 0; k < f.writes.size(); ++k)
+    arguments += fmt::format(", std::forward<{}>({})", output_parameter(k), cpp_array_name(f.writes[k]));
+  return arguments;
+}
+
+// the overload taking Parameters: it builds their Constants for this one call
+std::string forwarding_source(const FunctionSpec& f, const Arguments& a, const CppPrintOptions& print) {
+  const bool scalar = returns_scalar(f), returns = scalar || f.returns_regularity;
+  const std::string arguments = forwarded_inputs(f, fmt::format("Constants<{}>(p)", scalar_type(a))) +
+                                (scalar ? std::string() : forwarded_outputs(f));
   return fmt::format(
       "\n  /// {}\n  /// From the parameters: computes their Constants for this call alone (to evaluate\n"
       "  /// repeatedly, build the Constants once and call the overload above).\n{}"
@@ -198,12 +210,8 @@ std::string optional_output_source(const FunctionSpec& f, const Arguments& a, co
   const std::string local = cpp_array_name(f.writes.front());
   std::string code;
   for (const VariableKind parameters : {VariableKind::constant, VariableKind::parameter}) {
-    std::string arguments;
-    for (VariableKind kind : f.reads)
-      arguments += std::string(arguments.empty() ? "" : ", ") + cpp_argument_name(kind == VariableKind::parameter ? parameters : kind);
-    arguments += ", " + local;
-    for (std::size_t k = 0; k < without.writes.size(); ++k)
-      arguments += fmt::format(", std::forward<{}>({})", output_parameter(k), cpp_array_name(without.writes[k]));
+    const std::string arguments =
+        forwarded_inputs(f, cpp_argument_name(parameters)) + ", " + local + forwarded_outputs(without);
     code += fmt::format(
         "\n  /// {}: the overload above without {} (computed all the same).\n{}"
         "  static {} {}({}) noexcept {{\n{}Eigen::Matrix<{}, {}, {}> {};\n{}{}{}({});\n  }}\n",
